@@ -1,0 +1,37 @@
+-- Test bootstrap: puts Fennel on the path, teaches busted to load *_spec.fnl files,
+-- and turns accidental global writes into errors.
+package.path = "./?.lua;./?/init.lua;" .. package.path .. ";/usr/share/lua/5.4/?.lua"
+local fennel = require("fennel")
+fennel.path = "./?.fnl;./?/init.fnl;" .. fennel.path
+table.insert(package.loaders or package.searchers, fennel.searcher)
+-- Compile with line correlation so tracebacks point at the right Fennel lines.
+fennel["macro-path"] = "./?.fnl;" .. fennel["macro-path"]
+
+package.preload["busted.modules.files.fennel"] = function()
+  local path = require("pl.path")
+  local loader = {}
+  function loader.match(_, filename)
+    return path.extension(filename) == ".fnl"
+  end
+  function loader.load(busted, filename)
+    local f = assert(io.open(filename, "rb"))
+    local source = f:read("*a")
+    f:close()
+    local ok, chunk = pcall(function()
+      local lua = fennel.compileString(source, {filename = filename, correlate = true})
+      return assert(loadstring(lua, "@" .. filename))
+    end)
+    if not ok then
+      busted.publish({"error", "file"}, {descriptor = "file", name = filename}, nil, chunk, {})
+      return nil
+    end
+    return chunk, function(_, info) return info end, function(_, msg) return msg end
+  end
+  return loader
+end
+
+setmetatable(_G, {
+  __newindex = function(_, name)
+    error("test wrote to global '" .. tostring(name) .. "'", 2)
+  end,
+})

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Installs what the raymarcher needs on Debian 12, and nothing when all is present.
+# Debian packages come from the system's own sources; Fennel 1.5.x comes from the trixie
+# suite's .deb, fetched through a private apt state so the system stays on bookworm.
+set -euo pipefail
+
+packages=(love luajit lua5.4 glslang-tools libosmesa6 lua-busted)
+fennel_suite=trixie
+mirror=${DEBIAN_MIRROR:-http://deb.debian.org/debian}
+keyring=/usr/share/keyrings/debian-archive-keyring.gpg
+
+sudo=""
+if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "install-deps: installing ${missing[*]}"
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+fennel_ok() {
+  command -v fennel >/dev/null 2>&1 && fennel --version 2>/dev/null | grep -q '^Fennel 1\.[5-9]'
+}
+
+if ! fennel_ok; then
+  echo "install-deps: fetching fennel from Debian $fennel_suite (private apt state, system sources untouched)"
+  state=$(mktemp -d)
+  trap 'rm -rf "$state"' EXIT
+  mkdir -p "$state/lists/partial" "$state/cache/archives/partial" "$state/parts" "$state/deb"
+  echo "deb [signed-by=$keyring] $mirror $fennel_suite main" > "$state/sources.list"
+  apt_private=(-o "Dir::Etc::SourceList=$state/sources.list" -o "Dir::Etc::SourceParts=$state/parts"
+               -o "Dir::State::Lists=$state/lists" -o "Dir::Cache=$state/cache"
+               -o "APT::Sandbox::User=root")
+  apt-get "${apt_private[@]}" update -qq
+  (cd "$state/deb" && apt-get "${apt_private[@]}" download -qq fennel)
+  $sudo apt-get install -y -qq --no-install-recommends "$state"/deb/fennel_*.deb >/dev/null
+  fennel_ok || { echo "install-deps: fennel was installed but 'fennel --version' is not 1.5+" >&2; exit 1; }
+fi
