@@ -1,0 +1,52 @@
+-- LÖVE configuration. It also puts Fennel on the module path and loads main.fnl, so
+-- no main.lua is needed: `love .` works right after `make run` has installed Fennel.
+package.path = package.path .. ";lib/?.lua;/usr/share/lua/5.4/?.lua;/usr/share/lua/5.3/?.lua"
+local ok, fennel = pcall(require, "fennel")
+if not ok then
+  error("Fennel is not installed (looked for fennel.lua in lib/ and /usr/share/lua/5.4/).\n"
+        .. "Run `make run` once: it installs what is missing.")
+end
+
+-- Modules are read through love.filesystem, so `love path/to/game` works from any
+-- directory. Line numbers in errors are the Fennel source's.
+table.insert(package.loaders, 2, function(name)
+  local path = name:gsub("%.", "/") .. ".fnl"
+  if love.filesystem.getInfo(path, "file") then
+    return function(...)
+      local lua = fennel.compileString(love.filesystem.read(path),
+                                       {filename = path, correlate = true})
+      return assert(loadstring(lua, "@" .. path))(...)
+    end
+  end
+end)
+
+-- Command-line modes that only print need no window.
+local function has_arg(flag)
+  for _, a in ipairs(arg or {}) do
+    if a == flag then return true end
+  end
+  return false
+end
+
+function love.conf(t)
+  t.identity = "fennel-raymarcher"
+  t.version = "11.4"
+  t.window.title = "Fennel raymarcher"
+  t.window.width = 1280
+  t.window.height = 720
+  t.window.resizable = true
+  t.window.minwidth = 64
+  t.window.minheight = 48
+  t.window.vsync = 0
+  t.modules.audio = false   -- no sound device on CI
+  t.modules.sound = false
+  t.modules.physics = false
+  t.modules.video = false
+  if has_arg("--print-shader") then
+    t.window = nil
+    t.modules.window = false
+    t.modules.graphics = false
+  end
+end
+
+require("main")

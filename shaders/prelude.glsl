@@ -1,0 +1,13 @@
+// Common uniforms. The camera sits at the origin: every position the shader sees was
+// made camera-relative on the CPU, in double precision, before upload.
+uniform vec2 uResolution;     // render target size in pixels
+uniform vec3 uCamForward;     // camera basis (the article's: right = cross(-z, forward))
+uniform vec3 uCamRight;
+uniform vec3 uCamUp;          // points down the screen, as pixel y grows downwards
+uniform float uProjDist;      // 1 / tan(fov / 2)
+uniform vec3 uLightPos;
+uniform vec3 uEnvColor;
+uniform int uMaxSteps;
+uniform float uEpsilon;       // hit test: a step shorter than this is a hit
+uniform float uDrawDist;
+// @slot feature-uniforms

@@ -1,0 +1,13 @@
+// Shaded view: Lambert lighting, hard shadows and mirror bounces.
+if (t >= uDrawDist) {
+    vec3 background = uEnvColor;
+    // @slot glow
+    return background;
+}
+vec3 p = ro + rd * t;
+vec3 n = calcNormal(p);
+vec3 surface;
+mapColor(p, surface);
+vec3 color = surface * lightness(p, n);
+// @slot reflections
+return color;

@@ -1,0 +1,76 @@
+;; Command-line arguments of the app: which mode to run and with what, checked before
+;; anything opens. Pure: a list of strings in, an options table or an error out.
+
+(local plan (require :src.plan))
+
+(local default-scene "scenes/seed.fnl")
+
+(local usage
+  "usage: love . [SCENE]                       play SCENE (default scenes/seed.fnl)
+       love . --render SCENE --out FILE.png [--size WxH] [--view VIEW]
+       love . --print-shader SCENE [--view VIEW] [--target love|core]
+       love . --bench SCENE [--size WxH] [--frames N]
+       love . --bench-report [--frames N]    the benchmark behind `make bench`
+VIEW is one of shaded, normals, glow, heat.")
+
+(local value-flags {:--out :out :--size :size :--frames :frames :--view :view
+                    :--target :target})
+(local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench})
+
+(fn parse-size [s]
+  (let [(w h) (s:match "^(%d+)[xX](%d+)$")
+        w (tonumber w) h (tonumber h)]
+    (when (and w h (>= w 1) (>= h 1) (<= w 16384) (<= h 16384))
+      [w h])))
+
+(fn check-options [o]
+  (if (and (= o.mode :render) (not o.out))
+      (values nil "--render needs --out FILE.png")
+      (and o.out (not (o.out:match "%.png$")))
+      (values nil (.. "--out must name a .png file, got " o.out))
+      (and o.view (not (plan.view? o.view)))
+      (values nil (.. "--view must be one of " (table.concat plan.views ", ") ", got " o.view))
+      (and o.target (not= o.target "love") (not= o.target "core"))
+      (values nil (.. "--target must be love or core, got " o.target))
+      o))
+
+(fn parse [args]
+  "Parse the game's arguments (after LÖVE's own). Returns an options table
+{:mode :play|:render|:print-shader|:bench|:bench-report :scene :out :size [w h]
+ :frames n :view v :target t} or nil and a message (the usage text follows it)."
+  (let [o {:mode :play :frames 5}]
+    (var i 1)
+    (var err nil)
+    (while (and (not err) (<= i (length args)))
+      (let [a (. args i)
+            next-arg (. args (+ i 1))]
+        (if (. mode-flags a)
+            (if (not= o.mode :play) (set err (.. a ": only one mode at a time"))
+                (or (= next-arg nil) (next-arg:match "^%-%-"))
+                (set err (.. a " needs a scene file"))
+                (do (set o.mode (. mode-flags a))
+                    (set o.scene next-arg)
+                    (set i (+ i 1))))
+            (= a "--bench-report")
+            (if (not= o.mode :play) (set err (.. a ": only one mode at a time"))
+                (set o.mode :bench-report))
+            (. value-flags a)
+            (if (= next-arg nil) (set err (.. a " needs a value"))
+                (do (tset o (. value-flags a) next-arg)
+                    (set i (+ i 1))))
+            (a:match "^%-%-") (set err (.. "unknown option " a))
+            o.scene (set err (.. "unexpected argument " a))
+            (set o.scene a)))
+      (set i (+ i 1)))
+    (when (and (not err) o.size)
+      (let [size (parse-size o.size)]
+        (if size (set o.size size)
+            (set err (.. "--size must look like 1920x1080, got " o.size)))))
+    (when (and (not err) (= (type o.frames) :string))
+      (let [n (tonumber o.frames)]
+        (if (and n (>= n 1) (= n (math.floor n))) (set o.frames n)
+            (set err (.. "--frames must be a whole number >= 1, got " o.frames)))))
+    (when (not o.scene) (set o.scene default-scene))
+    (if err (values nil err) (check-options o))))
+
+{: parse : usage : default-scene}

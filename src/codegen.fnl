@@ -1,0 +1,154 @@
+;; Code generation: a plan becomes one GLSL fragment shader, assembled from the chunks in
+;; shaders/ and holding only what the plan needs. Output is deterministic: the same plan
+;; always gives the same text.
+
+(local registry (require :src.registry))
+
+(fn read-file [path]
+  (case (io.open path :rb)
+    f (let [text (f:read :*a)] (f:close) text)
+    (nil err) (error (.. "cannot read shader chunk " path ": " err))))
+
+;; The app reads chunks through love.filesystem; tests and tools read from the working
+;; directory. Chunks are cached by path.
+(local state {:read read-file :cache {}})
+
+(fn set-reader! [read]
+  "Read shader chunks with `read` (path -> text) from now on, and forget cached ones."
+  (set state.read read)
+  (set state.cache {}))
+
+(fn chunk [path]
+  (when (= nil (. state.cache path))
+    (tset state.cache path (assert (state.read path) (.. "cannot read " path))))
+  (. state.cache path))
+
+;;; Lines: a chunk's text becomes a list of lines; `// @slot NAME` lines are replaced
+;;; by the slot's lines at the same indentation. Nested lists flatten.
+
+(fn flatten-into [out indent lines]
+  (each [_ line (ipairs lines)]
+    (if (= (type line) :table)
+        (flatten-into out indent line)
+        (table.insert out (if (= line "") "" (.. indent line))))))
+
+(fn fill [path slots]
+  "Lines of chunk `path` with its slots filled from `slots` (name -> lines)."
+  (let [out []]
+    (each [line (: (.. (chunk path) "\n") :gmatch "([^\n]*)\n")]
+      (let [(indent name) (line:match "^(%s*)// @slot ([%w%-]+)%s*$")]
+        (if name
+            (let [lines (. slots name)]
+              (assert lines (.. path ": no lines given for slot " name))
+              (flatten-into out indent lines))
+            (table.insert out line))))
+    ;; A chunk file ends with a newline; do not keep the empty last line.
+    (when (= (. out (length out)) "") (table.remove out))
+    out))
+
+;;; Per-kind code
+
+(fn count-bound [k plan]
+  (if plan.uber?
+      (.. "uCount" (: k.kind :gsub "^%l" string.upper))
+      (tostring k.capacity)))
+
+(fn kind-loop [k plan body]
+  ;; One object: no loop at all. Several: a loop over the kind's uniform arrays.
+  (if (and (not plan.uber?) (= k.capacity 1))
+      [(.. "{ const int i = 0;") body "}"]
+      [(.. "for (int i = 0; i < " (count-bound k plan) "; i++) {") body "}"]))
+
+(fn uniform-declarations [plan]
+  (let [lines []]
+    (each [_ k (ipairs plan.kinds)]
+      (table.insert lines (.. "// " k.kind ": " k.capacity
+                              (if plan.uber? " slots" (= k.capacity 1) " object" " objects")))
+      (when plan.uber?
+        (table.insert lines (.. "uniform int " (count-bound k plan) ";")))
+      (each [_ u (ipairs k.entry.uniforms)]
+        (table.insert lines (.. "uniform " u.type " " u.name "[" k.capacity "];"))))
+    lines))
+
+(fn distance-terms [plan]
+  (icollect [_ k (ipairs plan.kinds)]
+    (kind-loop k plan [(.. "    d = min(d, " k.entry.distance-glsl ");")])))
+
+(fn color-terms [plan]
+  (icollect [_ k (ipairs plan.kinds)]
+    (kind-loop k plan [(.. "    float di = " k.entry.distance-glsl ";")
+                       (.. "    if (di < d) { d = di; color = " k.entry.color-glsl "; }")])))
+
+;;; Features
+
+(fn when-switched [plan switch lines]
+  ;; In the all-features (uber) shader a feature is compiled in and switched by a
+  ;; uniform; in a specialized shader it is either there or absent.
+  (if plan.uber?
+      [(.. "if (" switch ") {") (icollect [_ l (ipairs lines)] (.. "    " l)) "}"]
+      lines))
+
+(fn feature-uniforms [plan]
+  (let [lines []]
+    (when plan.reflections? (table.insert lines "uniform int uReflections;"))
+    (when plan.uber?
+      (table.insert lines "uniform bool uShadows;")
+      (table.insert lines "uniform bool uGlow;"))
+    lines))
+
+(fn view-lines [plan]
+  (case plan.view
+    :shaded (fill "shaders/views/shaded.glsl"
+                  {:glow (if plan.glow? (when-switched plan "uGlow" (fill "shaders/glow.glsl" {})) [])
+                   :reflections (if plan.reflections? (fill "shaders/reflect.glsl" {}) [])})
+    view (fill (.. "shaders/views/" view ".glsl") {})))
+
+(fn body-lines [plan]
+  (let [view plan.view
+        normals? (or (= view :shaded) (= view :normals))
+        colors? (or (= view :shaded) (= view :glow))
+        sections [(fill "shaders/prelude.glsl" {:feature-uniforms (feature-uniforms plan)})
+                  (uniform-declarations plan)]]
+    (each [_ k (ipairs plan.kinds)]
+      (table.insert sections (fill k.entry.chunk {})))
+    (table.insert sections (fill "shaders/map.glsl" {:distance-terms (distance-terms plan)
+                                                     :color-terms (color-terms plan)}))
+    (when (not colors?)
+      ;; mapColor is the second function of map.glsl; drop it when the view has no use
+      ;; for colours.
+      (let [lines (. sections (length sections))
+            cut (accumulate [at nil i line (ipairs lines) &until at]
+                  (when (line:find "^// The same minimum") i))]
+        (for [i (length lines) (- cut 1) -1] (table.remove lines i))))
+    (table.insert sections (fill "shaders/march.glsl" {}))
+    (when normals? (table.insert sections (fill "shaders/normal.glsl" {})))
+    (when (= view :shaded)
+      (table.insert sections
+                    (fill "shaders/light.glsl"
+                          {:shadow (if plan.shadows?
+                                       (when-switched plan "uShadows" (fill "shaders/shadow.glsl" {}))
+                                       [])})))
+    (table.insert sections (fill "shaders/render.glsl" {:view (view-lines plan)}))
+    sections))
+
+(local targets
+  {:love {:header ["#pragma language glsl3"] :entry "shaders/entry-love.glsl"}
+   :core {:header ["#version 330 core" "out vec4 fragColor;"] :entry "shaders/entry-core.glsl"}})
+
+(fn shader [plan ?target]
+  "GLSL fragment shader text for `plan`. `?target` is :love (default: LÖVE's effect()
+entry point) or :core (a plain #version 330 core shader, for headless tests and
+glslangValidator)."
+  (let [target (. targets (or ?target :love))
+        _ (assert target (.. "unknown target " (tostring ?target)))
+        out []
+        sections [target.header
+                  [(.. "// Generated by src/codegen.fnl for: " plan.key)]]]
+    (each [_ s (ipairs (body-lines plan))] (table.insert sections s))
+    (table.insert sections (fill target.entry {}))
+    (each [i s (ipairs sections)]
+      (when (> i 1) (table.insert out ""))
+      (flatten-into out "" s))
+    (.. (table.concat out "\n") "\n")))
+
+{: shader : set-reader!}

@@ -1,0 +1,93 @@
+;; The primitive registry: one entry per kind holds its parameters with their checks,
+;; its uniform layout, its GLSL distance function and its CPU distance function, so the
+;; shader and the CPU reference marcher are described in one place.
+
+(local sqrt math.sqrt)
+(local abs math.abs)
+(local max math.max)
+(local min math.min)
+
+(fn sphere-distance [o x y z]
+  "Exact distance from (x y z) to sphere `o` (world coordinates, double)."
+  (let [[cx cy cz] o.pos
+        dx (- x cx) dy (- y cy) dz (- z cz)]
+    (- (sqrt (+ (* dx dx) (* dy dy) (* dz dz))) o.radius)))
+
+(fn box-distance [o x y z]
+  "Exact signed distance from (x y z) to the axis-aligned box `o`."
+  (let [[cx cy cz] o.pos
+        [sx sy sz] o.size
+        qx (- (abs (- x cx)) (* sx 0.5))
+        qy (- (abs (- y cy)) (* sy 0.5))
+        qz (- (abs (- z cz)) (* sz 0.5))
+        ox (max qx 0) oy (max qy 0) oz (max qz 0)]
+    (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz)))
+       (min (max qx qy qz) 0))))
+
+(fn plane-distance [o _x _y z]
+  "Exact signed distance from (x y z) to the ground plane z = o.height."
+  (- z o.height))
+
+;;; Uniform packers: each takes the object and the camera position and returns the
+;;; values of one array element. Positions are made camera-relative here, in double.
+
+(fn relative [[x y z] [cx cy cz]]
+  [(- x cx) (- y cy) (- z cz)])
+
+(local kinds
+  [{:kind :sphere
+    :doc "Sphere of :radius around :pos."
+    :params [{:name :pos :type :vec3 :default [0 0 0]}
+             {:name :radius :type :positive :default 1}
+             {:name :color :type :color :default [1 1 1]}]
+    :chunk "shaders/sdf/sphere.glsl"
+    :exact? true
+    :uniforms [{:name "uSphere" :type :vec4
+                :pack (fn [o cam] (let [[x y z] (relative o.pos cam)] [x y z o.radius]))}
+               {:name "uSphereColor" :type :vec3 :pack (fn [o] o.color)}]
+    :distance-glsl "sdSphere(p, uSphere[i])"
+    :color-glsl "uSphereColor[i]"
+    :distance sphere-distance}
+   {:kind :box
+    :doc "Axis-aligned box with full extents :size centred on :pos."
+    :params [{:name :pos :type :vec3 :default [0 0 0]}
+             {:name :size :type :size3 :default [1 1 1]}
+             {:name :color :type :color :default [1 1 1]}]
+    :chunk "shaders/sdf/box.glsl"
+    :exact? true
+    :uniforms [{:name "uBoxCenter" :type :vec3 :pack (fn [o cam] (relative o.pos cam))}
+               {:name "uBoxHalfSize" :type :vec3
+                :pack (fn [o] (let [[x y z] o.size] [(* x 0.5) (* y 0.5) (* z 0.5)]))}
+               {:name "uBoxColor" :type :vec3 :pack (fn [o] o.color)}]
+    :distance-glsl "sdBox(p, uBoxCenter[i], uBoxHalfSize[i])"
+    :color-glsl "uBoxColor[i]"
+    :distance box-distance}
+   {:kind :plane
+    :doc "Ground plane z = :height, facing up."
+    :params [{:name :height :type :number :default 0}
+             {:name :color :type :color :default [1 1 1]}]
+    :chunk "shaders/sdf/plane.glsl"
+    :exact? true
+    :uniforms [{:name "uPlaneHeight" :type :float
+                :pack (fn [o [_ _ cz]] [(- o.height cz)])}
+               {:name "uPlaneColor" :type :vec3 :pack (fn [o] o.color)}]
+    :distance-glsl "sdPlane(p, uPlaneHeight[i])"
+    :color-glsl "uPlaneColor[i]"
+    :distance plane-distance}])
+
+(local by-kind (collect [_ entry (ipairs kinds)] entry.kind entry))
+
+(fn lookup [kind]
+  "The registry entry for `kind` (a string), or nil."
+  (. by-kind kind))
+
+(fn kind-names []
+  "The kind names in registry order."
+  (icollect [_ entry (ipairs kinds)] entry.kind))
+
+(fn slots-per-object [entry]
+  "Uniform vectors (vec4 slots) one object of this kind takes: every array element
+of float, vec3 or vec4 occupies one slot."
+  (length entry.uniforms))
+
+{: kinds : lookup : kind-names : slots-per-object}

@@ -1,0 +1,301 @@
+;; Scene files: sandboxed evaluation, validation with file:line:field messages, and
+;; defaults. A scene file is Fennel data; the result is plain data with every field set.
+
+(local fennel (require :fennel))
+(local registry (require :src.registry))
+
+(local default-environment [0.901 0.976 1])
+
+;; Each top-level section: field name -> {:type :default}. Types are checked by `check`.
+(local sections
+  {:camera {:pos {:type :vec3 :default [0 -10 2]}
+            :yaw {:type :number :default 90}
+            :pitch {:type :pitch :default 0}
+            :fov {:type :fov :default 60}}
+   :light {:pos {:type :vec3 :default [-30 20 20]}}
+   :render {:max-steps {:type :steps :default 500}
+            :epsilon {:type :non-negative :default 1e-4}
+            :draw-distance {:type :positive :default 1000}
+            :reflections {:type :reflections :default 3}
+            :shadows {:type :boolean :default true}
+            :glow {:type :boolean :default false}
+            :scale {:type :scale :default 1}}})
+
+(local top-level-keys [:name :camera :light :environment :render :objects])
+
+(local limits {:max-reflections 16 :max-steps 100000 :max-objects 1000})
+
+;;; Messages
+
+(fn levenshtein [a b]
+  (let [la (length a) lb (length b)
+        prev (fcollect [j 0 lb] j)]
+    (for [i 1 la]
+      (var diag (. prev 1))
+      (tset prev 1 i)
+      (for [j 1 lb]
+        (let [above (. prev (+ j 1))
+              cost (if (= (a:sub i i) (b:sub j j)) 0 1)]
+          (tset prev (+ j 1) (math.min (+ above 1) (+ (. prev j) 1) (+ diag cost)))
+          (set diag above))))
+    (. prev (+ lb 1))))
+
+(fn suggestion [word candidates]
+  "A ' (did you mean :x?)' hint when a candidate is close to `word`, else ''."
+  (var best nil)
+  (var best-distance math.huge)
+  (each [_ c (ipairs candidates)]
+    (let [d (levenshtein word c)]
+      (when (< d best-distance)
+        (set best c)
+        (set best-distance d))))
+  (if (and best (<= best-distance (math.max 1 (math.floor (/ (length word) 3)))))
+      (.. " (did you mean :" best "?)")
+      ""))
+
+(fn describe-value [v]
+  (if (= (type v) :number)
+      (if (not= v v) "nan"
+          (= v math.huge) "inf"
+          (= v (- math.huge)) "-inf"
+          (tostring v))
+      (= (type v) :string) (string.format "%q" v)
+      (= (type v) :table) (let [n (length v)]
+                            (if (and (> n 0) (= (next v n) nil)) (.. "a list of " n " items")
+                                (= (next v) nil) "an empty table"
+                                "a table"))
+      (tostring v)))
+
+(fn path->string [path]
+  (var out "")
+  (each [_ p (ipairs path)]
+    (set out (if (= (type p) :number)
+                 (.. out "[" p "]")
+                 (= out "") p
+                 (.. out "." p))))
+  out)
+
+;;; Source lines for fields, from the parsed form of the file
+
+(fn node-line [node]
+  (let [src (fennel.ast-source node)]
+    (and src src.line)))
+
+(fn key-line [source node key]
+  "Line of `:key` inside the table literal `node`, found in the source text."
+  (let [src (fennel.ast-source node)]
+    (when (and src src.bytestart src.byteend (= (type key) :string))
+      (let [text (source:sub src.bytestart src.byteend)
+            at (text:find (.. ":" key "[%s%)%]}]") 1)]
+        (when at
+          (let [(_ newlines) (: (text:sub 1 at) :gsub "\n" "")]
+            (+ src.line newlines)))))))
+
+(fn line-for [ctx path]
+  "Best known line for `path`: the line of the deepest literal that matches it."
+  (var node ctx.ast)
+  (var line (and node (= (type node) :table) (node-line node)))
+  (var done? (not= (type node) :table))
+  (each [_ key (ipairs path) &until done?]
+    (let [child (. node key)
+          kline (key-line ctx.source node key)]
+      (when kline (set line kline))
+      (if (and (= (type child) :table) (not (fennel.list? child)) (not (fennel.sym? child)))
+          (do (set node child)
+              (let [l (node-line child)] (when (and l (not kline)) (set line l))))
+          (set done? true))))
+  line)
+
+(fn sub-path [path key]
+  (doto (icollect [_ p (ipairs path)] p) (table.insert key)))
+
+(fn fail [ctx path reason]
+  (let [line (line-for ctx path)
+        where (if line (.. ctx.file ":" line) ctx.file)
+        field (path->string path)]
+    (error {:scene-error (if (= field "")
+                             (.. where ": " reason)
+                             (.. where ": " field ": " reason))})))
+
+;;; Field checks: each returns the cleaned value or calls `fail`
+
+(fn finite? [v]
+  (and (= (type v) :number) (= v v) (not= v math.huge) (not= v (- math.huge))))
+
+(fn check-number [ctx path v what ok?]
+  (when (not (finite? v))
+    (fail ctx path (.. "must be " what ", got " (describe-value v))))
+  (when (and ok? (not (ok? v)))
+    (fail ctx path (.. "must be " what ", got " (describe-value v))))
+  v)
+
+(fn check-integer [ctx path v lo hi]
+  (check-number ctx path v (.. "an integer from " lo " to " hi)
+                #(and (= $ (math.floor $)) (<= lo $ hi))))
+
+(fn check-vec3 [ctx path v what element-ok?]
+  (when (or (not= (type v) :table) (not= (length v) 3))
+    (fail ctx path (.. "must be " what ", got " (describe-value v))))
+  (each [k _ (pairs v)]
+    (when (or (not= (type k) :number) (< k 1) (> k 3))
+      (fail ctx path (.. "must be " what " with exactly three numbers"))))
+  (icollect [i x (ipairs v)]
+    (check-number ctx (sub-path path i) x
+                  (if element-ok? what "a finite number") element-ok?)))
+
+(fn check [ctx path v kind]
+  (case kind
+    :number (check-number ctx path v "a finite number")
+    :positive (check-number ctx path v "a positive number" #(> $ 0))
+    :non-negative (check-number ctx path v "a number >= 0" #(>= $ 0))
+    :pitch (check-number ctx path v "a number of degrees from -90 to 90" #(<= -90 $ 90))
+    :fov (check-number ctx path v "a number of degrees above 0 and below 180" #(< 0 $ 180))
+    :scale (check-number ctx path v "a render scale above 0 and at most 1" #(and (> $ 0) (<= $ 1)))
+    :steps (check-integer ctx path v 1 limits.max-steps)
+    :reflections (check-integer ctx path v 0 limits.max-reflections)
+    :boolean (if (= (type v) :boolean) v
+                 (fail ctx path (.. "must be true or false, got " (describe-value v))))
+    :vec3 (check-vec3 ctx path v "a list of three numbers like [1 2 3]")
+    :size3 (check-vec3 ctx path v "three positive numbers like [1 1 1]" #(> $ 0))
+    :color (check-vec3 ctx path v "a colour of three numbers from 0 to 1" #(<= 0 $ 1))
+    _ (error (.. "unknown field type " (tostring kind)))))
+
+(fn check-keys [ctx path tbl allowed]
+  (each [k _ (pairs tbl)]
+    (when (not= (type k) :string)
+      (fail ctx path (.. "unexpected entry " (describe-value k) "; fields are named like :pos")))
+    (var known? false)
+    (each [_ a (ipairs allowed)] (when (= a k) (set known? true)))
+    (when (not known?)
+      (let [sorted (doto (icollect [_ a (ipairs allowed)] a) table.sort)]
+        (fail ctx (sub-path path k)
+              (.. "unknown field" (suggestion k allowed)
+                  "; known fields: :" (table.concat sorted " :")))))))
+
+(fn check-section [ctx name value]
+  (let [spec (. sections name)
+        fields (doto (icollect [k (pairs spec)] k) table.sort)
+        given (or value {})
+        out {}]
+    (when (not= (type given) :table)
+      (fail ctx [name] (.. "must be a table like {:" (. fields 1) " ...}, got " (describe-value given))))
+    (check-keys ctx [name] given fields)
+    (each [_ field (ipairs fields)]
+      (let [v (. given field)
+            f (. spec field)]
+        (tset out field (if (= v nil) f.default (check ctx [name field] v f.type)))))
+    out))
+
+(fn check-object [ctx i o]
+  (let [path [:objects i]]
+    (when (not= (type o) :table)
+      (fail ctx path (.. "must be a table like {:kind :sphere ...}, got " (describe-value o))))
+    (when (= o.kind nil)
+      (fail ctx path (.. "missing :kind; one of :" (table.concat (registry.kind-names) " :"))))
+    (when (not= (type o.kind) :string)
+      (fail ctx [:objects i :kind] (.. "must be a kind name like :sphere, got " (describe-value o.kind))))
+    (let [entry (registry.lookup o.kind)]
+      (when (not entry)
+        (fail ctx [:objects i :kind]
+              (.. "unknown kind :" o.kind (suggestion o.kind (registry.kind-names))
+                  "; known kinds: :" (table.concat (registry.kind-names) " :"))))
+      (check-keys ctx path o (doto (icollect [_ p (ipairs entry.params)] p.name)
+                               (table.insert :kind)))
+      (let [out {:kind o.kind :index i}]
+        (each [_ p (ipairs entry.params)]
+          (let [v (. o p.name)]
+            (tset out p.name (if (= v nil) p.default (check ctx [:objects i p.name] v p.type)))))
+        out))))
+
+(fn validate [value ctx]
+  (when (not= (type value) :table)
+    (fail ctx [] (.. "a scene file must evaluate to a table like {:objects [...]}, got "
+                     (describe-value value))))
+  (check-keys ctx [] value top-level-keys)
+  (when (and (not= value.name nil) (not= (type value.name) :string))
+    (fail ctx [:name] (.. "must be a string, got " (describe-value value.name))))
+  (when (= value.objects nil)
+    (fail ctx [:objects] "missing; a scene needs :objects [...] (it may be empty)"))
+  (when (not= (type value.objects) :table)
+    (fail ctx [:objects] (.. "must be a list of objects, got " (describe-value value.objects))))
+  (each [k _ (pairs value.objects)]
+    (when (or (not= (type k) :number) (< k 1) (> k (length value.objects)))
+      (fail ctx [:objects] "must be a list [...] of objects, not a table with named fields")))
+  (when (> (length value.objects) limits.max-objects)
+    (fail ctx [:objects] (.. "has " (length value.objects) " objects; at most "
+                             limits.max-objects " are allowed")))
+  {:name (or value.name (: (ctx.file:match "([^/]+)$") :gsub "%.fnl$" ""))
+   :file ctx.file
+   :camera (check-section ctx :camera value.camera)
+   :light (check-section ctx :light value.light)
+   :environment (if (= value.environment nil) default-environment
+                    (check ctx [:environment] value.environment :color))
+   :render (check-section ctx :render value.render)
+   :objects (icollect [i o (ipairs value.objects)] (check-object ctx i o))})
+
+;;; Evaluation
+
+(fn safe-env []
+  "The only globals a scene file sees: arithmetic helpers and nothing that reaches
+the file system, the process or the loader."
+  (let [m {}]
+    (each [k v (pairs math)]
+      (when (not= k :randomseed) (tset m k v)))
+    (set m.random nil)
+    {:math m :ipairs ipairs :pairs pairs :tonumber tonumber :tostring tostring
+     :type type :select select :unpack (or table.unpack unpack)
+     :table {:insert table.insert :concat table.concat :unpack (or table.unpack unpack)}
+     :string {:format string.format :rep string.rep :sub string.sub}}))
+
+(fn parse-first-form [source file]
+  (let [(ok? result) (pcall #(let [parse (fennel.parser (fennel.string-stream source) file)
+                                   (_ ast) (parse)]
+                               ast))]
+    (when ok? result)))
+
+(fn clean-fennel-message [msg file]
+  ;; Fennel's parse and compile errors carry the file and line already; keep the first
+  ;; line (the rest repeats the source with a caret) and strip the 'Parse error in' prefix.
+  (let [first-line (or (msg:match "^[^\n]+") msg)]
+    (let [msg (if (first-line:find file 1 true) first-line (.. file ": " first-line))
+          ident (msg:match "unknown identifier: ([%w_]+)")]
+      (if ident
+          (.. msg " (scene files are data: only math, numbers, strings and tables are available)")
+          msg))))
+
+(fn load-string [source ?file]
+  "Evaluate scene `source` in a sandbox and validate it.
+Returns the scene (plain data, defaults filled in) or nil and a message
+'file:line: field: reason'."
+  (let [file (or ?file "scene")
+        env (safe-env)
+        allowed (icollect [k (pairs env)] k)
+        (ok? value) (pcall fennel.eval source {:filename file :env env
+                                               :allowedGlobals allowed
+                                               :correlate true})]
+    (if (not ok?)
+        (values nil (clean-fennel-message (tostring value) file))
+        (let [ctx {: file : source :ast (parse-first-form source file)}
+              (ok2? result) (pcall validate value ctx)]
+          (if ok2? result
+              (and (= (type result) :table) result.scene-error) (values nil result.scene-error)
+              (error result))))))
+
+(fn load-file [path ?read]
+  "Read and load the scene file at `path` (see load-string). `?read` reads a file's
+text (default: io.open), so the app can read through love.filesystem."
+  (let [read (or ?read (fn [p]
+                         (case (io.open p :rb)
+                           f (let [s (f:read :*a)] (f:close) s)
+                           (nil err) (values nil err))))
+        (source err) (read path)]
+    (if source
+        (load-string source path)
+        (values nil (.. path ": cannot read the scene file: " (tostring err))))))
+
+(fn defaults []
+  "A copy of the default settings, by section (for docs and tests)."
+  (collect [name spec (pairs sections)]
+    name (collect [field f (pairs spec)] field f.default)))
+
+{: load-string : load-file : defaults : limits : default-environment}
