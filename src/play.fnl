@@ -1,0 +1,224 @@
+;; Interactive play: the article's fly camera on keyboard, mouse and gamepad, rendering
+;; at the window's full resolution (times a render scale), with a HUD, debug views,
+;; fullscreen and screenshots. Installs LÖVE callbacks when started.
+
+(local camera (require :src.camera))
+(local frame (require :src.frame))
+(local gpu (require :src.gpu))
+(local plan-mod (require :src.plan))
+
+(local move-speed 10)   ; world units per second
+(local turn-speed 90)   ; degrees per second
+(local fov-speed 30)    ; degrees per second
+(local mouse-degrees-per-pixel 0.2)
+(local dead-zone 0.2)   ; the article's gamepad dead zone
+
+(local state {:scene nil :path nil :cam nil :view :shaded :reflections 0
+              :scale 1 :hud? true :cache nil :canvas nil :message nil
+              :message-until 0 :error nil :gamepad nil})
+
+(fn scenes-in-folder []
+  (let [items (love.filesystem.getDirectoryItems "scenes")]
+    (table.sort items)
+    (icollect [_ name (ipairs items)]
+      (when (name:match "%.fnl$") (.. "scenes/" name)))))
+
+(fn say! [message]
+  (print message)
+  (set state.message message)
+  (set state.message-until (+ (love.timer.getTime) 4)))
+
+(fn load! [path keep-camera?]
+  "Load the scene at `path`; on failure keep the last good scene and show the error."
+  (case (frame.load-scene path)
+    scene (do (set state.scene scene)
+              (set state.path path)
+              (set state.error nil)
+              (set state.reflections scene.render.reflections)
+              (set state.scale scene.render.scale)
+              (when (or (not keep-camera?) (not state.cam))
+                (set state.cam (camera.from-scene scene)))
+              (say! (.. "loaded " path)))
+    (nil err) (do (set state.error err)
+                  (io.stderr:write (.. err "\n")))))
+
+(fn current-plan []
+  (plan-mod.scene->plan state.scene {:view state.view :reflections state.reflections}))
+
+(fn ensure-canvas! []
+  (let [(ww wh) (love.graphics.getDimensions)
+        w (math.max 1 (math.floor (* ww state.scale)))
+        h (math.max 1 (math.floor (* wh state.scale)))]
+    (when (or (not state.canvas)
+              (not= w (state.canvas:getWidth)) (not= h (state.canvas:getHeight)))
+      (when state.canvas (state.canvas:release))
+      (set state.canvas (love.graphics.newCanvas w h))
+      (state.canvas:setFilter :nearest :nearest))
+    state.canvas))
+
+;;; Input
+
+(fn down? [...] (love.keyboard.isDown ...))
+
+(fn handle-keyboard [dt]
+  (let [cam state.cam
+        shift? (down? :lshift :rshift)]
+    (when (down? :w) (camera.move-forward! cam (* move-speed dt)))
+    (when (down? :s) (camera.move-forward! cam (* (- move-speed) dt)))
+    (when (down? :d)
+      (if shift? (camera.strafe! cam (* move-speed dt)) (camera.turn! cam (* turn-speed dt))))
+    (when (down? :a)
+      (if shift? (camera.strafe! cam (* (- move-speed) dt)) (camera.turn! cam (* (- turn-speed) dt))))
+    (when (down? :q) (camera.pitch! cam (* turn-speed dt)))
+    (when (down? :e) (camera.pitch! cam (* (- turn-speed) dt)))
+    (when (down? :r) (camera.elevate! cam (* move-speed dt)))
+    (when (down? :f) (camera.elevate! cam (* (- move-speed) dt)))
+    (when (down? :o) (camera.zoom! cam (* (- fov-speed) dt)))
+    (when (down? :p) (camera.zoom! cam (* fov-speed dt)))))
+
+(fn axis [pad name]
+  (let [v (pad:getGamepadAxis name)]
+    (if (> (math.abs v) dead-zone) v 0)))
+
+(fn handle-gamepad [dt]
+  (let [pad state.gamepad
+        cam state.cam]
+    (when (and pad (pad:isConnected))
+      (camera.move-forward! cam (* (- (axis pad :lefty)) 2 move-speed dt))
+      (camera.strafe! cam (* (axis pad :leftx) move-speed dt))
+      (camera.turn! cam (* (axis pad :rightx) turn-speed dt))
+      (camera.pitch! cam (* (axis pad :righty) turn-speed dt))
+      ;; Triggers rest at 0 in LÖVE's gamepad mapping and go to 1 when pressed.
+      (camera.elevate! cam (* (- (pad:getGamepadAxis :triggerright)
+                                 (pad:getGamepadAxis :triggerleft))
+                              move-speed dt))
+      (when (pad:isGamepadDown :dpup) (camera.zoom! cam (* (- fov-speed) dt)))
+      (when (pad:isGamepadDown :dpdown) (camera.zoom! cam (* fov-speed dt))))))
+
+(fn change-reflections! [delta]
+  (set state.reflections (math.max 0 (math.min 16 (+ state.reflections delta))))
+  (say! (.. "reflections: " state.reflections)))
+
+(fn change-scale! [factor]
+  (set state.scale (math.max 0.1 (math.min 1 (* state.scale factor))))
+  (say! (string.format "render scale: %.2f" state.scale)))
+
+(fn cycle-view! []
+  (let [views plan-mod.views]
+    (var next-view (. views 1))
+    (each [i v (ipairs views)]
+      (when (= v state.view) (set next-view (or (. views (+ i 1)) (. views 1)))))
+    (set state.view next-view)
+    (say! (.. "view: " next-view))))
+
+(fn cycle-scene! [delta]
+  (let [paths (scenes-in-folder)]
+    (var at 0)
+    (each [i p (ipairs paths)] (when (= p state.path) (set at i)))
+    (let [n (length paths)]
+      (when (> n 0)
+        (load! (. paths (+ (% (+ at -1 delta) n) 1)) false)))))
+
+(fn toggle-fullscreen! []
+  (love.window.setFullscreen (not (love.window.getFullscreen)) :desktop))
+
+(fn screenshot! []
+  (when state.canvas
+    (let [name (os.date "screenshot-%Y%m%d-%H%M%S.png")
+          data (state.canvas:newImageData)]
+      (data:encode :png name)
+      (data:release)
+      (say! (.. "saved " (love.filesystem.getSaveDirectory) "/" name)))))
+
+(fn keypressed [key]
+  (let [alt? (down? :lalt :ralt)]
+    (case key
+      :escape (love.event.quit 0)
+      :tab (cycle-view!)
+      :h (set state.hud? (not state.hud?))
+      :f1 (set state.hud? (not state.hud?))
+      :f11 (toggle-fullscreen!)
+      :return (when alt? (toggle-fullscreen!))
+      :f12 (screenshot!)
+      :f5 (load! state.path true)
+      :k (change-reflections! -1)
+      :l (change-reflections! 1)
+      "-" (change-scale! 0.8)
+      "=" (change-scale! 1.25)
+      "[" (cycle-scene! -1)
+      "]" (cycle-scene! 1))))
+
+(fn gamepadpressed [pad button]
+  (set state.gamepad pad)
+  (case button
+    :leftshoulder (change-reflections! -1)
+    :rightshoulder (change-reflections! 1)
+    :back (cycle-view!)))
+
+(fn mousemoved [_ _ dx dy]
+  (when (and state.cam (or (love.mouse.isDown 1) (love.mouse.isDown 2)))
+    (camera.turn! state.cam (* dx mouse-degrees-per-pixel))
+    (camera.pitch! state.cam (* dy mouse-degrees-per-pixel))))
+
+;;; Drawing
+
+(fn hud-lines []
+  (let [cam state.cam
+        canvas state.canvas
+        lines [(string.format "%d fps  %.1f ms" (love.timer.getFPS)
+                              (* 1000 (love.timer.getAverageDelta)))]]
+    (when canvas
+      (table.insert lines (string.format "%dx%d (scale %.2f)" (canvas:getWidth)
+                                         (canvas:getHeight) state.scale)))
+    (when state.scene
+      (table.insert lines (.. "scene: " state.scene.name "  view: " state.view))
+      (table.insert lines (string.format "reflections: %d  fov: %.1f" state.reflections cam.fov))
+      (table.insert lines (string.format "pos: %.2f %.2f %.2f  yaw %.1f  pitch %.1f"
+                                         (. cam.pos 1) (. cam.pos 2) (. cam.pos 3)
+                                         cam.yaw cam.pitch)))
+    (when (and state.message (< (love.timer.getTime) state.message-until))
+      (table.insert lines state.message))
+    lines))
+
+(fn draw-text-box [text x y color]
+  (let [font (love.graphics.getFont)
+        (width wrapped) (font:getWrap text (- (love.graphics.getWidth) (* 2 x) 16))
+        h (* (length wrapped) (font:getHeight))]
+    (love.graphics.setColor 0 0 0 0.6)
+    (love.graphics.rectangle :fill x y (+ width 16) (+ h 12))
+    (love.graphics.setColor (table.unpack color))
+    (love.graphics.printf text (+ x 8) (+ y 6) (+ width 1))
+    (love.graphics.setColor 1 1 1 1)))
+
+(fn draw []
+  (when state.scene
+    (let [canvas (ensure-canvas!)]
+      (case (current-plan)
+        plan (case (frame.render-to-canvas! state.cache canvas state.scene plan state.cam)
+               (nil err) (set state.error err))
+        (nil err) (set state.error err))
+      (love.graphics.setColor 1 1 1 1)
+      (love.graphics.draw canvas 0 0 0 (/ 1 state.scale) (/ 1 state.scale))))
+  (when state.hud?
+    (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))
+  (when state.error
+    (draw-text-box (.. state.error "\n(the last good scene keeps running; F5 reloads)")
+                   8 (- (love.graphics.getHeight) 120) [1 0.45 0.4 1])))
+
+(fn start! [options]
+  "Play the scene file named in `options.scene`: install the LÖVE callbacks."
+  (set state.cache (gpu.new-cache))
+  (set table.unpack (or table.unpack unpack))
+  (load! options.scene false)
+  (when (not state.scene) (set state.path options.scene))
+  (set love.update (fn [dt]
+                     (when state.cam
+                       (handle-keyboard dt)
+                       (handle-gamepad dt))))
+  (set love.draw draw)
+  (set love.keypressed keypressed)
+  (set love.gamepadpressed gamepadpressed)
+  (set love.mousemoved mousemoved)
+  (set love.joystickadded (fn [j] (when (j:isGamepad) (set state.gamepad j)))))
+
+{: start! : state}
