@@ -7,6 +7,7 @@
 
 (local usage
   "usage: love . [SCENE]                       play SCENE (default scenes/seed.fnl)
+       love . [SCENE] --shot FILE.png [--frames N]   play N frames, save the window, quit
        love . --render SCENE --out FILE.png [--size WxH] [--view VIEW]
        love . --print-shader SCENE [--view VIEW] [--target love|core]
        love . --bench SCENE [--size WxH] [--frames N]
@@ -14,7 +15,7 @@
 VIEW is one of shaded, normals, glow, heat.")
 
 (local value-flags {:--out :out :--size :size :--frames :frames :--view :view
-                    :--target :target})
+                    :--target :target :--shot :shot})
 (local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench})
 
 (fn parse-size [s]
@@ -28,6 +29,10 @@ VIEW is one of shaded, normals, glow, heat.")
       (values nil "--render needs --out FILE.png")
       (and o.out (not (o.out:match "%.png$")))
       (values nil (.. "--out must name a .png file, got " o.out))
+      (and o.shot (not (o.shot:match "%.png$")))
+      (values nil (.. "--shot must name a .png file, got " o.shot))
+      (and o.shot (not= o.mode :play))
+      (values nil "--shot only goes with playing a scene")
       (and o.view (not (plan.view? o.view)))
       (values nil (.. "--view must be one of " (table.concat plan.views ", ") ", got " o.view))
       (and o.target (not= o.target "love") (not= o.target "core"))

@@ -205,6 +205,16 @@
     (draw-text-box (.. state.error "\n(the last good scene keeps running; F5 reloads)")
                    8 (- (love.graphics.getHeight) 120) [1 0.45 0.4 1])))
 
+(fn shoot-and-quit! [path]
+  ;; The captured window includes the HUD and any error overlay: what a player sees.
+  (love.graphics.captureScreenshot
+    (fn [data]
+      (let [bytes (: (data:encode :png) :getString)]
+        (case (io.open path :wb)
+          out (do (out:write bytes) (out:close) (print (.. "wrote " path)))
+          (nil err) (io.stderr:write (.. path ": cannot write: " err "\n")))
+        (love.event.quit 0)))))
+
 (fn start! [options]
   "Play the scene file named in `options.scene`: install the LÖVE callbacks."
   (set state.cache (gpu.new-cache))
@@ -215,7 +225,12 @@
                      (when state.cam
                        (handle-keyboard dt)
                        (handle-gamepad dt))))
-  (set love.draw draw)
+  (var frames 0)
+  (set love.draw (fn []
+                   (draw)
+                   (set frames (+ frames 1))
+                   (when (and options.shot (= frames options.frames))
+                     (shoot-and-quit! options.shot))))
   (set love.keypressed keypressed)
   (set love.gamepadpressed gamepadpressed)
   (set love.mousemoved mousemoved)

@@ -86,7 +86,7 @@
   (let [src (fennel.ast-source node)]
     (when (and src src.bytestart src.byteend (= (type key) :string))
       (let [text (source:sub src.bytestart src.byteend)
-            at (text:find (.. ":" key "[%s%)%]}]") 1)]
+            at (text:find (.. ":" (key:gsub "%p" "%%%0") "[%s%)%]}]") 1)]
         (when at
           (let [(_ newlines) (: (text:sub 1 at) :gsub "\n" "")]
             (+ src.line newlines)))))))

@@ -1,0 +1,25 @@
+# Fennel raymarcher. `make run` and `make test` install what is missing first
+# (Debian packages, and Fennel from Debian trixie's .deb); see tools/install-deps.sh.
+
+SCENE ?= scenes/seed.fnl
+HEADLESS = SDL_VIDEODRIVER=offscreen
+
+.PHONY: deps run test bench golden clean
+
+deps:
+	@bash tools/install-deps.sh
+
+run: deps
+	love . $(SCENE)
+
+test: deps
+	@$(HEADLESS) bash tools/run-tests.sh
+
+bench: deps
+	$(HEADLESS) love . --bench-report --frames $(or $(FRAMES),5)
+
+golden: deps
+	$(HEADLESS) luajit tools/fnl.lua tools/golden.fnl
+
+clean:
+	rm -rf out test/out

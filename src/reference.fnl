@@ -1,0 +1,196 @@
+;; The CPU reference marcher: the shader's semantics in plain LuaJIT, double precision,
+;; written independently of the GLSL. It shares only the registry's CPU distance
+;; functions, so a GPU image can be checked pixel by pixel against it.
+;;
+;; Vectors travel as multiple values (x y z) and the inner loops allocate nothing.
+
+(local camera (require :src.camera))
+(local registry (require :src.registry))
+
+(local sqrt math.sqrt)
+(local abs math.abs)
+
+(fn clamp01 [v]
+  (if (< v 0) 0 (> v 1) 1 v))
+
+(fn normalize [x y z]
+  (let [len (sqrt (+ (* x x) (* y y) (* z z)))]
+    (values (/ x len) (/ y len) (/ z len))))
+
+(fn heat-color [h]
+  "The heat view's colour for h (steps / max-steps, clamped to [0, 1]): r g b."
+  (let [h (clamp01 h)]
+    (values (clamp01 (- 1.5 (abs (- (* 4 h) 3))))
+            (clamp01 (- 1.5 (abs (- (* 4 h) 2))))
+            (clamp01 (- 1.5 (abs (- (* 4 h) 1)))))))
+
+(fn tracer [scene plan]
+  "A tracer for `scene` lowered to `plan`: a table of closures
+  :map        (fn [x y z]) -> distance (never above the draw distance)
+  :map-color  (fn [x y z]) -> distance, index into plan.objects or nil
+  :march      (fn [ox oy oz dx dy dz]) -> t, steps
+  :normal     (fn [x y z]) -> nx ny nz (one-sided differences)
+  :lightness  (fn [px py pz nx ny nz]) -> lambert, shadowed?
+  :trace      (fn [ox oy oz dx dy dz]) -> {:color [r g b] :hit? :distance :steps
+               :object (scene index or nil) :shadowed? :lightness :path}
+Positions are in world coordinates."
+  (let [render scene.render
+        draw render.draw-distance
+        eps render.epsilon
+        max-steps render.max-steps
+        [lx ly lz] scene.light.pos
+        [er eg eb] scene.environment
+        view plan.view
+        shaded? (= view :shaded)
+        shadows? (and shaded? plan.shadows?)
+        glow? (and shaded? plan.glow?)
+        reflections (if (and shaded? plan.reflections?) plan.reflections 0)
+        objs plan.objects
+        n (length objs)
+        fns (icollect [_ o (ipairs objs)] (. (registry.lookup o.kind) :distance))]
+
+    (fn map [x y z]
+      (var d draw)
+      (for [i 1 n]
+        (let [di ((. fns i) (. objs i) x y z)]
+          (when (< di d) (set d di))))
+      d)
+
+    (fn map-color [x y z]
+      ;; Strictly smaller wins, so ties go to the earlier object in plan order.
+      (var d draw)
+      (var best nil)
+      (for [i 1 n]
+        (let [di ((. fns i) (. objs i) x y z)]
+          (when (< di d) (set d di) (set best i))))
+      (values d best))
+
+    (fn march [ox oy oz dx dy dz]
+      (var t 0)
+      (var steps 0)
+      (var done? false)
+      (for [i 0 (- max-steps 1) &until done?]
+        (let [d (map (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
+          (set t (+ t d))
+          (set steps (+ i 1))
+          (when (or (< d eps) (>= t draw)) (set done? true))))
+      (values t steps))
+
+    (fn normal [x y z]
+      (let [d (map x y z)]
+        (normalize (- d (map (- x eps) y z))
+                   (- d (map x (- y eps) z))
+                   (- d (map x y (- z eps))))))
+
+    (fn lightness [px py pz nx ny nz]
+      (let [(ldx ldy ldz) (normalize (- lx px) (- ly py) (- lz pz))
+            lambert (clamp01 (+ (* ldx nx) (* ldy ny) (* ldz nz)))]
+        (if (and shadows? (> lambert 0))
+            (let [s (* 2 eps)
+                  ts (march (+ px (* nx s)) (+ py (* ny s)) (+ pz (* nz s)) ldx ldy ldz)]
+              (if (< ts draw) (values (* lambert 0.5) true) (values lambert false)))
+            (values lambert false))))
+
+    (fn object-index [i]
+      (when i (. objs i :index)))
+
+    (fn trace [ox oy oz dx dy dz]
+      (let [(t steps) (march ox oy oz dx dy dz)
+            hit? (< t draw)
+            result {:hit? hit? :distance t :steps steps :path []}]
+        (var (r g b) (values 0 0 0))
+        (if (= view :heat)
+            (do (set (r g b) (heat-color (/ steps max-steps)))
+                (when hit?
+                  (let [(_ i) (map-color (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
+                    (set result.object (object-index i)))))
+            (not hit?)
+            (if (= view :glow) (let [grey (/ steps 100)] (set (r g b) (values grey grey grey)))
+                (= view :normals) nil
+                ;; shaded
+                (let [glow (if glow? (/ steps 100) 0)]
+                  (set (r g b) (values (+ er glow) (+ eg glow) (+ eb glow)))))
+            (let [px (+ ox (* dx t)) py (+ oy (* dy t)) pz (+ oz (* dz t))
+                  (_ i) (map-color px py pz)]
+              (set result.object (object-index i))
+              (table.insert result.path (or (object-index i) 0))
+              (case view
+                :glow (let [[cr cg cb] (if i (. objs i :color) [0 0 0])]
+                        (set (r g b) (values cr cg cb)))
+                :normals (let [(nx ny nz) (normal px py pz)]
+                           (set (r g b) (values (+ (* nx 0.5) 0.5) (+ (* ny 0.5) 0.5)
+                                                (+ (* nz 0.5) 0.5))))
+                :shaded
+                (let [(nx ny nz) (normal px py pz)
+                      [cr cg cb] (if i (. objs i :color) [0 0 0])
+                      (lambert shadowed?) (lightness px py pz nx ny nz)]
+                  (set result.lightness lambert)
+                  (set result.shadowed? shadowed?)
+                  (set (r g b) (values (* cr lambert) (* cg lambert) (* cb lambert)))
+                  ;; Mirror bounces.
+                  (var (qx qy qz) (values px py pz))
+                  (var (mx my mz) (values nx ny nz))
+                  (var (vx vy vz) (values dx dy dz))
+                  (var stop? false)
+                  (for [bounce 1 reflections &until stop?]
+                    (let [k (* 2 (+ (* vx mx) (* vy my) (* vz mz)))
+                          rx (- vx (* k mx)) ry (- vy (* k my)) rz (- vz (* k mz))
+                          s (* 2 eps)
+                          sx (+ qx (* mx s)) sy (+ qy (* my s)) sz (+ qz (* mz s))
+                          tr (march sx sy sz rx ry rz)]
+                      (if (>= tr draw)
+                          (do (set (r g b) (values (* (+ r (/ er bounce)) 0.5)
+                                                   (* (+ g (/ eg bounce)) 0.5)
+                                                   (* (+ b (/ eb bounce)) 0.5)))
+                              (table.insert result.path -1)
+                              (set stop? true))
+                          (let [hx (+ sx (* rx tr)) hy (+ sy (* ry tr)) hz (+ sz (* rz tr))
+                                (hnx hny hnz) (normal hx hy hz)
+                                (_ j) (map-color hx hy hz)
+                                [hr hg hb] (if j (. objs j :color) [0 0 0])
+                                hl (* (lightness hx hy hz hnx hny hnz) 0.5)]
+                            (table.insert result.path (or (object-index j) 0))
+                            (set (qx qy qz) (values hx hy hz))
+                            (set (mx my mz) (values hnx hny hnz))
+                            (set (vx vy vz) (values rx ry rz))
+                            (set (r g b) (values (* (+ r (* hr hl)) 0.66)
+                                                 (* (+ g (* hg hl)) 0.66)
+                                                 (* (+ b (* hb hl)) 0.66))))))))
+                _ (error (.. "reference: unknown view " (tostring view))))))
+        (set result.color [(clamp01 r) (clamp01 g) (clamp01 b)])
+        result))
+
+    {: map : map-color : march : normal : lightness : trace}))
+
+(fn ray-setup [cam width height]
+  "A function (px py) -> dx dy dz giving the primary ray through the centre of pixel
+(px, py), 0-based from the top-left of a width x height target."
+  (let [(f r u) (camera.basis cam)
+        pd (camera.projection-distance cam)
+        [fx fy fz] f [rx ry rz] r [ux uy uz] u
+        aspect (/ width height)]
+    (fn [px py]
+      (let [uvx (* (- (/ (+ px 0.5) width) 0.5) aspect)
+            uvy (- (/ (+ py 0.5) height) 0.5)]
+        (normalize (+ (* fx pd) (* rx uvx) (* ux uvy))
+                   (+ (* fy pd) (* ry uvx) (* uy uvy))
+                   (+ (* fz pd) (* rz uvx) (* uz uvy)))))))
+
+(fn render-pixels [scene plan cam width height pixels]
+  "Reference colours of `pixels` (a list of [x y], 0-based from the top-left) of a
+width x height image of `scene` lowered to `plan` seen by camera state `cam`.
+Returns a list of {:x :y :color [r g b] (0..1, clamped) :hit? :distance t :steps n
+:object (scene index of the object hit, or nil) :shadowed? :lightness :path}, in the
+order of `pixels`. :path lists the scene index of the object hit by the primary ray
+and each bounce (-1: the bounce escaped)."
+  (let [T (tracer scene plan)
+        ray (ray-setup cam width height)
+        [ox oy oz] cam.pos]
+    (icollect [_ [x y] (ipairs pixels)]
+      (let [(dx dy dz) (ray x y)
+            result (T.trace ox oy oz dx dy dz)]
+        (set result.x x)
+        (set result.y y)
+        result))))
+
+{: tracer : ray-setup : render-pixels : heat-color}

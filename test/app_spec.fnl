@@ -1,0 +1,71 @@
+;; The real app, run headless (SDL_VIDEODRIVER=offscreen) through its command line.
+(local png (require :src.png))
+
+(fn run [args]
+  "Run `love . ARGS` headless; returns exit code and combined output."
+  (let [text (with-open [p (io.popen (.. "SDL_VIDEODRIVER=offscreen love . " args
+                                         " 2>&1; echo \"exit:$?\""))]
+               (p:read :*a))
+        code (tonumber (text:match "exit:(%d+)%s*$"))]
+    (values code (text:gsub "exit:%d+%s*$" ""))))
+
+(fn write-file [path text]
+  (with-open [f (assert (io.open path :wb))] (f:write text)))
+
+(describe "the app's command line"
+  (fn []
+    (os.execute "mkdir -p test/out")
+
+    (it "renders the seed scene to a PNG of the asked size"
+      (fn []
+        (os.remove "test/out/app-seed.png")
+        (let [(code out) (run "--render scenes/seed.fnl --out test/out/app-seed.png --size 64x48")]
+          (assert.are.equal 0 code out)
+          (let [img (assert (png.read-file "test/out/app-seed.png"))]
+            (assert.are.equal 64 img.width)
+            (assert.are.equal 48 img.height)
+            ;; The top row is sky: the environment colour [0.901 0.976 1].
+            (assert.are.same [230 249 255] [(. img.pixels 0) (. img.pixels 1) (. img.pixels 2)])))))
+
+    (it "renders each debug view"
+      (fn []
+        (each [_ view (ipairs [:normals :glow :heat])]
+          (let [(code out) (run (.. "--render scenes/seed.fnl --view " view
+                                    " --out test/out/app-" view ".png --size 32x24"))]
+            (assert.are.equal 0 code out)))))
+
+    (it "prints the generated shader"
+      (fn []
+        (let [(code out) (run "--print-shader scenes/spheres.fnl")]
+          (assert.are.equal 0 code)
+          (assert.truthy (out:find "sdSphere" 1 true))
+          (assert.falsy (out:find "sdBox" 1 true)))))
+
+    (it "benchmarks a scene and prints the median"
+      (fn []
+        (let [(code out) (run "--bench scenes/flat.fnl --size 32x24 --frames 2")]
+          (assert.are.equal 0 code out)
+          (assert.truthy (out:find "median [%d%.]+ ms per frame over 2 frames")))))
+
+    (it "plays a few frames and saves the window with its HUD"
+      (fn []
+        (os.remove "test/out/app-play.png")
+        (let [(code out) (run "scenes/flat.fnl --shot test/out/app-play.png --frames 2")]
+          (assert.are.equal 0 code out)
+          (let [img (assert (png.read-file "test/out/app-play.png"))]
+            (assert.are.equal 1280 img.width)))))
+
+    (it "rejects a bad scene with file, line and field, exit code 1"
+      (fn []
+        (write-file "test/out/bad.fnl" "{:objects [{:kind :sphere\n  :radius -2}]}")
+        (let [(code out) (run "--render test/out/bad.fnl --out test/out/bad.png")]
+          (assert.are.equal 1 code)
+          (assert.truthy (out:find "test/out/bad.fnl:2: objects[1].radius: must be a positive number, got -2" 1 true)))))
+
+    (it "rejects bad arguments with the usage, exit code 1"
+      (fn []
+        (each [_ args (ipairs ["--bogus" "--render scenes/seed.fnl" "--render scenes/seed.fnl --out x.png --size 12"
+                               "--render scenes/missing.fnl --out test/out/m.png"])]
+          (let [(code out) (run args)]
+            (assert.are.equal 1 code args)
+            (assert.truthy (out:find "error: " 1 true) args)))))))

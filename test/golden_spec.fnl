@@ -1,0 +1,26 @@
+;; Golden images: every scene renders through the real app (LÖVE on Mesa) and matches
+;; its PNG in test/golden/ within the scene's budget (see src/golden.fnl for budgets).
+(local golden (require :src.golden))
+
+(describe "golden images"
+  (fn []
+    (each [_ name (ipairs (golden.scene-names))]
+      (it (.. "scenes/" name ".fnl matches test/golden/" name ".png")
+        (fn []
+          (let [r (golden.check name)]
+            (when r.result
+              (print (string.format "golden %-10s %d pixels over %d/255, largest difference %d"
+                                    name r.result.over golden.channel-tolerance r.result.max)))
+            (assert (= r.status :ok) r.message)))))
+
+    (it "counts a changed image as over budget"
+      (fn []
+        ;; The comparison itself must see a difference: invert one image's red channel.
+        (let [png (require :src.png)
+              a (assert (png.read-file "test/golden/seed.png"))
+              b (assert (png.read-file "test/golden/seed.png"))]
+          (for [i 0 (- (* a.width a.height 4) 1) 4]
+            (tset b.pixels i (- 255 (. b.pixels i))))
+          (let [r (golden.diff a b)]
+            (assert.is_true (> r.over 1000))
+            (assert.is_true (> r.max 200))))))))

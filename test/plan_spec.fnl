@@ -1,0 +1,214 @@
+;; Specs for src/plan.fnl: kinds and counts, features, views, the structure key and the
+;; uniform budget.
+(local scene (require :src.scene))
+(local plan (require :src.plan))
+
+(fn load [source]
+  (assert (scene.load-string source "t.fnl")))
+
+(fn plan-of [source ?options]
+  (assert (plan.scene->plan (load source) ?options)))
+
+(fn key-of [source ?options]
+  (. (plan-of source ?options) :key))
+
+(fn spheres [n]
+  "A scene table with `n` default spheres (built directly: the loader caps objects at 1000)."
+  (let [s (load "{:objects []}")]
+    (set s.objects (fcollect [i 1 n] {:kind :sphere :index i :pos [i 0 0] :radius 1
+                                      :color [1 1 1]}))
+    s))
+
+(local seed (assert (scene.load-file "scenes/seed.fnl")))
+
+(describe "plan: kinds and objects"
+  (fn []
+    (it "holds the seed's kinds in registry order with their counts"
+      (fn []
+        (let [p (assert (plan.scene->plan seed))]
+          (assert.are.same [:sphere :box :plane] (icollect [_ k (ipairs p.kinds)] k.kind))
+          (assert.are.same [2 3 1] (icollect [_ k (ipairs p.kinds)] k.count))
+          (assert.are.same [2 3 1] (icollect [_ k (ipairs p.kinds)] k.capacity))
+          (assert.are.equal :shaded p.view)
+          (assert.are.equal false p.uber?)
+          (assert.are.equal true p.shadows?)
+          (assert.are.equal true p.reflections?)
+          (assert.are.equal false p.glow?)
+          (assert.are.equal 3 p.reflections)
+          (assert.are.equal 47 p.uniform-vectors)
+          (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections view:shaded" p.key))))
+
+    (it "orders objects by kind, keeping file order within a kind"
+      (fn []
+        (let [p (assert (plan.scene->plan seed))]
+          (assert.are.same [4 5 1 2 3 6] (icollect [_ o (ipairs p.objects)] o.index))
+          (assert.are.same [4 5] (icollect [_ o (ipairs (. p.kinds 1 :objects))] o.index)))))
+
+    (it "holds only the kinds present"
+      (fn []
+        (let [p (plan-of "{:objects [{:kind :sphere} {:kind :sphere}]}")]
+          (assert.are.same [:sphere] (icollect [_ k (ipairs p.kinds)] k.kind))
+          (assert.are.equal 2 (. p.kinds 1 :count)))
+        (let [p (plan-of "{:objects [{:kind :plane} {:kind :box}]}")]
+          (assert.are.same [:box :plane] (icollect [_ k (ipairs p.kinds)] k.kind)))
+        (let [p (plan-of "{:objects []}")]
+          (assert.are.same [] p.kinds)
+          (assert.are.same [] p.objects)
+          (assert.are.equal 32 p.uniform-vectors)
+          (assert.are.equal "shadows reflections view:shaded" p.key))))
+
+    (it "includes every kind in an uber plan, with at least one slot each"
+      (fn []
+        (let [p (plan-of "{:objects [{:kind :sphere} {:kind :sphere}]}" {:uber? true})]
+          (assert.are.same [:sphere :box :plane] (icollect [_ k (ipairs p.kinds)] k.kind))
+          (assert.are.same [2 0 0] (icollect [_ k (ipairs p.kinds)] k.count))
+          (assert.are.same [2 1 1] (icollect [_ k (ipairs p.kinds)] k.capacity))
+          (assert.are.equal true p.uber?)
+          (assert.are.equal true p.shadows?)
+          (assert.are.equal true p.reflections?)
+          (assert.are.equal true p.glow?)
+          (assert.are.equal (+ 32 (* 2 2) 3 2) p.uniform-vectors)
+          (assert.are.equal "sphere:2 box:1 plane:1 shadows reflections glow uber view:shaded" p.key))
+        (let [p (assert (plan.scene->plan seed {:uber? true}))]
+          (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections glow uber view:shaded"
+                            p.key))))))
+
+(describe "plan: features and views"
+  (fn []
+    (it "turns features on from the scene"
+      (fn []
+        (let [p (plan-of "{:objects [] :render {:shadows false :reflections 0 :glow true}}")]
+          (assert.are.equal false p.shadows?)
+          (assert.are.equal false p.reflections?)
+          (assert.are.equal true p.glow?)
+          (assert.are.equal 0 p.reflections))))
+
+    (it "lets the :reflections option override the scene"
+      (fn []
+        (let [p (assert (plan.scene->plan seed {:reflections 0}))]
+          (assert.are.equal false p.reflections?)
+          (assert.are.equal 0 p.reflections))
+        (let [p (plan-of "{:objects [] :render {:reflections 0}}" {:reflections 5})]
+          (assert.are.equal true p.reflections?)
+          (assert.are.equal 5 p.reflections))))
+
+    (it "has no shading features outside the shaded view"
+      (fn []
+        (each [_ view (ipairs [:normals :glow :heat])]
+          (let [p (assert (plan.scene->plan seed {: view}))]
+            (assert.are.equal view p.view)
+            (assert.are.equal false p.shadows?)
+            (assert.are.equal false p.reflections?)
+            (assert.are.equal false p.glow?)
+            (assert.are.equal (.. "sphere:2 box:3 plane:1 view:" view) p.key)))))
+
+    (it "knows its views and rejects others"
+      (fn []
+        (assert.are.same [:shaded :normals :glow :heat] plan.views)
+        (assert.is_true (plan.view? :heat))
+        (assert.is_false (plan.view? :bogus))
+        (let [(ok err) (pcall plan.scene->plan seed {:view :bogus})]
+          (assert.is_false ok)
+          (assert.truthy (: (tostring err) :find "unknown view bogus" 1 true)))))))
+
+(describe "plan: structure key"
+  (fn []
+    (local base "{:objects [{:kind :sphere :pos [1 2 3] :color [1 0 0]}
+                            {:kind :box}]
+                  :light {:pos [1 1 1]}
+                  :render {:epsilon 1e-4 :reflections 2 :shadows true :glow false}}")
+    (local base-key (key-of base))
+
+    (it "is the expected text"
+      (fn [] (assert.are.equal "sphere:1 box:1 shadows reflections view:shaded" base-key)))
+
+    (it "changes with structure"
+      (fn []
+        (each [_ [what source options]
+               (ipairs
+                 [["count" "{:objects [{:kind :sphere} {:kind :sphere} {:kind :box}]
+                             :render {:reflections 2}}"]
+                  ["kind" "{:objects [{:kind :sphere} {:kind :plane}] :render {:reflections 2}}"]
+                  ["missing kind" "{:objects [{:kind :sphere}] :render {:reflections 2}}"]
+                  ["shadows" "{:objects [{:kind :sphere} {:kind :box}]
+                               :render {:reflections 2 :shadows false}}"]
+                  ["reflections" "{:objects [{:kind :sphere} {:kind :box}]
+                                   :render {:reflections 0}}"]
+                  ["glow" "{:objects [{:kind :sphere} {:kind :box}]
+                            :render {:reflections 2 :glow true}}"]
+                  ["view" base {:view :normals}]
+                  ["uber" base {:uber? true}]])]
+          (let [k (key-of source options)]
+            (assert (not= base-key k) (.. what " did not change the key: " k))))))
+
+    (it "does not change with values"
+      (fn []
+        (each [_ source
+               (ipairs
+                 ["{:objects [{:kind :sphere :pos [9 9 9] :color [0 1 0] :radius 7}
+                              {:kind :box :size [3 4 5] :pos [-1 -1 -1]}]
+                    :render {:reflections 2}}"
+                  "{:objects [{:kind :sphere} {:kind :box}]
+                    :light {:pos [100 -5 3]} :render {:reflections 2 :epsilon 0.01}}"
+                  "{:objects [{:kind :box} {:kind :sphere}] :render {:reflections 2}}"
+                  "{:objects [{:kind :sphere} {:kind :box}]
+                    :render {:reflections 16 :max-steps 20 :draw-distance 5}
+                    :camera {:pos [1 2 3] :yaw 3 :fov 20}
+                    :environment [0 0 0]}"])]
+          (assert.are.equal base-key (key-of source)))))
+
+    (it "is the same for any reflection count above zero"
+      (fn []
+        (assert.are.equal (key-of "{:objects [] :render {:reflections 1}}")
+                          (key-of "{:objects [] :render {:reflections 16}}"))))))
+
+(describe "plan: uniform budget"
+  (fn []
+    ;; A sphere takes 2 vectors and 32 are reserved: (4096 - 32) / 2 = 2032 spheres fit.
+    (local most (math.floor (/ (- plan.default-uniform-limit plan.fixed-uniform-vectors) 2)))
+
+    (it "has the documented limits"
+      (fn []
+        (assert.are.equal 4096 plan.default-uniform-limit)
+        (assert.are.equal 32 plan.fixed-uniform-vectors)
+        (assert.are.equal 2032 most)))
+
+    (it "plans the largest number of spheres that fits"
+      (fn []
+        (let [p (assert (plan.scene->plan (spheres most)))]
+          (assert.are.equal 4096 p.uniform-vectors)
+          (assert.are.equal most (. p.kinds 1 :count))
+          (assert.are.equal (.. "sphere:" most " shadows reflections view:shaded") p.key))))
+
+    (it "refuses one more sphere with a message naming the file and the budget"
+      (fn []
+        (let [(p err) (plan.scene->plan (spheres (+ most 1)))]
+          (assert.is_nil p)
+          (assert.are.equal
+            (.. "t.fnl: objects: the scene needs 4098 uniform vectors but the driver allows "
+                "4096 (32 are reserved); remove objects worth 2 vectors (a sphere takes 2)")
+            err)
+          (assert.truthy (err:find "uniform vectors" 1 true)))))
+
+    (it "honours the :uniform-limit option"
+      (fn []
+        ;; The seed needs 47 vectors.
+        (assert.truthy (plan.scene->plan seed {:uniform-limit 47}))
+        (let [(p err) (plan.scene->plan seed {:uniform-limit 46})]
+          (assert.is_nil p)
+          (assert.are.equal
+            (.. "scenes/seed.fnl: objects: the scene needs 47 uniform vectors but the driver "
+                "allows 46 (32 are reserved); remove objects worth 1 vectors "
+                "(a sphere takes 2, a box takes 3, a plane takes 2)")
+            err))
+        (let [(p err) (plan.scene->plan (spheres 10) {:uniform-limit 40})]
+          (assert.is_nil p)
+          (assert.truthy (err:find "needs 52 uniform vectors" 1 true)))))
+
+    (it "counts uber capacity, not objects"
+      (fn []
+        (let [p (plan-of "{:objects []}" {:uber? true})]
+          (assert.are.equal (+ 32 2 3 2) p.uniform-vectors))
+        (let [(p err) (plan.scene->plan (load "{:objects []}") {:uber? true :uniform-limit 38})]
+          (assert.is_nil p)
+          (assert.truthy (err:find "needs 39 uniform vectors" 1 true)))))))
