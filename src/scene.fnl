@@ -23,7 +23,7 @@
 
 (local top-level-keys [:name :camera :light :environment :render :objects])
 
-(local limits {:max-reflections 16 :max-steps 100000 :max-objects 1000})
+(local limits {:max-reflections 16 :max-steps 100000 :max-objects 5000})
 
 ;;; Messages
 
