@@ -3,7 +3,11 @@
 package.path = "./?.lua;./?/init.lua;" .. package.path .. ";/usr/share/lua/5.4/?.lua"
 local fennel = require("fennel")
 fennel.path = "./?.fnl;./?/init.fnl;" .. fennel.path
-table.insert(package.loaders or package.searchers, fennel.searcher)
+-- An explicit searcher: fennel.searcher copies the options of the compile in progress,
+-- and a failed sandboxed scene compile would otherwise leak its env and allowed globals
+-- into the next module loaded.
+table.insert(package.loaders or package.searchers,
+             fennel.makeSearcher({allowedGlobals = false, env = _G, correlate = true}))
 -- Compile with line correlation so tracebacks point at the right Fennel lines.
 fennel["macro-path"] = "./?.fnl;" .. fennel["macro-path"]
 

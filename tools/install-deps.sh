@@ -13,6 +13,19 @@ sudo=""
 if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 
+# Runs a command with its output kept aside, and shows that output only if it fails.
+quietly() {
+  local log
+  log=$(mktemp)
+  if ! "$@" >"$log" 2>&1; then
+    cat "$log" >&2
+    rm -f "$log"
+    echo "install-deps: failed: $*" >&2
+    return 1
+  fi
+  rm -f "$log"
+}
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -21,7 +34,7 @@ done
 if [ ${#missing[@]} -gt 0 ]; then
   echo "install-deps: installing ${missing[*]}"
   $sudo apt-get update -qq
-  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  quietly $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
 fennel_ok() {
@@ -39,6 +52,6 @@ if ! fennel_ok; then
                -o "APT::Sandbox::User=root")
   apt-get "${apt_private[@]}" update -qq
   (cd "$state/deb" && apt-get "${apt_private[@]}" download -qq fennel)
-  $sudo apt-get install -y -qq --no-install-recommends "$state"/deb/fennel_*.deb >/dev/null
+  quietly $sudo apt-get install -y -qq --no-install-recommends "$state"/deb/fennel_*.deb
   fennel_ok || { echo "install-deps: fennel was installed but 'fennel --version' is not 1.5+" >&2; exit 1; }
 fi
