@@ -73,7 +73,7 @@ VIEW is one of shaded, normals, glow, heat.")
             (set err (.. "--size must look like 1920x1080, got " o.size)))))
     (when (and (not err) (= (type o.frames) :string))
       (let [n (tonumber o.frames)]
-        (if (and n (>= n 1) (= n (math.floor n))) (set o.frames n)
+        (if (and n (>= n 1) (< n math.huge) (= n (math.floor n))) (set o.frames n)
             (set err (.. "--frames must be a whole number >= 1, got " o.frames)))))
     (when (not o.scene) (set o.scene default-scene))
     (if err (values nil err) (check-options o))))

@@ -247,11 +247,36 @@ the file system, the process or the loader."
      :table {:insert table.insert :concat table.concat :unpack (or table.unpack unpack)}
      :string {:format string.format :rep string.rep :sub string.sub}}))
 
-(fn parse-first-form [source file]
-  (let [(ok? result) (pcall #(let [parse (fennel.parser (fennel.string-stream source) file)
-                                   (_ ast) (parse)]
-                               ast))]
-    (when ok? result)))
+(fn parse-forms [source file]
+  "All top-level forms of `source`, or nil when it does not parse (fennel.eval then
+reports the parse error with its line)."
+  (let [(ok? forms) (pcall #(icollect [_ form (fennel.parser (fennel.string-stream source) file)]
+                              form))]
+    (when ok? forms)))
+
+;; Compile-time code has no place in a data file, and a failing macro would leave
+;; Fennel's compile options (the sandbox env) behind for the next module it loads.
+(local compile-time-forms {:macro true :macros true :eval-compiler true :import-macros true
+                           :require-macros true :include true :lua true :macrodebug true})
+
+(fn find-compile-time-form [node]
+  (when (= (type node) :table)
+    (let [head (and (fennel.list? node) (. node 1))
+          name (and head (fennel.sym? head) (tostring head))]
+      (if (and name (. compile-time-forms name))
+          node
+          (accumulate [found nil _ child (pairs node) &until found]
+            (find-compile-time-form child))))))
+
+(fn check-compile-time-forms [forms file]
+  (var message nil)
+  (each [_ form (ipairs forms) &until message]
+    (case (find-compile-time-form form)
+      node (let [src (fennel.ast-source node)]
+             (set message (.. file (if src.line (.. ":" src.line) "") ": (" (tostring (. node 1))
+                              " ...) is not allowed: scene files are data and run no"
+                              " compile-time code")))))
+  message)
 
 (fn clean-fennel-message [msg file]
   ;; Fennel's parse and compile errors carry the file and line already; keep the first
@@ -270,16 +295,21 @@ Returns the scene (plain data, defaults filled in) or nil and a message
   (let [file (or ?file "scene")
         env (safe-env)
         allowed (icollect [k (pairs env)] k)
-        (ok? value) (pcall fennel.eval source {:filename file :env env
-                                               :allowedGlobals allowed
-                                               :correlate true})]
-    (if (not ok?)
-        (values nil (clean-fennel-message (tostring value) file))
-        (let [ctx {: file : source :ast (parse-first-form source file)}
-              (ok2? result) (pcall validate value ctx)]
-          (if ok2? result
-              (and (= (type result) :table) result.scene-error) (values nil result.scene-error)
-              (error result))))))
+        forms (parse-forms source file)
+        forbidden (and forms (check-compile-time-forms forms file))]
+    (if forbidden
+        (values nil forbidden)
+        (let [(ok? value) (pcall fennel.eval source {:filename file :env env
+                                                     :allowedGlobals allowed
+                                                     :correlate true})]
+          (if (not ok?)
+              (values nil (clean-fennel-message (tostring value) file))
+              ;; Field lines come from the last form: the table the file evaluates to.
+              (let [ctx {: file : source :ast (and forms (. forms (length forms)))}
+                    (ok2? result) (pcall validate value ctx)]
+                (if ok2? result
+                    (and (= (type result) :table) result.scene-error) (values nil result.scene-error)
+                    (error result))))))))
 
 (fn load-file [path ?read]
   "Read and load the scene file at `path` (see load-string). `?read` reads a file's

@@ -1,0 +1,152 @@
+;; Specs for src/cli.fnl: every mode, the defaults, and the error for each bad argument.
+(local cli (require :src.cli))
+
+(fn parse-error [args]
+  (let [(o err) (cli.parse args)]
+    (assert.is_nil o)
+    (assert.are.equal :string (type err))
+    err))
+
+(describe "cli: modes"
+  (fn []
+    (it "plays the seed scene by default"
+      (fn []
+        (assert.are.same {:mode :play :scene "scenes/seed.fnl" :frames 5} (cli.parse []))
+        (assert.are.equal "scenes/seed.fnl" cli.default-scene)))
+
+    (it "plays a scene given as the only argument"
+      (fn []
+        (assert.are.same {:mode :play :scene "scenes/other.fnl" :frames 5}
+                         (cli.parse ["scenes/other.fnl"]))))
+
+    (it "parses --render with --out, --size and --view"
+      (fn []
+        (assert.are.same {:mode :render :scene "a.fnl" :out "out/a.png" :size [640 480]
+                          :view "normals" :frames 5}
+                         (cli.parse ["--render" "a.fnl" "--out" "out/a.png" "--size" "640x480"
+                                     "--view" "normals"]))
+        ;; Options may come before the mode.
+        (assert.are.same {:mode :render :scene "a.fnl" :out "b.png" :frames 5}
+                         (cli.parse ["--out" "b.png" "--render" "a.fnl"]))))
+
+    (it "parses --print-shader with --view and --target"
+      (fn []
+        (assert.are.same {:mode :print-shader :scene "a.fnl" :view "heat" :target "core" :frames 5}
+                         (cli.parse ["--print-shader" "a.fnl" "--view" "heat" "--target" "core"]))
+        (assert.are.same {:mode :print-shader :scene "a.fnl" :target "love" :frames 5}
+                         (cli.parse ["--print-shader" "a.fnl" "--target" "love"]))))
+
+    (it "parses --bench with --size and --frames"
+      (fn []
+        (assert.are.same {:mode :bench :scene "a.fnl" :size [1920 1080] :frames 30}
+                         (cli.parse ["--bench" "a.fnl" "--size" "1920X1080" "--frames" "30"]))
+        (assert.are.same {:mode :bench :scene "a.fnl" :frames 5} (cli.parse ["--bench" "a.fnl"]))))
+
+    (it "parses --bench-report with the default scene and --frames"
+      (fn []
+        (assert.are.same {:mode :bench-report :scene "scenes/seed.fnl" :frames 5}
+                         (cli.parse ["--bench-report"]))
+        (assert.are.same {:mode :bench-report :scene "scenes/seed.fnl" :frames 2}
+                         (cli.parse ["--bench-report" "--frames" "2"]))))
+
+    (it "parses --shot with play mode"
+      (fn []
+        (assert.are.same {:mode :play :scene "a.fnl" :shot "s.png" :frames 3}
+                         (cli.parse ["a.fnl" "--shot" "s.png" "--frames" "3"]))
+        (assert.are.same {:mode :play :scene "scenes/seed.fnl" :shot "s.png" :frames 5}
+                         (cli.parse ["--shot" "s.png"]))))
+
+    (it "accepts every view and the size limits"
+      (fn []
+        (each [_ view (ipairs [:shaded :normals :glow :heat])]
+          (assert.are.equal view (. (cli.parse ["--view" view]) :view)))
+        (assert.are.same [1 1] (. (cli.parse ["--size" "1x1"]) :size))
+        (assert.are.same [16384 16384] (. (cli.parse ["--size" "16384x16384"]) :size))))
+
+    (it "has a usage text naming every mode and view"
+      (fn []
+        (each [_ s (ipairs ["--render" "--out" "--print-shader" "--bench" "--bench-report"
+                            "--size" "--frames" "--view" "--target" "--shot"
+                            "shaded, normals, glow, heat"])]
+          (assert.truthy (cli.usage:find s 1 true) s))))))
+
+(describe "cli: errors"
+  (fn []
+    (it "rejects unknown options"
+      (fn []
+        (assert.are.equal "unknown option --fast" (parse-error ["--fast"]))
+        (assert.are.equal "unknown option --out=a.png" (parse-error ["--render" "a.fnl" "--out=a.png"]))))
+
+    (it "needs --out for --render, and a .png"
+      (fn []
+        (assert.are.equal "--render needs --out FILE.png" (parse-error ["--render" "a.fnl"]))
+        (assert.are.equal "--out must name a .png file, got a.jpg"
+                          (parse-error ["--render" "a.fnl" "--out" "a.jpg"]))
+        (assert.are.equal "--out must name a .png file, got --size"
+                          (parse-error ["--render" "a.fnl" "--out" "--size"]))))
+
+    (it "needs a scene after a mode flag and a value after an option"
+      (fn []
+        (assert.are.equal "--render needs a scene file" (parse-error ["--render"]))
+        (assert.are.equal "--render needs a scene file" (parse-error ["--render" "--out" "a.png"]))
+        (assert.are.equal "--bench needs a scene file" (parse-error ["--bench"]))
+        (assert.are.equal "--print-shader needs a scene file" (parse-error ["--print-shader"]))
+        (assert.are.equal "--out needs a value" (parse-error ["--render" "a.fnl" "--out"]))
+        (assert.are.equal "--frames needs a value" (parse-error ["--frames"]))))
+
+    (it "rejects bad sizes"
+      (fn []
+        (each [_ s (ipairs ["640" "640x" "x480" "0x480" "640x0" "-640x480" "640*480"
+                            "16385x100" "100x16385" "640x480x2" "1.5x2" "axb" ""])]
+          (assert.are.equal (.. "--size must look like 1920x1080, got " s)
+                            (parse-error ["--bench" "a.fnl" "--size" s])))))
+
+    (it "rejects bad frame counts"
+      (fn []
+        (each [_ n (ipairs ["0" "-1" "1.5" "abc" "" "nan"])]
+          (assert.are.equal (.. "--frames must be a whole number >= 1, got " n)
+                            (parse-error ["--bench" "a.fnl" "--frames" n])))))
+
+    (it "rejects an infinite frame count"
+      (fn []
+        (assert.are.equal "--frames must be a whole number >= 1, got 1e999"
+                          (parse-error ["--bench" "a.fnl" "--frames" "1e999"]))))
+
+    (it "rejects bad views and targets"
+      (fn []
+        (assert.are.equal "--view must be one of shaded, normals, glow, heat, got bogus"
+                          (parse-error ["--view" "bogus"]))
+        (assert.are.equal "--view must be one of shaded, normals, glow, heat, got Shaded"
+                          (parse-error ["--render" "a.fnl" "--out" "a.png" "--view" "Shaded"]))
+        (assert.are.equal "--target must be love or core, got gles"
+                          (parse-error ["--print-shader" "a.fnl" "--target" "gles"]))))
+
+    (it "rejects --shot outside play mode or without .png"
+      (fn []
+        (assert.are.equal "--shot must name a .png file, got s.jpg"
+                          (parse-error ["a.fnl" "--shot" "s.jpg"]))
+        (assert.are.equal "--shot only goes with playing a scene"
+                          (parse-error ["--bench" "a.fnl" "--shot" "s.png"]))
+        (assert.are.equal "--shot needs a value" (parse-error ["--shot"]))))
+
+    (it "rejects two modes"
+      (fn []
+        (assert.are.equal "--bench: only one mode at a time"
+                          (parse-error ["--render" "a.fnl" "--out" "a.png" "--bench" "b.fnl"]))
+        (assert.are.equal "--render: only one mode at a time"
+                          (parse-error ["--print-shader" "a.fnl" "--render" "b.fnl"]))
+        (assert.are.equal "--bench-report: only one mode at a time"
+                          (parse-error ["--bench" "a.fnl" "--bench-report"]))
+        (assert.are.equal "--bench: only one mode at a time"
+                          (parse-error ["--bench-report" "--bench" "a.fnl"]))
+        (assert.are.equal "--bench-report: only one mode at a time"
+                          (parse-error ["--bench-report" "--bench-report"]))))
+
+    (it "rejects a second scene"
+      (fn []
+        (assert.are.equal "unexpected argument b.fnl" (parse-error ["a.fnl" "b.fnl"]))
+        (assert.are.equal "unexpected argument b.fnl" (parse-error ["--bench" "a.fnl" "b.fnl"]))))
+
+    (it "reports the first error only"
+      (fn []
+        (assert.are.equal "unknown option --x" (parse-error ["--x" "--size" "bad"]))))))
