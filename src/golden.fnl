@@ -54,7 +54,7 @@
 (fn diff [a b]
   "Compare images `a` and `b` (from png.decode): {:over n :max d :worst [x y]} where
 over counts pixels whose largest channel difference exceeds the tolerance, and a diff
-image (red where over, dimmed grey copy of `a` elsewhere)."
+image (red where over, a half-bright grey copy of `a` elsewhere)."
   (assert (and (= a.width b.width) (= a.height b.height)) "images differ in size")
   (let [w a.width h a.height
         pa a.pixels pb b.pixels
@@ -68,7 +68,7 @@ image (red where over, dimmed grey copy of `a` elsewhere)."
               d (math.max (math.abs (- (. pa i) (. pb i)))
                           (math.abs (- (. pa (+ i 1)) (. pb (+ i 1))))
                           (math.abs (- (. pa (+ i 2)) (. pb (+ i 2)))))
-              grey (math.floor (* 0.25 (+ (. pa i) (. pa (+ i 1)) (. pa (+ i 2))) 0.33))]
+              grey (math.floor (/ (+ (. pa i) (. pa (+ i 1)) (. pa (+ i 2))) 6))]
           (when (> d worst) (set worst d) (set worst-at [x y]))
           (if (> d channel-tolerance)
               (do (set over (+ over 1))
