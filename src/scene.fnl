@@ -245,7 +245,12 @@ the file system, the process or the loader."
     {:math m :ipairs ipairs :pairs pairs :tonumber tonumber :tostring tostring
      :type type :select select :unpack (or table.unpack unpack)
      :table {:insert table.insert :concat table.concat :unpack (or table.unpack unpack)}
-     :string {:format string.format :rep string.rep :sub string.sub}}))
+     :string {:format string.format :sub string.sub
+              ;; A single C call is out of the count hook's reach: cap its size.
+              :rep (fn [str n ?sep]
+                     (when (> (* (length str) (or n 0)) 1000000)
+                       (error "string.rep: the result would be over 1 MB" 2))
+                     (string.rep str n ?sep))}}))
 
 (fn parse-forms [source file]
   "All top-level forms of `source`, or nil when it does not parse (fennel.eval then
@@ -259,24 +264,67 @@ reports the parse error with its line)."
 (local compile-time-forms {:macro true :macros true :eval-compiler true :import-macros true
                            :require-macros true :include true :lua true :macrodebug true})
 
-(fn find-compile-time-form [node]
-  (when (= (type node) :table)
-    (let [head (and (fennel.list? node) (. node 1))
-          name (and head (fennel.sym? head) (tostring head))]
-      (if (and name (. compile-time-forms name))
-          node
-          (accumulate [found nil _ child (pairs node) &until found]
-            (find-compile-time-form child))))))
+(local max-nesting 64)
 
-(fn check-compile-time-forms [forms file]
+(fn find-compile-time-form [node depth]
+  "The first compile-time form inside `node`, or :too-deep past `max-nesting` levels."
+  (if (> depth max-nesting) :too-deep
+      (= (type node) :table)
+      (let [head (and (fennel.list? node) (. node 1))
+            name (and head (fennel.sym? head) (tostring head))]
+        (if (and name (. compile-time-forms name))
+            node
+            (accumulate [found nil _ child (pairs node) &until found]
+              (find-compile-time-form child (+ depth 1)))))))
+
+(fn check-forms [forms file]
+  "A message when the parsed `forms` hold compile-time code or nest too deeply."
   (var message nil)
   (each [_ form (ipairs forms) &until message]
-    (case (find-compile-time-form form)
+    (case (find-compile-time-form form 1)
+      :too-deep (set message (.. file ": the scene nests deeper than " max-nesting
+                                 " levels; scenes are flat lists of objects"))
       node (let [src (fennel.ast-source node)]
              (set message (.. file (if src.line (.. ":" src.line) "") ": (" (tostring (. node 1))
                               " ...) is not allowed: scene files are data and run no"
                               " compile-time code")))))
   message)
+
+;;; Running a scene: instruction, time and memory limits
+
+(local run-limits {:seconds 1 :memory-mb 64 :hook-every 1000})
+
+(fn run-limited [chunk file]
+  "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
+message when it runs past the time or memory limit."
+  (let [start (os.clock)
+        memory-start (collectgarbage :count)
+        hook (fn []
+               (when (> (- (os.clock) start) run-limits.seconds)
+                 (error {:scene-error (.. file ": the scene ran for more than "
+                                          run-limits.seconds " s and was stopped"
+                                          " (an endless loop?)")}))
+               (when (> (- (collectgarbage :count) memory-start) (* 1024 run-limits.memory-mb))
+                 (error {:scene-error (.. file ": the scene built more than "
+                                          run-limits.memory-mb " MB of data and was stopped")})))]
+    (when jit (jit.off chunk true))
+    (debug.sethook hook "" run-limits.hook-every)
+    (let [(ok? value) (pcall chunk)]
+      (debug.sethook)
+      (collectgarbage)
+      (values ok? value))))
+
+(fn evaluate [source file env allowed]
+  "Compile and run scene `source` in `env`: true and its value, or false and an error."
+  (let [(ok? code) (pcall fennel.compile-string source {:filename file :allowedGlobals allowed
+                                                       :correlate true})]
+    (if (not ok?)
+        (values false code)
+        (let [(chunk err) ((or _G.loadstring load) code (.. "@" file))]
+          (if (not chunk)
+              (values false err)
+              (do (when setfenv (setfenv chunk env))
+                  (run-limited chunk file)))))))
 
 (fn clean-fennel-message [msg file]
   ;; Fennel's parse and compile errors carry the file and line already; keep the first
@@ -296,14 +344,14 @@ Returns the scene (plain data, defaults filled in) or nil and a message
         env (safe-env)
         allowed (icollect [k (pairs env)] k)
         forms (parse-forms source file)
-        forbidden (and forms (check-compile-time-forms forms file))]
+        forbidden (and forms (check-forms forms file))]
     (if forbidden
         (values nil forbidden)
-        (let [(ok? value) (pcall fennel.eval source {:filename file :env env
-                                                     :allowedGlobals allowed
-                                                     :correlate true})]
+        (let [(ok? value) (evaluate source file env allowed)]
           (if (not ok?)
-              (values nil (clean-fennel-message (tostring value) file))
+              (values nil (if (and (= (type value) :table) value.scene-error)
+                              value.scene-error
+                              (clean-fennel-message (tostring value) file)))
               ;; Field lines come from the last form: the table the file evaluates to.
               (let [ctx {: file : source :ast (and forms (. forms (length forms)))}
                     (ok2? result) (pcall validate value ctx)]

@@ -4,7 +4,7 @@
 # suite's .deb, fetched through a private apt state so the system stays on bookworm.
 set -euo pipefail
 
-packages=(love luajit lua5.4 glslang-tools libosmesa6 lua-busted)
+packages=(love luajit lua5.4 glslang-tools libosmesa6 lua-busted lua-filesystem)
 fennel_suite=trixie
 mirror=${DEBIAN_MIRROR:-http://deb.debian.org/debian}
 keyring=/usr/share/keyrings/debian-archive-keyring.gpg
