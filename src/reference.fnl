@@ -103,7 +103,8 @@ Positions are in world coordinates."
             (do (set (r g b) (heat-color (/ steps max-steps)))
                 (when hit?
                   (let [(_ i) (map-color (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
-                    (set result.object (object-index i)))))
+                    (set result.object (object-index i))
+                    (table.insert result.path (or (object-index i) 0)))))
             (not hit?)
             (if (= view :glow) (let [grey (/ steps 100)] (set (r g b) (values grey grey grey)))
                 (= view :normals) nil
