@@ -47,20 +47,35 @@
       true (love.event.quit 0)
       (_ err) (fail! err))))
 
+(fn soak [o]
+  (let [soak-mod (require :src.soak)]
+    (case (soak-mod.run o)
+      true (love.event.quit 0)
+      (_ err) (fail! err))))
+
 (fn play [o]
   (let [play-mod (require :src.play)]
     (play-mod.start! o)))
 
 (local modes {:print-shader print-shader :render render :bench bench
-              :bench-report bench-report :play play})
+              :bench-report bench-report :soak soak :play play})
+
+(fn headless-error-handler [message]
+  ;; Outside play mode nobody looks at LÖVE's error screen, and in a script or CI it
+  ;; would wait forever: print the error and exit non-zero instead.
+  (io.stderr:write (.. "error: " (debug.traceback (tostring message) 2) "\n"))
+  (os.exit 1))
 
 (fn love.load [args]
   (case (cli.parse (or args []))
     o (let [run (. modes o.mode)]
         ;; Command-line modes must never stop on LÖVE's error screen: a script waits on
         ;; them. Report the error and exit non-zero instead.
+        (when (or (not= o.mode :play) o.shot)
+          (set love.errorhandler headless-error-handler))
         (if (= o.mode :play)
             (run o)
             (let [(ok? err) (xpcall run debug.traceback o)]
               (when (not ok?) (fail! (tostring err))))))
-    (nil err) (fail! (.. err "\n" cli.usage))))
+    (nil err) (do (set love.errorhandler headless-error-handler)
+                  (fail! (.. err "\n" cli.usage)))))

@@ -12,10 +12,11 @@
        love . --print-shader SCENE [--view VIEW] [--target love|core]
        love . --bench SCENE [--size WxH] [--frames N]
        love . --bench-report [--frames N]    the benchmark behind `make bench`
+       love . --soak [--cycles N]            hot-reload soak test (edits a temp scene)
 VIEW is one of shaded, normals, glow, heat.")
 
 (local value-flags {:--out :out :--size :size :--frames :frames :--view :view
-                    :--target :target :--shot :shot})
+                    :--target :target :--shot :shot :--cycles :cycles})
 (local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench})
 
 (fn parse-size [s]
@@ -43,7 +44,7 @@ VIEW is one of shaded, normals, glow, heat.")
   "Parse the game's arguments (after LÖVE's own). Returns an options table
 {:mode :play|:render|:print-shader|:bench|:bench-report :scene :out :size [w h]
  :frames n :view v :target t} or nil and a message (the usage text follows it)."
-  (let [o {:mode :play :frames 5}]
+  (let [o {:mode :play :frames 5 :cycles 300}]
     (var i 1)
     (var err nil)
     (while (and (not err) (<= i (length args)))
@@ -56,9 +57,9 @@ VIEW is one of shaded, normals, glow, heat.")
                 (do (set o.mode (. mode-flags a))
                     (set o.scene next-arg)
                     (set i (+ i 1))))
-            (= a "--bench-report")
+            (or (= a "--bench-report") (= a "--soak"))
             (if (not= o.mode :play) (set err (.. a ": only one mode at a time"))
-                (set o.mode :bench-report))
+                (set o.mode (a:sub 3)))
             (. value-flags a)
             (if (= next-arg nil) (set err (.. a " needs a value"))
                 (do (tset o (. value-flags a) next-arg)
@@ -71,10 +72,11 @@ VIEW is one of shaded, normals, glow, heat.")
       (let [size (parse-size o.size)]
         (if size (set o.size size)
             (set err (.. "--size must look like 1920x1080, got " o.size)))))
-    (when (and (not err) (= (type o.frames) :string))
-      (let [n (tonumber o.frames)]
-        (if (and n (>= n 1) (< n math.huge) (= n (math.floor n))) (set o.frames n)
-            (set err (.. "--frames must be a whole number >= 1, got " o.frames)))))
+    (each [_ field (ipairs [:frames :cycles])]
+      (when (and (not err) (= (type (. o field)) :string))
+        (let [n (tonumber (. o field))]
+          (if (and n (>= n 1) (< n math.huge) (= n (math.floor n))) (tset o field n)
+              (set err (.. "--" field " must be a whole number >= 1, got " (. o field)))))))
     (when (not o.scene) (set o.scene default-scene))
     (if err (values nil err) (check-options o))))
 

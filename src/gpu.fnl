@@ -6,8 +6,9 @@
 (local max-cached-shaders 8)
 
 (fn new-cache []
-  "An empty shader cache: plan key -> compiled LÖVE shader, least recently used first."
-  {:shaders {} :order [] :compiles 0})
+  "An empty shader cache: plan key -> compiled LÖVE shader, least recently used first.
+:compiles and :released count shaders made and released (live = compiles - released)."
+  {:shaders {} :order [] :compiles 0 :released 0})
 
 (fn touch! [cache key]
   (for [i (length cache.order) 1 -1]
@@ -19,7 +20,9 @@
     (let [key (table.remove cache.order 1)
           shader (. cache.shaders key)]
       (tset cache.shaders key nil)
-      (when shader (shader:release)))))
+      (when shader
+        (shader:release)
+        (set cache.released (+ cache.released 1))))))
 
 (fn compile-source [source ?label]
   "Compile GLSL `source` into a LÖVE shader, or nil and the driver's message."
@@ -45,7 +48,9 @@ whether it was compiled now, or nil and a message."
 
 (fn release-all! [cache]
   "Release every cached shader."
-  (each [_ shader (pairs cache.shaders)] (shader:release))
+  (each [_ shader (pairs cache.shaders)]
+    (shader:release)
+    (set cache.released (+ cache.released 1)))
   (set cache.shaders {})
   (set cache.order []))
 

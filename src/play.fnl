@@ -6,6 +6,7 @@
 (local frame (require :src.frame))
 (local gpu (require :src.gpu))
 (local plan-mod (require :src.plan))
+(local watch (require :src.watch))
 
 (local move-speed 10)   ; world units per second
 (local turn-speed 90)   ; degrees per second
@@ -15,7 +16,8 @@
 
 (local state {:scene nil :path nil :cam nil :view :shaded :reflections 0
               :scale 1 :hud? true :cache nil :canvas nil :message nil
-              :message-until 0 :error nil :gamepad nil})
+              :message-until 0 :error nil :gamepad nil :watch nil :poll-at 0
+              :reloads 0})
 
 (fn scenes-in-folder []
   (let [items (love.filesystem.getDirectoryItems "scenes")]
@@ -24,26 +26,86 @@
       (when (name:match "%.fnl$") (.. "scenes/" name)))))
 
 (fn say! [message]
-  (print message)
+  (when (not state.quiet?) (print message))
   (set state.message message)
   (set state.message-until (+ (love.timer.getTime) 4)))
 
-(fn load! [path keep-camera?]
-  "Load the scene at `path`; on failure keep the last good scene and show the error."
-  (case (frame.load-scene path)
-    scene (do (set state.scene scene)
-              (set state.path path)
-              (set state.error nil)
-              (set state.reflections scene.render.reflections)
-              (set state.scale scene.render.scale)
-              (when (or (not keep-camera?) (not state.cam))
-                (set state.cam (camera.from-scene scene)))
-              (say! (.. "loaded " path)))
-    (nil err) (do (set state.error err)
-                  (io.stderr:write (.. err "\n")))))
+;;; Loading and hot reload
+
+(local lfs (let [(ok? m) (pcall require :lfs)] (when ok? m)))
+
+(fn file-info [path]
+  "The watched file's modification time, size and text, or nil when it is missing.
+lua-filesystem gives times for any path; without it, only files in the game folder."
+  (let [attrs (if lfs
+                  (let [a (lfs.attributes path)]
+                    (when (and a (= a.mode :file)) {:mtime a.modification :size a.size}))
+                  (let [i (love.filesystem.getInfo path :file)]
+                    (when i {:mtime i.modtime :size i.size})))]
+    (when attrs
+      (set attrs.content (frame.read-text path))
+      (when attrs.content attrs))))
+
+(fn same-camera? [a b]
+  (and a b (= a.yaw b.yaw) (= a.pitch b.pitch) (= a.fov b.fov)
+       (= (. a.pos 1) (. b.pos 1)) (= (. a.pos 2) (. b.pos 2)) (= (. a.pos 3) (. b.pos 3))))
+
+(fn plan-with [scene reflections]
+  (plan-mod.scene->plan scene {:view state.view :reflections reflections}))
+
+(fn load! [path fresh?]
+  "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
+file, not an edit) resets the camera and the player's settings; an edit keeps them,
+unless the file's own camera or settings changed and the player left them alone.
+On any failure the last good scene keeps running and the error is shown."
+  (let [start (love.timer.getTime)
+        info (file-info path)
+        old state.scene
+        (scene err) (frame.load-scene path)]
+    (when (or fresh? (not state.watch))
+      (set state.watch (watch.new info)))
+    (watch.loaded! state.watch info)
+    (if (not scene)
+        (do (set state.error err)
+            (when fresh? (set state.path path))
+            (when (not state.quiet?) (io.stderr:write (.. err "\n"))))
+        (let [file-changed? (fn [get] (or fresh? (not old) (not= (get scene) (get old))))
+              reflections (if (file-changed? #$.render.reflections)
+                              scene.render.reflections
+                              state.reflections)
+              (plan perr) (plan-with scene reflections)
+              compiles-before state.cache.compiles
+              (shader serr) (if plan (gpu.shader-for state.cache plan) (values nil perr))]
+          (if (not shader)
+              (do (set state.error serr)
+                  (when (not state.quiet?) (io.stderr:write (.. serr "\n"))))
+              (let [file-cam (camera.from-scene scene)
+                    user-moved? (and old state.cam (not (same-camera? state.cam (camera.from-scene old))))]
+                (when (or fresh? (not state.cam)
+                          (and (not user-moved?) (not (same-camera? file-cam (camera.from-scene old)))))
+                  (set state.cam file-cam))
+                (when (file-changed? #$.render.scale) (set state.scale scene.render.scale))
+                (set state.reflections reflections)
+                (set state.scene scene)
+                (set state.path path)
+                (set state.error nil)
+                (set state.reloads (+ state.reloads 1))
+                (let [ms (* 1000 (- (love.timer.getTime) start))
+                      compiled? (> state.cache.compiles compiles-before)]
+                  (set state.last-load {:ms ms :compiled? compiled?})
+                  (say! (string.format "%s %s in %.0f ms (%s)" (if fresh? "loaded" "reloaded")
+                                       path ms (if compiled? "shader compiled" "uniforms only"))))))))))
+
+(fn poll-file! [now]
+  ;; Ten times a second is quick enough to feel immediate and costs nothing.
+  (when (and state.path state.watch (>= now state.poll-at))
+    (set state.poll-at (+ now 0.1))
+    (case (watch.poll! state.watch (file-info state.path) now)
+      :changed (load! state.path false)
+      :deleted (say! (.. state.path " was deleted; the last good scene keeps running")))))
 
 (fn current-plan []
-  (plan-mod.scene->plan state.scene {:view state.view :reflections state.reflections}))
+  (plan-with state.scene state.reflections))
 
 (fn ensure-canvas! []
   (let [(ww wh) (love.graphics.getDimensions)
@@ -117,7 +179,7 @@
     (each [i p (ipairs paths)] (when (= p state.path) (set at i)))
     (let [n (length paths)]
       (when (> n 0)
-        (load! (. paths (+ (% (+ at -1 delta) n) 1)) false)))))
+        (load! (. paths (+ (% (+ at -1 delta) n) 1)) true)))))
 
 (fn toggle-fullscreen! []
   (love.window.setFullscreen (not (love.window.getFullscreen)) :desktop))
@@ -140,7 +202,7 @@
       :f11 (toggle-fullscreen!)
       :return (when alt? (toggle-fullscreen!))
       :f12 (screenshot!)
-      :f5 (load! state.path true)
+      :f5 (load! state.path false)
       :k (change-reflections! -1)
       :l (change-reflections! 1)
       "-" (change-scale! 0.8)
@@ -176,6 +238,11 @@
       (table.insert lines (string.format "pos: %.2f %.2f %.2f  yaw %.1f  pitch %.1f"
                                          (. cam.pos 1) (. cam.pos 2) (. cam.pos 3)
                                          cam.yaw cam.pitch)))
+    (when state.last-load
+      (table.insert lines (string.format "last load: %.0f ms (%s), %d so far"
+                                         state.last-load.ms
+                                         (if state.last-load.compiled? "shader compiled" "uniforms only")
+                                         state.reloads)))
     (when (and state.message (< (love.timer.getTime) state.message-until))
       (table.insert lines state.message))
     lines))
@@ -219,9 +286,9 @@
   "Play the scene file named in `options.scene`: install the LÖVE callbacks."
   (set state.cache (gpu.new-cache))
   (set table.unpack (or table.unpack unpack))
-  (load! options.scene false)
-  (when (not state.scene) (set state.path options.scene))
+  (load! options.scene true)
   (set love.update (fn [dt]
+                     (poll-file! (love.timer.getTime))
                      (when state.cam
                        (handle-keyboard dt)
                        (handle-gamepad dt))))
@@ -236,4 +303,4 @@
   (set love.mousemoved mousemoved)
   (set love.joystickadded (fn [j] (when (j:isGamepad) (set state.gamepad j)))))
 
-{: start! : state}
+{: start! : state : load! : poll-file! : current-plan}

@@ -3,7 +3,7 @@
 
 (fn run [args]
   "Run `love . ARGS` headless; returns exit code and combined output."
-  (let [text (with-open [p (io.popen (.. "SDL_VIDEODRIVER=offscreen love . " args
+  (let [text (with-open [p (io.popen (.. "SDL_VIDEODRIVER=offscreen timeout 120 love . " args
                                          " 2>&1; echo \"exit:$?\""))]
                (p:read :*a))
         code (tonumber (text:match "exit:(%d+)%s*$"))]

@@ -11,49 +11,56 @@
   (fn []
     (it "plays the seed scene by default"
       (fn []
-        (assert.are.same {:mode :play :scene "scenes/seed.fnl" :frames 5} (cli.parse []))
+        (assert.are.same {:mode :play :scene "scenes/seed.fnl" :frames 5 :cycles 300} (cli.parse []))
         (assert.are.equal "scenes/seed.fnl" cli.default-scene)))
 
     (it "plays a scene given as the only argument"
       (fn []
-        (assert.are.same {:mode :play :scene "scenes/other.fnl" :frames 5}
+        (assert.are.same {:mode :play :scene "scenes/other.fnl" :frames 5 :cycles 300}
                          (cli.parse ["scenes/other.fnl"]))))
 
     (it "parses --render with --out, --size and --view"
       (fn []
         (assert.are.same {:mode :render :scene "a.fnl" :out "out/a.png" :size [640 480]
-                          :view "normals" :frames 5}
+                          :view "normals" :frames 5 :cycles 300}
                          (cli.parse ["--render" "a.fnl" "--out" "out/a.png" "--size" "640x480"
                                      "--view" "normals"]))
         ;; Options may come before the mode.
-        (assert.are.same {:mode :render :scene "a.fnl" :out "b.png" :frames 5}
+        (assert.are.same {:mode :render :scene "a.fnl" :out "b.png" :frames 5 :cycles 300}
                          (cli.parse ["--out" "b.png" "--render" "a.fnl"]))))
 
     (it "parses --print-shader with --view and --target"
       (fn []
-        (assert.are.same {:mode :print-shader :scene "a.fnl" :view "heat" :target "core" :frames 5}
+        (assert.are.same {:mode :print-shader :scene "a.fnl" :view "heat" :target "core" :frames 5 :cycles 300}
                          (cli.parse ["--print-shader" "a.fnl" "--view" "heat" "--target" "core"]))
-        (assert.are.same {:mode :print-shader :scene "a.fnl" :target "love" :frames 5}
+        (assert.are.same {:mode :print-shader :scene "a.fnl" :target "love" :frames 5 :cycles 300}
                          (cli.parse ["--print-shader" "a.fnl" "--target" "love"]))))
 
     (it "parses --bench with --size and --frames"
       (fn []
-        (assert.are.same {:mode :bench :scene "a.fnl" :size [1920 1080] :frames 30}
+        (assert.are.same {:mode :bench :scene "a.fnl" :size [1920 1080] :frames 30 :cycles 300}
                          (cli.parse ["--bench" "a.fnl" "--size" "1920X1080" "--frames" "30"]))
-        (assert.are.same {:mode :bench :scene "a.fnl" :frames 5} (cli.parse ["--bench" "a.fnl"]))))
+        (assert.are.same {:mode :bench :scene "a.fnl" :frames 5 :cycles 300} (cli.parse ["--bench" "a.fnl"]))))
 
     (it "parses --bench-report with the default scene and --frames"
       (fn []
-        (assert.are.same {:mode :bench-report :scene "scenes/seed.fnl" :frames 5}
+        (assert.are.same {:mode :bench-report :scene "scenes/seed.fnl" :frames 5 :cycles 300}
                          (cli.parse ["--bench-report"]))
-        (assert.are.same {:mode :bench-report :scene "scenes/seed.fnl" :frames 2}
+        (assert.are.same {:mode :bench-report :scene "scenes/seed.fnl" :frames 2 :cycles 300}
                          (cli.parse ["--bench-report" "--frames" "2"]))))
+
+    (it "parses --soak with --cycles"
+      (fn []
+        (assert.are.same {:mode :soak :scene "scenes/seed.fnl" :frames 5 :cycles 1000}
+                         (cli.parse ["--soak" "--cycles" "1000"]))
+        (assert.are.equal "--cycles must be a whole number >= 1, got 0"
+                          (select 2 (cli.parse ["--soak" "--cycles" "0"])))))
 
     (it "parses --shot with play mode"
       (fn []
-        (assert.are.same {:mode :play :scene "a.fnl" :shot "s.png" :frames 3}
+        (assert.are.same {:mode :play :scene "a.fnl" :shot "s.png" :frames 3 :cycles 300}
                          (cli.parse ["a.fnl" "--shot" "s.png" "--frames" "3"]))
-        (assert.are.same {:mode :play :scene "scenes/seed.fnl" :shot "s.png" :frames 5}
+        (assert.are.same {:mode :play :scene "scenes/seed.fnl" :shot "s.png" :frames 5 :cycles 300}
                          (cli.parse ["--shot" "s.png"]))))
 
     (it "accepts every view and the size limits"

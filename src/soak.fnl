@@ -1,0 +1,132 @@
+;; `love . --soak [--cycles N]`: drives the player's own hot-reload path headless. It
+;; edits a scene file on disk in turn with a value edit, a structural edit and a broken
+;; version, lets the file watcher pick each one up, renders a frame after each, checks
+;; what a player would see, and reports reload times, Lua memory and live shaders.
+
+(local play (require :src.play))
+(local frame (require :src.frame))
+(local bench (require :src.bench))
+
+(local structures 12)   ; distinct sphere counts, more than the shader cache holds
+
+(fn scene-text [{: spheres : shade}]
+  (let [objects (fcollect [i 1 spheres]
+                  (string.format "{:kind :sphere :radius 0.8 :pos [%d 0 0.8] :color [%.3f 0.3 0.2]}"
+                                 (* 2 (- i 1)) (if (= i 1) shade 0.5)))]
+    (.. "{:name \"soak\"\n"
+        " :camera {:pos [0 -8 1] :yaw 90 :pitch 0 :fov 60}\n"
+        " :light {:pos [-6 -12 10]}\n"
+        " :render {:reflections 1}\n"
+        " :objects [" (table.concat objects "\n           ")
+        "\n           {:kind :plane :height 0 :color [0.6 0.6 0.6]}]}\n")))
+
+(fn broken-text [i]
+  ;; Alternate a syntax error and a validation error, each on line 2.
+  (if (= (% i 2) 0)
+      "{:name \"soak\"\n :objects [{:kind :sphere :radius 1}\n"
+      "{:name \"soak\"\n :objects [{:kind :sphere :radius -1}]}\n"))
+
+(fn write! [path text]
+  (with-open [f (assert (io.open path :wb))] (f:write text)))
+
+(fn centre-pixel [canvas]
+  (let [data (canvas:newImageData)
+        (r g b) (data:getPixel (math.floor (/ (canvas:getWidth) 2))
+                               (math.floor (/ (canvas:getHeight) 2)))]
+    (data:release)
+    [(math.floor (+ 0.5 (* 255 r))) (math.floor (+ 0.5 (* 255 g))) (math.floor (+ 0.5 (* 255 b)))]))
+
+(fn same-pixel? [a b]
+  (and (= (. a 1) (. b 1)) (= (. a 2) (. b 2)) (= (. a 3) (. b 3))))
+
+(fn run [o]
+  "Run `o.cycles` reload cycles; true when every check held."
+  (let [state play.state
+        path (.. (os.tmpname) ".fnl")
+        canvas (love.graphics.newCanvas 64 48)
+        failures []
+        times {:value [] :structural []}
+        counts {:value 0 :structural 0 :broken 0}
+        cycles o.cycles]
+    (var now 0)
+    (var spheres 1)
+    (var shade 0.5)
+    (var memory-warm nil)
+    (local warm-at (math.max 30 (math.floor (/ cycles 4))))
+    (var live-warm nil)
+    (fn check [ok? what] (when (not ok?) (table.insert failures what)))
+    (fn render! []
+      (case (play.current-plan)
+        plan (frame.render-to-canvas! state.cache canvas state.scene plan state.cam))
+      (centre-pixel canvas))
+    (fn settle! []
+      ;; Two polls a settle time apart: the watcher sees the edit, then loads it.
+      (set now (+ now 0.15)) (play.poll-file! now)
+      (set now (+ now 0.3)) (play.poll-file! now))
+    (write! path (scene-text {: spheres : shade}))
+    (set state.quiet? true)
+    (play.start! {:scene path :frames 0})
+    (set love.draw nil)
+    (set love.update nil)
+    (var before (render!))
+    (for [i 1 cycles]
+      (let [kind (case (% i 3) 1 :value 2 :structural 0 :broken)
+            compiles state.cache.compiles
+            loads state.reloads]
+        (case kind
+          :value (do (set shade (/ (% (* i 37) 100) 100))
+                     (write! path (scene-text {: spheres : shade})))
+          :structural (do (set spheres (+ 1 (% spheres structures)))
+                          (write! path (scene-text {: spheres : shade})))
+          :broken (write! path (broken-text i)))
+        (settle!)
+        (tset counts kind (+ (. counts kind) 1))
+        (let [after (render!)]
+          (case kind
+            :value (do (check (= state.reloads (+ loads 1)) (.. "cycle " i ": value edit not reloaded"))
+                       (check (= state.cache.compiles compiles) (.. "cycle " i ": value edit compiled a shader"))
+                       (check (= state.error nil) (.. "cycle " i ": error after a good edit: " (tostring state.error)))
+                       (check (not (same-pixel? before after)) (.. "cycle " i ": value edit did not change the image"))
+                       (table.insert times.value state.last-load.ms))
+            :structural (do (check (= state.reloads (+ loads 1)) (.. "cycle " i ": structural edit not reloaded"))
+                            (check (= state.cache.compiles (+ compiles 1)) (.. "cycle " i ": structural edit compiled no shader"))
+                            (table.insert times.structural state.last-load.ms))
+            :broken (do (check (and state.error (= (state.error:find path 1 true) 1)
+                                    (state.error:match "^[^:]+:%d+:"))
+                               (.. "cycle " i ": broken file shows no file:line error: " (tostring state.error)))
+                        (check (same-pixel? before after) (.. "cycle " i ": broken file changed the image"))))
+          (set before after)))
+      ;; Warm once a quarter of the run is done: the shader cache is full and the
+      ;; compiler's and LÖVE's own tables have grown to their working size by then.
+      (when (= i warm-at)
+        (collectgarbage :collect)
+        (set memory-warm (collectgarbage :count))
+        (set live-warm (- state.cache.compiles state.cache.released)))
+      (when (= (% i 100) 0)
+        (io.stderr:write (string.format "\rsoak: %d/%d reloads" i cycles))
+        (io.stderr:flush)))
+    (io.stderr:write "\n")
+    (collectgarbage :collect)
+    (os.remove path)
+    (let [memory-end (collectgarbage :count)
+          live-end (- state.cache.compiles state.cache.released)]
+      (print (string.format "soak: %d edits (%d value, %d structural, %d broken)"
+                            cycles counts.value counts.structural counts.broken))
+      (when (> (length times.value) 0)
+        (print (string.format "reload time (file read, validate, plan, shader): value edit median %.1f ms, structural edit median %.1f ms; the watcher adds 0.2 s of settling"
+                              (bench.median times.value) (bench.median times.structural))))
+      (when memory-warm
+        (print (string.format "Lua memory after cycle %d: %.0f KB, at the end: %.0f KB"
+                              warm-at memory-warm memory-end))
+        (print (string.format "live shaders after cycle %d: %d, at the end: %d (%d compiled, %d released)"
+                              warm-at live-warm live-end state.cache.compiles state.cache.released))
+        ;; Flat means no growth beyond noise: 10% of the warm figure, and the shader
+        ;; cache never holding more than it did once warm.
+        (check (< memory-end (* 1.1 memory-warm)) "Lua memory grew by more than 10%")
+        (check (<= live-end live-warm) "live shaders grew"))
+      (each [_ f (ipairs (icollect [i f (ipairs failures)] (when (<= i 10) f)))]
+        (print (.. "FAILED " f)))
+      (print (string.format "soak checks: %d failed" (length failures)))
+      (if (= (length failures) 0) true (values nil "soak checks failed")))))
+
+{: run : scene-text}
