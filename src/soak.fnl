@@ -1,7 +1,8 @@
-;; `love . --soak [--cycles N]`: drives the player's own hot-reload path headless. It
-;; edits a scene file on disk in turn with a value edit, a structural edit and a broken
-;; version, lets the file watcher pick each one up, renders a frame after each, checks
-;; what a player would see, and reports reload times, Lua memory and live shaders.
+;; `love . --soak [SCENE] [--cycles N]`: drives the player's own hot-reload path
+;; headless. First the edits a person makes to SCENE (default scenes/seed.fnl), then N
+;; cycles of a value edit, a structural edit and a broken version of a generated scene,
+;; each picked up by the file watcher and rendered; it checks what a player would see
+;; and reports reload times, Lua memory and live shaders.
 
 (local play (require :src.play))
 (local frame (require :src.frame))
@@ -39,6 +40,56 @@
 (fn same-pixel? [a b]
   (and (= (. a 1) (. b 1)) (= (. a 2) (. b 2)) (= (. a 3) (. b 3))))
 
+(fn canvas-bytes [canvas]
+  (let [data (canvas:newImageData)
+        bytes (data:getString)]
+    (data:release)
+    bytes))
+
+(fn edit-check! [o check]
+  "The edits a person makes to a real scene file (o.scene, a copy in a temp file):
+recolour a sphere, add a sphere, break the file, fix it. Prints one line per step."
+  (let [state play.state
+        path (.. (os.tmpname) ".fnl")
+        canvas (love.graphics.newCanvas 128 112)
+        original (frame.read-text o.scene)
+        recoloured (original:gsub "(:kind :sphere[^}]-:color %[)[^%]]*%]" "%11 1 0]" 1)
+        added (recoloured:gsub ":objects %[" ":objects [{:kind :sphere :radius 1 :pos [0 0 14] :color [1 1 1]}\n" 1)
+        broken (recoloured:gsub "}%s*$" "")]
+    (var now 1000)
+    (fn step! [text]
+      (write! path text)
+      (set now (+ now 0.15)) (play.poll-file! now)
+      (set now (+ now 0.3)) (play.poll-file! now)
+      (case (play.current-plan)
+        plan (frame.render-to-canvas! state.cache canvas state.scene plan state.cam))
+      (canvas-bytes canvas))
+    (fn report [what ok?]
+      (print (.. "reload check, " o.scene ": " what ": " (if ok? "ok" "FAILED")))
+      (check ok? (.. o.scene ": " what)))
+    (write! path original)
+    (play.load! path true)
+    (let [image0 (step! original)
+          compiles0 state.cache.compiles
+          image1 (step! recoloured)]
+      (report "recolouring a sphere changes the next frame without a shader compile"
+              (and (not= image0 image1) (= state.cache.compiles compiles0)
+                   (= state.error nil) (not= recoloured original)))
+      (let [image2 (step! added)]
+        (report "adding a sphere compiles a new shader and shows it"
+                (and (= state.cache.compiles (+ compiles0 1)) (not= image2 image1)
+                     (= state.error nil))))
+      (step! recoloured)
+      (let [image3 (step! broken)]
+        (report "breaking the file shows file:line and keeps the last image"
+                (and state.error (= (state.error:find path 1 true) 1)
+                     (not= nil (state.error:match "^[^:]+:%d+:")) (= image3 image1)))
+        (print (.. "  the overlay says: " (tostring state.error))))
+      (let [image4 (step! recoloured)]
+        (report "fixing the file clears the message and renders again"
+                (and (= state.error nil) (= image4 image1)))))
+    (os.remove path)))
+
 (fn run [o]
   "Run `o.cycles` reload cycles; true when every check held."
   (let [state play.state
@@ -68,6 +119,9 @@
     (play.start! {:scene path :frames 0})
     (set love.draw nil)
     (set love.update nil)
+    (edit-check! o check)
+    (play.load! path true)
+    (set state.poll-at 0)
     (var before (render!))
     (for [i 1 cycles]
       (let [kind (case (% i 3) 1 :value 2 :structural 0 :broken)
