@@ -269,7 +269,10 @@ On any failure the last good scene keeps running and the error is shown."
   (when state.hud?
     (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))
   (when state.error
-    (draw-text-box (.. state.error "\n(the last good scene keeps running; F5 reloads)")
+    (draw-text-box (.. state.error
+                       (if state.scene
+                           "\n(the last good scene keeps running; saving the file reloads it)"
+                           "\n(saving a fixed file loads it; [ and ] open the other scenes)"))
                    8 (- (love.graphics.getHeight) 120) [1 0.45 0.4 1])))
 
 (fn shoot-and-quit! [path]
