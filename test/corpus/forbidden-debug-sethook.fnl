@@ -1,0 +1,4 @@
+;; expect: test/corpus/forbidden-debug-sethook.fnl:2:1: Compile error: unknown identifier: debug (scene files are data: only math, numbers, strings and tables are available)
+(debug.sethook)
+(while true)
+{:objects []}

@@ -1,0 +1,3 @@
+;; expect: test/corpus/forbidden-require-macros.fnl:2: (require-macros ...) is not allowed: scene files are data and run no compile-time code
+(require-macros :src.scene)
+{:objects []}

@@ -1,0 +1,2 @@
+;; expect: test/corpus/objects-string.fnl:2: objects: must be a list of objects, got "spheres"
+{:objects "spheres"}
