@@ -1,7 +1,15 @@
-// Surface normal by one-sided differences, as in the article: the gradient of map
-// between p and p minus epsilon along each axis.
-vec3 calcNormal(vec3 p) {
-    float d = map(p);
-    vec2 e = vec2(uEpsilon, 0.0);
-    return normalize(vec3(d - map(p - e.xyy), d - map(p - e.yxy), d - map(p - e.yyx)));
+// Finite-difference step for normals, and the offset that starts shadow and mirror
+// rays off a surface (twice this): the hit threshold at the point's distance from the
+// camera, never below what float32 can resolve there.
+float normalDelta(vec3 p) {
+    float dist = length(p);
+    return max(hitThreshold(dist), 0.000001 * (1.0 + dist));
 }
+
+// A unit vector along v, or straight up when v vanishes (no NaN).
+vec3 safeNormalize(vec3 v) {
+    float len = length(v);
+    return len > 0.0 ? v / len : vec3(0.0, 0.0, 1.0);
+}
+
+// @slot method

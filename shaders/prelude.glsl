@@ -8,6 +8,6 @@ uniform float uProjDist;      // 1 / tan(fov / 2)
 uniform vec3 uLightPos;
 uniform vec3 uEnvColor;
 uniform int uMaxSteps;
-uniform float uEpsilon;       // hit test: a step shorter than this is a hit
+uniform float uEpsilon;       // hit test: world units, or a fraction (see hitThreshold)
 uniform float uDrawDist;
 // @slot feature-uniforms

@@ -3,7 +3,7 @@
 vec3 dir = rd;
 for (int bounce = 1; bounce <= uReflections; bounce++) {
     vec3 r = dir - 2.0 * dot(dir, n) * n;
-    vec3 origin = p + n * (2.0 * uEpsilon);
+    vec3 origin = p + n * (2.0 * normalDelta(p));
     int bounceSteps;
     float tr = raymarch(origin, r, bounceSteps);
     if (tr >= uDrawDist) {

@@ -22,13 +22,24 @@ Positive pitch looks down, as in the article."
     [(/ x len) (/ y len) (/ z len)]))
 
 (fn basis [cam]
-  "Forward, right and up vectors of the camera, the article's construction:
-right = normalize(cross([0 0 -1], forward)), up = cross(forward, right). `up` points
-down the screen (pixel y grows downwards). Degenerate at pitch +-90 degrees."
+  "Forward, right and up vectors of the camera. `up` points down the screen (pixel y
+grows downwards), as in the article. The article's right = normalize(cross([0 0 -1],
+forward)) is (sin yaw, -cos yaw, 0) whenever it is defined; written that way it also
+holds looking straight up or down (pitch +-90), where the cross product vanishes: the
+article's camera is then NaN for an exactly vertical forward (and in float32), and in
+double it survives only because cos(90 degrees) rounds to 6e-17. up = cross(forward,
+right)."
   (let [f (forward cam)
-        r (normalize (cross [0 0 -1] f))
+        yaw (* cam.yaw rad)
+        r [(math.sin yaw) (- (math.cos yaw)) 0]
         u (cross f r)]
     (values f r u)))
+
+(fn article-basis [cam]
+  "The article's own construction, kept to show where it fails (vertical forward)."
+  (let [f (forward cam)
+        r (normalize (cross [0 0 -1] f))]
+    (values f r (cross f r))))
 
 (fn projection-distance [cam]
   "Distance to the projection plane: 1 / tan(fov / 2)."
@@ -81,5 +92,5 @@ centres are at +0.5."
   "Widen the field of view by `degrees`, kept within 1 to 179."
   (set cam.fov (clamp (+ cam.fov degrees) 1 179)))
 
-{: forward : basis : projection-distance : ray-direction : from-scene
+{: forward : basis : article-basis : projection-distance : ray-direction : from-scene
  : move-forward! : strafe! : elevate! : turn! : pitch! : zoom!}

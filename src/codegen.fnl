@@ -91,6 +91,7 @@
 (fn feature-uniforms [plan]
   (let [lines []]
     (when plan.reflections? (table.insert lines "uniform int uReflections;"))
+    (when plan.relaxed? (table.insert lines "uniform float uRelaxation;  // over-relaxation factor"))
     (when plan.uber?
       (table.insert lines "uniform bool uShadows;")
       (table.insert lines "uniform bool uGlow;"))
@@ -120,8 +121,11 @@
             cut (accumulate [at nil i line (ipairs lines) &until at]
                   (when (line:find "^// The same minimum") i))]
         (for [i (length lines) (- cut 1) -1] (table.remove lines i))))
-    (table.insert sections (fill "shaders/march.glsl" {}))
-    (when normals? (table.insert sections (fill "shaders/normal.glsl" {})))
+    (table.insert sections (fill (.. "shaders/hit/" plan.hit-test ".glsl") {}))
+    (table.insert sections (fill (if plan.relaxed? "shaders/march-relaxed.glsl" "shaders/march.glsl") {}))
+    (when normals?
+      (table.insert sections (fill "shaders/normal.glsl"
+                                   {:method (fill (.. "shaders/normal/" plan.normals ".glsl") {})})))
     (when (= view :shaded)
       (table.insert sections
                     (fill "shaders/light.glsl"

@@ -31,6 +31,9 @@
     (when plan.shadows? (table.insert parts "shadows"))
     (when plan.reflections? (table.insert parts "reflections"))
     (when plan.glow? (table.insert parts "glow"))
+    (when plan.relaxed? (table.insert parts "relaxed"))
+    (table.insert parts (.. "hit:" plan.hit-test))
+    (when plan.normals (table.insert parts (.. "normals:" plan.normals)))
     (when plan.uber? (table.insert parts "uber"))
     (table.insert parts (.. "view:" plan.view))
     (table.concat parts " ")))
@@ -70,6 +73,10 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :shadows? (and shaded? (or uber? scene.render.shadows))
               :reflections? (and shaded? (or uber? (> reflections 0)))
               :glow? (and shaded? (or uber? scene.render.glow))
+              :relaxed? (or uber? (> scene.render.relaxation 1))
+              :hit-test scene.render.hit-test
+              ;; Only the shaded and normals views compute normals.
+              :normals (when (or shaded? (= view :normals)) scene.render.normals)
               : reflections}
         limit (or options.uniform-limit default-uniform-limit)]
     (assert (view? view) (.. "unknown view " (tostring view)))

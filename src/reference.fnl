@@ -24,8 +24,11 @@
             (clamp01 (- 1.5 (abs (- (* 4 h) 2))))
             (clamp01 (- 1.5 (abs (- (* 4 h) 1)))))))
 
-(fn tracer [scene plan]
-  "A tracer for `scene` lowered to `plan`: a table of closures
+(fn tracer [scene plan ?options]
+  "A tracer for `scene` lowered to `plan`. Options: :cam-pos (the camera position,
+which scaled hit tests measure distances from; default the origin) and :pixel-angle
+(1 / (projection distance * image height), for the :pixel hit test).
+Returns a table of closures
   :map        (fn [x y z]) -> distance (never above the draw distance)
   :map-color  (fn [x y z]) -> distance, index into plan.objects or nil
   :march      (fn [ox oy oz dx dy dz]) -> t, steps
@@ -34,10 +37,16 @@
   :trace      (fn [ox oy oz dx dy dz]) -> {:color [r g b] :hit? :distance :steps
                :object (scene index or nil) :shadowed? :lightness :path}
 Positions are in world coordinates."
-  (let [render scene.render
+  (let [options (or ?options {})
+        [cx cy cz] (or options.cam-pos [0 0 0])
+        pixel-angle (or options.pixel-angle 0)
+        render scene.render
         draw render.draw-distance
         eps render.epsilon
         max-steps render.max-steps
+        relaxation (if plan.relaxed? render.relaxation 1)
+        hit-test plan.hit-test
+        normal-method (or plan.normals :one-sided)
         [lx ly lz] scene.light.pos
         [er eg eb] scene.environment
         view plan.view
@@ -65,28 +74,79 @@ Positions are in world coordinates."
           (when (< di d) (set d di) (set best i))))
       (values d best))
 
+    (fn threshold [dist]
+      ;; The hit test: a step shorter than this is a hit. dist is the distance from
+      ;; the camera along the ray's path.
+      (case hit-test
+        :fixed eps
+        :relative (* eps dist)
+        :pixel (* eps dist pixel-angle)))
+
+    (fn distance-from-camera [x y z]
+      (let [ex (- x cx) ey (- y cy) ez (- z cz)]
+        (sqrt (+ (* ex ex) (* ey ey) (* ez ez)))))
+
+    (fn normal-delta [x y z]
+      ;; Finite-difference step and (twice it) the offset of secondary rays.
+      (let [dist (distance-from-camera x y z)]
+        (math.max (threshold dist) (* 0.000001 (+ 1 dist)))))
+
     (fn march [ox oy oz dx dy dz]
-      (var t 0)
-      (var steps 0)
-      (var done? false)
-      (for [i 0 (- max-steps 1) &until done?]
-        (let [d (map (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
-          (set t (+ t d))
-          (set steps (+ i 1))
-          (when (or (< d eps) (>= t draw)) (set done? true))))
-      (values t steps))
+      ;; Plain sphere tracing when relaxation is 1; over-relaxed (Keinert et al.)
+      ;; with a fall back to the last safe point when two spheres stop overlapping.
+      (let [t0 (distance-from-camera ox oy oz)]
+        (var t 0)
+        (var t-prev 0)
+        (var r-prev 0)
+        (var omega relaxation)
+        (var steps 0)
+        (var done? false)
+        (for [i 0 (- max-steps 1) &until done?]
+          (let [d (map (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
+            (set steps (+ i 1))
+            (if (and (> omega 1) (< (+ (abs d) r-prev) (- t t-prev)))
+                (do (set t (+ t-prev r-prev))
+                    (set omega 1))
+                (< d (threshold (+ t0 t)))
+                (do (set t (+ t d))
+                    (set done? true))
+                (do (set t-prev t)
+                    (set r-prev (abs d))
+                    (set t (+ t (* omega d)))
+                    (when (>= t draw) (set done? true))))))
+        (values t steps)))
+
+    (fn safe-normalize [x y z]
+      (let [len (sqrt (+ (* x x) (* y y) (* z z)))]
+        (if (> len 0) (values (/ x len) (/ y len) (/ z len)) (values 0 0 1))))
 
     (fn normal [x y z]
-      (let [d (map x y z)]
-        (normalize (- d (map (- x eps) y z))
-                   (- d (map x (- y eps) z))
-                   (- d (map x y (- z eps))))))
+      (let [h (normal-delta x y z)]
+        (case normal-method
+          :one-sided (let [d (map x y z)]
+                       (safe-normalize (- d (map (- x h) y z))
+                                       (- d (map x (- y h) z))
+                                       (- d (map x y (- z h)))))
+          :central (safe-normalize (- (map (+ x h) y z) (map (- x h) y z))
+                                   (- (map x (+ y h) z) (map x (- y h) z))
+                                   (- (map x y (+ z h)) (map x y (- z h))))
+          :tetrahedron (let [a (map (+ x h) (- y h) (- z h))   ; k.xyy
+                             b (map (- x h) (- y h) (+ z h))   ; k.yyx
+                             c (map (- x h) (+ y h) (- z h))   ; k.yxy
+                             e (map (+ x h) (+ y h) (+ z h))]  ; k.xxx
+                         (safe-normalize (+ a (- b) (- c) e)
+                                         (+ (- a) (- b) c e)
+                                         (+ (- a) b (- c) e))))))
 
     (fn lightness [px py pz nx ny nz]
-      (let [(ldx ldy ldz) (normalize (- lx px) (- ly py) (- lz pz))
+      (let [tx (- lx px) ty (- ly py) tz (- lz pz)
+            len (sqrt (+ (* tx tx) (* ty ty) (* tz tz)))
+            ;; A light exactly at the point lights it along its normal.
+            (ldx ldy ldz) (if (> len 0) (values (/ tx len) (/ ty len) (/ tz len))
+                              (values nx ny nz))
             lambert (clamp01 (+ (* ldx nx) (* ldy ny) (* ldz nz)))]
         (if (and shadows? (> lambert 0))
-            (let [s (* 2 eps)
+            (let [s (* 2 (normal-delta px py pz))
                   ts (march (+ px (* nx s)) (+ py (* ny s)) (+ pz (* nz s)) ldx ldy ldz)]
               (if (< ts draw) (values (* lambert 0.5) true) (values lambert false)))
             (values lambert false))))
@@ -136,7 +196,7 @@ Positions are in world coordinates."
                   (for [bounce 1 reflections &until stop?]
                     (let [k (* 2 (+ (* vx mx) (* vy my) (* vz mz)))
                           rx (- vx (* k mx)) ry (- vy (* k my)) rz (- vz (* k mz))
-                          s (* 2 eps)
+                          s (* 2 (normal-delta qx qy qz))
                           sx (+ qx (* mx s)) sy (+ qy (* my s)) sz (+ qz (* mz s))
                           tr (march sx sy sz rx ry rz)]
                       (if (>= tr draw)
@@ -184,7 +244,8 @@ Returns a list of {:x :y :color [r g b] (0..1, clamped) :hit? :distance t :steps
 :object (scene index of the object hit, or nil) :shadowed? :lightness :path}, in the
 order of `pixels`. :path lists the scene index of the object hit by the primary ray
 and each bounce (-1: the bounce escaped)."
-  (let [T (tracer scene plan)
+  (let [T (tracer scene plan {:cam-pos cam.pos
+                             :pixel-angle (/ 1 (* (camera.projection-distance cam) height))})
         ray (ray-setup cam width height)
         [ox oy oz] cam.pos]
     (icollect [_ [x y] (ipairs pixels)]

@@ -13,13 +13,23 @@
             :pitch {:type :pitch :default 0}
             :fov {:type :fov :default 60}}
    :light {:pos {:type :vec3 :default [-30 20 20]}}
-   :render {:max-steps {:type :steps :default 500}
-            :epsilon {:type :non-negative :default 1e-4}
+   ;; Defaults chosen from the accuracy report (report/report.md): a hit test relative
+   ;; to the distance travelled, tetrahedron normals and over-relaxation 1.5 give the
+   ;; seed scene a lower error than the article's settings (500 steps, fixed 1e-4,
+   ;; one-sided normals) in about half the time.
+   :render {:max-steps {:type :steps :default 160}
+            :epsilon {:type :non-negative :default 2e-4}
             :draw-distance {:type :positive :default 1000}
             :reflections {:type :reflections :default 3}
             :shadows {:type :boolean :default true}
             :glow {:type :boolean :default false}
-            :scale {:type :scale :default 1}}})
+            :scale {:type :scale :default 1}
+            :hit-test {:type :hit-test :default :relative}
+            :normals {:type :normal-method :default :tetrahedron}
+            :relaxation {:type :relaxation :default 1.5}}})
+
+(local hit-tests [:fixed :relative :pixel])
+(local normal-methods [:one-sided :central :tetrahedron])
 
 (local top-level-keys [:name :camera :light :environment :render :objects])
 
@@ -27,25 +37,31 @@
 
 ;;; Messages
 
-(fn levenshtein [a b]
+(fn edit-distance [a b]
+  "Edits that turn `a` into `b`: insertions, deletions, substitutions and swaps of two
+neighbouring letters (optimal string alignment), so :pixle is one edit from :pixel."
   (let [la (length a) lb (length b)
-        prev (fcollect [j 0 lb] j)]
+        d {}]
+    (for [i 0 la] (tset d i {0 i}))
+    (for [j 0 lb] (tset (. d 0) j j))
     (for [i 1 la]
-      (var diag (. prev 1))
-      (tset prev 1 i)
       (for [j 1 lb]
-        (let [above (. prev (+ j 1))
-              cost (if (= (a:sub i i) (b:sub j j)) 0 1)]
-          (tset prev (+ j 1) (math.min (+ above 1) (+ (. prev j) 1) (+ diag cost)))
-          (set diag above))))
-    (. prev (+ lb 1))))
+        (let [cost (if (= (a:sub i i) (b:sub j j)) 0 1)
+              best (math.min (+ (. d (- i 1) j) 1) (+ (. d i (- j 1)) 1)
+                             (+ (. d (- i 1) (- j 1)) cost))]
+          (tset (. d i) j
+                (if (and (> i 1) (> j 1) (= (a:sub i i) (b:sub (- j 1) (- j 1)))
+                         (= (a:sub (- i 1) (- i 1)) (b:sub j j)))
+                    (math.min best (+ (. d (- i 2) (- j 2)) 1))
+                    best)))))
+    (. d la lb)))
 
 (fn suggestion [word candidates]
   "A ' (did you mean :x?)' hint when a candidate is close to `word`, else ''."
   (var best nil)
   (var best-distance math.huge)
   (each [_ c (ipairs candidates)]
-    (let [d (levenshtein word c)]
+    (let [d (edit-distance word c)]
       (when (< d best-distance)
         (set best c)
         (set best-distance d))))
@@ -59,7 +75,10 @@
           (= v math.huge) "inf"
           (= v (- math.huge)) "-inf"
           (tostring v))
-      (= (type v) :string) (string.format "%q" v)
+      (= (type v) :string) (if (> (length v) 40)
+                               (.. "a string of " (length v) " characters")
+                               (string.format "%q" v))
+      (= (type v) :function) "a function"
       (= (type v) :table) (let [n (length v)]
                             (if (and (> n 0) (= (next v n) nil)) (.. "a list of " n " items")
                                 (= (next v) nil) "an empty table"
@@ -103,7 +122,10 @@
       (if (and (= (type child) :table) (not (fennel.list? child)) (not (fennel.sym? child)))
           (do (set node child)
               (let [l (node-line child)] (when (and l (not kline)) (set line l))))
-          (set done? true))))
+          (do (when (and (= (type child) :table) (not kline))
+                ;; A symbol or a call in place of a value: its own line.
+                (let [l (node-line child)] (when l (set line l))))
+              (set done? true)))))
   line)
 
 (fn sub-path [path key]
@@ -143,6 +165,15 @@
     (check-number ctx (sub-path path i) x
                   (if element-ok? what "a finite number") element-ok?)))
 
+(fn check-choice [ctx path v choices]
+  (var found? false)
+  (each [_ c (ipairs choices)] (when (= c v) (set found? true)))
+  (if found? v
+      (fail ctx path (.. "must be one of :" (table.concat choices " :") ", got "
+                         (if (= (type v) :string)
+                             (.. ":" v (suggestion v choices))
+                             (describe-value v))))))
+
 (fn check [ctx path v kind]
   (case kind
     :number (check-number ctx path v "a finite number")
@@ -153,6 +184,10 @@
     :scale (check-number ctx path v "a render scale above 0 and at most 1" #(and (> $ 0) (<= $ 1)))
     :steps (check-integer ctx path v 1 limits.max-steps)
     :reflections (check-integer ctx path v 0 limits.max-reflections)
+    :hit-test (check-choice ctx path v hit-tests)
+    :normal-method (check-choice ctx path v normal-methods)
+    :relaxation (check-number ctx path v "an over-relaxation factor from 1 up to (not including) 2"
+                              #(and (>= $ 1) (< $ 2)))
     :boolean (if (= (type v) :boolean) v
                  (fail ctx path (.. "must be true or false, got " (describe-value v))))
     :vec3 (check-vec3 ctx path v "a list of three numbers like [1 2 3]")
@@ -163,7 +198,8 @@
 (fn check-keys [ctx path tbl allowed]
   (each [k _ (pairs tbl)]
     (when (not= (type k) :string)
-      (fail ctx path (.. "unexpected entry " (describe-value k) "; fields are named like :pos")))
+      (fail ctx path (.. "unexpected entry " (describe-value k) "; fields are named, like :"
+                         (. allowed 1))))
     (var known? false)
     (each [_ a (ipairs allowed)] (when (= a k) (set known? true)))
     (when (not known?)
@@ -177,7 +213,7 @@
         fields (doto (icollect [k (pairs spec)] k) table.sort)
         given (or value {})
         out {}]
-    (when (not= (type given) :table)
+    (when (or (not= (type given) :table) (not= nil (. given 1)))
       (fail ctx [name] (.. "must be a table like {:" (. fields 1) " ...}, got " (describe-value given))))
     (check-keys ctx [name] given fields)
     (each [_ field (ipairs fields)]
@@ -208,7 +244,8 @@
         out))))
 
 (fn validate [value ctx]
-  (when (not= (type value) :table)
+  (when (or (not= (type value) :table)
+            (and (not= nil (. value 1)) (= nil (next value (length value)))))
     (fail ctx [] (.. "a scene file must evaluate to a table like {:objects [...]}, got "
                      (describe-value value))))
   (check-keys ctx [] value top-level-keys)
@@ -218,9 +255,17 @@
     (fail ctx [:objects] "missing; a scene needs :objects [...] (it may be empty)"))
   (when (not= (type value.objects) :table)
     (fail ctx [:objects] (.. "must be a list of objects, got " (describe-value value.objects))))
+  (var last 0)
   (each [k _ (pairs value.objects)]
-    (when (or (not= (type k) :number) (< k 1) (> k (length value.objects)))
-      (fail ctx [:objects] "must be a list [...] of objects, not a table with named fields")))
+    (when (or (not= (type k) :number) (< k 1) (not= k (math.floor k)))
+      (fail ctx [:objects] "must be a list [...] of objects, not a table with named fields"))
+    (set last (math.max last k)))
+  (when (> last limits.max-objects)
+    (fail ctx [:objects] (.. "has " last " objects; at most " limits.max-objects " are allowed")))
+  ;; A nil in the list would hide every object after it from ipairs and length.
+  (for [i 1 last]
+    (when (= nil (. value.objects i))
+      (fail ctx [:objects i] "must be a table like {:kind :sphere ...}, got nil")))
   (when (> (length value.objects) limits.max-objects)
     (fail ctx [:objects] (.. "has " (length value.objects) " objects; at most "
                              limits.max-objects " are allowed")))
@@ -248,7 +293,7 @@ the file system, the process or the loader."
      :string {:format string.format :sub string.sub
               ;; A single C call is out of the count hook's reach: cap its size.
               :rep (fn [str n ?sep]
-                     (when (> (* (length str) (or n 0)) 1000000)
+                     (when (> (* (+ (length str) (length (or ?sep ""))) (or n 0)) 1000000)
                        (error "string.rep: the result would be over 1 MB" 2))
                      (string.rep str n ?sep))}}))
 
@@ -262,7 +307,8 @@ reports the parse error with its line)."
 ;; Compile-time code has no place in a data file, and a failing macro would leave
 ;; Fennel's compile options (the sandbox env) behind for the next module it loads.
 (local compile-time-forms {:macro true :macros true :eval-compiler true :import-macros true
-                           :require-macros true :include true :lua true :macrodebug true})
+                           :require-macros true :include true :lua true :macrodebug true
+                           :global true :set-forcibly! true})
 
 (local max-nesting 64)
 
@@ -277,6 +323,8 @@ reports the parse error with its line)."
             (accumulate [found nil _ child (pairs node) &until found]
               (find-compile-time-form child (+ depth 1)))))))
 
+(local global-forms {:global true :set-forcibly! true})
+
 (fn check-forms [forms file]
   "A message when the parsed `forms` hold compile-time code or nest too deeply."
   (var message nil)
@@ -284,35 +332,54 @@ reports the parse error with its line)."
     (case (find-compile-time-form form 1)
       :too-deep (set message (.. file ": the scene nests deeper than " max-nesting
                                  " levels; scenes are flat lists of objects"))
-      node (let [src (fennel.ast-source node)]
-             (set message (.. file (if src.line (.. ":" src.line) "") ": (" (tostring (. node 1))
-                              " ...) is not allowed: scene files are data and run no"
-                              " compile-time code")))))
+      node (let [src (fennel.ast-source node)
+                 name (tostring (. node 1))]
+             (set message (.. file (if src.line (.. ":" src.line) "") ": (" name
+                              " ...) is not allowed: scene files are data and "
+                              (if (. global-forms name) "set no globals" "run no compile-time code"))))))
   message)
 
 ;;; Running a scene: instruction, time and memory limits
 
-(local run-limits {:seconds 1 :memory-mb 64 :hook-every 1000})
+;; The hook runs every few instructions: one string concatenation can double memory,
+;; so a sparse check would let a doubling loop run far past the limit.
+(local run-limits {:seconds 1 :memory-mb 64 :hook-every 4})
 
-(fn run-limited [chunk file]
+(fn run-limited [chunk file string-lib]
   "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
 message when it runs past the time or memory limit."
   (let [start (os.clock)
         memory-start (collectgarbage :count)
+        state {:stopped nil}
+        stop! (fn [message]
+                ;; Raise once: a hook firing again on the way out of pcall (before the
+                ;; hook is removed) must not raise outside it.
+                (set state.stopped message)
+                (error {:scene-error message}))
         hook (fn []
-               (when (> (- (os.clock) start) run-limits.seconds)
-                 (error {:scene-error (.. file ": the scene ran for more than "
-                                          run-limits.seconds " s and was stopped"
-                                          " (an endless loop?)")}))
-               (when (> (- (collectgarbage :count) memory-start) (* 1024 run-limits.memory-mb))
-                 (error {:scene-error (.. file ": the scene built more than "
-                                          run-limits.memory-mb " MB of data and was stopped")})))]
+               (when (not state.stopped)
+                 (when (> (- (os.clock) start) run-limits.seconds)
+                   (stop! (.. file ": the scene ran for more than " run-limits.seconds
+                              " s and was stopped (an endless loop?)")))
+                 (when (> (- (collectgarbage :count) memory-start) (* 1024 run-limits.memory-mb))
+                   (stop! (.. file ": the scene built more than " run-limits.memory-mb
+                              " MB of data and was stopped")))))
+        string-meta (getmetatable "")
+        real-index string-meta.__index]
     (when jit (jit.off chunk true))
-    (debug.sethook hook "" run-limits.hook-every)
-    (let [(ok? value) (pcall chunk)]
+    ;; Methods on strings, (: "x" :rep n), go through the string metatable to the real
+    ;; string library: point it at the sandbox's own for the run.
+    (set string-meta.__index string-lib)
+    (let [(outer-ok? ok? value) (pcall (fn []
+                                         (debug.sethook hook "" run-limits.hook-every)
+                                         (let [(ok? value) (pcall chunk)]
+                                           (debug.sethook)
+                                           (values ok? value))))]
       (debug.sethook)
+      (set string-meta.__index real-index)
       (collectgarbage)
-      (values ok? value))))
+      (if (and outer-ok? (not state.stopped)) (values ok? value)
+          (values false {:scene-error state.stopped})))))
 
 (fn evaluate [source file env allowed]
   "Compile and run scene `source` in `env`: true and its value, or false and an error."
@@ -324,14 +391,15 @@ message when it runs past the time or memory limit."
           (if (not chunk)
               (values false err)
               (do (when setfenv (setfenv chunk env))
-                  (run-limited chunk file)))))))
+                  (run-limited chunk file env.string)))))))
 
 (fn clean-fennel-message [msg file]
   ;; Fennel's parse and compile errors carry the file and line already; keep the first
   ;; line (the rest repeats the source with a caret) and strip the 'Parse error in' prefix.
   (let [first-line (or (msg:match "^[^\n]+") msg)]
     (let [msg (if (first-line:find file 1 true) first-line (.. file ": " first-line))
-          ident (msg:match "unknown identifier: ([%w_]+)")]
+          ident (or (msg:match "unknown identifier: ([%w_]+)")
+                    (msg:match "expected local ([%w_]+)"))]
       (if ident
           (.. msg " (scene files are data: only math, numbers, strings and tables are available)")
           msg))))
@@ -376,4 +444,5 @@ text (default: io.open), so the app can read through love.filesystem."
   (collect [name spec (pairs sections)]
     name (collect [field f (pairs spec)] field f.default)))
 
-{: load-string : load-file : defaults : limits : default-environment}
+{: load-string : load-file : defaults : limits : default-environment : hit-tests
+ : normal-methods}

@@ -47,6 +47,8 @@ by name. Booleans are sent as 0 or 1 with :type :bool."
              {:name "uDrawDist" :type :float :values [render.draw-distance]}]]
     (when plan.reflections?
       (table.insert out {:name "uReflections" :type :int :values [plan.reflections]}))
+    (when plan.relaxed?
+      (table.insert out {:name "uRelaxation" :type :float :values [render.relaxation]}))
     (when plan.uber?
       (table.insert out {:name "uShadows" :type :bool :values [(if render.shadows 1 0)]})
       (table.insert out {:name "uGlow" :type :bool :values [(if render.glow 1 0)]}))

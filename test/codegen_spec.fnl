@@ -265,7 +265,7 @@
       (fn []
         (let [text (codegen.shader seed-plan)]
           (assert-has text "* 0.66;")
-          (assert-has text "2.0 * uEpsilon")
+          (assert-has text "2.0 * normalDelta(p)")
           (assert-has text "vec3(0.0)")
           (assert-has text "lambert *= 0.5;"))))))
 

@@ -36,7 +36,7 @@
           (assert.are.equal false p.glow?)
           (assert.are.equal 3 p.reflections)
           (assert.are.equal 47 p.uniform-vectors)
-          (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections view:shaded" p.key))))
+          (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections hit:fixed normals:one-sided view:shaded" p.key))))
 
     (it "orders objects by kind, keeping file order within a kind"
       (fn []
@@ -55,7 +55,7 @@
           (assert.are.same [] p.kinds)
           (assert.are.same [] p.objects)
           (assert.are.equal 32 p.uniform-vectors)
-          (assert.are.equal "shadows reflections view:shaded" p.key))))
+          (assert.are.equal "shadows reflections relaxed hit:relative normals:tetrahedron view:shaded" p.key))))
 
     (it "includes every kind in an uber plan, with at least one slot each"
       (fn []
@@ -68,9 +68,9 @@
           (assert.are.equal true p.reflections?)
           (assert.are.equal true p.glow?)
           (assert.are.equal (+ 32 (* 2 2) 3 2) p.uniform-vectors)
-          (assert.are.equal "sphere:2 box:1 plane:1 shadows reflections glow uber view:shaded" p.key))
+          (assert.are.equal "sphere:2 box:1 plane:1 shadows reflections glow relaxed hit:relative normals:tetrahedron uber view:shaded" p.key))
         (let [p (assert (plan.scene->plan seed {:uber? true}))]
-          (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections glow uber view:shaded"
+          (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections glow relaxed hit:fixed normals:one-sided uber view:shaded"
                             p.key))))))
 
 (describe "plan: features and views"
@@ -100,7 +100,7 @@
             (assert.are.equal false p.shadows?)
             (assert.are.equal false p.reflections?)
             (assert.are.equal false p.glow?)
-            (assert.are.equal (.. "sphere:2 box:3 plane:1 view:" view) p.key)))))
+            (assert.are.equal (.. "sphere:2 box:3 plane:1 hit:fixed" (if (= view :normals) " normals:one-sided" "") " view:" view) p.key)))))
 
     (it "knows its views and rejects others"
       (fn []
@@ -120,7 +120,7 @@
     (local base-key (key-of base))
 
     (it "is the expected text"
-      (fn [] (assert.are.equal "sphere:1 box:1 shadows reflections view:shaded" base-key)))
+      (fn [] (assert.are.equal "sphere:1 box:1 shadows reflections relaxed hit:relative normals:tetrahedron view:shaded" base-key)))
 
     (it "changes with structure"
       (fn []
@@ -178,7 +178,7 @@
         (let [p (assert (plan.scene->plan (spheres most)))]
           (assert.are.equal 4096 p.uniform-vectors)
           (assert.are.equal most (. p.kinds 1 :count))
-          (assert.are.equal (.. "sphere:" most " shadows reflections view:shaded") p.key))))
+          (assert.are.equal (.. "sphere:" most " shadows reflections relaxed hit:relative normals:tetrahedron view:shaded") p.key))))
 
     (it "refuses one more sphere with a message naming the file and the budget"
       (fn []

@@ -184,7 +184,7 @@
         ;; A ray skimming the plane 0.01 above it never gets within epsilon and never
         ;; reaches the draw distance: it spends the whole budget and counts as a hit.
         (let [w (setup "{:camera {:pos [0 0 0.01] :yaw 0 :pitch 0 :fov 60}
-                         :render {:max-steps 50}
+                         :render {:max-steps 50 :hit-test :fixed :relaxation 1}
                          :objects [{:kind :plane :height 0}]}")
               (t steps) (w.T.march 0 0 0.01 1 0 0)]
           (assert.are.equal 50 steps)

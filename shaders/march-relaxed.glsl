@@ -1,0 +1,33 @@
+// Over-relaxed sphere tracing (Keinert et al. 2014): steps of omega times the distance
+// bound. When the bounding spheres of two consecutive points stop overlapping, the last
+// step may have passed a surface: go back to the last safe point and continue with
+// plain steps. Otherwise as the plain march: returns the distance travelled, steps
+// counts distance evaluations, a hit is a distance below the draw distance.
+float raymarch(vec3 ro, vec3 rd, out int steps) {
+    float t0 = length(ro);
+    float t = 0.0;
+    float tPrev = 0.0;
+    float rPrev = 0.0;
+    float omega = uRelaxation;
+    steps = 0;
+    for (int i = 0; i < uMaxSteps; i++) {
+        float d = map(ro + rd * t);
+        steps = i + 1;
+        if (omega > 1.0 && abs(d) + rPrev < t - tPrev) {
+            t = tPrev + rPrev;
+            omega = 1.0;
+            continue;
+        }
+        if (d < hitThreshold(t0 + t)) {
+            t += d;
+            break;
+        }
+        tPrev = t;
+        rPrev = abs(d);
+        t += omega * d;
+        if (t >= uDrawDist) {
+            break;
+        }
+    }
+    return t;
+}
