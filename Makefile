@@ -4,7 +4,7 @@
 SCENE ?= scenes/seed.fnl
 HEADLESS = SDL_VIDEODRIVER=offscreen
 
-.PHONY: deps run test bench golden clean
+.PHONY: deps run test bench golden report report-quick clean
 
 deps:
 	@bash tools/install-deps.sh
@@ -17,6 +17,16 @@ test: deps
 
 bench: deps
 	$(HEADLESS) love . --bench-report --frames $(or $(FRAMES),5)
+
+# Accuracy against run time for every scene (report/report.md and plots); gnuplot
+# draws the plots and is installed for this target only.
+report: deps
+	@bash tools/install-deps.sh gnuplot-nox
+	luajit tools/fnl.lua tools/report.fnl
+
+report-quick: deps
+	@bash tools/install-deps.sh gnuplot-nox
+	luajit tools/fnl.lua tools/report.fnl --quick
 
 golden: deps
 	$(HEADLESS) luajit tools/fnl.lua tools/golden.fnl

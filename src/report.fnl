@@ -132,7 +132,7 @@
             ;; relaxation and a smaller step budget they are the candidates for new
             ;; defaults (grazing rays that run out of steps still count as hits).
             (each [_ e (ipairs [1e-4 2e-4 3e-4])]
-              (each [_ n (ipairs [128 160 200])]
+              (each [_ n (ipairs [128 200 500])]
                 (add (.. "rel" (short-eps e) "+tet+w1.5+ms" n) :combined
                      {:hit-test :relative :epsilon e :normals :tetrahedron
                       :relaxation 1.5 :max-steps n})))

@@ -33,7 +33,8 @@
    ;; to the distance travelled, tetrahedron normals, over-relaxation 1.5): normals and
    ;; ray offsets are taken over steps float32 resolves, and the GPU agrees with the
    ;; reference to 8-bit rounding: seed 1 gives over 0 and max 0.5-0.6 in every view
-   ;; of all three. The budgets allow one flipped grazing pixel, no more.
+   ;; of flat and gallery, and in the spheres scene one pixel (max 20.2, a bounce
+   ;; grazing the floor sphere). The budgets allow one flipped grazing pixel more.
    :flat {:shaded {:over 1 :max 40}
           :normals {:over 1 :max 40}
           :glow {:over 0 :max 1}
@@ -42,7 +43,7 @@
              :normals {:over 1 :max 40}
              :glow {:over 0 :max 1}
              :heat {:over 1 :max 4}}
-   :spheres {:shaded {:over 1 :max 40}
+   :spheres {:shaded {:over 2 :max 40}
              :normals {:over 1 :max 40}
              :glow {:over 0 :max 1}
              :heat {:over 1 :max 4}}})

@@ -82,7 +82,7 @@
           (assert.are.same {:pos [-30 20 20]} s.light)
           (assert.are.same [0.901 0.976 1] s.environment)
           ;; The defaults chosen from the accuracy report, not the article's.
-          (assert.are.same {:max-steps 160 :epsilon 2e-4 :draw-distance 1000
+          (assert.are.same {:max-steps 500 :epsilon 1e-4 :draw-distance 1000
                             :reflections 3 :shadows true :glow false :scale 1
                             :hit-test :relative :normals :tetrahedron :relaxation 1.5}
                            s.render)
@@ -100,7 +100,7 @@
           (assert.are.equal "hello" s.name)
           (assert.are.same {:pos [0 -10 2] :yaw 10 :pitch 0 :fov 60} s.camera)
           (assert.are.equal false s.render.shadows)
-          (assert.are.equal 160 s.render.max-steps))))
+          (assert.are.equal 500 s.render.max-steps))))
 
     (it "fills object parameters from the registry defaults"
       (fn []
@@ -140,7 +140,7 @@
         (let [d (scene.defaults)]
           (assert.are.same {:pos [0 -10 2] :yaw 90 :pitch 0 :fov 60} d.camera)
           (assert.are.same {:pos [-30 20 20]} d.light)
-          (assert.are.equal 160 d.render.max-steps)
+          (assert.are.equal 500 d.render.max-steps)
           (assert.are.same {:max-reflections 16 :max-steps 100000 :max-objects 5000}
                            scene.limits))))))
 

@@ -4,7 +4,8 @@
 # suite's .deb, fetched through a private apt state so the system stays on bookworm.
 set -euo pipefail
 
-packages=(love luajit lua5.4 glslang-tools libosmesa6 lua-busted lua-filesystem)
+# Extra packages may be named on the command line (make report adds gnuplot-nox).
+packages=(love luajit lua5.4 glslang-tools libosmesa6 lua-busted lua-filesystem "$@")
 fennel_suite=trixie
 mirror=${DEBIAN_MIRROR:-http://deb.debian.org/debian}
 keyring=/usr/share/keyrings/debian-archive-keyring.gpg
