@@ -50,7 +50,7 @@
 
 (fn count-bound [k plan]
   (if plan.uber?
-      (.. "uCount" (: k.kind :gsub "^%l" string.upper))
+      (registry.count-uniform k.kind)
       (tostring k.capacity)))
 
 (fn kind-loop [k plan body]

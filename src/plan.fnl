@@ -23,7 +23,8 @@
   (icollect [_ entry (ipairs registry.kinds)]
     {:kind entry.kind
      :entry entry
-     :objects (icollect [_ o (ipairs scene.objects)] (when (= o.kind entry.kind) o))}))
+     :objects (icollect [_ o (ipairs scene.objects)]
+                (when (= (registry.lowered-kind o) entry.kind) o))}))
 
 (fn structure-key [plan]
   (let [parts (icollect [_ k (ipairs plan.kinds)]

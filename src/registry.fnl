@@ -34,6 +34,19 @@
 (fn relative [[x y z] [cx cy cz]]
   [(- x cx) (- y cy) (- z cz)])
 
+;; From this radius on a sphere is drawn by its cancellation-free distance: float32
+;; spacing at 1e6 is 0.06, so length(p - c) - r loses everything near a planet's
+;; surface, while shadow and mirror rays start a few micro-units off it.
+(local large-radius 1000)
+
+(fn large-sphere-k [o [cx cy cz]]
+  ;; |c|^2 - r^2 for the camera-relative centre c, in double, as (|c| - r)(|c| + r):
+  ;; the camera's height above the surface times a large number, no cancellation.
+  (let [[x y z] o.pos
+        dx (- x cx) dy (- y cy) dz (- z cz)
+        len (math.sqrt (+ (* dx dx) (* dy dy) (* dz dz)))]
+    (* (- len o.radius) (+ len o.radius))))
+
 (local kinds
   [{:kind :sphere
     :doc "Sphere of :radius around :pos."
@@ -47,6 +60,21 @@
                {:name "uSphereColor" :type :vec3 :pack (fn [o] o.color)}]
     :distance-glsl "sdSphere(p, uSphere[i])"
     :color-glsl "uSphereColor[i]"
+    :distance sphere-distance
+    ;; Lowering: large spheres take the large-sphere code (same CPU distance).
+    :variant (fn [o] (when (>= o.radius large-radius) :large-sphere))}
+   {:kind :large-sphere
+    :internal? true
+    :doc "A :sphere of radius 1000 or more, lowered to a cancellation-free distance."
+    :params []
+    :chunk "shaders/sdf/large-sphere.glsl"
+    :exact? true
+    :uniforms [{:name "uLargeSphere" :type :vec4
+                :pack (fn [o cam] (let [[x y z] (relative o.pos cam)] [x y z o.radius]))}
+               {:name "uLargeSphereK" :type :float :pack (fn [o cam] [(large-sphere-k o cam)])}
+               {:name "uLargeSphereColor" :type :vec3 :pack (fn [o] o.color)}]
+    :distance-glsl "sdLargeSphere(p, uLargeSphere[i], uLargeSphereK[i])"
+    :color-glsl "uLargeSphereColor[i]"
     :distance sphere-distance}
    {:kind :box
     :doc "Axis-aligned box with full extents :size centred on :pos."
@@ -78,16 +106,28 @@
 (local by-kind (collect [_ entry (ipairs kinds)] entry.kind entry))
 
 (fn lookup [kind]
-  "The registry entry for `kind` (a string), or nil."
+  "The registry entry for `kind` (a string), or nil. Internal kinds (lowering
+variants such as :large-sphere) are found too; scene files cannot name them."
   (. by-kind kind))
 
 (fn kind-names []
-  "The kind names in registry order."
-  (icollect [_ entry (ipairs kinds)] entry.kind))
+  "The kind names a scene file may use, in registry order."
+  (icollect [_ entry (ipairs kinds)] (when (not entry.internal?) entry.kind)))
+
+(fn lowered-kind [o]
+  "The registry kind that draws object `o`: its own, or a variant of it."
+  (let [entry (. by-kind o.kind)]
+    (or (and entry.variant (entry.variant o)) o.kind)))
+
+(fn count-uniform [kind]
+  "Name of the uber shader's object-count uniform for `kind`: :large-sphere ->
+uCountLargeSphere."
+  (.. "uCount" (pick-values 1 (: (.. "-" kind) :gsub "%-(%l)" string.upper))))
 
 (fn slots-per-object [entry]
   "Uniform vectors (vec4 slots) one object of this kind takes: every array element
 of float, vec3 or vec4 occupies one slot."
   (length entry.uniforms))
 
-{: kinds : lookup : kind-names : slots-per-object}
+{: kinds : lookup : kind-names : lowered-kind : count-uniform : slots-per-object
+ : large-radius}

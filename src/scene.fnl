@@ -232,7 +232,7 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
     (when (not= (type o.kind) :string)
       (fail ctx [:objects i :kind] (.. "must be a kind name like :sphere, got " (describe-value o.kind))))
     (let [entry (registry.lookup o.kind)]
-      (when (not entry)
+      (when (or (not entry) entry.internal?)
         (fail ctx [:objects i :kind]
               (.. "unknown kind :" o.kind (suggestion o.kind (registry.kind-names))
                   "; known kinds: :" (table.concat (registry.kind-names) " :"))))

@@ -3,6 +3,7 @@
 ;; before they are rounded to float32 on upload.
 
 (local camera (require :src.camera))
+(local registry (require :src.registry))
 
 (local components {:float 1 :int 1 :bool 1 :vec2 2 :vec3 3 :vec4 4})
 
@@ -17,7 +18,7 @@
   (let [out []]
     (each [_ k (ipairs plan.kinds)]
       (when plan.uber?
-        (table.insert out {:name (.. "uCount" (: k.kind :gsub "^%l" string.upper))
+        (table.insert out {:name (registry.count-uniform k.kind)
                            :type :int :values [k.count]}))
       (each [_ u (ipairs k.entry.uniforms)]
         (let [vals []]

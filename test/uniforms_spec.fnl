@@ -168,11 +168,13 @@
                   capacity (collect [_ k (ipairs p.kinds)] k.kind k.capacity)
                   arrays (icollect [_ u (ipairs list)] (when u.count u))]
               (each [_ u (ipairs arrays)]
-                (let [kind (if (u.name:find "^uSphere") :sphere (u.name:find "^uBox") :box :plane)]
+                (let [kind (if (u.name:find "^uSphere") :sphere (u.name:find "^uLargeSphere") :large-sphere
+                               (u.name:find "^uBox") :box :plane)]
                   (assert.are.equal (. capacity kind) u.count)
                   (assert.are.equal (* u.count (. uniforms.components u.type))
                                     (length u.values))))
-              (assert.are.equal (if options.uber? 7 (source:find ":box") 3 0)
+              ;; uber: 2 sphere + 3 large-sphere + 3 box + 2 plane arrays.
+              (assert.are.equal (if options.uber? 10 (source:find ":box") 3 0)
                                 (length arrays)))))
         (each [_ u (ipairs (pack-scene seed))]
           (let [n (* (or u.count 1) (. uniforms.components u.type))]
