@@ -10,13 +10,7 @@
 ;; The article's own CPU program, measured on this machine at 256x224 for the seed scene.
 (local article-ms-256x224 2900)
 
-(fn median [xs]
-  (let [s (icollect [_ x (ipairs xs)] x)]
-    (table.sort s)
-    (let [n (length s)]
-      (if (= (% n 2) 1)
-          (. s (/ (+ n 1) 2))
-          (/ (+ (. s (/ n 2)) (. s (+ (/ n 2) 1))) 2)))))
+(local median (. (require :src.compare) :median))
 
 (fn time-frame! [variant]
   "Draw one frame of `variant` into its canvas and wait for the GPU; milliseconds."
@@ -108,4 +102,4 @@ and our frame times next to the article's CPU program."
                                    (/ (* 256 224) article-ms-256x224))))
           true))))
 
-{: run-scene : report : median}
+{: run-scene : report}

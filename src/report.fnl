@@ -226,13 +226,7 @@ int clock_gettime(int clk_id, report_timespec *tp);")
   (ffi.C.clock_gettime 1 timespec)
   (+ (* 1000 (tonumber timespec.tv_sec)) (/ (tonumber timespec.tv_nsec) 1e6)))
 
-(fn median [xs]
-  (let [s (icollect [_ x (ipairs xs)] x)
-        n (length s)]
-    (table.sort s)
-    (if (= n 0) nil
-        (= (% n 2) 1) (. s (/ (+ n 1) 2))
-        (/ (+ (. s (/ n 2)) (. s (+ (/ n 2) 1))) 2))))
+(local median compare.median)
 
 (fn iqr [xs]
   "Interquartile range of the numbers `xs` (nearest-rank quartiles): the timing noise."

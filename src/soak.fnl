@@ -6,7 +6,7 @@
 
 (local play (require :src.play))
 (local frame (require :src.frame))
-(local bench (require :src.bench))
+(local {: median} (require :src.compare))
 
 (local structures 12)   ; distinct sphere counts, more than the shader cache holds
 
@@ -168,7 +168,7 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
                             cycles counts.value counts.structural counts.broken))
       (when (> (length times.value) 0)
         (print (string.format "reload time (file read, validate, plan, shader): value edit median %.1f ms, structural edit median %.1f ms; the watcher adds 0.2 s of settling"
-                              (bench.median times.value) (bench.median times.structural))))
+                              (median times.value) (median times.structural))))
       (when memory-warm
         (print (string.format "Lua memory after cycle %d: %.0f KB, at the end: %.0f KB"
                               warm-at memory-warm memory-end))
