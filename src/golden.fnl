@@ -24,12 +24,15 @@
 (local budgets {})
 
 (fn scene-names []
-  "Names of the scenes in scenes/ (without .fnl), sorted."
-  (let [names []]
-    (with-open [p (io.popen "ls scenes")]
-      (each [line (p:lines)]
-        (let [name (line:match "^(.+)%.fnl$")]
-          (when name (table.insert names name)))))
+  "Names of the scenes in scenes/ and scenes/stress/ (without .fnl, relative to
+scenes/, like \"seed\" or \"stress/planet\"), sorted."
+  (let [lfs (require :lfs)
+        names []]
+    (each [_ folder (ipairs ["" "stress/"])]
+      (when (lfs.attributes (.. "scenes/" folder) :mode)
+        (each [file (lfs.dir (.. "scenes/" folder))]
+          (let [name (file:match "^(.+)%.fnl$")]
+            (when name (table.insert names (.. folder name)))))))
     (table.sort names)
     names))
 
@@ -88,7 +91,7 @@ image (red where over, a half-bright grey copy of `a` elsewhere)."
   "Render scene NAME and compare it with its golden. Returns {:status :ok|:missing|:failed
 :message :new-path :diff-path :result}. Writes the new render and a diff image under
 test/out/ (git-ignored); never touches test/golden/."
-  (os.execute (.. "mkdir -p " out-dir))
+  (os.execute (.. "mkdir -p " out-dir "/stress"))
   (let [new-path (.. out-dir "/" name ".png")
         diff-path (.. out-dir "/" name ".diff.png")
         (ok? err) (render! name new-path)]
@@ -121,7 +124,7 @@ test/out/ (git-ignored); never touches test/golden/."
 (fn update! []
   "Regenerate the goldens that are missing or fail their budget; print what changed.
 Returns the number of scenes whose render failed."
-  (os.execute (.. "mkdir -p " golden-dir))
+  (os.execute (.. "mkdir -p " golden-dir "/stress"))
   (var failures 0)
   (each [_ name (ipairs (scene-names))]
     (let [r (check name)]

@@ -253,7 +253,7 @@ On any failure the last good scene keeps running and the error is shown."
         h (* (length wrapped) (font:getHeight))]
     (love.graphics.setColor 0 0 0 0.6)
     (love.graphics.rectangle :fill x y (+ width 16) (+ h 12))
-    (love.graphics.setColor (table.unpack color))
+    (love.graphics.setColor (. color 1) (. color 2) (. color 3) (. color 4))
     (love.graphics.printf text (+ x 8) (+ y 6) (+ width 1))
     (love.graphics.setColor 1 1 1 1)))
 
@@ -288,7 +288,6 @@ On any failure the last good scene keeps running and the error is shown."
 (fn start! [options]
   "Play the scene file named in `options.scene`: install the LÖVE callbacks."
   (set state.cache (gpu.new-cache))
-  (set table.unpack (or table.unpack unpack))
   (load! options.scene true)
   (set love.update (fn [dt]
                      (poll-file! (love.timer.getTime))
