@@ -98,9 +98,11 @@ test/out/ (git-ignored); never touches test/golden/."
     (if (not ok?)
         {:status :failed :message err}
         (case (png.read-file (golden-path name))
-          (nil _) {:status :missing :new-path new-path
+          (nil gerr) (if (io.open (golden-path name) :rb)
+                         {:status :failed :message gerr}
+                         {:status :missing :new-path new-path
                    :message (.. "scenes/" name ".fnl has no golden image " (golden-path name)
-                                "; create it with `make golden` and look at it before committing")}
+                                "; create it with `make golden` and look at it before committing")})
           golden (let [(new nerr) (png.read-file new-path)]
                    (if (not new)
                        {:status :failed :message nerr}

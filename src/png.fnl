@@ -124,6 +124,8 @@ sequence of filter types used for successive rows (cycled)."
             idat []]
         (var pos 9)
         (var ihdr nil)
+        (var plte nil)
+        (var trns nil)
         (var done? false)
         (var err nil)
         (while (and (not done?) (not err))
@@ -143,7 +145,8 @@ sequence of filter types used for successive rows (cycled)."
                       (if (= kind :IHDR) (set ihdr data)
                           (= kind :IDAT) (table.insert idat data)
                           (= kind :IEND) (set done? true)
-                          (= kind :PLTE) nil
+                          (= kind :PLTE) (set plte data)
+                          (= kind :tRNS) (set trns data)
                           (kind:match "^%u")
                           (set err (.. "unsupported critical chunk " kind)))
                       (when (and (= nil ihdr) (not= kind :IHDR))
@@ -153,7 +156,7 @@ sequence of filter types used for successive rows (cycled)."
             (= nil ihdr) (values nil "missing IHDR chunk")
             (not= (length ihdr) 13) (values nil "bad IHDR length")
             (= 0 (length idat)) (values nil "missing IDAT chunk")
-            {: ihdr :idat (table.concat idat)}))))
+            {: ihdr : plte : trns :idat (table.concat idat)}))))
 
 (fn unfilter [data height stride bpp]
   "Undo the per-row filters of data in place; nil + reason on a bad filter byte."
@@ -183,11 +186,51 @@ sequence of filter types used for successive rows (cycled)."
           _ (set err (string.format "bad filter type %d on row %d" f y)))))
     (if err (values nil err) true)))
 
+(local channel-counts {0 1 2 3 3 1 4 2 6 4})
+(local allowed-depths {0 {1 true 2 true 4 true 8 true 16 true} 2 {8 true 16 true}
+                       3 {1 true 2 true 4 true 8 true} 4 {8 true 16 true}
+                       6 {8 true 16 true}})
+
+(fn sample-reader [data stride depth channels]
+  "A function (y x c) -> the 8-bit value of channel c of pixel x on row y (16-bit
+samples keep their high byte; packed 1/2/4-bit samples come back unscaled)."
+  (if (= depth 8)
+      (fn [y x c] (. data (+ 1 (* y stride) (* x channels) c)))
+      (= depth 16)
+      (fn [y x c] (. data (+ 1 (* y stride) (* 2 (+ (* x channels) c)))))
+      (let [per-byte (/ 8 depth)
+            mask (- (bit.lshift 1 depth) 1)]
+        (fn [y x _c]
+          (let [byte (. data (+ 1 (* y stride) (math.floor (/ x per-byte))))
+                shift (- 8 (* depth (+ 1 (% x per-byte))))]
+            (bit.band (bit.rshift byte shift) mask))))))
+
+(fn expand! [pixels width height colour depth read palette alpha]
+  ;; Every colour type to 8-bit RGBA.
+  (let [grey-scale (if (< depth 8) (/ 255 (- (bit.lshift 1 depth) 1)) 1)]
+    (for [y 0 (- height 1)]
+      (for [x 0 (- width 1)]
+        (let [d (* 4 (+ x (* y width)))]
+          (case colour
+            6 (for [c 0 3] (tset pixels (+ d c) (read y x c)))
+            2 (do (for [c 0 2] (tset pixels (+ d c) (read y x c)))
+                  (tset pixels (+ d 3) 255))
+            0 (let [g (math.floor (+ 0.5 (* grey-scale (read y x 0))))]
+                (for [c 0 2] (tset pixels (+ d c) g))
+                (tset pixels (+ d 3) 255))
+            4 (let [g (read y x 0)]
+                (for [c 0 2] (tset pixels (+ d c) g))
+                (tset pixels (+ d 3) (read y x 1)))
+            3 (let [i (read y x 0)]
+                (for [c 0 2] (tset pixels (+ d c) (or (. palette (+ (* 3 i) c 1)) 0)))
+                (tset pixels (+ d 3) (or (and alpha (. alpha (+ i 1))) 255)))))))))
+
 (fn decode [bytes]
   "Decode a PNG string into {:width :height :pixels}, pixels an FFI uint8_t
-array of width*height*4 RGBA bytes with row 0 = top row. Accepts 8-bit RGBA
-and 8-bit RGB (alpha set to 255), non-interlaced. Returns nil + reason on
-malformed or unsupported input."
+array of width*height*4 RGBA bytes with row 0 = top row. Accepts every
+non-interlaced PNG: greyscale, RGB, palette (with tRNS alpha), greyscale+alpha and
+RGBA, at every bit depth the format allows (16-bit samples keep their high byte).
+Returns nil + reason on malformed or unsupported input."
   (if (not= (type bytes) :string)
       (values nil "png.decode: expected a string")
       (let [(parts err) (parse-chunks bytes)]
@@ -196,19 +239,21 @@ malformed or unsupported input."
                   width (read-u32 ihdr 1)
                   height (read-u32 ihdr 5)
                   (depth colour compression filter-method interlace) (string.byte ihdr 9 13)
-                  channels (case colour 6 4 2 3 _ nil)
-                  colour-names {0 "greyscale" 3 "palette" 4 "greyscale+alpha"}]
+                  channels (. channel-counts colour)]
               (if (or (= width 0) (= height 0)) (values nil "zero image size")
                   (> (* width height) 0x10000000) (values nil "image too large")
                   (= nil channels)
-                  (values nil (string.format "unsupported colour type %d (%s); only RGBA (6) and RGB (2) are supported"
-                                             colour (or (. colour-names colour) "invalid")))
-                  (not= depth 8)
-                  (values nil (string.format "unsupported bit depth %d; only 8 is supported" depth))
+                  (values nil (string.format "invalid colour type %d" colour))
+                  (not (. allowed-depths colour depth))
+                  (values nil (string.format "invalid bit depth %d for colour type %d" depth colour))
+                  (and (= colour 3) (= nil parts.plte))
+                  (values nil "palette image without a PLTE chunk")
                   (not= compression 0) (values nil "unknown compression method")
                   (not= filter-method 0) (values nil "unknown filter method")
                   (not= interlace 0) (values nil "interlaced PNGs are not supported")
-                  (let [stride (+ 1 (* width channels))
+                  (let [bits (* channels depth)
+                        stride (+ 1 (math.ceil (/ (* width bits) 8)))
+                        bpp (math.max 1 (/ bits 8))
                         expected (* height stride)
                         data (ffi.new "uint8_t[?]" (+ expected 1))
                         out-len (ffi.new "unsigned long[1]" (+ expected 1))
@@ -219,23 +264,15 @@ malformed or unsupported input."
                         (not= (tonumber (. out-len 0)) expected)
                         (values nil (string.format "image data is %d bytes, expected %d"
                                                    (tonumber (. out-len 0)) expected))
-                        (let [(ok why) (unfilter data height stride channels)]
+                        (let [(ok why) (unfilter data height stride (math.floor bpp))]
                           (if (not ok) (values nil why)
-                              (let [pixels (ffi.new "uint8_t[?]" (* width height 4))]
-                                (if (= channels 4)
-                                    (for [y 0 (- height 1)]
-                                      (ffi.copy (+ pixels (* y width 4))
-                                                (+ data 1 (* y stride)) (* width 4)))
-                                    (for [y 0 (- height 1)]
-                                      (let [src (+ 1 (* y stride))
-                                            dst (* y width 4)]
-                                        (for [x 0 (- width 1)]
-                                          (let [s (+ src (* x 3))
-                                                d (+ dst (* x 4))]
-                                            (tset pixels d (. data s))
-                                            (tset pixels (+ d 1) (. data (+ s 1)))
-                                            (tset pixels (+ d 2) (. data (+ s 2)))
-                                            (tset pixels (+ d 3) 255))))))
+                              (let [pixels (ffi.new "uint8_t[?]" (* width height 4))
+                                    palette (when parts.plte [(string.byte parts.plte 1 -1)])
+                                    alpha (when (and parts.trns (= colour 3))
+                                            [(string.byte parts.trns 1 -1)])]
+                                (expand! pixels width height colour depth
+                                         (sample-reader data stride depth channels)
+                                         palette alpha)
                                 {: width : height : pixels})))))))))))
 
 (fn read-file [path]
