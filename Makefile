@@ -12,7 +12,9 @@ deps:
 run: deps
 	love . $(SCENE)
 
-test: deps
+# The suite also makes a quick accuracy report, whose plots need gnuplot.
+test:
+	@bash tools/install-deps.sh gnuplot-nox
 	@$(HEADLESS) bash tools/run-tests.sh
 
 bench: deps
