@@ -12,7 +12,7 @@ float raymarch(vec3 ro, vec3 rd, out int steps) {
     steps = 0;
     for (int i = 0; i < uMaxSteps; i++) {
         float d = map(ro + rd * t);
-        steps = i + 1;
+        // @slot count-step
         if (omega > 1.0 && abs(d) + rPrev < t - tPrev) {
             t = tPrev + rPrev;
             omega = 1.0;

@@ -53,10 +53,19 @@
       (registry.count-uniform k.kind)
       (tostring k.capacity)))
 
+;; Up to this many objects of a kind are written out one by one, as a person would by
+;; hand: the driver then has no loop to unroll (llvmpipe leaves some unrolled).
+(local max-unrolled 8)
+
 (fn kind-loop [k plan body]
-  ;; One object: no loop at all. Several: a loop over the kind's uniform arrays.
-  (if (and (not plan.uber?) (= k.capacity 1))
-      [(.. "{ const int i = 0;") body "}"]
+  ;; A few objects: one block each, with the array index written in. More: a loop
+  ;; over the kind's uniform arrays. `body` uses `[i]` for the index.
+  (if (and (not plan.uber?) (<= k.capacity max-unrolled))
+      (fcollect [index 0 (- k.capacity 1)]
+        (icollect [_ line (ipairs body)]
+          (pick-values 1 (-> line
+                             (: :gsub "^    " "")
+                             (: :gsub "%[i%]" (.. "[" index "]"))))))
       [(.. "for (int i = 0; i < " (count-bound k plan) "; i++) {") body "}"]))
 
 (fn uniform-declarations [plan]
@@ -75,9 +84,11 @@
     (kind-loop k plan [(.. "    d = min(d, " k.entry.distance-glsl ");")])))
 
 (fn color-terms [plan]
-  (icollect [_ k (ipairs plan.kinds)]
-    (kind-loop k plan [(.. "    float di = " k.entry.distance-glsl ";")
-                       (.. "    if (di < d) { d = di; color = " k.entry.color-glsl "; }")])))
+  ;; One `di` for the whole function: unrolled blocks share it.
+  [(if (> (length plan.kinds) 0) "float di;" [])
+   (icollect [_ k (ipairs plan.kinds)]
+     (kind-loop k plan [(.. "    di = " k.entry.distance-glsl ";")
+                        (.. "    if (di < d) { d = di; color = " k.entry.color-glsl "; }")]))])
 
 ;;; Features
 
@@ -122,7 +133,10 @@
                   (when (line:find "^// The same minimum") i))]
         (for [i (length lines) (- cut 1) -1] (table.remove lines i))))
     (table.insert sections (fill (.. "shaders/hit/" plan.hit-test ".glsl") {}))
-    (table.insert sections (fill (if plan.relaxed? "shaders/march-relaxed.glsl" "shaders/march.glsl") {}))
+    ;; Only the glow and heat views read the step count; elsewhere it is not kept.
+    (let [count-step (if (or plan.glow? (= view :glow) (= view :heat)) ["steps = i + 1;"] [])]
+      (table.insert sections (fill (if plan.relaxed? "shaders/march-relaxed.glsl" "shaders/march.glsl")
+                                   {:count-step count-step})))
     (when normals?
       (table.insert sections (fill "shaders/normal.glsl"
                                    {:method (fill (.. "shaders/normal/" plan.normals ".glsl") {})})))

@@ -86,10 +86,14 @@
                                  "uniform vec3 uBoxCenter[3];" "uniform vec3 uBoxHalfSize[3];"
                                  "uniform vec3 uBoxColor[3];" "uniform float uPlaneHeight[1];"
                                  "uniform vec3 uPlaneColor[1];" "uniform int uReflections;"
-                                 "for (int i = 0; i < 2; i++) {"
-                                 "for (int i = 0; i < 3; i++) {"
-                                 "{ const int i = 0;"])]
+                                 ;; A few objects of a kind are written out one by one.
+                                 "    d = min(d, sdSphere(p, uSphere[1]));"
+                                 "    d = min(d, sdBox(p, uBoxCenter[2], uBoxHalfSize[2]));"
+                                 "    d = min(d, sdPlane(p, uPlaneHeight[0]));"
+                                 "    if (di < d) { d = di; color = uBoxColor[2]; }"])]
             (assert-has text line))
+          (assert-lacks text "for (int i = 0; i < 2;")
+          (assert-lacks text "for (int i = 0; i < 3;")
           (assert-lacks text "uCountSphere")
           (assert-lacks text "uniform bool uShadows;"))))
 
@@ -104,7 +108,11 @@
         (let [text (shader-of "{:objects [{:kind :plane}]}")]
           (assert-lacks text "sdSphere")
           (assert-lacks text "sdBox")
-          (assert-has text "sdPlane(p, uPlaneHeight[i])"))))
+          (assert-has text "sdPlane(p, uPlaneHeight[0])"))
+        ;; More than eight of a kind: a loop over the arrays.
+        (let [text (shader-of (.. "{:objects [" (string.rep "{:kind :sphere} " 9) "]}"))]
+          (assert-has text "for (int i = 0; i < 9; i++) {")
+          (assert-has text "        d = min(d, sdSphere(p, uSphere[i]));"))))
 
     (it "has no reflection code when reflections are 0"
       (fn []
@@ -256,7 +264,7 @@
                          "^%s*{ const int i = 0;$" "^%s*steps = 0;$" "^%s*steps = i %+ 1;$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]
-              (let [masked (line:gsub "%d+%.%d+" "F")]
+              (let [masked (-> line (: :gsub "%d+%.%d+" "F") (: :gsub "%[%d+%]" "[N]"))]
                 (when (masked:find "%f[%w_]%d+%f[^%w_]")
                   (assert (accumulate [ok false _ p (ipairs int-lines)] (or ok (not= nil (line:find p))))
                           (.. "integer literal in a float context? " line)))))))))

@@ -1,8 +1,9 @@
 #pragma language glsl3
 // Hand-written raymarcher for scenes/seed.fnl, the benchmark's baseline: the same
 // algorithm as the generated shader (article's march, one-sided normals, hard shadows,
-// three mirror bounces), written out by hand for this one scene. It takes the same
-// uniforms, so the same uniform packing drives both.
+// three mirror bounces, the same guards against zero vectors and float32 resolution),
+// written out by hand for this one scene. It takes the same uniforms, so the same
+// uniform packing drives both.
 
 uniform vec2 uResolution;
 uniform vec3 uCamForward;
@@ -62,17 +63,27 @@ float march(vec3 ro, vec3 rd) {
     return t;
 }
 
+// Normal step and ray offset: epsilon, but never below what float32 resolves at p.
+float delta(vec3 p) {
+    return max(uEpsilon, 0.000001 * (1.0 + length(p)));
+}
+
 vec3 normalAt(vec3 p) {
     float d = scene(p);
-    return normalize(vec3(d - scene(p - vec3(uEpsilon, 0.0, 0.0)),
-                          d - scene(p - vec3(0.0, uEpsilon, 0.0)),
-                          d - scene(p - vec3(0.0, 0.0, uEpsilon))));
+    float h = delta(p);
+    vec3 g = vec3(d - scene(p - vec3(h, 0.0, 0.0)),
+                  d - scene(p - vec3(0.0, h, 0.0)),
+                  d - scene(p - vec3(0.0, 0.0, h)));
+    float len = length(g);
+    return len > 0.0 ? g / len : vec3(0.0, 0.0, 1.0);
 }
 
 float light(vec3 p, vec3 n) {
-    vec3 l = normalize(uLightPos - p);
+    vec3 toLight = uLightPos - p;
+    float dist = length(toLight);
+    vec3 l = dist > 0.0 ? toLight / dist : n;
     float k = clamp(dot(l, n), 0.0, 1.0);
-    if (k > 0.0 && march(p + n * (2.0 * uEpsilon), l) < uDrawDist) k *= 0.5;
+    if (k > 0.0 && march(p + n * (2.0 * delta(p)), l) < uDrawDist) k *= 0.5;
     return k;
 }
 
@@ -87,7 +98,7 @@ vec4 effect(vec4 vertexColor, Image tex, vec2 texCoord, vec2 px) {
     vec3 col = colorAt(p) * light(p, n);
     for (int b = 1; b <= uReflections; b++) {
         rd = rd - 2.0 * dot(rd, n) * n;
-        vec3 o = p + n * (2.0 * uEpsilon);
+        vec3 o = p + n * (2.0 * delta(p));
         float tr = march(o, rd);
         if (tr >= uDrawDist) {
             col = (col + uEnvColor / float(b)) * 0.5;
