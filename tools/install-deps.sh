@@ -5,7 +5,10 @@
 set -euo pipefail
 
 # Extra packages may be named on the command line (make report adds gnuplot-nox).
-packages=(love luajit lua5.4 glslang-tools libosmesa6 lua-busted lua-filesystem "$@")
+# LÖVE and SDL load OpenGL at run time and depend on no driver package: name Mesa's
+# GL/EGL libraries and its DRI drivers (llvmpipe) so that a bare machine renders.
+packages=(love luajit lua5.4 glslang-tools libosmesa6 lua-busted lua-filesystem
+          libgl1 libegl1 libglx-mesa0 libegl-mesa0 libgl1-mesa-dri "$@")
 fennel_suite=trixie
 mirror=${DEBIAN_MIRROR:-http://deb.debian.org/debian}
 keyring=/usr/share/keyrings/debian-archive-keyring.gpg
