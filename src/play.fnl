@@ -105,7 +105,16 @@ On any failure the last good scene keeps running and the error is shown."
       :deleted (say! (.. state.path " was deleted; the last good scene keeps running")))))
 
 (fn current-plan []
-  (plan-with state.scene state.reflections))
+  "The plan of the scene on screen, lowered again only when the scene, the view or
+the reflection count changed (not every frame)."
+  (let [memo state.plan-memo]
+    (if (and memo (= memo.scene state.scene) (= memo.view state.view)
+             (= memo.reflections state.reflections))
+        (values memo.plan memo.err)
+        (let [(plan err) (plan-with state.scene state.reflections)]
+          (set state.plan-memo {:scene state.scene :view state.view
+                                :reflections state.reflections : plan : err})
+          (values plan err)))))
 
 (fn ensure-canvas! []
   (let [(ww wh) (love.graphics.getDimensions)
