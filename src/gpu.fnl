@@ -2,6 +2,7 @@
 ;; uniforms and draws the full-screen quad. The only core module that touches love.*.
 
 (local codegen (require :src.codegen))
+(local uniforms (require :src.uniforms))
 
 (local max-cached-shaders 8)
 
@@ -46,35 +47,26 @@ whether it was compiled now, or nil and a message."
                   (values shader true))
               (values nil err))))))
 
-(fn release-all! [cache]
-  "Release every cached shader."
-  (each [_ shader (pairs cache.shaders)]
-    (shader:release)
-    (set cache.released (+ cache.released 1)))
-  (set cache.shaders {})
-  (set cache.order []))
-
-(local sizes {:float 1 :int 1 :bool 1 :vec2 2 :vec3 3 :vec4 4})
-
 (fn love-values [u]
   ;; LÖVE's Shader:send takes numbers for float and int, booleans for bool and one
   ;; table per element for vectors.
-  (let [n (. sizes u.type)
+  (let [n (. uniforms.components u.type)
         vs u.values]
     (if (= u.type :bool) (icollect [_ v (ipairs vs)] (not= v 0))
         (= n 1) vs
         (fcollect [i 1 (length vs) n]
           (fcollect [j 0 (- n 1)] (. vs (+ i j)))))))
 
-(fn send! [shader uniforms]
-  "Send `uniforms` (from uniforms.pack) to `shader`, skipping any the driver dropped."
-  (each [_ u (ipairs uniforms)]
+(fn send! [shader us]
+  "Send the uniform list `us` (from uniforms.pack) to `shader`, skipping any the driver
+dropped."
+  (each [_ u (ipairs us)]
     (when (shader:hasUniform u.name)
       (shader:send u.name ((or table.unpack unpack) (love-values u))))))
 
-(fn draw! [shader uniforms width height]
+(fn draw! [shader us width height]
   "Draw the full-screen quad of `width` x `height` with `shader` into the current target."
-  (send! shader uniforms)
+  (send! shader us)
   (love.graphics.push :all)
   (love.graphics.setShader shader)
   (love.graphics.setColor 1 1 1 1)
@@ -85,4 +77,4 @@ whether it was compiled now, or nil and a message."
   "Wait until the GPU has finished drawing into `canvas` (reads back one pixel)."
   (: (canvas:newImageData 1 1 0 0 1 1) :release))
 
-{: new-cache : shader-for : compile-source : release-all! : send! : draw! : finish!}
+{: new-cache : shader-for : compile-source : send! : draw! : finish!}

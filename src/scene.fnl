@@ -6,6 +6,11 @@
 
 (local default-environment [0.901 0.976 1])
 
+(fn fresh [default]
+  "A default value for one scene: tables are copied, so that changing one loaded
+scene never changes another's defaults."
+  (if (= (type default) :table) (icollect [_ v (ipairs default)] v) default))
+
 ;; Each top-level section: field name -> {:type :default}. Types are checked by `check`.
 (local sections
   {:camera {:pos {:type :vec3 :default [0 -10 2]}
@@ -220,7 +225,7 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
     (each [_ field (ipairs fields)]
       (let [v (. given field)
             f (. spec field)]
-        (tset out field (if (= v nil) f.default (check ctx [name field] v f.type)))))
+        (tset out field (if (= v nil) (fresh f.default) (check ctx [name field] v f.type)))))
     out))
 
 (fn check-object [ctx i o]
@@ -241,7 +246,7 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
       (let [out {:kind o.kind :index i}]
         (each [_ p (ipairs entry.params)]
           (let [v (. o p.name)]
-            (tset out p.name (if (= v nil) p.default (check ctx [:objects i p.name] v p.type)))))
+            (tset out p.name (if (= v nil) (fresh p.default) (check ctx [:objects i p.name] v p.type)))))
         out))))
 
 (fn validate [value ctx]
@@ -274,7 +279,7 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
    :file ctx.file
    :camera (check-section ctx :camera value.camera)
    :light (check-section ctx :light value.light)
-   :environment (if (= value.environment nil) default-environment
+   :environment (if (= value.environment nil) (fresh default-environment)
                     (check ctx [:environment] value.environment :color))
    :render (check-section ctx :render value.render)
    :objects (icollect [i o (ipairs value.objects)] (check-object ctx i o))})
