@@ -7,8 +7,10 @@
 ;;             within the scene's budget (over = pixels whose largest channel differs by
 ;;             more than 2/255, max in 0..255 units)
 ;;   steps     the reference's primary-ray steps never above :max-steps on a sampled
-;;             pixel, and the GPU heat view's steps / max-steps (decoded exactly from
-;;             the float heat colour) never above 1 anywhere
+;;             pixel, and the GPU's step count (decoded exactly from the float heat
+;;             view) within 2 of the reference's on every sampled pixel but :steps-off
+;;             of them (default 0). The heat view clamps at 1, so it cannot itself show a
+;;             count above the limit; the agreement with the reference shows it.
 ;;   stable    the camera nudged by 1e-6 along x, y and z in turn and re-rendered on the
 ;;             GPU: pixels whose largest channel moves by more than 2/255, the worst
 ;;             axis, within the scene's budget
@@ -35,12 +37,14 @@
    ;; sphere touches the ground, whose secondary marches also run out of steps and end
    ;; wherever rounding leaves them; the same chains move 15 pixels under a nudge. The
    ;; fixed and relative hit tests are the same test at epsilon 0: same figures.
+   ;; Primary rays that never converge stop where float32 leaves them: 17 sampled
+   ;; pixels end with step counts more than 2 away from the reference's.
    "scenes/stress/epsilon-zero-fixed.fnl" {:shaded {:over 9 :max 64.5}
                                            :normals {:over 0 :max 2} ; measured max 1.7
-                                           :stable 15}
+                                           :stable 15 :steps-off 17}
    "scenes/stress/epsilon-zero-relative.fnl" {:shaded {:over 9 :max 64.5}
                                               :normals {:over 0 :max 2} ; measured max 1.7
-                                              :stable 15}
+                                              :stable 15 :steps-off 17}
    ;; Camera-relative positions in double: as exact as at the origin.
    "scenes/stress/far-origin.fnl" {:shaded exact :normals exact :stable 0}
    "scenes/stress/fov-narrow.fnl" {:shaded exact :normals exact :stable 0}
@@ -212,6 +216,12 @@ reference results, in 0..255 units; a non-finite GPU pixel counts as 255."
                                                 (- 1 1e-6))
                                             (+ k 1) k)))))
         (set out.gpu-heat-over hbad)
+        ;; The heat view clamps at 1, so it cannot show a count above the limit; what
+        ;; it can show is whether the GPU's march takes the reference's number of steps.
+        (set out.steps-off
+             (accumulate [n 0 _ r (ipairs ref-shaded)]
+               (let [gpu-steps (* max-steps (heat->fraction (headless.pixel img-heat r.x r.y)))]
+                 (if (> (math.abs (- gpu-steps r.steps)) 2) (+ n 1) n))))
         ;; Stability: nudge the camera along each axis.
         (set out.stable 0)
         (set out.nudged-non-finite 0)
@@ -225,12 +235,12 @@ reference results, in 0..255 units; a non-finite GPU pixel counts as 255."
     out))
 
 (fn figures-line [m]
-  (string.format "stress %-34s %4dx%-4d samples %3d  nan gpu %d/%d/%d ref %d  shaded over %3d max %5.1f  normals over %3d max %5.1f  steps ref %d/%d gpu h %.3f (%4.1f%% at 1)  stable %d"
+  (string.format "stress %-34s %4dx%-4d samples %3d  nan gpu %d/%d/%d ref %d  shaded over %3d max %5.1f  normals over %3d max %5.1f  steps ref %d/%d gpu h %.3f (%4.1f%% at 1) off %d  stable %d"
                  (m.file:match "([^/]+)%.fnl$") m.width m.height m.samples
                  m.gpu-non-finite.shaded m.gpu-non-finite.normals m.gpu-non-finite.heat
                  m.ref-non-finite m.shaded.over m.shaded.max m.normals.over m.normals.max
                  m.ref-max-steps m.max-steps m.gpu-heat-max
-                 (/ (* 100 m.gpu-heat-full) (* m.width m.height)) m.stable))
+                 (/ (* 100 m.gpu-heat-full) (* m.width m.height)) m.steps-off m.stable))
 
 (fn within? [st b]
   (and (<= st.over b.over) (<= st.max b.max)))
@@ -270,7 +280,9 @@ reference results, in 0..255 units; a non-finite GPU pixel counts as 255."
               (check "steps within the limit"
                      (fn [m msg]
                        (assert.is_true (<= m.ref-max-steps m.max-steps) msg)
-                       (assert.are.equal 0 m.gpu-heat-over msg)))
+                       (assert.are.equal 0 m.gpu-heat-over msg)
+                       (assert.is_true (<= m.steps-off (or b.steps-off 0))
+                                       (.. msg " (steps-off budget " (or b.steps-off 0) ")"))))
               (check "agrees with the reference"
                      (fn [m msg]
                        (assert.is_truthy b.shaded msg)
