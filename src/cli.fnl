@@ -25,6 +25,19 @@ VIEW is one of shaded, normals, glow, heat.")
     (when (and w h (>= w 1) (>= h 1) (<= w 16384) (<= h 16384))
       [w h])))
 
+(fn normalize-path [p]
+  "`p` without ./ segments and repeated slashes, for comparing two command-line paths."
+  (var out (p:gsub "/+" "/"))
+  (var again? true)
+  (while again?
+    (let [(next-out n) (out:gsub "/%./" "/")]
+      (set out next-out)
+      (set again? (> n 0))))
+  (pick-values 1 (-> out (: :gsub "^%./" "") (: :gsub "/%.$" ""))))
+
+(fn same-path? [a b]
+  (and a b (= (normalize-path a) (normalize-path b))))
+
 (fn check-options [o]
   (if (and (= o.mode :render) (not o.out))
       (values nil "--render needs --out FILE.png")
@@ -32,6 +45,8 @@ VIEW is one of shaded, normals, glow, heat.")
       (values nil (.. "--out must name a .png file, got " o.out))
       (and o.shot (not (o.shot:match "%.png$")))
       (values nil (.. "--shot must name a .png file, got " o.shot))
+      (or (same-path? o.out o.scene) (same-path? o.shot o.scene))
+      (values nil (.. "the output file is the scene file " o.scene "; choose another name"))
       (and o.shot (not= o.mode :play))
       (values nil "--shot only goes with playing a scene")
       (and o.view (not (plan.view? o.view)))
@@ -80,4 +95,4 @@ VIEW is one of shaded, normals, glow, heat.")
     (when (not o.scene) (set o.scene default-scene))
     (if err (values nil err) (check-options o))))
 
-{: parse : usage : default-scene}
+{: parse : usage : default-scene : same-path?}

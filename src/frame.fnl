@@ -7,20 +7,24 @@
 (local gpu (require :src.gpu))
 
 (fn read-text [path]
-  ;; A path on the command line is relative to the working directory; the bundled
-  ;; scenes are also found inside the game folder when LÖVE runs from elsewhere.
-  (case (io.open path :rb)
-    f (let [s (f:read :*a)] (f:close) s)
-    (nil err) (if (love.filesystem.getInfo path :file)
-                  (love.filesystem.read path)
-                  (values nil err))))
+  "The text of the scene file at `path`, read through the scene loader's capped
+reader; a path relative to the working directory first, then the bundled scenes
+inside the game folder when LÖVE runs from elsewhere."
+  (case (scene-mod.read-capped path)
+    s s
+    (nil err) (let [info (love.filesystem.getInfo path :file)]
+                (if (and info (not (err:find "directory" 1 true)))
+                    ;; At most the size limit and a byte, like the file reader.
+                    (love.filesystem.read path (+ (. (scene-mod.limits-of-files) :file-bytes) 1))
+                    (values nil err)))))
 
 (fn load-scene [path]
   "Load and validate the scene file at `path`: scene, or nil and a message."
   (scene-mod.load-file path read-text))
 
-(fn render-to-canvas! [cache canvas scene plan cam]
-  "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas`. Returns true, or nil
+(fn render-to-canvas! [cache canvas scene plan cam ?rows]
+  "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas`; only the rows
+[y0 y1) of `?rows` when given (the rest of the canvas is kept). Returns true, or nil
 and a message when the shader does not compile."
   (let [(shader err) (gpu.shader-for cache plan)]
     (if (not shader)
@@ -28,7 +32,9 @@ and a message when the shader does not compile."
         (let [(w h) (canvas:getDimensions)]
           (love.graphics.push :all)
           (love.graphics.setCanvas canvas)
-          (love.graphics.clear 0 0 0 1)
+          (case ?rows
+            [y0 y1] (love.graphics.setScissor 0 y0 w (math.max 1 (- y1 y0)))
+            _ (love.graphics.clear 0 0 0 1))
           (gpu.draw! shader (uniforms.pack scene plan cam w h) w h)
           (love.graphics.pop)
           true))))

@@ -41,7 +41,8 @@
 
 (fn budget-message [scene plan limit]
   (let [costs (icollect [_ k (ipairs plan.kinds)]
-                (.. "a " k.kind " takes " (registry.slots-per-object k.entry)))
+                (.. "a " (or k.entry.shown-as k.kind) " takes "
+                    (registry.slots-per-object k.entry)))
         over (- plan.uniform-vectors limit)]
     (.. scene.file ": objects: the scene needs " plan.uniform-vectors
         " uniform vectors but the driver allows " limit " (" fixed-uniform-vectors

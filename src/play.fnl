@@ -7,6 +7,9 @@
 (local gpu (require :src.gpu))
 (local plan-mod (require :src.plan))
 (local watch (require :src.watch))
+(local filestat (require :src.filestat))
+(local progress (require :src.progress))
+(local text (require :src.text))
 
 (local move-speed 10)   ; world units per second
 (local turn-speed 90)   ; degrees per second
@@ -17,7 +20,7 @@
 (local state {:scene nil :path nil :cam nil :view :shaded :reflections 0
               :scale 1 :hud? true :cache nil :canvas nil :message nil
               :message-until 0 :error nil :gamepad nil :watch nil :poll-at 0
-              :reloads 0})
+              :reloads 0 :progress (progress.new)})
 
 (fn scenes-in-folder []
   (let [items (love.filesystem.getDirectoryItems "scenes")]
@@ -26,25 +29,26 @@
       (when (name:match "%.fnl$") (.. "scenes/" name)))))
 
 (fn say! [message]
-  (when (not state.quiet?) (print message))
-  (set state.message message)
+  (let [message (text.printable message)]
+    (when (not state.quiet?) (print message))
+    (set state.message message))
   (set state.message-until (+ (love.timer.getTime) 4)))
 
 ;;; Loading and hot reload
 
-(local lfs (let [(ok? m) (pcall require :lfs)] (when ok? m)))
-
 (fn file-info [path]
-  "The watched file's modification time, size and text, or nil when it is missing.
-lua-filesystem gives times for any path; without it, only files in the game folder."
-  (let [attrs (if lfs
-                  (let [a (lfs.attributes path)]
-                    (when (and a (= a.mode :file)) {:mtime a.modification :size a.size}))
-                  (let [i (love.filesystem.getInfo path :file)]
-                    (when i {:mtime i.modtime :size i.size})))]
-    (when attrs
-      (set attrs.content (frame.read-text path))
-      (when attrs.content attrs))))
+  "The watched file's modification time, size and text; {:problem why} when it is
+there but cannot be read; nil when it is missing. The text is read before the time,
+so a write during the read shows as a newer time (see watch.poll!). Files found only
+inside the game folder (LÖVE run from elsewhere) have whole-second times."
+  (let [content (frame.read-text path)
+        st (filestat.stat path)]
+    (if st
+        (if (= st.kind :directory) {:problem "it is a directory"}
+            (or (not st.readable?) (not content)) {:problem "it cannot be read"}
+            {:mtime st.mtime :coarse? st.coarse? :size st.size : content})
+        (let [i (love.filesystem.getInfo path :file)]
+          (when (and i content) {:mtime i.modtime :coarse? true :size i.size : content})))))
 
 (fn same-camera? [a b]
   (and a b (= a.yaw b.yaw) (= a.pitch b.pitch) (= a.fov b.fov)
@@ -53,7 +57,7 @@ lua-filesystem gives times for any path; without it, only files in the game fold
 (fn plan-with [scene reflections]
   (plan-mod.scene->plan scene {:view state.view :reflections reflections}))
 
-(fn load! [path fresh?]
+(fn load-unprotected! [path fresh?]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
 file, not an edit) resets the camera and the player's settings; an edit keeps them,
 unless the file's own camera or settings changed and the player left them alone.
@@ -96,13 +100,29 @@ On any failure the last good scene keeps running and the error is shown."
                   (say! (string.format "%s %s in %.0f ms (%s)" (if fresh? "loaded" "reloaded")
                                        path ms (if compiled? "shader compiled" "uniforms only"))))))))))
 
-(fn poll-file! [now]
-  ;; Ten times a second is quick enough to feel immediate and costs nothing.
-  (when (and state.path state.watch (>= now state.poll-at))
-    (set state.poll-at (+ now 0.1))
-    (case (watch.poll! state.watch (file-info state.path) now)
-      :changed (load! state.path false)
-      :deleted (say! (.. state.path " was deleted; the last good scene keeps running")))))
+(fn load! [path fresh?]
+  "Load the scene at `path` (see load-unprotected!); a failure inside the loader
+itself is shown like a broken file, and the last good scene keeps running."
+  (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh?)]
+    (when (not ok?)
+      (set state.error (.. path ": the scene could not be loaded (an internal error): "
+                           (tostring err))))
+    (set state.progress (progress.new))))
+
+(fn poll-file! [?now]
+  "Look at the watched file, ten times a second at most (quick enough to feel
+immediate, and it costs nothing). `?now` overrides the wall clock (the soak test
+moves it forward instead of waiting)."
+  (let [clock (filestat.now)
+        now (or ?now clock)]
+    (when (and state.path state.watch (or ?now (>= clock state.poll-at)))
+      (set state.poll-at (+ clock 0.1))
+      (let [info (file-info state.path)]
+        (case (watch.poll! state.watch info (or ?now (filestat.now)))
+          :changed (load! state.path false)
+          :deleted (say! (.. state.path " was deleted; the last good scene keeps running"))
+          :unreadable (say! (.. state.path ": " (or state.watch.problem "it cannot be read")
+                                "; the last good scene keeps running")))))))
 
 (fn current-plan []
   "The plan of the scene on screen, lowered again only when the scene, the view or
@@ -124,7 +144,8 @@ the reflection count changed (not every frame)."
               (not= w (state.canvas:getWidth)) (not= h (state.canvas:getHeight)))
       (when state.canvas (state.canvas:release))
       (set state.canvas (love.graphics.newCanvas w h))
-      (state.canvas:setFilter :nearest :nearest))
+      (state.canvas:setFilter :nearest :nearest)
+      (set state.progress (progress.new)))
     state.canvas))
 
 ;;; Input
@@ -242,11 +263,15 @@ the reflection count changed (not every frame)."
       (table.insert lines (string.format "%dx%d (scale %.2f)" (canvas:getWidth)
                                          (canvas:getHeight) state.scale)))
     (when state.scene
-      (table.insert lines (.. "scene: " state.scene.name "  view: " state.view))
+      (table.insert lines (.. "scene: " (text.printable state.scene.name 80) "  view: " state.view))
       (table.insert lines (string.format "reflections: %d  fov: %.1f" state.reflections cam.fov))
       (table.insert lines (string.format "pos: %.2f %.2f %.2f  yaw %.1f  pitch %.1f"
                                          (. cam.pos 1) (. cam.pos 2) (. cam.pos 3)
                                          cam.yaw cam.pitch)))
+    (when (> state.progress.bands 1)
+      (table.insert lines (string.format "progressive: %d bands, one per frame (a full frame takes %.1f s)"
+                                         state.progress.bands
+                                         (* state.progress.bands (love.timer.getAverageDelta)))))
     (when state.last-load
       (table.insert lines (string.format "last load: %.0f ms (%s), %d so far"
                                          state.last-load.ms
@@ -256,23 +281,30 @@ the reflection count changed (not every frame)."
       (table.insert lines state.message))
     lines))
 
-(fn draw-text-box [text x y color]
+(fn draw-text-box [message x y color]
+  ;; LÖVE's text layout raises on invalid UTF-8: everything shown goes through
+  ;; text.printable, and is cut to a screenful.
   (let [font (love.graphics.getFont)
-        (width wrapped) (font:getWrap text (- (love.graphics.getWidth) (* 2 x) 16))
+        message (text.printable (if (> (length message) 4000) (message:sub 1 4000) message))
+        (width wrapped) (font:getWrap message (- (love.graphics.getWidth) (* 2 x) 16))
         h (* (length wrapped) (font:getHeight))]
     (love.graphics.setColor 0 0 0 0.6)
     (love.graphics.rectangle :fill x y (+ width 16) (+ h 12))
     (love.graphics.setColor (. color 1) (. color 2) (. color 3) (. color 4))
-    (love.graphics.printf text (+ x 8) (+ y 6) (+ width 1))
+    (love.graphics.printf message (+ x 8) (+ y 6) (+ width 1))
     (love.graphics.setColor 1 1 1 1)))
 
 (fn draw []
   (when state.scene
     (let [canvas (ensure-canvas!)]
-      (case (current-plan)
-        plan (case (frame.render-to-canvas! state.cache canvas state.scene plan state.cam)
-               (nil err) (set state.error err))
-        (nil err) (set state.error err))
+      ;; One band of the image per frame when a whole frame would take too long.
+      (let [p state.progress
+            rows (when (> p.bands 1) [(progress.rows p (canvas:getHeight))])]
+        (case (current-plan)
+          plan (case (frame.render-to-canvas! state.cache canvas state.scene plan state.cam rows)
+                 (nil err) (set state.error err)
+                 _ (progress.drawn! p))
+          (nil err) (set state.error err)))
       (love.graphics.setColor 1 1 1 1)
       (love.graphics.draw canvas 0 0 0 (/ 1 state.scale) (/ 1 state.scale))))
   (when state.hud?
@@ -290,16 +322,22 @@ the reflection count changed (not every frame)."
     (fn [data]
       (let [bytes (: (data:encode :png) :getString)]
         (case (io.open path :wb)
-          out (do (out:write bytes) (out:close) (print (.. "wrote " path)))
-          (nil err) (io.stderr:write (.. path ": cannot write: " err "\n")))
-        (love.event.quit 0)))))
+          out (do (out:write bytes) (out:close) (print (.. "wrote " path))
+                  (love.event.quit 0))
+          (nil err) (do (io.stderr:write (.. "error: " path ": cannot write: " err "\n"))
+                        (love.event.quit 1)))))))
 
 (fn start! [options]
   "Play the scene file named in `options.scene`: install the LÖVE callbacks."
   (set state.cache (gpu.new-cache))
   (load! options.scene true)
+  (when (and options.shot (not state.scene))
+    ;; Nothing to shoot: a script waits on this run, so fail like --render does.
+    (io.stderr:write (.. "error: " (or state.error (.. options.scene ": no scene")) "\n"))
+    (love.event.quit 1))
   (set love.update (fn [dt]
-                     (poll-file! (love.timer.getTime))
+                     (progress.measured! state.progress dt)
+                     (poll-file!)
                      (when state.cam
                        (handle-keyboard dt)
                        (handle-gamepad dt))))
@@ -307,7 +345,11 @@ the reflection count changed (not every frame)."
   (set love.draw (fn []
                    (draw)
                    (set frames (+ frames 1))
-                   (when (and options.shot (= frames options.frames))
+                   ;; Shoot once N frames are drawn and the image is whole (a
+                   ;; progressive image needs every band drawn).
+                   (when (and options.shot (not state.shooting?) (>= frames options.frames)
+                              (or (not state.scene) (progress.complete? state.progress)))
+                     (set state.shooting? true)
                      (shoot-and-quit! options.shot))))
   (set love.keypressed keypressed)
   (set love.gamepadpressed gamepadpressed)

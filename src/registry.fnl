@@ -65,6 +65,7 @@
     :variant (fn [o] (when (>= o.radius large-radius) :large-sphere))}
    {:kind :large-sphere
     :internal? true
+    :shown-as "sphere of radius 1000 or more"
     :doc "A :sphere of radius 1000 or more, lowered to a cancellation-free distance."
     :params []
     :chunk "shaders/sdf/large-sphere.glsl"

@@ -3,6 +3,8 @@
 
 (local fennel (require :fennel))
 (local registry (require :src.registry))
+(local sandbox (require :src.sandbox))
+(local text (require :src.text))
 
 (local default-environment [0.901 0.976 1])
 
@@ -39,7 +41,11 @@ scene never changes another's defaults."
 
 (local top-level-keys [:name :camera :light :environment :render :objects])
 
-(local limits {:max-reflections 16 :max-steps 100000 :max-objects 5000})
+(local limits {:max-reflections 16 :max-steps 100000 :max-objects 5000
+               ;; Coordinates and lengths: float32 holds them with room to spare
+               ;; (positions are sent camera-relative), and the image stays meaningful.
+               :world 1e7 :min-length 1e-6 :max-epsilon 10 :min-fov 0.1 :max-fov 179
+               :max-name 80})
 
 ;;; Messages
 
@@ -63,10 +69,11 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
     (. d la lb)))
 
 (fn suggestion [word candidates]
-  "A ' (did you mean :x?)' hint when a candidate is close to `word`, else ''."
+  "A ' (did you mean :x?)' hint when a candidate is close to `word`, else ''.
+Long words get none: no name is that long, and the distance would cost time."
   (var best nil)
   (var best-distance math.huge)
-  (each [_ c (ipairs candidates)]
+  (each [_ c (ipairs candidates) &until (> (length word) text.max-shown)]
     (let [d (edit-distance word c)]
       (when (< d best-distance)
         (set best c)
@@ -81,9 +88,9 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
           (= v math.huge) "inf"
           (= v (- math.huge)) "-inf"
           (tostring v))
-      (= (type v) :string) (if (> (length v) 40)
-                               (.. "a string of " (length v) " characters")
-                               (string.format "%q" v))
+      (= (type v) :string) (if (> (length v) text.max-shown)
+                               (.. "a string of " (length v) " bytes")
+                               (text.quote-string v))
       (= (type v) :function) "a function"
       (= (type v) :table) (let [n (length v)]
                             (if (and (> n 0) (= (next v n) nil)) (.. "a list of " n " items")
@@ -96,6 +103,7 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
   (each [_ p (ipairs path)]
     (set out (if (= (type p) :number)
                  (.. out "[" p "]")
+                 (not (text.name? p)) (.. out "[" (text.quote-string p) "]")
                  (= out "") p
                  (.. out "." p))))
   out)
@@ -161,15 +169,15 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
   (check-number ctx path v (.. "an integer from " lo " to " hi)
                 #(and (= $ (math.floor $)) (<= lo $ hi))))
 
-(fn check-vec3 [ctx path v what element-ok?]
+(fn check-vec3 [ctx path v what element-what element-ok?]
   (when (or (not= (type v) :table) (not= (length v) 3))
     (fail ctx path (.. "must be " what ", got " (describe-value v))))
   (each [k _ (pairs v)]
     (when (or (not= (type k) :number) (< k 1) (> k 3))
       (fail ctx path (.. "must be " what " with exactly three numbers"))))
-  (icollect [i x (ipairs v)]
-    (check-number ctx (sub-path path i) x
-                  (if element-ok? what "a finite number") element-ok?)))
+  ;; Not ipairs: [nil nil 5] has length 3 and no first element.
+  (fcollect [i 1 3]
+    (check-number ctx (sub-path path i) (. v i) element-what element-ok?)))
 
 (fn check-choice [ctx path v choices]
   (var found? false)
@@ -177,16 +185,31 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
   (if found? v
       (fail ctx path (.. "must be one of :" (table.concat choices " :") ", got "
                          (if (= (type v) :string)
-                             (.. ":" v (suggestion v choices))
+                             (.. (text.keyword v) (suggestion v choices))
                              (describe-value v))))))
+
+(fn coordinate? [v] (<= (- limits.world) v limits.world))
+(fn length? [v] (<= limits.min-length v limits.world))
+
+(fn check-name [ctx v]
+  (if (not= (type v) :string)
+      (fail ctx [:name] (.. "must be a string, got " (describe-value v)))
+      (or (> (length v) limits.max-name) (not (text.valid-utf8? v)) (v:find "[%c]"))
+      (fail ctx [:name] (.. "must be a line of UTF-8 text of at most " limits.max-name
+                            " bytes, got " (if (> (length v) limits.max-name)
+                                               (.. "a string of " (length v) " bytes")
+                                               (text.quote-string v))))
+      v))
 
 (fn check [ctx path v kind]
   (case kind
-    :number (check-number ctx path v "a finite number")
-    :positive (check-number ctx path v "a positive number" #(> $ 0))
-    :non-negative (check-number ctx path v "a number >= 0" #(>= $ 0))
+    :number (check-number ctx path v "a number from -1e7 to 1e7" coordinate?)
+    :positive (check-number ctx path v "a positive number from 1e-6 to 1e7" length?)
+    :non-negative (check-number ctx path v "a number from 0 to 10"
+                                #(<= 0 $ limits.max-epsilon))
     :pitch (check-number ctx path v "a number of degrees from -90 to 90" #(<= -90 $ 90))
-    :fov (check-number ctx path v "a number of degrees above 0 and below 180" #(< 0 $ 180))
+    :fov (check-number ctx path v "a number of degrees from 0.1 to 179"
+                       #(<= limits.min-fov $ limits.max-fov))
     :scale (check-number ctx path v "a render scale above 0 and at most 1" #(and (> $ 0) (<= $ 1)))
     :steps (check-integer ctx path v 1 limits.max-steps)
     :reflections (check-integer ctx path v 0 limits.max-reflections)
@@ -196,9 +219,12 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
                               #(and (>= $ 1) (< $ 2)))
     :boolean (if (= (type v) :boolean) v
                  (fail ctx path (.. "must be true or false, got " (describe-value v))))
-    :vec3 (check-vec3 ctx path v "a list of three numbers like [1 2 3]")
-    :size3 (check-vec3 ctx path v "three positive numbers like [1 1 1]" #(> $ 0))
-    :color (check-vec3 ctx path v "a colour of three numbers from 0 to 1" #(<= 0 $ 1))
+    :vec3 (check-vec3 ctx path v "a list of three numbers like [1 2 3]"
+                      "a number from -1e7 to 1e7" coordinate?)
+    :size3 (check-vec3 ctx path v "three positive numbers like [1 1 1]"
+                       "a positive number from 1e-6 to 1e7" length?)
+    :color (check-vec3 ctx path v "a colour of three numbers from 0 to 1"
+                       "a colour of three numbers from 0 to 1" #(<= 0 $ 1))
     _ (error (.. "unknown field type " (tostring kind)))))
 
 (fn check-keys [ctx path tbl allowed]
@@ -239,7 +265,7 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
     (let [entry (registry.lookup o.kind)]
       (when (or (not entry) entry.internal?)
         (fail ctx [:objects i :kind]
-              (.. "unknown kind :" o.kind (suggestion o.kind (registry.kind-names))
+              (.. "unknown kind " (text.keyword o.kind) (suggestion o.kind (registry.kind-names))
                   "; known kinds: :" (table.concat (registry.kind-names) " :"))))
       (check-keys ctx path o (doto (icollect [_ p (ipairs entry.params)] p.name)
                                (table.insert :kind)))
@@ -255,8 +281,7 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
     (fail ctx [] (.. "a scene file must evaluate to a table like {:objects [...]}, got "
                      (describe-value value))))
   (check-keys ctx [] value top-level-keys)
-  (when (and (not= value.name nil) (not= (type value.name) :string))
-    (fail ctx [:name] (.. "must be a string, got " (describe-value value.name))))
+  (when (not= value.name nil) (check-name ctx value.name))
   (when (= value.objects nil)
     (fail ctx [:objects] "missing; a scene needs :objects [...] (it may be empty)"))
   (when (not= (type value.objects) :table)
@@ -284,121 +309,6 @@ neighbouring letters (optimal string alignment), so :pixle is one edit from :pix
    :render (check-section ctx :render value.render)
    :objects (icollect [i o (ipairs value.objects)] (check-object ctx i o))})
 
-;;; Evaluation
-
-(fn safe-env []
-  "The only globals a scene file sees: arithmetic helpers and nothing that reaches
-the file system, the process or the loader."
-  (let [m {}]
-    (each [k v (pairs math)]
-      (when (not= k :randomseed) (tset m k v)))
-    (set m.random nil)
-    {:math m :ipairs ipairs :pairs pairs :tonumber tonumber :tostring tostring
-     :type type :select select :unpack (or table.unpack unpack)
-     :table {:insert table.insert :concat table.concat :unpack (or table.unpack unpack)}
-     :string {:format string.format :sub string.sub
-              ;; A single C call is out of the count hook's reach: cap its size.
-              :rep (fn [str n ?sep]
-                     (when (> (* (+ (length str) (length (or ?sep ""))) (or n 0)) 1000000)
-                       (error "string.rep: the result would be over 1 MB" 2))
-                     (string.rep str n ?sep))}}))
-
-(fn parse-forms [source file]
-  "All top-level forms of `source`, or nil when it does not parse (fennel.eval then
-reports the parse error with its line)."
-  (let [(ok? forms) (pcall #(icollect [_ form (fennel.parser (fennel.string-stream source) file)]
-                              form))]
-    (when ok? forms)))
-
-;; Compile-time code has no place in a data file, and a failing macro would leave
-;; Fennel's compile options (the sandbox env) behind for the next module it loads.
-(local compile-time-forms {:macro true :macros true :eval-compiler true :import-macros true
-                           :require-macros true :include true :lua true :macrodebug true
-                           :global true :set-forcibly! true})
-
-(local max-nesting 64)
-
-(fn find-compile-time-form [node depth]
-  "The first compile-time form inside `node`, or :too-deep past `max-nesting` levels."
-  (if (> depth max-nesting) :too-deep
-      (= (type node) :table)
-      (let [head (and (fennel.list? node) (. node 1))
-            name (and head (fennel.sym? head) (tostring head))]
-        (if (and name (. compile-time-forms name))
-            node
-            (accumulate [found nil _ child (pairs node) &until found]
-              (find-compile-time-form child (+ depth 1)))))))
-
-(local global-forms {:global true :set-forcibly! true})
-
-(fn check-forms [forms file]
-  "A message when the parsed `forms` hold compile-time code or nest too deeply."
-  (var message nil)
-  (each [_ form (ipairs forms) &until message]
-    (case (find-compile-time-form form 1)
-      :too-deep (set message (.. file ": the scene nests deeper than " max-nesting
-                                 " levels; scenes are flat lists of objects"))
-      node (let [src (fennel.ast-source node)
-                 name (tostring (. node 1))]
-             (set message (.. file (if src.line (.. ":" src.line) "") ": (" name
-                              " ...) is not allowed: scene files are data and "
-                              (if (. global-forms name) "set no globals" "run no compile-time code"))))))
-  message)
-
-;;; Running a scene: instruction, time and memory limits
-
-;; The hook runs every few instructions: one string concatenation can double memory,
-;; so a sparse check would let a doubling loop run far past the limit.
-(local run-limits {:seconds 1 :memory-mb 64 :hook-every 4})
-
-(fn run-limited [chunk file string-lib]
-  "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
-message when it runs past the time or memory limit."
-  (let [start (os.clock)
-        memory-start (collectgarbage :count)
-        state {:stopped nil}
-        stop! (fn [message]
-                ;; Raise once: a hook firing again on the way out of pcall (before the
-                ;; hook is removed) must not raise outside it.
-                (set state.stopped message)
-                (error {:scene-error message}))
-        hook (fn []
-               (when (not state.stopped)
-                 (when (> (- (os.clock) start) run-limits.seconds)
-                   (stop! (.. file ": the scene ran for more than " run-limits.seconds
-                              " s and was stopped (an endless loop?)")))
-                 (when (> (- (collectgarbage :count) memory-start) (* 1024 run-limits.memory-mb))
-                   (stop! (.. file ": the scene built more than " run-limits.memory-mb
-                              " MB of data and was stopped")))))
-        string-meta (getmetatable "")
-        real-index string-meta.__index]
-    (when jit (jit.off chunk true))
-    ;; Methods on strings, (: "x" :rep n), go through the string metatable to the real
-    ;; string library: point it at the sandbox's own for the run.
-    (set string-meta.__index string-lib)
-    (let [(outer-ok? ok? value) (pcall (fn []
-                                         (debug.sethook hook "" run-limits.hook-every)
-                                         (let [(ok? value) (pcall chunk)]
-                                           (debug.sethook)
-                                           (values ok? value))))]
-      (debug.sethook)
-      (set string-meta.__index real-index)
-      (collectgarbage)
-      (if (and outer-ok? (not state.stopped)) (values ok? value)
-          (values false {:scene-error state.stopped})))))
-
-(fn evaluate [source file env allowed]
-  "Compile and run scene `source` in `env`: true and its value, or false and an error."
-  (let [(ok? code) (pcall fennel.compile-string source {:filename file :allowedGlobals allowed
-                                                       :correlate true})]
-    (if (not ok?)
-        (values false code)
-        (let [(chunk err) ((or _G.loadstring load) code (.. "@" file))]
-          (if (not chunk)
-              (values false err)
-              (do (when setfenv (setfenv chunk env))
-                  (run-limited chunk file env.string)))))))
-
 (fn clean-fennel-message [msg file]
   ;; Fennel's parse and compile errors carry the file and line already; keep the first
   ;; line (the rest repeats the source with a caret) and strip the 'Parse error in' prefix.
@@ -408,47 +318,87 @@ message when it runs past the time or memory limit."
                     (msg:match "expected local ([%w_]+)"))]
       (if ident
           (.. msg " (scene files are data: only math, numbers, strings and tables are available)")
+          ;; An error inside the compiler itself (input it does not expect): say so
+          ;; rather than show a line of fennel.lua.
+          (msg:find "fennel[%w/%.]*:%d+:")
+          (.. file ": the file is not a scene Fennel can read ("
+              (or (msg:match "fennel[%w/%.]*:%d+: (.*)$") msg) ")")
           msg))))
+
+(local max-message 400)   ; bytes of one message shown
+
+(fn safe-message [msg]
+  "A loader message as shown anywhere: escaped (no control characters or broken
+UTF-8 from a hostile file or path) and at most a few lines long."
+  (text.escape msg max-message))
+
+(fn evaluate [source file]
+  "Check, compile and run scene `source`: true, the value it evaluates to, its parsed
+forms and the checked text; or nil and a message."
+  (let [env (sandbox.safe-env)
+        allowed (doto (icollect [k (pairs env)] k) table.sort)]
+    (case (sandbox.check-source source file)
+      (nil msg) (values nil msg)
+      source (let [forms (sandbox.parse source file)]
+               (case (and forms (sandbox.check-forms forms file))
+                 msg (values nil msg)
+                 _ (case (sandbox.compile source file allowed)
+                     (nil msg) (values nil (clean-fennel-message (sandbox.error-message msg) file))
+                     code (case ((or _G.loadstring load) code (.. "@" file))
+                            (nil err) (values nil (clean-fennel-message err file))
+                            chunk (let [(ok? value) (sandbox.run chunk file env)]
+                                    (if ok? (values true value forms source)
+                                        (sandbox.sandbox-error? value)
+                                        (values nil (sandbox.error-message value))
+                                        (values nil (clean-fennel-message
+                                                     (sandbox.error-message value) file)))))))))))
 
 (fn load-string [source ?file]
   "Evaluate scene `source` in a sandbox and validate it.
 Returns the scene (plain data, defaults filled in) or nil and a message
 'file:line: field: reason'."
   (let [file (or ?file "scene")
-        env (safe-env)
-        allowed (icollect [k (pairs env)] k)
-        forms (parse-forms source file)
-        forbidden (and forms (check-forms forms file))]
-    (if forbidden
-        (values nil forbidden)
-        (let [(ok? value) (evaluate source file env allowed)]
-          (if (not ok?)
-              (values nil (if (and (= (type value) :table) value.scene-error)
-                              value.scene-error
-                              (clean-fennel-message (tostring value) file)))
-              ;; Field lines come from the last form: the table the file evaluates to.
-              (let [ctx {: file : source :ast (and forms (. forms (length forms)))}
-                    (ok2? result) (pcall validate value ctx)]
-                (if ok2? result
-                    (and (= (type result) :table) result.scene-error) (values nil result.scene-error)
-                    (error result))))))))
+        (ok? value forms checked-source) (evaluate source file)]
+    (if (not ok?)
+        (values nil (safe-message value))
+        ;; Field lines come from the last form: the table the file evaluates to.
+        (let [ctx {: file :source checked-source :ast (and forms (. forms (length forms)))}
+              (ok? result) (pcall validate value ctx)]
+          (if ok? result
+              (and (= (type result) :table) result.scene-error)
+              (values nil (safe-message result.scene-error))
+              (error result))))))
+
+(fn read-capped [path]
+  "The text of the file at `path` through io, refusing a directory, and reading at
+most one byte past the size limit (so /dev/zero or a huge file costs nothing)."
+  (case (io.open path :rb)
+    f (let [(s err) (f:read (+ sandbox.limits.file-bytes 1))]
+        (f:close)
+        (if s s
+            (and err (err:find "directory")) (values nil "it is a directory")
+            err (values nil err)
+            ""))
+    (nil err) (values nil err)))
 
 (fn load-file [path ?read]
   "Read and load the scene file at `path` (see load-string). `?read` reads a file's
-text (default: io.open), so the app can read through love.filesystem."
-  (let [read (or ?read (fn [p]
-                         (case (io.open p :rb)
-                           f (let [s (f:read :*a)] (f:close) s)
-                           (nil err) (values nil err))))
-        (source err) (read path)]
+text (default: io.open, at most the size limit and a byte), so the app can read
+through love.filesystem."
+  (let [(source err) ((or ?read read-capped) path)]
     (if source
         (load-string source path)
-        (values nil (.. path ": cannot read the scene file: " (tostring err))))))
+        (values nil (safe-message (.. path ": cannot read the scene file: "
+                                      (tostring (or err "no such file"))))))))
 
 (fn defaults []
   "A copy of the default settings, by section (for docs and tests)."
   (collect [name spec (pairs sections)]
     name (collect [field f (pairs spec)] field f.default)))
 
-{: load-string : load-file : defaults : limits : default-environment : hit-tests
- : normal-methods}
+(fn limits-of-files []
+  "The sandbox's limits (file size, nesting, steps, memory)."
+  sandbox.limits)
+
+{: load-string : load-file : read-capped : limits-of-files : defaults : limits : default-environment
+ : hit-tests : normal-methods}

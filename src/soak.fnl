@@ -6,6 +6,7 @@
 
 (local play (require :src.play))
 (local frame (require :src.frame))
+(local filestat (require :src.filestat))
 (local {: median} (require :src.compare))
 
 (local structures 12)   ; distinct sphere counts, more than the shader cache holds
@@ -21,11 +22,20 @@
         " :objects [" (table.concat objects "\n           ")
         "\n           {:kind :plane :height 0 :color [0.6 0.6 0.6]}]}\n")))
 
+(local broken-texts
+  ;; Each fails on line 2: a syntax error, a validation error, and hostile files
+  ;; (compile-time code in a key, a vector with holes, bytes that are not UTF-8, a
+  ;; terminal escape in a key, a library call past its cap).
+  ["{:name \"soak\"\n :objects [{:kind :sphere :radius 1}\n"
+   "{:name \"soak\"\n :objects [{:kind :sphere :radius -1}]}\n"
+   "{:name \"soak\"\n (eval-compiler (while true nil)) 1 :objects []}\n"
+   "{:name \"soak\"\n :camera {:pos [nil nil 5]} :objects []}\n"
+   "{:objects []\n :name \"\255\254\"}\n"
+   "{:objects []\n \"\027[2J\027[31mFAKE\" 1}\n"
+   "{:objects []\n :name (table.concat (fcollect [i 1 3] (string.rep \"x\" 999999)))}\n"])
+
 (fn broken-text [i]
-  ;; Alternate a syntax error and a validation error, each on line 2.
-  (if (= (% i 2) 0)
-      "{:name \"soak\"\n :objects [{:kind :sphere :radius 1}\n"
-      "{:name \"soak\"\n :objects [{:kind :sphere :radius -1}]}\n"))
+  (. broken-texts (+ 1 (% i (length broken-texts)))))
 
 (fn write! [path text]
   (with-open [f (assert (io.open path :wb))] (f:write text)))
@@ -56,11 +66,12 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
         recoloured (original:gsub "(:kind :sphere[^}]-:color %[)[^%]]*%]" "%11 1 0]" 1)
         added (recoloured:gsub ":objects %[" ":objects [{:kind :sphere :radius 1 :pos [0 0 14] :color [1 1 1]}\n" 1)
         broken (recoloured:gsub "}%s*$" "")]
-    (var now 1000)
     (fn step! [text]
+      ;; The clock moved forward instead of waiting: first too soon (nothing loads),
+      ;; then past the settle time.
       (write! path text)
-      (set now (+ now 0.15)) (play.poll-file! now)
-      (set now (+ now 0.3)) (play.poll-file! now)
+      (play.poll-file! (+ (filestat.now) 0.05))
+      (play.poll-file! (+ (filestat.now) 0.3))
       (case (play.current-plan)
         plan (frame.render-to-canvas! state.cache canvas state.scene plan state.cam))
       (canvas-bytes canvas))
@@ -87,7 +98,33 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
         (print (.. "  the overlay says: " (tostring state.error))))
       (let [image4 (step! recoloured)]
         (report "fixing the file clears the message and renders again"
-                (and (= state.error nil) (= image4 image1)))))
+                (and (= state.error nil) (= image4 image1))))
+      ;; A file still being written is not loaded, however late the poll: half of it,
+      ;; written just now, polled at once and again a second later (a slow player)
+      ;; after the writer wrote the same half again.
+      (let [half (recoloured:sub 1 (math.floor (/ (length recoloured) 2)))
+            reloads state.reloads]
+        (write! path half)
+        (play.poll-file! (filestat.now))
+        (write! path half)
+        (play.poll-file! (+ (filestat.now) 0.1))
+        (report "a file being rewritten is not loaded half-written, whatever the poll rate"
+                (and (= state.reloads reloads) (= state.error nil)))
+        (write! path recoloured)
+        (play.poll-file! (+ (filestat.now) 0.3)))
+      ;; The file replaced by a directory: said so (not 'deleted'), the scene stays.
+      (os.remove path)
+      (os.execute (.. "mkdir '" path "'"))
+      (play.poll-file! (+ (filestat.now) 0.05))
+      (play.poll-file! (+ (filestat.now) 1.5))
+      (let [image5 (do (case (play.current-plan)
+                         plan (frame.render-to-canvas! state.cache canvas state.scene plan state.cam))
+                       (canvas-bytes canvas))]
+        (report "a file replaced by a directory is reported as such and the scene keeps running"
+                (and (= image5 image1) (not= nil state.message)
+                     (not= nil (state.message:find "it is a directory" 1 true))))
+        (print (.. "  the player says: " (tostring state.message))))
+      (os.execute (.. "rmdir '" path "'")))
     (os.remove path)))
 
 (fn run [o]
@@ -99,7 +136,6 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
         times {:value [] :structural []}
         counts {:value 0 :structural 0 :broken 0}
         cycles o.cycles]
-    (var now 0)
     (var spheres 1)
     (var shade 0.5)
     (var memory-warm nil)
@@ -111,9 +147,10 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
         plan (frame.render-to-canvas! state.cache canvas state.scene plan state.cam))
       (centre-pixel canvas))
     (fn settle! []
-      ;; Two polls a settle time apart: the watcher sees the edit, then loads it.
-      (set now (+ now 0.15)) (play.poll-file! now)
-      (set now (+ now 0.3)) (play.poll-file! now))
+      ;; Two polls, the clock moved forward instead of waiting: too soon after the
+      ;; write (nothing loads), then past the settle time (it loads).
+      (play.poll-file! (+ (filestat.now) 0.05))
+      (play.poll-file! (+ (filestat.now) 0.3)))
     (write! path (scene-text {: spheres : shade}))
     (set state.quiet? true)
     (play.start! {:scene path :frames 0})

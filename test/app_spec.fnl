@@ -60,7 +60,7 @@
         (write-file "test/out/bad.fnl" "{:objects [{:kind :sphere\n  :radius -2}]}")
         (let [(code out) (run "--render test/out/bad.fnl --out test/out/bad.png")]
           (assert.are.equal 1 code)
-          (assert.truthy (out:find "test/out/bad.fnl:2: objects[1].radius: must be a positive number, got -2" 1 true)))))
+          (assert.truthy (out:find "test/out/bad.fnl:2: objects[1].radius: must be a positive number from 1e-6 to 1e7, got -2" 1 true)))))
 
     (it "rejects bad arguments with the usage, exit code 1"
       (fn []

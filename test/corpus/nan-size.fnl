@@ -1,3 +1,3 @@
-;; expect: test/corpus/nan-size.fnl:3: objects[1].size[3]: must be three positive numbers like [1 1 1], got nan
+;; expect: test/corpus/nan-size.fnl:3: objects[1].size[3]: must be a positive number from 1e-6 to 1e7, got nan
 {:objects [{:kind :box
             :size [1 1 (/ 0 0)]}]}

@@ -1,3 +1,3 @@
-;; expect: test/corpus/range-fov-zero.fnl:2: camera.fov: must be a number of degrees above 0 and below 180, got 0
+;; expect: test/corpus/range-fov-zero.fnl:2: camera.fov: must be a number of degrees from 0.1 to 179, got 0
 {:camera {:fov 0}
  :objects []}

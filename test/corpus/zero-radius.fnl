@@ -1,3 +1,3 @@
-;; expect: test/corpus/zero-radius.fnl:3: objects[1].radius: must be a positive number, got 0
+;; expect: test/corpus/zero-radius.fnl:3: objects[1].radius: must be a positive number from 1e-6 to 1e7, got 0
 {:objects [{:kind :sphere
             :radius 0}]}
