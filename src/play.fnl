@@ -113,8 +113,7 @@ itself is shown like a broken file, and the last good scene keeps running."
   "Look at the watched file, ten times a second at most (quick enough to feel
 immediate, and it costs nothing). `?now` overrides the wall clock (the soak test
 moves it forward instead of waiting)."
-  (let [clock (filestat.now)
-        now (or ?now clock)]
+  (let [clock (filestat.now)]
     (when (and state.path state.watch (or ?now (>= clock state.poll-at)))
       (set state.poll-at (+ clock 0.1))
       (let [info (file-info state.path)]

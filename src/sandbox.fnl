@@ -295,4 +295,4 @@ fixed description for anything else (never calling a metamethod of it)."
       "the scene raised an error that is not a message"))
 
 {: limits : check-source : check-forms : parse : compile : safe-env : run
- : error-message : sandbox-error? : stop}
+ : error-message : sandbox-error?}
