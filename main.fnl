@@ -1,26 +1,27 @@
 ;; The LÖVE app: parses the command line, then either plays a scene interactively or
 ;; runs one command-line mode (render, print-shader, bench) and exits.
 
-(local cli (require :src.cli))
+(local cli (require :src.app.cli))
 
 (fn fail! [message]
   (io.stderr:write (.. "error: " message "\n"))
   (love.event.quit 1))
 
 (fn print-shader [o]
-  (let [frame (require :src.frame)
-        codegen (require :src.codegen)
+  (let [frame (require :src.backend.frame)
+        codegen (require :src.render.codegen)
         (scene err) (frame.load-scene o.scene)]
     (if (not scene) (fail! err)
         (let [(plan perr) (frame.plan-for scene {:view o.view})]
           (if (not plan) (fail! perr)
-              (do (io.write (codegen.shader plan (or o.target :love)))
-                  (love.event.quit 0)))))))
+              (case (codegen.shader plan (or o.target :love))
+                text (do (io.write text) (love.event.quit 0))
+                (nil cerr) (fail! cerr)))))))
 
 (fn render [o]
-  (let [frame (require :src.frame)
-        gpu (require :src.gpu)
-        camera (require :src.camera)
+  (let [frame (require :src.backend.frame)
+        gpu (require :src.backend.gpu)
+        camera (require :src.render.camera)
         (scene err) (frame.load-scene o.scene)]
     (if (not scene) (fail! err)
         (let [(plan perr) (frame.plan-for scene {:view o.view})
@@ -35,29 +36,65 @@
                                (love.event.quit 0))
                       (_ werr) (fail! werr)))))))))
 
+(fn probe [o]
+  (let [frame (require :src.backend.frame)
+        probe-mod (require :src.verify.probe)
+        (scene err) (frame.load-scene o.scene)]
+    (if (not scene) (fail! err)
+        (let [(plan perr) (frame.plan-for scene {:view :glow :probe? true})
+              (points terr) (if plan (probe-mod.parse-points (io.read :*a) "stdin")
+                                (values nil perr))
+              (vals verr) (if (not points) (values nil terr)
+                              o.gpu? ((. (require :src.backend.probe) :gpu-values) scene plan points)
+                              (probe-mod.cpu-values scene plan points))]
+          (if (not vals) (fail! verr)
+              (do (each [_ v (ipairs vals)] (io.write (probe-mod.format-line v) "\n"))
+                  (love.event.quit 0)))))))
+
+(fn tree [o]
+  (let [frame (require :src.backend.frame)
+        lower (require :src.sdf.lower)
+        (scene err) (frame.load-scene o.scene)]
+    (if (not scene) (fail! err)
+        (case (frame.plan-for scene)
+          (nil perr) (fail! perr)
+          plan (do (each [_ g (ipairs plan.kinds)]
+                     (io.write (.. g.kind " x" g.count "  exact  (kind-grouped: "
+                                   (table.concat (icollect [_ ob (ipairs g.objects)]
+                                                   (.. "objects[" ob.index "]")) " ")
+                                   ")\n")))
+                   (when plan.tape
+                     (each [_ l (ipairs (lower.describe plan.tape))] (io.write l "\n")))
+                   (love.event.quit 0))))))
+
+(fn kinds []
+  (each [_ l (ipairs ((. (require :src.sdf.card) :lines)))] (io.write l "\n"))
+  (love.event.quit 0))
+
 (fn bench [o]
-  (let [bench-mod (require :src.bench)]
+  (let [bench-mod (require :src.app.bench)]
     (case (bench-mod.run-scene o)
       true (love.event.quit 0)
       (_ err) (fail! err))))
 
 (fn bench-report [o]
-  (let [bench-mod (require :src.bench)]
+  (let [bench-mod (require :src.app.bench)]
     (case (bench-mod.report o)
       true (love.event.quit 0)
       (_ err) (fail! err))))
 
 (fn soak [o]
-  (let [soak-mod (require :src.soak)]
+  (let [soak-mod (require :src.app.soak)]
     (case (soak-mod.run o)
       true (love.event.quit 0)
       (_ err) (fail! err))))
 
 (fn play [o]
-  (let [play-mod (require :src.play)]
+  (let [play-mod (require :src.app.play)]
     (play-mod.start! o)))
 
 (local modes {:print-shader print-shader :render render :bench bench
+              :probe probe :tree tree :kinds kinds
               :bench-report bench-report :soak soak :play play})
 
 (fn headless-error-handler [message]

@@ -1,5 +1,5 @@
 ;; The real app, run headless (SDL_VIDEODRIVER=offscreen) through its command line.
-(local png (require :src.png))
+(local png (require :src.util.png))
 
 (fn run [args]
   "Run `love . ARGS` headless; returns exit code and combined output."

@@ -1,6 +1,6 @@
-;; Specs for src/camera.fnl: the article's forward vector and basis, primary rays,
+;; Specs for src/render/camera.fnl: the article's forward vector and basis, primary rays,
 ;; movement and the clamps on pitch, yaw and field of view.
-(local camera (require :src.camera))
+(local camera (require :src.render.camera))
 
 (local rad (/ math.pi 180))
 

@@ -1,5 +1,5 @@
-;; Specs for src/cli.fnl: every mode, the defaults, and the error for each bad argument.
-(local cli (require :src.cli))
+;; Specs for src/app/cli.fnl: every mode, the defaults, and the error for each bad argument.
+(local cli (require :src.app.cli))
 
 (fn parse-error [args]
   (let [(o err) (cli.parse args)]

@@ -5,8 +5,8 @@
 ;; not fixed yet: its test is pending. Every file is also run through the real app,
 ;; which must exit 1 with the message and without a traceback, and no file may leave
 ;; anything behind in test/out/corpus-trace/ (where the forbidden ones try to write).
-(local scene (require :src.scene))
-(local plan (require :src.plan))
+(local scene (require :src.scene.load))
+(local plan (require :src.render.plan))
 
 (local corpus-dir "test/corpus")
 (local trace-dir "test/out/corpus-trace")

@@ -9,9 +9,11 @@
 ;; case is bounded by the loader's own step and memory limits. One mutation in twenty
 ;; inserts a hostile fragment (compile-time code in key position, huge strings, bytes
 ;; that are not UTF-8, holes in vectors, ...), and every message must be safe to print.
-(local scene (require :src.scene))
-(local plan (require :src.plan))
-(local text (require :src.text))
+(local scene (require :src.scene.load))
+(local emit-lua (require :src.sdf.emit-lua))
+(local codegen (require :src.render.codegen))
+(local plan (require :src.render.plan))
+(local text (require :src.util.text))
 
 (local default-seed 20250611)
 (local cases 10000)
@@ -69,13 +71,22 @@
 (local odd-snippets ["(" ")" "[" "]" "{" "}" "\"" ":" "#" "~" "@" "`" "," "\\" ";" "\n"
                      "nil" "(/ 0 0)" "[]" "{}" "\"\"" ":kind" ":objects" "(fn [] 1)"
                      "..." "&" "(. nil 1)" "(string.rep \"x\" 10)" "#[]" "$" "x" "0" "-"
-                     "(do)" "(values)" "(length nil)" "{:kind :sphere}" "{1 2}" "1e999"])
+                     "(do)" "(values)" "(length nil)" "{:kind :sphere}" "{1 2}" "1e999"
+                     ;; Tree nodes: empty, odd and unbounded children, deep wrappers.
+                     "{:kind :union :children []}" "{:kind :twist :children [{:kind :plane}]}"
+                     ":children" "[{:kind :sphere} {:kind :box}]" "{:kind :repeat :period [0 0 0]}"
+                     "{:kind :smooth-union :radius 0 :children [{:kind :sphere} 1]}"
+                     "{:kind :round :children [{:kind :round :children [{:kind :round}]}]}"])
 
 (local extra-keywords [":kind" ":sphere" ":box" ":plane" ":torus" ":pos" ":radius" ":size"
                        ":color" ":height" ":objects" ":camera" ":light" ":render"
                        ":environment" ":name" ":yaw" ":pitch" ":fov" ":max-steps"
                        ":epsilon" ":draw-distance" ":reflections" ":shadows" ":glow"
-                       ":scale" ":radus" ":" ":1" ":nil"])
+                       ":scale" ":radus" ":" ":1" ":nil"
+                       ;; Scene trees.
+                       ":children" ":union" ":subtraction" ":smooth-union" ":twist" ":bend"
+                       ":repeat" ":polar" ":period" ":count" ":kernel" ":exp" ":mirror"
+                       ":rotate" ":axis" ":angle" ":normal" ":thickness" ":onion" ":displace"])
 
 (fn random-span [rng src max-len]
   (let [n (length src)
@@ -237,8 +248,15 @@ a hostile fragment one time in twenty."
         :runtime)))
 
 (fn load-and-plan [src file]
+  ;; A scene that loads must also lower, emit its CPU evaluator and its shader.
   (let [(s err) (scene.load-string src file)]
-    (if s (plan.scene->plan s) (values nil err))))
+    (if s
+        (case (plan.scene->plan s)
+          p (do (when p.tape (emit-lua.compile p.tape))
+                (assert (codegen.shader p :core))
+                p)
+          (nil perr) (values nil perr))
+        (values nil err))))
 
 (fn read-file [path]
   (with-open [f (assert (io.open path :rb))] (f:read :*a)))

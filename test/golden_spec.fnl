@@ -1,6 +1,6 @@
 ;; Golden images: every scene renders through the real app (LÖVE on Mesa) and matches
-;; its PNG in test/golden/ within the scene's budget (see src/golden.fnl for budgets).
-(local golden (require :src.golden))
+;; its PNG in test/golden/ within the scene's budget (see src/verify/golden.fnl for budgets).
+(local golden (require :src.verify.golden))
 
 (describe "golden images"
   (fn []
@@ -16,7 +16,7 @@
     (it "counts a changed image as over budget"
       (fn []
         ;; The comparison itself must see a difference: invert one image's red channel.
-        (let [png (require :src.png)
+        (let [png (require :src.util.png)
               a (assert (png.read-file "test/golden/seed.png"))
               b (assert (png.read-file "test/golden/seed.png"))]
           (for [i 0 (- (* a.width a.height 4) 1) 4]

@@ -1,5 +1,5 @@
 ;; Every scene in scenes/, rendered by the generated GLSL through OSMesa, against the CPU
-;; reference marcher (src/reference.fnl) on sampled pixels: a jittered grid plus pixels
+;; reference marcher (src/verify/reference.fnl) on sampled pixels: a jittered grid plus pixels
 ;; beside silhouettes, shadow edges and reflected edges.
 
 ;; A pixel passes when its largest channel difference is at most 2/255 (piglit's probe
@@ -55,8 +55,8 @@
                         :glow {:over 0 :max 1}
                         :heat {:over 14 :max 6.5}})
 
-(local headless (require :src.headless))
-(local codegen (require :src.codegen))
+(local headless (require :src.backend.headless))
+(local codegen (require :src.render.codegen))
 (local {: scene-files : prepare : gpu-render : compare-image : passes?
         : describe-failures : report-line} (require :test.support.gpu-check))
 

@@ -1,5 +1,5 @@
-;; Specs for src/headless.fnl: OSMesa offscreen rendering of fragment shaders, uniforms, float targets and errors.
-(local headless (require :src.headless))
+;; Specs for src/backend/headless.fnl: OSMesa offscreen rendering of fragment shaders, uniforms, float targets and errors.
+(local headless (require :src.backend.headless))
 
 (local gradient-source "#version 330 core
 out vec4 fragColor;

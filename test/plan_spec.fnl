@@ -1,7 +1,7 @@
-;; Specs for src/plan.fnl: kinds and counts, features, views, the structure key and the
+;; Specs for src/render/plan.fnl: kinds and counts, features, views, the structure key and the
 ;; uniform budget.
-(local scene (require :src.scene))
-(local plan (require :src.plan))
+(local scene (require :src.scene.load))
+(local plan (require :src.render.plan))
 
 (fn load [source]
   (assert (scene.load-string source "t.fnl")))

@@ -1,7 +1,7 @@
-;; Specs for src/png.fnl: round trips, every filter type, RGB input and rejection of bad files.
+;; Specs for src/util/png.fnl: round trips, every filter type, RGB input and rejection of bad files.
 (local ffi (require :ffi))
 (local bit (require :bit))
-(local png (require :src.png))
+(local png (require :src.util.png))
 
 (fn random-pixels [n seed]
   (math.randomseed seed)

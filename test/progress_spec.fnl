@@ -1,6 +1,6 @@
-;; Progressive rendering's schedule (src/progress.fnl): how a heavy frame is split into
+;; Progressive rendering's schedule (src/app/progress.fnl): how a heavy frame is split into
 ;; bands drawn one per frame, with frame times fed in (no clock, no GPU).
-(local progress (require :src.progress))
+(local progress (require :src.app.progress))
 
 (fn draw-frame! [p height rows-drawn]
   (let [(y0 y1) (progress.rows p height)]

@@ -1,6 +1,6 @@
-;; Specs for src/registry.fnl: kinds, parameters, CPU distance functions at known points
+;; Specs for src/sdf/registry.fnl: kinds, parameters, CPU distance functions at known points
 ;; and the uniform packers (camera-relative values).
-(local registry (require :src.registry))
+(local registry (require :src.sdf.registry))
 
 (fn near [expected actual ?tol]
   (let [tol (or ?tol 1e-12)]

@@ -1,10 +1,10 @@
-;; The accuracy-against-run-time report (src/report.fnl, tools/report.fnl): the Pareto
+;; The accuracy-against-run-time report (src/verify/report.fnl, tools/report.fnl): the Pareto
 ;; front, the pieces the sweep is built from, and a quick end-to-end run.
 
-(local report (require :src.report))
-(local reference (require :src.reference))
-(local png (require :src.png))
-(local headless (require :src.headless))
+(local report (require :src.verify.report))
+(local reference (require :src.verify.reference))
+(local png (require :src.util.png))
+(local headless (require :src.backend.headless))
 
 (fn row [name ms err ?gpu]
   {:name name :ms ms :error err :gpu-error ?gpu})

@@ -1,10 +1,10 @@
-;; The sandbox around scene files (src/sandbox.fnl) and the safe text of messages
-;; (src/text.fnl): what a hostile file cannot do, and that nothing it tries outlives
+;; The sandbox around scene files (src/scene/sandbox.fnl) and the safe text of messages
+;; (src/util/text.fnl): what a hostile file cannot do, and that nothing it tries outlives
 ;; its own load.
 (local fennel (require :fennel))
-(local scene (require :src.scene))
-(local sandbox (require :src.sandbox))
-(local text (require :src.text))
+(local scene (require :src.scene.load))
+(local sandbox (require :src.scene.sandbox))
+(local text (require :src.util.text))
 
 (fn write-file [path data]
   (with-open [f (assert (io.open path :wb))] (f:write data)))
@@ -110,7 +110,7 @@
         (let [(_ err) (scene.load-string (.. "{:objects [] :name \"((((\" ; [[[[\n "
                                              (string.rep "(" 5000) (string.rep ")" 5000) "}")
                                          "t.fnl")]
-          (assert.are.equal "t.fnl:2: the scene nests deeper than 64 levels; scenes are flat lists of objects"
+          (assert.are.equal "t.fnl:2: the scene nests deeper than 100 levels of brackets"
                             err))))))
 
 (describe "sandbox: limits"

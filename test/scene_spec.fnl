@@ -1,6 +1,6 @@
-;; Specs for src/scene.fnl: the seed scene's values, defaults, and the exact
+;; Specs for src/scene/load.fnl: the seed scene's values, defaults, and the exact
 ;; "file:line: field: reason" messages for bad input.
-(local scene (require :src.scene))
+(local scene (require :src.scene.load))
 
 (fn load-error [source ?file]
   "The error message for scene `source`; fails when the scene loads."
@@ -291,7 +291,7 @@
           (assert.are.equal (.. "t.fnl:1:1: Compile error: unknown identifier: io" hint)
                             (load-error "(io.open \"x\")"))
           (assert.are.equal (.. "t.fnl:1:1: Compile error: unknown identifier: require" hint)
-                            (load-error "(require :src.scene)"))
+                            (load-error "(require :src.scene.load)"))
           (assert.are.equal (.. "t.fnl:1:1: Compile error: unknown identifier: load" hint)
                             (load-error "(load \"return 1\")"))
           (assert.are.equal (.. "t.fnl:1:1: Compile error: unknown identifier: setmetatable" hint)
@@ -428,8 +428,8 @@
       (fn []
         (let [fennel (require :fennel)]
           (assert.is_nil (scene.load-string "(macro m [] (io.open \"x\")) (m)" "t.fnl"))
-          (let [loader (fennel.searcher :src.cli)
-                (ok err) (pcall loader :src.cli)]
+          (let [loader (fennel.searcher :src.app.cli)
+                (ok err) (pcall loader :src.app.cli)]
             (assert (= :function (type loader)))
             (assert (= true ok) (tostring err))))))
 

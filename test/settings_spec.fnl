@@ -1,7 +1,7 @@
 ;; The render settings the accuracy report sweeps (hit test, normal method,
 ;; over-relaxation, step budget), each checked GPU against CPU on two scenes: the GLSL
 ;; and the reference implement them independently.
-(local headless (require :src.headless))
+(local headless (require :src.backend.headless))
 (local {: prepare : gpu-render : compare-image : passes? : describe-failures : report-line}
   (require :test.support.gpu-check))
 

@@ -1,10 +1,10 @@
 ;; Every shader the generator can emit passes glslangValidator and compiles and links
 ;; on the real driver (Mesa llvmpipe through OSMesa), and the uniform budget holds at
 ;; its limit.
-(local scene-mod (require :src.scene))
-(local plan-mod (require :src.plan))
-(local codegen (require :src.codegen))
-(local headless (require :src.headless))
+(local scene-mod (require :src.scene.load))
+(local plan-mod (require :src.render.plan))
+(local codegen (require :src.render.codegen))
+(local headless (require :src.backend.headless))
 
 (fn glslang-ok? [source]
   (let [path (os.tmpname)

@@ -1,10 +1,10 @@
-;; Specs for src/uniforms.fnl: names and order, camera-relative values in double
+;; Specs for src/render/uniforms.fnl: names and order, camera-relative values in double
 ;; precision, padding in uber plans, feature uniforms and value counts.
 (local ffi (require :ffi))
-(local scene (require :src.scene))
-(local plan (require :src.plan))
-(local camera (require :src.camera))
-(local uniforms (require :src.uniforms))
+(local scene (require :src.scene.load))
+(local plan (require :src.render.plan))
+(local camera (require :src.render.camera))
+(local uniforms (require :src.render.uniforms))
 
 (fn load [source]
   (assert (scene.load-string source "t.fnl")))

@@ -1,6 +1,6 @@
 ;; The file watcher's rules, with a fake file and clock: a version is loaded once the
 ;; file has not been written for the settle time, judged by its modification time.
-(local watch (require :src.watch))
+(local watch (require :src.app.watch))
 
 (fn info [content mtime ?coarse?]
   {: mtime :coarse? ?coarse? :size (length content) : content})

@@ -1,2 +1,2 @@
-;; expect: test/corpus/kind-escapes.fnl:2: objects[1].kind: unknown kind "\027[2Jsphere"; known kinds: :sphere :box :plane
+;; expect: test/corpus/kind-escapes.fnl:2: objects[1].kind: unknown kind "\027[2Jsphere" (`love . --kinds` lists them all)
 {:objects [{:kind "\27[2Jsphere"}]}

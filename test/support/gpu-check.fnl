@@ -1,14 +1,14 @@
 ;; Shared by the GPU-vs-CPU specs: render a scene's generated :core shader through
 ;; OSMesa and compare it with the CPU reference marcher on sampled pixels.
 
-(local headless (require :src.headless))
-(local scene (require :src.scene))
-(local plan (require :src.plan))
-(local camera (require :src.camera))
-(local codegen (require :src.codegen))
-(local uniforms (require :src.uniforms))
-(local reference (require :src.reference))
-(local compare (require :src.compare))
+(local headless (require :src.backend.headless))
+(local scene (require :src.scene.load))
+(local plan (require :src.render.plan))
+(local camera (require :src.render.camera))
+(local codegen (require :src.render.codegen))
+(local uniforms (require :src.render.uniforms))
+(local reference (require :src.verify.reference))
+(local compare (require :src.verify.compare))
 
 ;; A pixel passes when its largest channel difference is at most 2/255 (piglit's probe
 ;; tolerance for floats rounded to 8 bits).

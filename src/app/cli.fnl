@@ -1,0 +1,105 @@
+;; Command-line arguments of the app: which mode to run and with what, checked before
+;; anything opens. Pure: a list of strings in, an options table or an error out.
+
+(local plan (require :src.render.plan))
+
+(local default-scene "scenes/seed.fnl")
+
+(local usage
+  "usage: love . [SCENE]                       play SCENE (default scenes/seed.fnl)
+       love . [SCENE] --shot FILE.png [--frames N]   play N frames, save the window, quit
+       love . --render SCENE --out FILE.png [--size WxH] [--view VIEW]
+       love . --print-shader SCENE [--view VIEW] [--target love|core]
+       love . --bench SCENE [--size WxH] [--frames N]
+       love . --bench-report [--frames N]    the benchmark behind `make bench`
+       love . --soak [--cycles N]            hot-reload soak test (edits a temp scene)
+       love . --probe SCENE [--gpu]          distance and material at points `x y z` read from stdin
+       love . --tree SCENE                   the lowered scene tree, each node's class and bounds
+       love . --kinds                        every primitive and operation, with parameters
+VIEW is one of shaded, normals, glow, heat.")
+
+(local value-flags {:--out :out :--size :size :--frames :frames :--view :view
+                    :--target :target :--shot :shot :--cycles :cycles})
+(local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench
+                   :--probe :probe :--tree :tree})
+
+(fn parse-size [s]
+  (let [(w h) (s:match "^(%d+)[xX](%d+)$")
+        w (tonumber w) h (tonumber h)]
+    (when (and w h (>= w 1) (>= h 1) (<= w 16384) (<= h 16384))
+      [w h])))
+
+(fn normalize-path [p]
+  "`p` without ./ segments and repeated slashes, for comparing two command-line paths."
+  (var out (p:gsub "/+" "/"))
+  (var again? true)
+  (while again?
+    (let [(next-out n) (out:gsub "/%./" "/")]
+      (set out next-out)
+      (set again? (> n 0))))
+  (pick-values 1 (-> out (: :gsub "^%./" "") (: :gsub "/%.$" ""))))
+
+(fn same-path? [a b]
+  (and a b (= (normalize-path a) (normalize-path b))))
+
+(fn check-options [o]
+  (if (and (= o.mode :render) (not o.out))
+      (values nil "--render needs --out FILE.png")
+      (and o.out (not (o.out:match "%.png$")))
+      (values nil (.. "--out must name a .png file, got " o.out))
+      (and o.shot (not (o.shot:match "%.png$")))
+      (values nil (.. "--shot must name a .png file, got " o.shot))
+      (or (same-path? o.out o.scene) (same-path? o.shot o.scene))
+      (values nil (.. "the output file is the scene file " o.scene "; choose another name"))
+      (and o.shot (not= o.mode :play))
+      (values nil "--shot only goes with playing a scene")
+      (and o.gpu? (not= o.mode :probe))
+      (values nil "--gpu only goes with --probe")
+      (and o.view (not (plan.view? o.view)))
+      (values nil (.. "--view must be one of " (table.concat plan.views ", ") ", got " o.view))
+      (and o.target (not= o.target "love") (not= o.target "core"))
+      (values nil (.. "--target must be love or core, got " o.target))
+      o))
+
+(fn parse [args]
+  "Parse the game's arguments (after LÖVE's own). Returns an options table
+{:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:probe|:tree|:kinds
+ :scene :out :size [w h] :frames n :view v :target t :gpu? (probe on the GPU)} or nil and a message (the usage text follows it)."
+  (let [o {:mode :play :frames 5 :cycles 300}]
+    (var i 1)
+    (var err nil)
+    (while (and (not err) (<= i (length args)))
+      (let [a (. args i)
+            next-arg (. args (+ i 1))]
+        (if (. mode-flags a)
+            (if (not= o.mode :play) (set err (.. a ": only one mode at a time"))
+                (or (= next-arg nil) (next-arg:match "^%-%-"))
+                (set err (.. a " needs a scene file"))
+                (do (set o.mode (. mode-flags a))
+                    (set o.scene next-arg)
+                    (set i (+ i 1))))
+            (= a "--gpu") (set o.gpu? true)
+            (or (= a "--bench-report") (= a "--soak") (= a "--kinds"))
+            (if (not= o.mode :play) (set err (.. a ": only one mode at a time"))
+                (set o.mode (a:sub 3)))
+            (. value-flags a)
+            (if (= next-arg nil) (set err (.. a " needs a value"))
+                (do (tset o (. value-flags a) next-arg)
+                    (set i (+ i 1))))
+            (a:match "^%-%-") (set err (.. "unknown option " a))
+            o.scene (set err (.. "unexpected argument " a))
+            (set o.scene a)))
+      (set i (+ i 1)))
+    (when (and (not err) o.size)
+      (let [size (parse-size o.size)]
+        (if size (set o.size size)
+            (set err (.. "--size must look like 1920x1080, got " o.size)))))
+    (each [_ field (ipairs [:frames :cycles])]
+      (when (and (not err) (= (type (. o field)) :string))
+        (let [n (tonumber (. o field))]
+          (if (and n (>= n 1) (< n math.huge) (= n (math.floor n))) (tset o field n)
+              (set err (.. "--" field " must be a whole number >= 1, got " (. o field)))))))
+    (when (not o.scene) (set o.scene default-scene))
+    (if err (values nil err) (check-options o))))
+
+{: parse : usage : default-scene : same-path?}

@@ -1,0 +1,358 @@
+;; Interactive play: the article's fly camera on keyboard, mouse and gamepad, rendering
+;; at the window's full resolution (times a render scale), with a HUD, debug views,
+;; fullscreen and screenshots. Installs LÖVE callbacks when started.
+
+(local camera (require :src.render.camera))
+(local frame (require :src.backend.frame))
+(local gpu (require :src.backend.gpu))
+(local plan-mod (require :src.render.plan))
+(local watch (require :src.app.watch))
+(local filestat (require :src.util.filestat))
+(local progress (require :src.app.progress))
+(local text (require :src.util.text))
+
+(local move-speed 10)   ; world units per second
+(local turn-speed 90)   ; degrees per second
+(local fov-speed 30)    ; degrees per second
+(local mouse-degrees-per-pixel 0.2)
+(local dead-zone 0.2)   ; the article's gamepad dead zone
+
+(local state {:scene nil :path nil :cam nil :view :shaded :reflections 0
+              :scale 1 :hud? true :cache nil :canvas nil :message nil
+              :message-until 0 :error nil :gamepad nil :watch nil :poll-at 0
+              :reloads 0 :progress (progress.new)})
+
+(fn scenes-in-folder []
+  (let [items (love.filesystem.getDirectoryItems "scenes")]
+    (table.sort items)
+    (icollect [_ name (ipairs items)]
+      (when (name:match "%.fnl$") (.. "scenes/" name)))))
+
+(fn say! [message]
+  (let [message (text.printable message)]
+    (when (not state.quiet?) (print message))
+    (set state.message message))
+  (set state.message-until (+ (love.timer.getTime) 4)))
+
+;;; Loading and hot reload
+
+(fn file-info [path]
+  "The watched file's modification time, size and text; {:problem why} when it is
+there but cannot be read; nil when it is missing. The text is read before the time,
+so a write during the read shows as a newer time (see watch.poll!). Files found only
+inside the game folder (LÖVE run from elsewhere) have whole-second times."
+  (let [content (frame.read-text path)
+        st (filestat.stat path)]
+    (if st
+        (if (= st.kind :directory) {:problem "it is a directory"}
+            (or (not st.readable?) (not content)) {:problem "it cannot be read"}
+            {:mtime st.mtime :coarse? st.coarse? :size st.size : content})
+        (let [i (love.filesystem.getInfo path :file)]
+          (when (and i content) {:mtime i.modtime :coarse? true :size i.size : content})))))
+
+(fn same-camera? [a b]
+  (and a b (= a.yaw b.yaw) (= a.pitch b.pitch) (= a.fov b.fov)
+       (= (. a.pos 1) (. b.pos 1)) (= (. a.pos 2) (. b.pos 2)) (= (. a.pos 3) (. b.pos 3))))
+
+(fn plan-with [scene reflections]
+  (plan-mod.scene->plan scene {:view state.view :reflections reflections}))
+
+(fn load-unprotected! [path fresh?]
+  "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
+file, not an edit) resets the camera and the player's settings; an edit keeps them,
+unless the file's own camera or settings changed and the player left them alone.
+On any failure the last good scene keeps running and the error is shown."
+  (let [start (love.timer.getTime)
+        info (file-info path)
+        old state.scene
+        (scene err) (frame.load-scene path)]
+    (when (or fresh? (not state.watch))
+      (set state.watch (watch.new info)))
+    (watch.loaded! state.watch info)
+    (if (not scene)
+        (do (set state.error err)
+            (when fresh? (set state.path path))
+            (when (not state.quiet?) (io.stderr:write (.. err "\n"))))
+        (let [file-changed? (fn [get] (or fresh? (not old) (not= (get scene) (get old))))
+              reflections (if (file-changed? #$.render.reflections)
+                              scene.render.reflections
+                              state.reflections)
+              (plan perr) (plan-with scene reflections)
+              compiles-before state.cache.compiles
+              (shader serr) (if plan (gpu.shader-for state.cache plan) (values nil perr))]
+          (if (not shader)
+              (do (set state.error serr)
+                  (when (not state.quiet?) (io.stderr:write (.. serr "\n"))))
+              (let [file-cam (camera.from-scene scene)
+                    user-moved? (and old state.cam (not (same-camera? state.cam (camera.from-scene old))))]
+                (when (or fresh? (not state.cam)
+                          (and (not user-moved?) (not (same-camera? file-cam (camera.from-scene old)))))
+                  (set state.cam file-cam))
+                (when (file-changed? #$.render.scale) (set state.scale scene.render.scale))
+                (set state.reflections reflections)
+                (set state.scene scene)
+                (set state.path path)
+                (set state.error nil)
+                (set state.reloads (+ state.reloads 1))
+                (let [ms (* 1000 (- (love.timer.getTime) start))
+                      compiled? (> state.cache.compiles compiles-before)]
+                  (set state.last-load {:ms ms :compiled? compiled?})
+                  (say! (string.format "%s %s in %.0f ms (%s)" (if fresh? "loaded" "reloaded")
+                                       path ms (if compiled? "shader compiled" "uniforms only"))))))))))
+
+(fn load! [path fresh?]
+  "Load the scene at `path` (see load-unprotected!); a failure inside the loader
+itself is shown like a broken file, and the last good scene keeps running."
+  (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh?)]
+    (when (not ok?)
+      (set state.error (.. path ": the scene could not be loaded (an internal error): "
+                           (tostring err))))
+    (set state.progress (progress.new))))
+
+(fn poll-file! [?now]
+  "Look at the watched file, ten times a second at most (quick enough to feel
+immediate, and it costs nothing). `?now` overrides the wall clock (the soak test
+moves it forward instead of waiting)."
+  (let [clock (filestat.now)]
+    (when (and state.path state.watch (or ?now (>= clock state.poll-at)))
+      (set state.poll-at (+ clock 0.1))
+      (let [info (file-info state.path)]
+        (case (watch.poll! state.watch info (or ?now (filestat.now)))
+          :changed (load! state.path false)
+          :deleted (say! (.. state.path " was deleted; the last good scene keeps running"))
+          :unreadable (say! (.. state.path ": " (or state.watch.problem "it cannot be read")
+                                "; the last good scene keeps running")))))))
+
+(fn current-plan []
+  "The plan of the scene on screen, lowered again only when the scene, the view or
+the reflection count changed (not every frame)."
+  (let [memo state.plan-memo]
+    (if (and memo (= memo.scene state.scene) (= memo.view state.view)
+             (= memo.reflections state.reflections))
+        (values memo.plan memo.err)
+        (let [(plan err) (plan-with state.scene state.reflections)]
+          (set state.plan-memo {:scene state.scene :view state.view
+                                :reflections state.reflections : plan : err})
+          (values plan err)))))
+
+(fn ensure-canvas! []
+  (let [(ww wh) (love.graphics.getDimensions)
+        w (math.max 1 (math.floor (* ww state.scale)))
+        h (math.max 1 (math.floor (* wh state.scale)))]
+    (when (or (not state.canvas)
+              (not= w (state.canvas:getWidth)) (not= h (state.canvas:getHeight)))
+      (when state.canvas (state.canvas:release))
+      (set state.canvas (love.graphics.newCanvas w h))
+      (state.canvas:setFilter :nearest :nearest)
+      (set state.progress (progress.new)))
+    state.canvas))
+
+;;; Input
+
+(fn down? [...] (love.keyboard.isDown ...))
+
+(fn handle-keyboard [dt]
+  (let [cam state.cam
+        shift? (down? :lshift :rshift)]
+    (when (down? :w) (camera.move-forward! cam (* move-speed dt)))
+    (when (down? :s) (camera.move-forward! cam (* (- move-speed) dt)))
+    (when (down? :d)
+      (if shift? (camera.strafe! cam (* move-speed dt)) (camera.turn! cam (* turn-speed dt))))
+    (when (down? :a)
+      (if shift? (camera.strafe! cam (* (- move-speed) dt)) (camera.turn! cam (* (- turn-speed) dt))))
+    (when (down? :q) (camera.pitch! cam (* turn-speed dt)))
+    (when (down? :e) (camera.pitch! cam (* (- turn-speed) dt)))
+    (when (down? :r) (camera.elevate! cam (* move-speed dt)))
+    (when (down? :f) (camera.elevate! cam (* (- move-speed) dt)))
+    (when (down? :o) (camera.zoom! cam (* (- fov-speed) dt)))
+    (when (down? :p) (camera.zoom! cam (* fov-speed dt)))))
+
+(fn axis [pad name]
+  (let [v (pad:getGamepadAxis name)]
+    (if (> (math.abs v) dead-zone) v 0)))
+
+(fn handle-gamepad [dt]
+  (let [pad state.gamepad
+        cam state.cam]
+    (when (and pad (pad:isConnected))
+      (camera.move-forward! cam (* (- (axis pad :lefty)) 2 move-speed dt))
+      (camera.strafe! cam (* (axis pad :leftx) move-speed dt))
+      (camera.turn! cam (* (axis pad :rightx) turn-speed dt))
+      (camera.pitch! cam (* (axis pad :righty) turn-speed dt))
+      ;; Triggers rest at 0 in LÖVE's gamepad mapping and go to 1 when pressed.
+      (camera.elevate! cam (* (- (pad:getGamepadAxis :triggerright)
+                                 (pad:getGamepadAxis :triggerleft))
+                              move-speed dt))
+      (when (pad:isGamepadDown :dpup) (camera.zoom! cam (* (- fov-speed) dt)))
+      (when (pad:isGamepadDown :dpdown) (camera.zoom! cam (* fov-speed dt))))))
+
+(fn change-reflections! [delta]
+  (set state.reflections (math.max 0 (math.min 16 (+ state.reflections delta))))
+  (say! (.. "reflections: " state.reflections)))
+
+(fn change-scale! [factor]
+  (set state.scale (math.max 0.1 (math.min 1 (* state.scale factor))))
+  (say! (string.format "render scale: %.2f" state.scale)))
+
+(fn cycle-view! []
+  (let [views plan-mod.views]
+    (var next-view (. views 1))
+    (each [i v (ipairs views)]
+      (when (= v state.view) (set next-view (or (. views (+ i 1)) (. views 1)))))
+    (set state.view next-view)
+    (say! (.. "view: " next-view))))
+
+(fn cycle-scene! [delta]
+  (let [paths (scenes-in-folder)]
+    (var at 0)
+    (each [i p (ipairs paths)] (when (= p state.path) (set at i)))
+    (let [n (length paths)]
+      (when (> n 0)
+        (load! (. paths (+ (% (+ at -1 delta) n) 1)) true)))))
+
+(fn toggle-fullscreen! []
+  (love.window.setFullscreen (not (love.window.getFullscreen)) :desktop))
+
+(fn screenshot! []
+  (when state.canvas
+    (let [name (os.date "screenshot-%Y%m%d-%H%M%S.png")
+          data (state.canvas:newImageData)]
+      (data:encode :png name)
+      (data:release)
+      (say! (.. "saved " (love.filesystem.getSaveDirectory) "/" name)))))
+
+(fn keypressed [key]
+  (let [alt? (down? :lalt :ralt)]
+    (case key
+      :escape (love.event.quit 0)
+      :tab (cycle-view!)
+      :h (set state.hud? (not state.hud?))
+      :f1 (set state.hud? (not state.hud?))
+      :f11 (toggle-fullscreen!)
+      :return (when alt? (toggle-fullscreen!))
+      :f12 (screenshot!)
+      :f5 (load! state.path false)
+      :k (change-reflections! -1)
+      :l (change-reflections! 1)
+      "-" (change-scale! 0.8)
+      "=" (change-scale! 1.25)
+      "[" (cycle-scene! -1)
+      "]" (cycle-scene! 1))))
+
+(fn gamepadpressed [pad button]
+  (set state.gamepad pad)
+  (case button
+    :leftshoulder (change-reflections! -1)
+    :rightshoulder (change-reflections! 1)
+    :back (cycle-view!)))
+
+(fn mousemoved [_ _ dx dy]
+  (when (and state.cam (or (love.mouse.isDown 1) (love.mouse.isDown 2)))
+    (camera.turn! state.cam (* dx mouse-degrees-per-pixel))
+    (camera.pitch! state.cam (* dy mouse-degrees-per-pixel))))
+
+;;; Drawing
+
+(fn hud-lines []
+  (let [cam state.cam
+        canvas state.canvas
+        lines [(string.format "%d fps  %.1f ms" (love.timer.getFPS)
+                              (* 1000 (love.timer.getAverageDelta)))]]
+    (when canvas
+      (table.insert lines (string.format "%dx%d (scale %.2f)" (canvas:getWidth)
+                                         (canvas:getHeight) state.scale)))
+    (when state.scene
+      (table.insert lines (.. "scene: " (text.printable state.scene.name 80) "  view: " state.view))
+      (table.insert lines (string.format "reflections: %d  fov: %.1f" state.reflections cam.fov))
+      (table.insert lines (string.format "pos: %.2f %.2f %.2f  yaw %.1f  pitch %.1f"
+                                         (. cam.pos 1) (. cam.pos 2) (. cam.pos 3)
+                                         cam.yaw cam.pitch)))
+    (when (> state.progress.bands 1)
+      (table.insert lines (string.format "progressive: %d bands, one per frame (a full frame takes %.1f s)"
+                                         state.progress.bands
+                                         (* state.progress.bands (love.timer.getAverageDelta)))))
+    (when state.last-load
+      (table.insert lines (string.format "last load: %.0f ms (%s), %d so far"
+                                         state.last-load.ms
+                                         (if state.last-load.compiled? "shader compiled" "uniforms only")
+                                         state.reloads)))
+    (when (and state.message (< (love.timer.getTime) state.message-until))
+      (table.insert lines state.message))
+    lines))
+
+(fn draw-text-box [message x y color]
+  ;; LÖVE's text layout raises on invalid UTF-8: everything shown goes through
+  ;; text.printable, and is cut to a screenful.
+  (let [font (love.graphics.getFont)
+        message (text.printable (if (> (length message) 4000) (message:sub 1 4000) message))
+        (width wrapped) (font:getWrap message (- (love.graphics.getWidth) (* 2 x) 16))
+        h (* (length wrapped) (font:getHeight))]
+    (love.graphics.setColor 0 0 0 0.6)
+    (love.graphics.rectangle :fill x y (+ width 16) (+ h 12))
+    (love.graphics.setColor (. color 1) (. color 2) (. color 3) (. color 4))
+    (love.graphics.printf message (+ x 8) (+ y 6) (+ width 1))
+    (love.graphics.setColor 1 1 1 1)))
+
+(fn draw []
+  (when state.scene
+    (let [canvas (ensure-canvas!)]
+      ;; One band of the image per frame when a whole frame would take too long.
+      (let [p state.progress
+            rows (when (> p.bands 1) [(progress.rows p (canvas:getHeight))])]
+        (case (current-plan)
+          plan (case (frame.render-to-canvas! state.cache canvas state.scene plan state.cam rows)
+                 (nil err) (set state.error err)
+                 _ (progress.drawn! p))
+          (nil err) (set state.error err)))
+      (love.graphics.setColor 1 1 1 1)
+      (love.graphics.draw canvas 0 0 0 (/ 1 state.scale) (/ 1 state.scale))))
+  (when state.hud?
+    (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))
+  (when state.error
+    (draw-text-box (.. state.error
+                       (if state.scene
+                           "\n(the last good scene keeps running; saving the file reloads it)"
+                           "\n(saving a fixed file loads it; [ and ] open the other scenes)"))
+                   8 (- (love.graphics.getHeight) 120) [1 0.45 0.4 1])))
+
+(fn shoot-and-quit! [path]
+  ;; The captured window includes the HUD and any error overlay: what a player sees.
+  (love.graphics.captureScreenshot
+    (fn [data]
+      (let [bytes (: (data:encode :png) :getString)]
+        (case (io.open path :wb)
+          out (do (out:write bytes) (out:close) (print (.. "wrote " path))
+                  (love.event.quit 0))
+          (nil err) (do (io.stderr:write (.. "error: " path ": cannot write: " err "\n"))
+                        (love.event.quit 1)))))))
+
+(fn start! [options]
+  "Play the scene file named in `options.scene`: install the LÖVE callbacks."
+  (set state.cache (gpu.new-cache))
+  (load! options.scene true)
+  (when (and options.shot (not state.scene))
+    ;; Nothing to shoot: a script waits on this run, so fail like --render does.
+    (io.stderr:write (.. "error: " (or state.error (.. options.scene ": no scene")) "\n"))
+    (love.event.quit 1))
+  (set love.update (fn [dt]
+                     (progress.measured! state.progress dt)
+                     (poll-file!)
+                     (when state.cam
+                       (handle-keyboard dt)
+                       (handle-gamepad dt))))
+  (var frames 0)
+  (set love.draw (fn []
+                   (draw)
+                   (set frames (+ frames 1))
+                   ;; Shoot once N frames are drawn and the image is whole (a
+                   ;; progressive image needs every band drawn).
+                   (when (and options.shot (not state.shooting?) (>= frames options.frames)
+                              (or (not state.scene) (progress.complete? state.progress)))
+                     (set state.shooting? true)
+                     (shoot-and-quit! options.shot))))
+  (set love.keypressed keypressed)
+  (set love.gamepadpressed gamepadpressed)
+  (set love.mousemoved mousemoved)
+  (set love.joystickadded (fn [j] (when (j:isGamepad) (set state.gamepad j)))))
+
+{: start! : state : load! : poll-file! : current-plan}

@@ -1,0 +1,51 @@
+;; One rendered frame in LÖVE: scene file in, canvas out. Shared by the player, the
+;; command-line modes and the benchmark.
+
+(local scene-mod (require :src.scene.load))
+(local plan-mod (require :src.render.plan))
+(local uniforms (require :src.render.uniforms))
+(local gpu (require :src.backend.gpu))
+
+(fn read-text [path]
+  "The text of the scene file at `path`: relative to the working directory first, then
+the bundled scenes inside the game folder (see files.read-user)."
+  (scene-mod.read-capped path))
+
+(fn load-scene [path]
+  "Load and validate the scene file at `path`: scene, or nil and a message."
+  (scene-mod.load-file path read-text))
+
+(fn render-to-canvas! [cache canvas scene plan cam ?rows]
+  "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas`; only the rows
+[y0 y1) of `?rows` when given (the rest of the canvas is kept). Returns true, or nil
+and a message when the shader does not compile."
+  (let [(shader err) (gpu.shader-for cache plan)]
+    (if (not shader)
+        (values nil err)
+        (let [(w h) (canvas:getDimensions)]
+          (love.graphics.push :all)
+          (love.graphics.setCanvas canvas)
+          (case ?rows
+            [y0 y1] (love.graphics.setScissor 0 y0 w (math.max 1 (- y1 y0)))
+            _ (love.graphics.clear 0 0 0 1))
+          (gpu.draw! shader (uniforms.pack scene plan cam w h) w h)
+          (love.graphics.pop)
+          true))))
+
+(fn write-png [canvas path]
+  "Write `canvas` as a PNG file at `path` (any path, not only LÖVE's save folder)."
+  (let [data (canvas:newImageData)
+        file-data (data:encode :png)
+        (out err) (io.open path :wb)]
+    (data:release)
+    (if out
+        (do (out:write (file-data:getString))
+            (out:close)
+            true)
+        (values nil (.. path ": cannot write: " (tostring err))))))
+
+(fn plan-for [scene ?options]
+  "The plan of `scene` (see plan.scene->plan)."
+  (plan-mod.scene->plan scene ?options))
+
+{: load-scene : read-text : render-to-canvas! : write-png : plan-for}

@@ -1,0 +1,81 @@
+;; LÖVE side of rendering: compiles generated shaders (cached by plan structure), sends
+;; uniforms and draws the full-screen quad. The only core module that touches love.*.
+
+(local codegen (require :src.render.codegen))
+(local uniforms (require :src.render.uniforms))
+
+(local max-cached-shaders 8)
+
+(fn new-cache []
+  "An empty shader cache: plan key -> compiled LÖVE shader, least recently used first.
+:compiles and :released count shaders made and released (live = compiles - released)."
+  {:shaders {} :order [] :compiles 0 :released 0})
+
+(fn touch! [cache key]
+  (for [i (length cache.order) 1 -1]
+    (when (= (. cache.order i) key) (table.remove cache.order i)))
+  (table.insert cache.order key))
+
+(fn evict! [cache]
+  (while (> (length cache.order) max-cached-shaders)
+    (let [key (table.remove cache.order 1)
+          shader (. cache.shaders key)]
+      (tset cache.shaders key nil)
+      (when shader
+        (shader:release)
+        (set cache.released (+ cache.released 1))))))
+
+(fn compile-source [source ?label]
+  "Compile GLSL `source` into a LÖVE shader, or nil and the driver's message."
+  (let [(ok? shader) (pcall love.graphics.newShader source)]
+    (if ok? shader
+        (values nil (.. (or ?label "shader") ": the generated shader did not compile:\n"
+                        (tostring shader))))))
+
+(fn shader-for [cache plan]
+  "The compiled shader for `plan`, compiling it on a cache miss. Returns the shader and
+whether it was compiled now, or nil and a message."
+  (let [cached (. cache.shaders plan.key)]
+    (if cached
+        (do (touch! cache plan.key) (values cached false))
+        (let [(source serr) (codegen.shader plan :love)
+              (shader err) (if source (compile-source source plan.key) (values nil serr))]
+          (if shader
+              (do (tset cache.shaders plan.key shader)
+                  (set cache.compiles (+ cache.compiles 1))
+                  (touch! cache plan.key)
+                  (evict! cache)
+                  (values shader true))
+              (values nil err))))))
+
+(fn love-values [u]
+  ;; LÖVE's Shader:send takes numbers for float and int, booleans for bool and one
+  ;; table per element for vectors.
+  (let [n (. uniforms.components u.type)
+        vs u.values]
+    (if (= u.type :bool) (icollect [_ v (ipairs vs)] (not= v 0))
+        (= n 1) vs
+        (fcollect [i 1 (length vs) n]
+          (fcollect [j 0 (- n 1)] (. vs (+ i j)))))))
+
+(fn send! [shader us]
+  "Send the uniform list `us` (from uniforms.pack) to `shader`, skipping any the driver
+dropped."
+  (each [_ u (ipairs us)]
+    (when (shader:hasUniform u.name)
+      (shader:send u.name ((or table.unpack unpack) (love-values u))))))
+
+(fn draw! [shader us width height]
+  "Draw the full-screen quad of `width` x `height` with `shader` into the current target."
+  (send! shader us)
+  (love.graphics.push :all)
+  (love.graphics.setShader shader)
+  (love.graphics.setColor 1 1 1 1)
+  (love.graphics.rectangle :fill 0 0 width height)
+  (love.graphics.pop))
+
+(fn finish! [canvas]
+  "Wait until the GPU has finished drawing into `canvas` (reads back one pixel)."
+  (: (canvas:newImageData 1 1 0 0 1 1) :release))
+
+{: new-cache : shader-for : compile-source : send! : draw! : finish!}

@@ -1,0 +1,198 @@
+;; Code generation: a plan becomes one GLSL fragment shader, assembled from the chunks in
+;; shaders/ and holding only what the plan needs. Output is deterministic: the same plan
+;; always gives the same text.
+
+(local registry (require :src.sdf.registry))
+(local files (require :src.util.files))
+(local emit-glsl (require :src.sdf.emit-glsl))
+
+;; Chunks are read through the program's one file reader (project files, from any
+;; working directory); tests may swap the reader. Chunks are cached by path. A chunk
+;; that cannot be read stops generation with a message (see `shader`).
+(local state {:read files.read-project :cache {}})
+
+;; Errors raised by `chunk` carry this marker, so `shader` returns them as messages.
+(local chunk-error {})
+
+(fn set-reader! [read]
+  "Read shader chunks with `read` (path -> text, or nil and a message) from now on,
+and forget cached ones."
+  (set state.read read)
+  (set state.cache {}))
+
+(fn chunk [path]
+  (when (= nil (. state.cache path))
+    (case (state.read path)
+      text (tset state.cache path text)
+      (nil err) (error {:marker chunk-error :message (tostring (or err (.. "cannot read " path)))})))
+  (. state.cache path))
+
+;;; Lines: a chunk's text becomes a list of lines; `// @slot NAME` lines are replaced
+;;; by the slot's lines at the same indentation. Nested lists flatten.
+
+(fn flatten-into [out indent lines]
+  (each [_ line (ipairs lines)]
+    (if (= (type line) :table)
+        (flatten-into out indent line)
+        (table.insert out (if (= line "") "" (.. indent line))))))
+
+(fn fill [path slots]
+  "Lines of chunk `path` with its slots filled from `slots` (name -> lines)."
+  (let [out []]
+    (each [line (: (.. (chunk path) "\n") :gmatch "([^\n]*)\n")]
+      (let [(indent name) (line:match "^(%s*)// @slot ([%w%-]+)%s*$")]
+        (if name
+            (let [lines (. slots name)]
+              (assert lines (.. path ": no lines given for slot " name))
+              (flatten-into out indent lines))
+            (table.insert out line))))
+    ;; A chunk file ends with a newline; do not keep the empty last line.
+    (when (= (. out (length out)) "") (table.remove out))
+    out))
+
+;;; Per-kind code
+
+(fn count-bound [k plan]
+  (if plan.uber?
+      (registry.count-uniform k.kind)
+      (tostring k.capacity)))
+
+;; Up to this many objects of a kind are written out one by one, as a person would by
+;; hand: the driver then has no loop to unroll (llvmpipe leaves some unrolled).
+(local max-unrolled 8)
+
+(fn kind-loop [k plan body]
+  ;; A few objects: one block each, with the array index written in. More: a loop
+  ;; over the kind's uniform arrays. `body` uses `[i]` for the index.
+  (if (and (not plan.uber?) (<= k.capacity max-unrolled))
+      (fcollect [index 0 (- k.capacity 1)]
+        (icollect [_ line (ipairs body)]
+          (pick-values 1 (-> line
+                             (: :gsub "^    " "")
+                             (: :gsub "%[i%]" (.. "[" index "]"))))))
+      [(.. "for (int i = 0; i < " (count-bound k plan) "; i++) {") body "}"]))
+
+(fn uniform-declarations [plan]
+  (let [lines []]
+    (each [_ k (ipairs plan.kinds)]
+      (table.insert lines (.. "// " k.kind ": " k.capacity
+                              (if plan.uber? " slots" (= k.capacity 1) " object" " objects")))
+      (when plan.uber?
+        (table.insert lines (.. "uniform int " (count-bound k plan) ";")))
+      (each [_ u (ipairs k.entry.uniforms)]
+        (table.insert lines (.. "uniform " u.type " " u.name "[" k.capacity "];"))))
+    (when plan.tape
+      (table.insert lines (.. "// scene trees: " (length plan.tape.objects) " objects"))
+      (each [_ l (ipairs (emit-glsl.declarations plan.tape))] (table.insert lines l)))
+    (when plan.mirrors?
+      (table.insert lines "float gMirror = 1.0;  // mirror amount of what mapColor found last"))
+    lines))
+
+(fn distance-terms [plan]
+  [(icollect [_ k (ipairs plan.kinds)]
+     (kind-loop k plan [(.. "    d = min(d, " k.entry.distance-glsl ");")]))
+   (if plan.tape (emit-glsl.distance-terms plan.tape) [])])
+
+(fn color-terms [plan]
+  ;; One `di` for the whole function: unrolled blocks share it.
+  [(if plan.mirrors? "gMirror = 1.0;" [])
+   (if (> (length plan.kinds) 0) "float di;" [])
+   (icollect [_ k (ipairs plan.kinds)]
+     (kind-loop k plan [(.. "    di = " k.entry.distance-glsl ";")
+                        (.. "    if (di < d) { d = di; color = " k.entry.color-glsl "; }")]))
+   (if plan.tape (emit-glsl.color-terms plan.tape plan.mirrors?) [])])
+
+;;; Features
+
+(fn when-switched [plan switch lines]
+  ;; In the all-features (uber) shader a feature is compiled in and switched by a
+  ;; uniform; in a specialized shader it is either there or absent.
+  (if plan.uber?
+      [(.. "if (" switch ") {") (icollect [_ l (ipairs lines)] (.. "    " l)) "}"]
+      lines))
+
+(fn feature-uniforms [plan]
+  (let [lines []]
+    (when plan.reflections? (table.insert lines "uniform int uReflections;"))
+    (when plan.relaxed? (table.insert lines "uniform float uRelaxation;  // over-relaxation factor"))
+    (when plan.uber?
+      (table.insert lines "uniform bool uShadows;")
+      (table.insert lines "uniform bool uGlow;"))
+    lines))
+
+(fn view-lines [plan]
+  (case plan.view
+    :shaded (fill "shaders/views/shaded.glsl"
+                  {:glow (if plan.glow? (when-switched plan "uGlow" (fill "shaders/shading/glow.glsl" {})) [])
+                   :reflections (if (not plan.reflections?) []
+                                    plan.mirrors? (fill "shaders/shading/reflect-mirror.glsl" {})
+                                    (fill "shaders/shading/reflect.glsl" {}))})
+    view (fill (.. "shaders/views/" view ".glsl") {})))
+
+(fn body-lines [plan]
+  (let [view plan.view
+        normals? (or (= view :shaded) (= view :normals))
+        colors? (or (= view :shaded) (= view :glow))
+        sections [(fill "shaders/pipeline/prelude.glsl" {:feature-uniforms (feature-uniforms plan)})
+                  (uniform-declarations plan)]]
+    (each [_ k (ipairs plan.kinds)]
+      (table.insert sections (fill k.entry.chunk {})))
+    (when plan.tape
+      (table.insert sections (emit-glsl.functions plan.tape)))
+    (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms plan)
+                                                     :color-terms (color-terms plan)}))
+    (when (not colors?)
+      ;; mapColor is the second function of map.glsl; drop it when the view has no use
+      ;; for colours.
+      (let [lines (. sections (length sections))
+            cut (accumulate [at nil i line (ipairs lines) &until at]
+                  (when (line:find "^// The same minimum") i))]
+        (for [i (length lines) (- cut 1) -1] (table.remove lines i))))
+    (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
+    ;; Only the glow and heat views read the step count; elsewhere it is not kept.
+    (let [count-step (if (or plan.glow? (= view :glow) (= view :heat)) ["steps = i + 1;"] [])]
+      (table.insert sections (fill (if plan.relaxed? "shaders/pipeline/march-relaxed.glsl" "shaders/pipeline/march.glsl")
+                                   {:count-step count-step})))
+    (when normals?
+      (table.insert sections (fill "shaders/pipeline/normal.glsl"
+                                   {:method (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl") {})})))
+    (when (= view :shaded)
+      (table.insert sections
+                    (fill "shaders/shading/light.glsl"
+                          {:shadow (if plan.shadows?
+                                       (when-switched plan "uShadows" (fill "shaders/shading/shadow.glsl" {}))
+                                       [])})))
+    (table.insert sections (fill "shaders/pipeline/render.glsl" {:view (view-lines plan)}))
+    sections))
+
+(local targets
+  {:love {:header ["#pragma language glsl3"] :entry "shaders/entry/love.glsl"}
+   :core {:header ["#version 330 core" "out vec4 fragColor;"] :entry "shaders/entry/core.glsl"}
+   :probe {:header ["#pragma language glsl3"] :entry "shaders/entry/probe.glsl"}})
+
+(fn generate [plan target]
+  (let [out []
+        sections [target.header
+                  [(.. "// Generated by src/render/codegen.fnl for: " plan.key)]]]
+    (each [_ s (ipairs (body-lines plan))] (table.insert sections s))
+    (table.insert sections
+                  (fill target.entry
+                        {:mirror [(.. "float mirror = " (if plan.mirrors? "gMirror" "1.0") ";")
+                                  "return uProbeChannel == 0 ? vec4(d, color) : vec4(mirror, 0.0, 0.0, 1.0);"]}))
+    (each [i s (ipairs sections)]
+      (when (> i 1) (table.insert out ""))
+      (flatten-into out "" s))
+    (.. (table.concat out "\n") "\n")))
+
+(fn shader [plan ?target]
+  "GLSL fragment shader text for `plan`. `?target` is :love (default: LÖVE's effect()
+entry point), :core (a plain #version 330 core shader, for headless tests and
+glslangValidator) or :probe (LÖVE, one scene evaluation per pixel; see --probe). Returns the text, or nil and a message when a chunk cannot be read."
+  (let [target (. targets (or ?target :love))
+        _ (assert target (.. "unknown target " (tostring ?target)))
+        (ok? result) (pcall generate plan target)]
+    (if ok? result
+        (and (= (type result) :table) (= result.marker chunk-error)) (values nil result.message)
+        (error result 0))))
+
+{: shader : set-reader!}

@@ -1,0 +1,109 @@
+;; Lowering: a validated scene becomes a plan, the plain-data description of the shader
+;; the scene needs (which kinds, how many of each, which features, which view), plus the
+;; objects in the order the shader stores them. Equal plans mean the same shader.
+
+(local registry (require :src.sdf.registry))
+(local lower (require :src.sdf.lower))
+
+(local views [:shaded :normals :glow :heat])
+
+;; Uniform vectors that are not per-object: the common uniforms, feature switches and
+;; what LÖVE adds to every fragment shader, rounded up generously.
+(local fixed-uniform-vectors 32)
+
+;; llvmpipe links at most 4096 vec4 of fragment uniforms (measured on Mesa 22.3);
+;; love.graphics.validateShader does not catch an overflow, so the plan checks it.
+(local default-uniform-limit 4096)
+
+(fn view? [v]
+  (var found? false)
+  (each [_ name (ipairs views)] (when (= name v) (set found? true)))
+  found?)
+
+(fn group-objects [scene]
+  (icollect [_ entry (ipairs registry.kinds)]
+    {:kind entry.kind
+     :entry entry
+     :objects (icollect [_ o (ipairs scene.objects)]
+                (when (and (not o.tree) (= (registry.lowered-kind o) entry.kind)) o))}))
+
+(fn structure-key [plan]
+  (let [parts (icollect [_ k (ipairs plan.kinds)]
+                (.. k.kind ":" k.capacity))]
+    (when plan.shadows? (table.insert parts "shadows"))
+    (when plan.reflections? (table.insert parts "reflections"))
+    (when plan.glow? (table.insert parts "glow"))
+    (when plan.relaxed? (table.insert parts "relaxed"))
+    (table.insert parts (.. "hit:" plan.hit-test))
+    (when plan.normals (table.insert parts (.. "normals:" plan.normals)))
+    (when plan.uber? (table.insert parts "uber"))
+    (table.insert parts (.. "view:" plan.view))
+    (when plan.tape
+      (table.insert parts (.. "tape:" plan.tape.key))
+      (when plan.mirrors? (table.insert parts "mirrors")))
+    (table.concat parts " ")))
+
+(fn budget-message [scene plan limit]
+  (let [costs (icollect [_ k (ipairs plan.kinds)]
+                (.. "a " (or k.entry.shown-as k.kind) " takes "
+                    (registry.slots-per-object k.entry)))
+        over (- plan.uniform-vectors limit)]
+    (.. scene.file ": objects: the scene needs " plan.uniform-vectors
+        " uniform vectors but the driver allows " limit " (" fixed-uniform-vectors
+        " are reserved); remove objects worth " over " vectors ("
+        (table.concat costs ", ") ")")))
+
+(fn scene->plan [scene ?options]
+  "Lower `scene` into a plan. Options:
+  :view           :shaded (default), :normals, :glow or :heat
+  :uber?          compile every kind and feature in, switched by uniforms (benchmark)
+  :reflections    override the scene's reflection count (the player's k/l keys)
+  :uniform-limit  uniform vectors the driver allows (default 4096, llvmpipe's)
+  :probe?         for the probe shader: colours and mirror amounts, no lighting
+Returns the plan, or nil and a message when the scene does not fit the budget."
+  (let [options (or ?options {})
+        view (or options.view :shaded)
+        uber? (not (not options.uber?))
+        reflections (or options.reflections scene.render.reflections)
+        groups (group-objects scene)
+        trees (icollect [_ o (ipairs scene.objects)] (when o.tree o))
+        (tape lower-error) (if (> (length trees) 0)
+                               (lower.lower (icollect [_ o (ipairs trees)]
+                                              (doto (collect [k v (pairs o.tree)] k v)
+                                                (tset :index o.index))))
+                               (values nil nil))
+        kinds (icollect [_ g (ipairs groups)]
+                (let [n (length g.objects)]
+                  (when (or uber? (> n 0))
+                    {:kind g.kind :entry g.entry :objects g.objects
+                     :count n :capacity (if uber? (math.max n 1) n)})))
+        shaded? (= view :shaded)
+        plan {: kinds : view : uber?
+              ;; The kind-grouped objects in shader order, then the tree objects.
+              :objects (let [out []]
+                         (each [_ k (ipairs kinds)]
+                           (each [_ o (ipairs k.objects)] (table.insert out o)))
+                         (each [_ o (ipairs trees)] (table.insert out o))
+                         out)
+              : tape
+              :mirrors? (and tape tape.mirrors?
+                             (or options.probe? (and shaded? (or uber? (> reflections 0)))))
+              :shadows? (and shaded? (or uber? scene.render.shadows))
+              :reflections? (and shaded? (or uber? (> reflections 0)))
+              :glow? (and shaded? (or uber? scene.render.glow))
+              :relaxed? (or uber? (> scene.render.relaxation 1))
+              :hit-test scene.render.hit-test
+              ;; Only the shaded and normals views compute normals.
+              :normals (when (or shaded? (= view :normals)) scene.render.normals)
+              : reflections}
+        limit (or options.uniform-limit default-uniform-limit)]
+    (assert (view? view) (.. "unknown view " (tostring view)))
+    (set plan.uniform-vectors
+         (accumulate [n (+ fixed-uniform-vectors (if tape (length tape.rows) 0)) _ k (ipairs kinds)]
+           (+ n (* k.capacity (registry.slots-per-object k.entry)))))
+    (set plan.key (structure-key plan))
+    (if lower-error (values nil (.. scene.file ": " lower-error))
+        (> plan.uniform-vectors limit) (values nil (budget-message scene plan limit))
+        plan)))
+
+{: scene->plan : views : view? : default-uniform-limit : fixed-uniform-vectors}

@@ -1,0 +1,75 @@
+;; Uniform values for a plan: the scene and the camera become a list of uniforms with
+;; flat number lists. Positions are made camera-relative here, in double precision,
+;; before they are rounded to float32 on upload.
+
+(local camera (require :src.render.camera))
+(local registry (require :src.sdf.registry))
+
+(local components {:float 1 :int 1 :bool 1 :vec2 2 :vec3 3 :vec4 4})
+
+(fn relative [[x y z] [cx cy cz]]
+  [(- x cx) (- y cy) (- z cz)])
+
+(fn append! [out vs]
+  (each [_ v (ipairs vs)] (table.insert out v))
+  out)
+
+(fn kind-uniforms [plan cam-pos]
+  (let [out []]
+    (each [_ k (ipairs plan.kinds)]
+      (when plan.uber?
+        (table.insert out {:name (registry.count-uniform k.kind)
+                           :type :int :values [k.count]}))
+      (each [_ u (ipairs k.entry.uniforms)]
+        (let [vals []]
+          (each [_ o (ipairs k.objects)]
+            (append! vals (u.pack o cam-pos)))
+          ;; Unused slots (the uber shader's empty kinds) are zero.
+          (for [_ (+ (length vals) 1) (* k.capacity (. components u.type))]
+            (table.insert vals 0))
+          (table.insert out {:name u.name :type u.type :values vals :count k.capacity}))))
+    out))
+
+(fn tape-values [tape [cx cy cz]]
+  "The tape's rows as one flat list; rows holding a world position (each tree
+object's outermost translation) are made camera-relative here, in double."
+  (let [relative (collect [_ r (ipairs tape.relative)] r true)
+        out []]
+    (each [i row (ipairs tape.rows)]
+      (let [[x y z w] row]
+        (if (. relative (- i 1))
+            (append! out [(- x cx) (- y cy) (- z cz) w])
+            (append! out [x y z w]))))
+    out))
+
+(fn pack [scene plan cam width height]
+  "Uniforms for drawing `scene` lowered to `plan`, seen by camera state `cam`, into a
+`width` x `height` target: a list of {:name :type :values [numbers] :count n} sorted
+by name. Booleans are sent as 0 or 1 with :type :bool."
+  (let [(f r u) (camera.basis cam)
+        render scene.render
+        out [{:name "uResolution" :type :vec2 :values [width height]}
+             {:name "uCamForward" :type :vec3 :values f}
+             {:name "uCamRight" :type :vec3 :values r}
+             {:name "uCamUp" :type :vec3 :values u}
+             {:name "uProjDist" :type :float :values [(camera.projection-distance cam)]}
+             {:name "uLightPos" :type :vec3 :values (relative scene.light.pos cam.pos)}
+             {:name "uEnvColor" :type :vec3 :values scene.environment}
+             {:name "uMaxSteps" :type :int :values [render.max-steps]}
+             {:name "uEpsilon" :type :float :values [render.epsilon]}
+             {:name "uDrawDist" :type :float :values [render.draw-distance]}]]
+    (when plan.reflections?
+      (table.insert out {:name "uReflections" :type :int :values [plan.reflections]}))
+    (when plan.relaxed?
+      (table.insert out {:name "uRelaxation" :type :float :values [render.relaxation]}))
+    (when plan.uber?
+      (table.insert out {:name "uShadows" :type :bool :values [(if render.shadows 1 0)]})
+      (table.insert out {:name "uGlow" :type :bool :values [(if render.glow 1 0)]}))
+    (append! out (kind-uniforms plan cam.pos))
+    (when plan.tape
+      (table.insert out {:name "uTape" :type :vec4 :values (tape-values plan.tape cam.pos)
+                         :count (length plan.tape.rows)}))
+    (table.sort out (fn [a b] (< a.name b.name)))
+    out))
+
+{: pack : components : tape-values}

@@ -1,0 +1,298 @@
+;; Running a scene file's code safely: checks on the text before it is parsed (size,
+;; encoding, nesting), an allowlist of the forms a data file may use (compile-time
+;; code never runs), the only globals the code sees, and step and memory limits while
+;; it runs. Whatever a scene does ends with its own load.
+
+(local fennel (require :fennel))
+(local text (require :src.util.text))
+
+(local limits
+  {:file-bytes (* 512 1024)       ; a scene file; 5000 objects written out fit in 400 KB,
+                                  ; and parsing and compiling 512 KB takes about 1 s
+   :nesting 100                   ; brackets inside brackets (a tree 32 nodes deep takes 66)
+   :steps 10000000                ; Lua VM instructions (about half a second here)
+   :memory-mb 64                  ; Lua memory the scene may build
+   :string-bytes (* 1024 1024)    ; one string made by a library call
+   :cpu-seconds 5                 ; a backstop: the step limit trips long before
+   :hook-every 4})                ; instructions between limit checks
+
+;; Our own errors carry this table, which no scene can reach, so a scene cannot forge
+;; one by raising a table of the same shape.
+(local marker {})
+
+(fn stop [message]
+  (error {:sandbox marker : message} 0))
+
+(fn sandbox-error? [e]
+  (and (= (type e) :table) (rawequal (rawget e :sandbox) marker)))
+
+;;; The text, before parsing
+
+(fn line-of [source pos]
+  (let [(_ n) (: (source:sub 1 (- pos 1)) :gsub "\n" "")] (+ n 1)))
+
+(fn check-encoding [source file]
+  "A message when `source` is not UTF-8 text (or holds NUL bytes), else nil."
+  (case (text.first-invalid-byte source)
+    pos (let [line (line-of source pos)
+              line-start (or (: (source:sub 1 pos) :match ".*\n()") 1)]
+          (string.format "%s:%d: the file is not UTF-8 text (byte 0x%02X at column %d); scene files are Fennel source"
+                         file line (source:byte pos) (+ 1 (- pos line-start))))))
+
+(fn nesting-depth [source]
+  "The deepest bracket nesting of `source` and the line where it is first reached,
+skipping strings and comments: measured on the text, so it also holds for input the
+parser would recurse on until the stack overflows."
+  (var depth 0)
+  (var deepest 0)
+  (var deepest-line 1)
+  (var line 1)
+  (var i 1)
+  (let [n (length source)]
+    (while (<= i n)
+      (let [c (source:byte i)]
+        (if (= c 10) (set line (+ line 1))
+            (= c 59) (let [e (source:find "\n" i true)] ; ; comment
+                       (set i (- (or e (+ n 1)) 1)))
+            (= c 34) (do (set i (+ i 1))                ; " string
+                         (while (and (<= i n) (not= (source:byte i) 34))
+                           (case (source:byte i)
+                             92 (set i (+ i 1))
+                             10 (set line (+ line 1)))
+                           (set i (+ i 1))))
+            (or (= c 40) (= c 91) (= c 123))
+            (do (set depth (+ depth 1))
+                (when (> depth deepest) (set deepest depth) (set deepest-line line)))
+            (or (= c 41) (= c 93) (= c 125)) (set depth (math.max 0 (- depth 1))))
+        (set i (+ i 1)))))
+  (values deepest deepest-line))
+
+(fn nesting-message [file line]
+  (.. file (if line (.. ":" line) "") ": the scene nests deeper than " limits.nesting
+      " levels of brackets"))
+
+(fn check-source [source file]
+  "The text of a scene ready to parse (a UTF-8 byte order mark dropped), or nil and a
+message when it is too large, not UTF-8 text or nested too deeply."
+  (let [source (if (= (source:sub 1 3) "\239\187\191") (source:sub 4) source)]
+    (if (> (length source) limits.file-bytes)
+        (values nil (string.format "%s: the file is over %d bytes (512 KB), the most a scene file may have"
+                                   file limits.file-bytes))
+        (case (check-encoding source file)
+          msg (values nil msg)
+          _ (let [(depth line) (nesting-depth source)]
+              (if (> depth limits.nesting) (values nil (nesting-message file line))
+                  source))))))
+
+;;; The parsed forms: an allowlist
+
+;; The special forms and built-in macros a data file may use. Every other special
+;; form or macro the compiler knows (eval-compiler, macro, lua, include, global,
+;; import-macros, quote, ..., and any added in a later Fennel) is refused, wherever it
+;; stands: a value, a key, a binding.
+(local allowed-forms
+  (collect [_ name (ipairs ["#" "%" "*" "+" "-" "." ".." "/" "//" ":" "<" "<=" "=" ">"
+                            ">=" "^" "and" "band" "bnot" "bor" "bxor" "comment" "do" "each"
+                            "fn" "for" "hashfn" "if" "length" "let" "local" "lshift" "not"
+                            "not=" "or" "pick-values" "rshift" "set" "tail!" "tset" "values"
+                            "var" "while" "~=" "->" "->>" "-?>" "-?>>" "?." "accumulate"
+                            "case" "case-try" "collect" "doto" "faccumulate" "fcollect"
+                            "icollect" "lambda" "λ" "match" "match-try" "partial" "when"])]
+    name true))
+
+(fn global-scope []
+  (let [scope (fennel.scope)]
+    (or scope.parent scope)))
+
+(fn compile-time-form? [name]
+  "True when `name` is a special form or macro that is not on the allowlist."
+  (let [g (global-scope)]
+    (and (not (. allowed-forms name))
+         (or (not= nil (. g.specials name)) (not= nil (. g.macros name))))))
+
+(fn find-forbidden [node depth]
+  "The first refused form inside `node` (keys and values alike), or :too-deep."
+  (if (> depth limits.nesting) :too-deep
+      (or (not= (type node) :table) (fennel.sym? node)) nil
+      (let [head (and (fennel.list? node) (. node 1))
+            name (and head (fennel.sym? head) (tostring head))]
+        (if (and name (compile-time-form? name))
+            node
+            (accumulate [found nil k v (pairs node) &until found]
+              (or (find-forbidden k (+ depth 1)) (find-forbidden v (+ depth 1))))))))
+
+(local global-forms {:global true :set-forcibly! true})
+
+(fn check-forms [forms file]
+  "A message when the parsed `forms` use a refused form or nest too deeply, else nil."
+  (var message nil)
+  (each [_ form (ipairs forms) &until message]
+    (case (find-forbidden form 1)
+      :too-deep (set message (nesting-message file nil))
+      node (let [src (fennel.ast-source node)
+                 name (tostring (. node 1))]
+             (set message (.. file (if src.line (.. ":" src.line) "") ": (" (text.escape name)
+                              " ...) is not allowed: scene files are data and "
+                              (if (. global-forms name) "set no globals"
+                                  "run no compile-time code"))))))
+  message)
+
+(fn parse [source file]
+  "All top-level forms of `source`, or nil when it does not parse (compiling it then
+reports the parse error with its line)."
+  (let [(ok? forms) (pcall #(icollect [_ form (fennel.parser (fennel.string-stream source) file)]
+                              form))]
+    (when ok? forms)))
+
+;;; Compiling, with the compiler's shared state checked
+
+(fn compiler-state []
+  (let [g (global-scope)]
+    {:specials (collect [k v (pairs g.specials)] k v)
+     :macros (collect [k v (pairs g.macros)] k v)
+     :fennel (collect [k v (pairs fennel)] k v)}))
+
+(fn restore! [live saved]
+  "Put table `live` back to the copy `saved`; true when anything had changed."
+  (var changed? false)
+  (each [k v (pairs live)]
+    (when (not= v (. saved k)) (set changed? true) (tset live k (. saved k))))
+  (each [k v (pairs saved)]
+    (when (not= v (rawget live k)) (set changed? true) (tset live k v)))
+  changed?)
+
+(fn compile [source file allowed]
+  "Lua code for scene `source`, or nil and Fennel's message. The compiler's special
+forms, macros and module table are the same afterwards, whatever happened."
+  (let [before (compiler-state)
+        (ok? code) (pcall fennel.compile-string source
+                          {:filename file :allowedGlobals allowed :correlate true})
+        g (global-scope)
+        ;; Restore all three: no short-circuit.
+        changes [(restore! g.specials before.specials) (restore! g.macros before.macros)
+                 (restore! fennel before.fennel)]
+        changed? (or (. changes 1) (. changes 2) (. changes 3))]
+    (if changed? (values nil (.. file ": the scene changed the Fennel compiler and was refused"))
+        ok? code
+        (values nil code))))
+
+;;; The environment
+
+;; The file of the scene running now, for the line in a capped call's message.
+(local capped-files [])
+
+(fn scene-line [file]
+  "The line of the scene's own code that is running now, from the call stack."
+  (var line nil)
+  (for [level 3 40 &until line]
+    (case (debug.getinfo level :Sl)
+      info (when (= info.source (.. "@" file)) (set line info.currentline))))
+  line)
+
+(fn capped [what size]
+  (when (> size limits.string-bytes)
+    (let [file (. capped-files 1)
+          line (and file (scene-line file))]
+      (error (.. (if line (.. file ":" line ": ") (if file (.. file ": ") ""))
+                 what ": the result would be over 1 MB")
+             0))))
+
+(fn safe-rep [str n ?sep]
+  (let [count (or (tonumber n) 0)]
+    (when (and (= (type str) :string) (or (= ?sep nil) (= (type ?sep) :string)))
+      (capped "string.rep" (* (+ (length str) (length (or ?sep ""))) count)))
+    (string.rep str n ?sep)))
+
+(fn safe-format [fmt ...]
+  ;; Each argument is at most its own length twice (%q escapes), a number 99 digits
+  ;; (the widest format Lua allows), anything else its tostring.
+  (when (= (type fmt) :string)
+    (var size (length fmt))
+    (for [i 1 (select :# ...)]
+      (let [v (select i ...)]
+        (set size (+ size 100 (if (= (type v) :string) (* 2 (length v)) 0)))))
+    (capped "string.format" size))
+  (string.format fmt ...))
+
+(fn safe-concat [t ?sep ?i ?j]
+  (when (= (type t) :table)
+    (let [i (or (tonumber ?i) 1)
+          j (or (tonumber ?j) (length t))
+          sep (if (= (type ?sep) :string) (length ?sep) 0)]
+      (var size 0)
+      (for [k i j &until (> size limits.string-bytes)]
+        (let [v (. t k)]
+          (set size (+ size sep (if (= (type v) :string) (length v) 24)))))
+      (capped "table.concat" size)))
+  (table.concat t ?sep ?i ?j))
+
+(fn safe-env []
+  "The only globals a scene file sees: arithmetic helpers and nothing that reaches
+the file system, the process, the loader or the compiler."
+  (let [m (collect [k v (pairs math)] (when (and (not= k :randomseed) (not= k :random)) (values k v)))
+        unpack (or table.unpack _G.unpack)]
+    {:math m :ipairs ipairs :pairs pairs :tonumber tonumber :tostring tostring
+     :type type :select select :unpack unpack
+     :table {:insert table.insert :concat safe-concat :unpack unpack}
+     :string {:format safe-format :sub string.sub :rep safe-rep}}))
+
+;;; Running, within limits
+
+(fn run [chunk file env]
+  "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
+message past the step or memory limit. Returns true and the value, or false and an
+error (a string from the scene's code, or a sandbox error)."
+  (let [memory-start (collectgarbage :count)
+        memory-limit (* 1024 limits.memory-mb)
+        max-hooks (/ limits.steps limits.hook-every)
+        cpu-start (os.clock)
+        state {:hooks 0 :stopped nil}
+        stop! (fn [message]
+                ;; Raise once: a hook firing again on the way out of pcall (before the
+                ;; hook is removed) must not raise outside it.
+                (set state.stopped message)
+                (stop message))
+        hook (fn []
+               (when (not state.stopped)
+                 (set state.hooks (+ state.hooks 1))
+                 (when (> state.hooks max-hooks)
+                   (stop! (.. file ": the scene ran for more than "
+                              (math.floor (/ limits.steps 1e6))
+                              " million steps and was stopped (an endless loop?)")))
+                 (when (> (- (collectgarbage :count) memory-start) memory-limit)
+                   (stop! (.. file ": the scene built more than " limits.memory-mb
+                              " MB of data and was stopped")))
+                 (when (and (= 0 (% state.hooks 65536))
+                            (> (- (os.clock) cpu-start) limits.cpu-seconds))
+                   (stop! (.. file ": the scene ran for more than " limits.cpu-seconds
+                              " s and was stopped")))))
+        string-meta (getmetatable "")
+        real-index string-meta.__index]
+    (when jit (jit.off chunk true))
+    (when setfenv (setfenv chunk env))
+    ;; Methods on strings, (: "x" :rep n), go through the string metatable to the real
+    ;; string library: point it at the sandbox's own for the run.
+    (set string-meta.__index env.string)
+    (tset capped-files 1 file)
+    (let [(outer-ok? ok? value) (pcall (fn []
+                                         (debug.sethook hook "" limits.hook-every)
+                                         (let [(ok? value) (pcall chunk)]
+                                           (debug.sethook)
+                                           (values ok? value))))]
+      (debug.sethook)
+      (set string-meta.__index real-index)
+      (tset capped-files 1 nil)
+      (collectgarbage)
+      (if state.stopped (values false {:sandbox marker :message state.stopped})
+          (not outer-ok?) (values false ok?)
+          (values ok? value)))))
+
+(fn error-message [e]
+  "The text of an error raised while loading: a sandbox message, a string, or a
+fixed description for anything else (never calling a metamethod of it)."
+  (if (sandbox-error? e) (rawget e :message)
+      (= (type e) :string) e
+      "the scene raised an error that is not a message"))
+
+{: limits : check-source : check-forms : parse : compile : safe-env : run
+ : error-message : sandbox-error?}

@@ -1,0 +1,116 @@
+;; GLSL from a tape (src/sdf/lower.fnl): the functions the tape uses, the parameter
+;; array, and the lines that map() and mapColor() run for each tree object. Output is
+;; deterministic: the same tape gives the same text.
+
+(local primitives (require :src.sdf.primitives))
+
+(local swizzles ["x" "y" "z" "w"])
+
+(fn arg-expr [ref]
+  (var s "")
+  (for [i 1 ref.size] (set s (.. s (. swizzles (+ ref.offset i)))))
+  (.. "uTape[" ref.row "]." s))
+
+(fn args-list [args]
+  (icollect [_ a (ipairs args)] (arg-expr a)))
+
+(fn reg [name]
+  ;; p0 is map()'s own point.
+  (if (= name "p0") "p" name))
+
+(fn call [fname first args ?last]
+  (let [parts [first (unpack (args-list args))]]
+    (when ?last (table.insert parts ?last))
+    (.. fname "(" (table.concat parts ", ") ")")))
+
+(fn weight-name [form]
+  (.. "w" (form.glsl-name:sub 3)))
+
+(var emit-code nil)
+
+(fn emit-instr [out ins materials?]
+  (case ins.op
+    :prim (table.insert out (.. "float " ins.dout " = "
+                                (call ins.desc.glsl-name (reg ins.pin) ins.args) ";"))
+    :material (when materials?
+                (table.insert out (.. "vec4 " ins.mout " = uTape[" ins.row "];")))
+    :point (table.insert out (.. "vec3 " ins.pout " = "
+                                 (call ins.desc.glsl-name (reg ins.pin) ins.args) ";"))
+    :post (table.insert out (.. "float " ins.dout " = "
+                                (call ins.desc.glsl-name (.. ins.din ", " (reg ins.pin)) ins.args) ";"))
+    :distance (table.insert out (.. "float " ins.dout " = "
+                                    (call ins.desc.glsl-name
+                                          (.. ins.din ", " (reg ins.pin)) ins.args) ";"))
+    :divide (table.insert out (string.format "float %s = %s * %.9g;  // Lipschitz %.6g"
+                                             ins.dout ins.din (/ 1 ins.k) ins.k))
+    :combine (do
+               (table.insert out (.. "float " ins.dout " = "
+                                     (call ins.desc.glsl-name (.. ins.da ", " ins.db) ins.args) ";"))
+               (when materials?
+                 (table.insert out (.. "vec4 " ins.mout " = mix(" ins.mb ", " ins.ma ", "
+                                       (call (weight-name ins.desc) (.. ins.da ", " ins.db) ins.args)
+                                       ");"))))
+    :cells (let [c (.. "c" (ins.dout:sub 2))
+                 body []]
+             (table.insert out (.. "float " ins.dout " = 1e30;"))
+             (when materials? (table.insert out (.. "vec4 " ins.mout " = vec4(0.0);")))
+             (table.insert out (.. "for (int " c " = 0; " c " < " ins.count "; " c "++) {"))
+             ;; The cell index is the last argument.
+             (table.insert body (.. "vec3 " ins.cell-p " = "
+                                    (call ins.desc.glsl-name (reg ins.pin) ins.args c) ";"))
+             (emit-code body ins.body materials?)
+             (if materials?
+                 (table.insert body (.. "if (" ins.body-d " < " ins.dout ") { " ins.dout " = "
+                                        ins.body-d "; " ins.mout " = " ins.body-m "; }"))
+                 (table.insert body (.. ins.dout " = min(" ins.dout ", " ins.body-d ");")))
+             (each [_ l (ipairs body)] (table.insert out (.. "    " l)))
+             (table.insert out "}"))
+    _ (error (.. "emit-glsl: unknown instruction " (tostring ins.op)))))
+
+(set emit-code
+     (fn [out code materials?]
+       (each [_ ins (ipairs code)] (emit-instr out ins materials?))
+       out))
+
+(fn functions [tape]
+  "GLSL definitions of every helper and function the tape uses, in first-use order."
+  (let [out []]
+    (each [_ u (ipairs tape.used)]
+      (when (u.name:find "^helper:")
+        (table.insert out (. primitives.helpers u.desc))))
+    (each [_ u (ipairs tape.used)]
+      (when (not (u.name:find "^helper:"))
+        (table.insert out u.desc.glsl)))
+    (let [lines []]
+      (each [i text (ipairs out)]
+        (when (> i 1) (table.insert lines ""))
+        (each [line (: (.. text "\n") :gmatch "([^\n]*)\n")] (table.insert lines line)))
+      lines)))
+
+(fn declarations [tape]
+  "The parameter array's declaration (nothing for an empty tape)."
+  (if (> (length tape.rows) 0)
+      [(.. "uniform vec4 uTape[" (length tape.rows) "];  // tree parameters and materials")]
+      []))
+
+(fn object-comment [o]
+  (.. "// " o.info.path ": " o.info.kind))
+
+(fn distance-terms [tape]
+  "Lines for map(): each tree object's distance, folded into d."
+  (icollect [_ o (ipairs tape.objects)]
+    [(object-comment o) "{"
+     (icollect [_ l (ipairs (emit-code [] o.code false))] (.. "    " l))
+     (.. "    d = min(d, " o.dout ");") "}"]))
+
+(fn color-terms [tape mirrors?]
+  "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
+its mirror amount in gMirror when `mirrors?`)."
+  (icollect [_ o (ipairs tape.objects)]
+    [(object-comment o) "{"
+     (icollect [_ l (ipairs (emit-code [] o.code true))] (.. "    " l))
+     (.. "    if (" o.dout " < d) { d = " o.dout "; color = " o.mout ".rgb;"
+         (if mirrors? (.. " gMirror = " o.mout ".a;") "") " }")
+     "}"]))
+
+{: functions : declarations : distance-terms : color-terms}

@@ -1,0 +1,137 @@
+;; The CPU evaluator from a tape (src/sdf/lower.fnl): Lua source, one function per tree
+;; object, compiled with load and run in double precision. It reads the same tape as
+;; the GLSL emitter and calls each descriptor's :cpu form where the GLSL calls its
+;; function, so the two evaluators cannot drift apart.
+
+(local max-locals 150)   ; Lua allows 200 locals per function; beyond, a table holds them
+
+(fn new-emitter [table-mode?]
+  (let [e {:lines [] :fns [] :fn-index {} : table-mode?}]
+    (fn e.fn-ref [f]
+      (when (not (. e.fn-index f))
+        (table.insert e.fns f)
+        (tset e.fn-index f (length e.fns)))
+      (.. "F[" (. e.fn-index f) "]"))
+    (fn e.r [name] (if e.table-mode? (.. "R." name) name))
+    (fn e.decl [name] (if e.table-mode? (.. "R." name) (.. "local " name)))
+    (fn e.line [indent s] (table.insert e.lines (.. (string.rep "  " indent) s)))
+    e))
+
+(fn arg-values [args]
+  ;; S is 1-based and flat: row r, offset o, component k is S[r * 4 + o + k].
+  (let [out []]
+    (each [_ a (ipairs args)]
+      (for [k 1 a.size]
+        (table.insert out (.. "S[" (+ (* a.row 4) a.offset k) "]"))))
+    out))
+
+(fn point [e name]
+  (if (= name "p0") "x, y, z"
+      (.. (e.r (.. name "x")) ", " (e.r (.. name "y")) ", " (e.r (.. name "z")))))
+
+(fn point-decl [e name]
+  (if e.table-mode?
+      (.. (e.r (.. name "x")) ", " (e.r (.. name "y")) ", " (e.r (.. name "z")))
+      (.. "local " name "x, " name "y, " name "z")))
+
+(fn material [e name]
+  (table.concat (icollect [_ c (ipairs ["r" "g" "b" "a"])] (e.r (.. name c))) ", "))
+
+(fn material-decl [e name]
+  (if e.table-mode?
+      (material e name)
+      (.. "local " (table.concat (icollect [_ c (ipairs ["r" "g" "b" "a"])] (.. name c)) ", "))))
+
+(fn call [e f first args ?rest]
+  (let [parts [first]]
+    (each [_ v (ipairs (arg-values args))] (table.insert parts v))
+    (when ?rest (table.insert parts ?rest))
+    (.. (e.fn-ref f) "(" (table.concat parts ", ") ")")))
+
+(var emit-code nil)
+
+(fn emit-instr [e ins materials? indent]
+  (case ins.op
+    :prim (e.line indent (.. (e.decl ins.dout) " = " (call e ins.desc.cpu (point e ins.pin) ins.args)))
+    :material (when materials?
+                (let [base (* ins.row 4)]
+                  (e.line indent (.. (material-decl e ins.mout) " = S[" (+ base 1) "], S["
+                                     (+ base 2) "], S[" (+ base 3) "], S[" (+ base 4) "]"))))
+    :point (e.line indent (.. (point-decl e ins.pout) " = "
+                              (call e ins.desc.cpu (point e ins.pin) ins.args)))
+    :post (e.line indent (.. (e.decl ins.dout) " = "
+                             (call e ins.desc.cpu (.. (e.r ins.din) ", " (point e ins.pin)) ins.args)))
+    :distance (e.line indent (.. (e.decl ins.dout) " = "
+                                 (call e ins.desc.cpu (.. (e.r ins.din) ", " (point e ins.pin))
+                                       ins.args)))
+    :divide (e.line indent (string.format "%s = %s / %.17g" (e.decl ins.dout) (e.r ins.din) ins.k))
+    :combine
+    (let [da (e.r ins.da) db (e.r ins.db)]
+      (e.line indent (.. (e.decl ins.dout) " = " (call e ins.desc.cpu (.. da ", " db) ins.args)))
+      (when materials?
+        (let [w (.. "w" (ins.dout:sub 2))]
+          (e.line indent (.. (e.decl w) " = " (call e ins.desc.cpu-weight (.. da ", " db) ins.args)))
+          ;; GLSL's mix(mb, ma, w) = mb * (1 - w) + ma * w.
+          (e.line indent (.. (material-decl e ins.mout) " = "
+                             (table.concat
+                              (icollect [_ c (ipairs ["r" "g" "b" "a"])]
+                                (let [a (e.r (.. ins.ma c)) b (e.r (.. ins.mb c))]
+                                  (.. b " * (1 - " (e.r w) ") + " a " * " (e.r w))))
+                              ", "))))))
+    :cells
+    (let [c (.. "c" (ins.dout:sub 2))
+          dout (e.r ins.dout)]
+      (e.line indent (.. (e.decl ins.dout) " = 1e30"))
+      (when materials? (e.line indent (.. (material-decl e ins.mout) " = 0, 0, 0, 0")))
+      (e.line indent (.. "for " c " = 0, " (- ins.count 1) " do"))
+      (e.line (+ indent 1) (.. (point-decl e ins.cell-p) " = "
+                               (call e ins.desc.cpu (.. c ", " (point e ins.pin)) ins.args)))
+      (emit-code e ins.body materials? (+ indent 1))
+      (let [bd (e.r ins.body-d)]
+        (e.line (+ indent 1)
+                (.. "if " bd " < " dout " then " dout " = " bd
+                    (if materials? (.. "; " (material e ins.mout) " = " (material e ins.body-m)) "")
+                    " end")))
+      (e.line indent "end"))
+    _ (error (.. "emit-lua: unknown instruction " (tostring ins.op)))))
+
+(set emit-code
+     (fn [e code materials? indent]
+       (each [_ ins (ipairs code)] (emit-instr e ins materials? indent))))
+
+(fn count-registers [code]
+  (accumulate [n 0 _ ins (ipairs code)]
+    (+ n 4 (if ins.body (count-registers ins.body) 0))))
+
+(fn object-source [e o materials?]
+  (e.line 0 (.. "FN[#FN + 1] = function(x, y, z)"))
+  (when e.table-mode? (e.line 1 "local R = {}"))
+  (emit-code e o.code materials? 1)
+  (e.line 1 (.. "return " (e.r o.dout) (if materials? (.. ", " (material e o.mout)) "")))
+  (e.line 0 "end"))
+
+(fn flat-rows [tape]
+  (let [out []]
+    (each [_ row (ipairs tape.rows)]
+      (each [_ v (ipairs row)] (table.insert out v)))
+    out))
+
+(fn compile [tape]
+  "CPU evaluators for `tape`'s objects, in world coordinates and double precision:
+{:distance [(fn [x y z]) -> d per object] :material [(fn [x y z]) -> d r g b mirror
+per object] :source text}."
+  (let [sources []
+        out {:distance [] :material []}]
+    (each [_ materials? (ipairs [false true])]
+      (each [_ o (ipairs tape.objects)]
+        (let [e (new-emitter (> (count-registers o.code) max-locals))]
+          (e.line 0 "local S, F, FN = ...")
+          (object-source e o materials?)
+          (let [source (table.concat e.lines "\n")
+                chunk (assert ((or _G.loadstring load) source (.. "=tape:" o.info.path)))]
+            (table.insert sources source)
+            (chunk (flat-rows tape) e.fns (if materials? out.material out.distance))))))
+    (set out.source (table.concat sources "\n"))
+    out))
+
+{: compile}

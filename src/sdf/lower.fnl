@@ -1,0 +1,253 @@
+;; Lowering: validated scene-tree objects become one flat tape, the intermediate form
+;; that both the GLSL emitter (src/sdf/emit-glsl.fnl) and the CPU evaluator
+;; (src/sdf/emit-lua.fnl) read, so the two cannot drift apart.
+;;
+;; A tape is plain data:
+;;   :objects  one entry per top-level tree object: {:index (scene index) :code [...]
+;;             :dout (distance register) :mout (material register) :info (node info)}
+;;   :rows     parameter values, four numbers per row (the GLSL sees vec4 uTape[rows])
+;;   :relative rows whose xyz are world positions, made camera-relative on upload
+;;   :used     descriptor names the code calls (the GLSL holds only those)
+;;   :key      the structure: equal keys mean the same generated code
+;;   :mirrors? whether any material is less than a full mirror
+;; Instructions (registers: p points, d distances, m materials, numbered per tape):
+;;   {:op :prim :desc D :args A :pin p :dout d}      d = D(p, args)
+;;   {:op :point :desc D :args A :pin p :pout p2}    p2 = D(p, args)
+;;   {:op :post :desc D :args A :din d :pin p :dout d2}  d2 = D.post(d, p, args)
+;;   {:op :distance :desc D :args A :din d :pin p :dout d2}
+;;   {:op :combine :desc D :args A :da :db :ma :mb :dout :mout}
+;;   {:op :divide :k number :din :dout}              Lipschitz correction
+;;   {:op :material :row r :mout m}                  a leaf's colour and mirror
+;;   {:op :cells :desc D :args A :count n :pin :dout :mout :body [...] :cell-p p
+;;    :body-d d :body-m m}                           the nearest of n cells
+;; Each node's info: {:kind :path :class (:exact or :bound) :lipschitz k :bounds}.
+
+(local primitives (require :src.sdf.primitives))
+(local operations (require :src.sdf.operations))
+
+(local sizes primitives.glsl-types)
+
+(local default-material [1 1 1 1])   ; white, a full mirror: the article's surfaces
+
+(fn new-state []
+  {:rows [] :relative [] :used {} :used-list [] :counter 0 :key []})
+
+(fn fresh! [st prefix]
+  (set st.counter (+ st.counter 1))
+  (.. prefix st.counter))
+
+(fn use! [st name text]
+  (when (not (. st.used name))
+    (tset st.used name text)
+    (table.insert st.used-list name)))
+
+(fn alloc-args! [st desc vals]
+  "Pack `vals` for `desc`'s :args into new rows; returns arg references
+{:row :offset :size :type}. An argument never straddles two rows."
+  (let [refs []]
+    (var row nil)
+    (var offset 4)
+    (var i 1)
+    (each [_ a (ipairs desc.args)]
+      (let [n (. sizes a.type)]
+        (when (> (+ offset n) 4)
+          (table.insert st.rows [0 0 0 0])
+          (set row (- (length st.rows) 1))
+          (set offset 0))
+        (for [k 1 n]
+          (tset (. st.rows (+ row 1)) (+ offset k) (. vals i))
+          (set i (+ i 1)))
+        (table.insert refs {: row : offset :size n :type a.type})
+        (set offset (+ offset n))))
+    (assert (= (- i 1) (length vals))
+            (.. (tostring desc.kind) ": packed " (length vals) " numbers for "
+                (- i 1) " argument components"))
+    refs))
+
+(fn material-row! [st material]
+  (when (not= (. material 4) 1) (set st.mirrors? true))
+  (table.insert st.rows [(. material 1) (. material 2) (. material 3) (. material 4)])
+  (- (length st.rows) 1))
+
+(fn node-material [node inherited]
+  (if (or node.color node.mirror)
+      (let [[r g b] (or node.color [(. inherited 1) (. inherited 2) (. inherited 3)])]
+        [r g b (if (= node.mirror nil) (. inherited 4) node.mirror)])
+      inherited))
+
+(fn wrap-shorthand [node]
+  "The node with its :scale, :rotate and :pos shorthands made explicit operations:
+translate(rotate(scale(node)))."
+  (var inner (collect [k v (pairs node)]
+               (when (and (not= k :pos) (not= k :rotate) (not= k :scale)) (values k v))))
+  (when node.scale
+    (set inner {:kind :scale :factor node.scale :children [inner] :path node.path
+                :implicit? true}))
+  (when node.rotate
+    (set inner {:kind :rotate :angles node.rotate :angle 0 :children [inner] :path node.path
+                :implicit? true}))
+  (when node.pos
+    (set inner {:kind :translate :offset node.pos :children [inner] :path node.path
+                :implicit? true}))
+  inner)
+
+(var lower-node nil)
+
+(fn lower-primitive [st code node desc pin material]
+  (let [dout (fresh! st "d")
+        mout (fresh! st "m")]
+    (use! st desc.glsl-name desc)
+    (each [_ h (ipairs (or desc.helpers []))] (use! st (.. "helper:" h) h))
+    (table.insert code {:op :prim :desc desc :args (alloc-args! st desc (desc.pack node))
+                        : pin : dout})
+    (table.insert code {:op :material :row (material-row! st material) : mout})
+    (table.insert st.key desc.kind)
+    {: dout : mout
+     :info {:kind node.kind :path node.path :class desc.class :lipschitz desc.lipschitz
+            :bounds (and desc.bounds (desc.bounds node)) :children []}}))
+
+(fn correct-lipschitz! [st code k dout]
+  ;; A field that changes k > 1 per unit is divided by k, so it never overshoots.
+  (if (> k 1)
+      (let [d2 (fresh! st "d")]
+        (table.insert code {:op :divide : k :din dout :dout d2})
+        d2)
+      dout))
+
+(fn lower-operation [st code node desc pin material]
+  (table.insert st.key (.. desc.kind (if node.kernel (.. "/" node.kernel) "") "("))
+  (let [form (operations.variant desc node)
+        ;; Twist and bend pack their child's radius: lower the child once aside.
+        args-values (if desc.needs-bounds
+                        (let [child (. (lower-node (new-state) [] (. node.children 1) "p0"
+                                                   default-material)
+                                       :info)
+                              reason (.. ":" desc.kind " needs a child bounded in " desc.needs-bounds
+                                         " (its Lipschitz factor grows with the child's size)")]
+                          (when (not child.bounds)
+                            (error {:lower-error (.. node.path ": " reason)
+                                    : reason : node}))
+                          (desc.pack node child))
+                        (desc.pack node))
+        result
+        (case desc.role
+          :point
+          (let [pout (fresh! st "p")
+                args (alloc-args! st desc args-values)
+                _ (table.insert code {:op :point :desc form : args : pin : pout})
+                child (lower-node st code (. node.children 1) pout material)
+                children [child.info]]
+            (use! st form.glsl-name form)
+            (var dout child.dout)
+            (when desc.post
+              (use! st desc.post.glsl-name desc.post)
+              (let [d2 (fresh! st "d")]
+                (table.insert code {:op :post :desc desc.post : args :din dout : pin :dout d2})
+                (set dout d2)))
+            {: dout :mout child.mout : children})
+          :distance
+          (let [child (lower-node st code (. node.children 1) pin material)
+                dout (fresh! st "d")]
+            (use! st form.glsl-name form)
+            (table.insert code {:op :distance :desc form
+                                :args (alloc-args! st desc args-values)
+                                :din child.dout : pin : dout})
+            {: dout :mout child.mout :children [child.info]})
+          :combine
+          (let [args (alloc-args! st desc args-values)
+                lowered (icollect [_ c (ipairs node.children)]
+                          (lower-node st code c pin material))]
+            (use! st form.glsl-name form)
+            (var (d m) (values (. lowered 1 :dout) (. lowered 1 :mout)))
+            (for [i 2 (length lowered)]
+              (let [dout (fresh! st "d") mout (fresh! st "m")]
+                (table.insert code {:op :combine :desc form : args
+                                    :da d :db (. lowered i :dout)
+                                    :ma m :mb (. lowered i :mout) : dout : mout})
+                (set (d m) (values dout mout))))
+            {:dout d :mout m :children (icollect [_ c (ipairs lowered)] c.info)})
+          :cells
+          (let [args (alloc-args! st desc args-values)
+                count (desc.cells node)
+                cell-p (fresh! st "p")
+                body []
+                child (lower-node st body (. node.children 1) cell-p material)
+                dout (fresh! st "d") mout (fresh! st "m")]
+            (use! st form.glsl-name form)
+            (table.insert st.key (.. "x" count))
+            (table.insert code {:op :cells :desc form : args : count : pin : dout : mout
+                                : body : cell-p :body-d child.dout :body-m child.mout})
+            {: dout : mout :children [child.info]}))
+        info {:kind node.kind :path node.path :implicit? node.implicit?
+              :children result.children}]
+    (set info.class (desc.class-of node result.children))
+    (set info.bounds (desc.bounds-of node result.children))
+    (set info.lipschitz (if desc.lipschitz-of (desc.lipschitz-of node result.children) 1))
+    (table.insert st.key ")")
+    {:dout (if desc.corrects? result.dout (correct-lipschitz! st code info.lipschitz result.dout))
+     :mout result.mout : info}))
+
+(set lower-node
+     (fn [st code node pin inherited]
+       (let [material (node-material node inherited)
+             node (wrap-shorthand node)]
+         (case (primitives.lookup node.kind)
+           desc (lower-primitive st code node desc pin material)
+           _ (lower-operation st code node (assert (operations.lookup node.kind)
+                                                   (.. "unknown kind " (tostring node.kind)))
+                              pin material)))))
+
+(fn lower-object [st node]
+  ;; The shader's point is camera-relative. The object's outermost translation takes
+  ;; the camera position off in double on the CPU (its row is marked relative); an
+  ;; object without one gets a translation by zero, so its point is the world point.
+  (let [top (wrap-shorthand node)
+        top (if (= top.kind :translate) top
+                {:kind :translate :offset [0 0 0] :children [top] :path node.path
+                 :implicit? true})
+        code []
+        before (length st.rows)
+        result (lower-node st code top "p0" default-material)]
+    ;; The translate's arguments are the first row this object allocated.
+    (table.insert st.relative before)
+    (table.insert st.key ";")
+    {:index node.index :code code :dout result.dout :mout result.mout :info result.info}))
+
+(fn lower [objects]
+  "Lower the validated tree objects `objects` (each with :index, its scene index and
+:path) into a tape (see the top of this file), or nil and a message naming the node
+when a node cannot be lowered (a twist of an unbounded child), then that node and the
+reason alone."
+  (let [st (new-state)
+        (ok? objs) (pcall #(icollect [_ o (ipairs objects)] (lower-object st o)))]
+    (if ok?
+        (do (table.insert st.key (.. "rows:" (length st.rows)))
+            {:objects objs :rows st.rows :relative st.relative :mirrors? st.mirrors?
+             :used (icollect [_ name (ipairs st.used-list)] {: name :desc (. st.used name)})
+             :key (table.concat st.key " ")})
+        (and (= (type objs) :table) objs.lower-error) (values nil objs.lower-error objs.node
+                                                              objs.reason)
+        (error objs 0))))
+
+(fn class-label [info]
+  (if (> info.lipschitz 1)
+      (string.format "bound, Lipschitz %.3g (steps divided by it)" info.lipschitz)
+      (= info.class :exact) "exact"
+      "bound"))
+
+(fn describe [tape]
+  "Lines describing every node of `tape`'s objects, indented by depth, with its class:
+what `--tree` prints."
+  (let [lines []]
+    (fn walk [info depth]
+      (let [b info.bounds
+            bounds (if b (string.format "bounds ±%.3g ±%.3g ±%.3g" (. b 1) (. b 2) (. b 3))
+                       "unbounded")]
+        (table.insert lines (.. (string.rep "  " depth) info.kind
+                                (if info.implicit? " (shorthand)" "")
+                                "  " (class-label info) "  " bounds "  " info.path)))
+      (each [_ c (ipairs info.children)] (walk c (+ depth 1))))
+    (each [_ o (ipairs tape.objects)] (walk o.info 0))
+    lines))
+
+{: lower : describe : class-label : default-material}

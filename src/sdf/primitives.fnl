@@ -1,0 +1,81 @@
+;; The primitive catalogue: one descriptor file per primitive in src/sdf/primitives/,
+;; found by listing that folder (adding a primitive is adding one file and its tests).
+;; Primitives are centred at the origin, z up; placement, rotation and scale are
+;; operations (src/sdf/operations.fnl).
+;;
+;; A descriptor is a table:
+;;   :kind        the name scene files use (keyword)
+;;   :doc         one line for `--kinds` and the README
+;;   :params      [{:name :type :default ...}] checked by the scene loader (types in
+;;                src/scene/load.fnl: :positive :number :vec3 :size3 :direction
+;;                :degrees (with :min :max) :fraction :length0 :count)
+;;   :check       optional (fn [o]) -> nil, or the parameter name and a reason, for
+;;                constraints between parameters (o holds every parameter, defaults in)
+;;   :class       :exact (the exact signed distance, at least outside the shape) or
+;;                :bound (never more than the distance: safe to march, slower)
+;;   :lipschitz   optional, default 1
+;;   :args        [{:name :type}] the arguments of the GLSL function after p, with
+;;                GLSL types :float :vec2 :vec3 :vec4
+;;   :pack        (fn [o]) -> flat list of numbers for :args, in order
+;;   :glsl-name   the GLSL function's name, sdCamelCase
+;;   :glsl        the GLSL function's text: float sdX(vec3 p, <args>)
+;;   :helpers     optional list of shared GLSL helper names (see `helpers`)
+;;   :cpu         (fn [x y z ...args as flat numbers]) -> distance, in double
+;;   :bounds      optional (fn [o]) -> [hx hy hz] half extents of a box centred at
+;;                the origin that holds the shape; absent when it is unbounded
+;;   :placed?     false for primitives placed by their own parameters (the plane)
+
+(local files (require :src.util.files))
+
+(local dir "src/sdf/primitives")
+
+;; GLSL helpers shared by several primitives, included once when any user needs them.
+(local helpers
+  {:dot2 "float dot2(vec2 v) { return dot(v, v); }
+float dot2(vec3 v) { return dot(v, v); }"
+   :ndot "float ndot(vec2 a, vec2 b) { return a.x * b.x - a.y * b.y; }"})
+
+(local glsl-types {:float 1 :vec2 2 :vec3 3 :vec4 4})
+
+(fn check-descriptor [d file]
+  (fn need [ok? what] (assert ok? (.. file ": descriptor " what)))
+  (need (= (type d) :table) "must be a table")
+  (need (and (= (type d.kind) :string) (d.kind:match "^[a-z][a-z0-9%-]*$")) "needs a :kind name")
+  (need (= (type d.doc) :string) "needs :doc")
+  (need (= (type d.params) :table) "needs :params")
+  (need (or (= d.class :exact) (= d.class :bound)) "needs :class :exact or :bound")
+  (need (and (= (type d.args) :table) (= (type d.pack) :function)) "needs :args and :pack")
+  (each [_ a (ipairs d.args)]
+    (need (. glsl-types a.type) (.. "arg " (tostring a.name) " has an unknown GLSL type")))
+  (need (and (= (type d.glsl-name) :string) (= (type d.glsl) :string)
+             (d.glsl:find (.. "float " d.glsl-name "(vec3 p") 1 true))
+        "needs :glsl defining float <:glsl-name>(vec3 p, ...)")
+  (need (= (type d.cpu) :function) "needs :cpu")
+  (each [_ h (ipairs (or d.helpers []))]
+    (need (. helpers h) (.. "uses an unknown helper " (tostring h))))
+  (set d.lipschitz (or d.lipschitz 1))
+  (set d.arg-size (accumulate [n 0 _ a (ipairs d.args)] (+ n (. glsl-types a.type))))
+  d)
+
+(fn load-all []
+  (let [names (assert (files.list-project dir))
+        out []]
+    (each [_ name (ipairs names)]
+      (let [base (name:match "^(.-)%.fnl$")]
+        (when base
+          (table.insert out (check-descriptor (require (.. "src.sdf.primitives." base))
+                                              (.. dir "/" name))))))
+    out))
+
+(local all (load-all))
+(local by-kind (collect [_ d (ipairs all)] d.kind d))
+
+(fn lookup [kind]
+  "The descriptor of primitive `kind`, or nil."
+  (. by-kind kind))
+
+(fn kind-names []
+  "The primitive kinds, sorted."
+  (icollect [_ d (ipairs all)] d.kind))
+
+{: all : lookup : kind-names : helpers : glsl-types}

@@ -1,0 +1,32 @@
+;; Round box: exact. A box of full extents :size whose edges and corners are rounded by
+;; :radius: the exact distance to the box shrunk by :radius on every side, less :radius
+;; (an offset of an exact distance is exact outside), so the outer extents stay :size.
+(local {: sqrt : max : min : abs} math)
+
+{:kind :round-box
+ :doc "Box with full extents :size, edges and corners rounded by :radius."
+ :params [{:name :size :type :size3 :default [1 1 1]}
+          {:name :radius :type :length0 :default 0.1}]
+ :check (fn [o]
+          (let [[x y z] o.size
+                half (* 0.5 (min x y z))]
+            (when (>= o.radius half)
+              (values :radius (string.format "must be less than half the smallest :size (%g)"
+                                             half)))))
+ :class :exact
+ :args [{:name :b :type :vec3} {:name :r :type :float}]
+ :pack (fn [o]
+         (let [[x y z] o.size r o.radius]
+           [(- (* x 0.5) r) (- (* y 0.5) r) (- (* z 0.5) r) r]))
+ :glsl-name "sdRoundBox"
+ :glsl "float sdRoundBox(vec3 p, vec3 b, float r) {
+    vec3 q = abs(p) - b;
+    return length(max(q, 0.0)) + min(max(q.x, max(q.y, q.z)), 0.0) - r;
+}"
+ :cpu (fn [x y z bx by bz r]
+        (let [qx (- (abs x) bx) qy (- (abs y) by) qz (- (abs z) bz)
+              ox (max qx 0) oy (max qy 0) oz (max qz 0)]
+          (- (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz)))
+                (min (max qx qy qz) 0))
+             r)))
+ :bounds (fn [o] (let [[x y z] o.size] [(* x 0.5) (* y 0.5) (* z 0.5)]))}

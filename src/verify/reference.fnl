@@ -1,0 +1,292 @@
+;; The CPU reference marcher: the shader's semantics in plain LuaJIT, double precision,
+;; written independently of the GLSL. Its distances come from the same descriptions as
+;; the shader's (the registry's CPU distances for the kind-grouped objects, the tape's
+;; CPU evaluator for scene trees), so a GPU image can be checked pixel by pixel.
+;;
+;; Vectors travel as multiple values (x y z) and the inner loops allocate nothing.
+
+(local camera (require :src.render.camera))
+(local registry (require :src.sdf.registry))
+(local emit-lua (require :src.sdf.emit-lua))
+
+(local sqrt math.sqrt)
+(local abs math.abs)
+
+(fn clamp01 [v]
+  (if (< v 0) 0 (> v 1) 1 v))
+
+(fn normalize [x y z]
+  (let [len (sqrt (+ (* x x) (* y y) (* z z)))]
+    (values (/ x len) (/ y len) (/ z len))))
+
+(fn heat-color [h]
+  "The heat view's colour for h (steps / max-steps, clamped to [0, 1]): r g b."
+  (let [h (clamp01 h)]
+    (values (clamp01 (- 1.5 (abs (- (* 4 h) 3))))
+            (clamp01 (- 1.5 (abs (- (* 4 h) 2))))
+            (clamp01 (- 1.5 (abs (- (* 4 h) 1)))))))
+
+(fn tracer [scene plan ?options]
+  "A tracer for `scene` lowered to `plan`. Options: :cam-pos (the camera position,
+which scaled hit tests measure distances from; default the origin) and :pixel-angle
+(1 / (projection distance * image height), for the :pixel hit test).
+Returns a table of closures
+  :map        (fn [x y z]) -> distance (never above the draw distance)
+  :map-color  (fn [x y z]) -> distance, index into plan.objects or nil
+  :march      (fn [ox oy oz dx dy dz]) -> t, steps
+  :normal     (fn [x y z]) -> nx ny nz (one-sided differences)
+  :lightness  (fn [px py pz nx ny nz]) -> lambert, shadowed?
+  :trace      (fn [ox oy oz dx dy dz]) -> {:color [r g b] :hit? :distance :steps
+               :object (scene index or nil) :shadowed? :lightness :path}
+Positions are in world coordinates."
+  (let [options (or ?options {})
+        [cx cy cz] (or options.cam-pos [0 0 0])
+        pixel-angle (or options.pixel-angle 0)
+        render scene.render
+        draw render.draw-distance
+        eps render.epsilon
+        max-steps render.max-steps
+        relaxation (if plan.relaxed? render.relaxation 1)
+        hit-test plan.hit-test
+        normal-method (or plan.normals :one-sided)
+        [lx ly lz] scene.light.pos
+        [er eg eb] scene.environment
+        view plan.view
+        shaded? (= view :shaded)
+        shadows? (and shaded? plan.shadows?)
+        glow? (and shaded? plan.glow?)
+        reflections (if (and shaded? plan.reflections?) plan.reflections 0)
+        objs plan.objects
+        ;; Grouped objects come first in plan.objects, then the tree objects.
+        grouped (icollect [_ o (ipairs objs)] (when (not o.tree) o))
+        n (length grouped)
+        fns (icollect [_ o (ipairs grouped)] (. (registry.lookup o.kind) :distance))
+        trees (if plan.tape (emit-lua.compile plan.tape) {:distance [] :material []})
+        tree-distance trees.distance
+        tree-material trees.material
+        m (length tree-distance)]
+
+    (fn map [x y z]
+      (var d draw)
+      (for [i 1 n]
+        (let [di ((. fns i) (. objs i) x y z)]
+          (when (< di d) (set d di))))
+      (for [i 1 m]
+        (let [di ((. tree-distance i) x y z)]
+          (when (< di d) (set d di))))
+      d)
+
+    (fn map-color [x y z]
+      ;; Strictly smaller wins, so ties go to the earlier object in plan order.
+      ;; Returns the distance, the index into plan.objects (or nil) and the colour and
+      ;; mirror amount of the material found.
+      (var d draw)
+      (var best nil)
+      (var (r g b mirror) (values 0 0 0 1))
+      (for [i 1 n]
+        (let [di ((. fns i) (. objs i) x y z)]
+          (when (< di d) (set d di) (set best i))))
+      (when best
+        (let [[cr cg cb] (. objs best :color)] (set (r g b) (values cr cg cb))))
+      (for [i 1 m]
+        (let [(di mr mg mb ma) ((. tree-material i) x y z)]
+          (when (< di d)
+            (set d di)
+            (set best (+ n i))
+            (set (r g b mirror) (values mr mg mb ma)))))
+      (values d best r g b mirror))
+
+    (fn threshold [dist]
+      ;; The hit test: a step shorter than this is a hit. dist is the distance from
+      ;; the camera along the ray's path.
+      (case hit-test
+        :fixed eps
+        :relative (* eps dist)
+        :pixel (* eps dist pixel-angle)))
+
+    (fn distance-from-camera [x y z]
+      (let [ex (- x cx) ey (- y cy) ez (- z cz)]
+        (sqrt (+ (* ex ex) (* ey ey) (* ez ez)))))
+
+    (fn normal-delta [x y z]
+      ;; Finite-difference step and (twice it) the offset of secondary rays.
+      (let [dist (distance-from-camera x y z)]
+        (math.max (threshold dist) (* 0.000001 (+ 1 dist)))))
+
+    (fn march [ox oy oz dx dy dz]
+      ;; Plain sphere tracing when relaxation is 1; over-relaxed (Keinert et al.)
+      ;; with a fall back to the last safe point when two spheres stop overlapping.
+      (let [t0 (distance-from-camera ox oy oz)]
+        (var t 0)
+        (var t-prev 0)
+        (var r-prev 0)
+        (var omega relaxation)
+        (var steps 0)
+        (var done? false)
+        (for [i 0 (- max-steps 1) &until done?]
+          (let [d (map (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
+            (set steps (+ i 1))
+            (if (and (> omega 1) (< (+ (abs d) r-prev) (- t t-prev)))
+                (do (set t (+ t-prev r-prev))
+                    (set omega 1))
+                (< d (threshold (+ t0 t)))
+                (do (set t (+ t d))
+                    (set done? true))
+                (do (set t-prev t)
+                    (set r-prev (abs d))
+                    (set t (+ t (* omega d)))
+                    (when (>= t draw) (set done? true))))))
+        (values t steps)))
+
+    (fn safe-normalize [x y z]
+      (let [len (sqrt (+ (* x x) (* y y) (* z z)))]
+        (if (> len 0) (values (/ x len) (/ y len) (/ z len)) (values 0 0 1))))
+
+    (fn normal [x y z]
+      (let [h (normal-delta x y z)]
+        (case normal-method
+          :one-sided (let [d (map x y z)]
+                       (safe-normalize (- d (map (- x h) y z))
+                                       (- d (map x (- y h) z))
+                                       (- d (map x y (- z h)))))
+          :central (safe-normalize (- (map (+ x h) y z) (map (- x h) y z))
+                                   (- (map x (+ y h) z) (map x (- y h) z))
+                                   (- (map x y (+ z h)) (map x y (- z h))))
+          :tetrahedron (let [a (map (+ x h) (- y h) (- z h))   ; k.xyy
+                             b (map (- x h) (- y h) (+ z h))   ; k.yyx
+                             c (map (- x h) (+ y h) (- z h))   ; k.yxy
+                             e (map (+ x h) (+ y h) (+ z h))]  ; k.xxx
+                         (safe-normalize (+ a (- b) (- c) e)
+                                         (+ (- a) (- b) c e)
+                                         (+ (- a) b (- c) e))))))
+
+    (fn lightness [px py pz nx ny nz]
+      (let [tx (- lx px) ty (- ly py) tz (- lz pz)
+            len (sqrt (+ (* tx tx) (* ty ty) (* tz tz)))
+            ;; A light exactly at the point lights it along its normal.
+            (ldx ldy ldz) (if (> len 0) (values (/ tx len) (/ ty len) (/ tz len))
+                              (values nx ny nz))
+            lambert (clamp01 (+ (* ldx nx) (* ldy ny) (* ldz nz)))]
+        (if (and shadows? (> lambert 0))
+            (let [s (* 2 (normal-delta px py pz))
+                  ts (march (+ px (* nx s)) (+ py (* ny s)) (+ pz (* nz s)) ldx ldy ldz)]
+              (if (< ts draw) (values (* lambert 0.5) true) (values lambert false)))
+            (values lambert false))))
+
+    (fn object-index [i]
+      (when i (. objs i :index)))
+
+    (fn trace [ox oy oz dx dy dz]
+      (let [(t steps) (march ox oy oz dx dy dz)
+            hit? (< t draw)
+            result {:hit? hit? :distance t :steps steps :path []}]
+        (var (r g b) (values 0 0 0))
+        (if (= view :heat)
+            (do (set (r g b) (heat-color (/ steps max-steps)))
+                (when hit?
+                  (let [(_ i) (map-color (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
+                    (set result.object (object-index i))
+                    (table.insert result.path (or (object-index i) 0)))))
+            (not hit?)
+            (if (= view :glow) (let [grey (/ steps 100)] (set (r g b) (values grey grey grey)))
+                (= view :normals) nil
+                ;; shaded
+                (let [glow (if glow? (/ steps 100) 0)]
+                  (set (r g b) (values (+ er glow) (+ eg glow) (+ eb glow)))))
+            (let [px (+ ox (* dx t)) py (+ oy (* dy t)) pz (+ oz (* dz t))
+                  (_ i) (map-color px py pz)]
+              (set result.object (object-index i))
+              (table.insert result.path (or (object-index i) 0))
+              (case view
+                :glow (let [(_ _ cr cg cb) (map-color px py pz)]
+                        (set (r g b) (values cr cg cb)))
+                :normals (let [(nx ny nz) (normal px py pz)]
+                           (set (r g b) (values (+ (* nx 0.5) 0.5) (+ (* ny 0.5) 0.5)
+                                                (+ (* nz 0.5) 0.5))))
+                :shaded
+                (let [(nx ny nz) (normal px py pz)
+                      (_ _ cr cg cb primary-mirror) (map-color px py pz)
+                      (lambert shadowed?) (lightness px py pz nx ny nz)]
+                  (set result.lightness lambert)
+                  (set result.shadowed? shadowed?)
+                  (set (r g b) (values (* cr lambert) (* cg lambert) (* cb lambert)))
+                  ;; Mirror bounces.
+                  (var (qx qy qz) (values px py pz))
+                  (var (mx my mz) (values nx ny nz))
+                  (var (vx vy vz) (values dx dy dz))
+                  (var stop? false)
+                  ;; Part mirrors (plan.mirrors?): each bounce is mixed with the colour
+                  ;; before it by the mirror amount of the surface the ray leaves.
+                  (var mirror (if plan.mirrors? primary-mirror 1))
+                  (fn mix-in [br bg bb]
+                    (if plan.mirrors?
+                        (set (r g b) (values (+ br (* (- r br) mirror)) (+ bg (* (- g bg) mirror))
+                                             (+ bb (* (- b bb) mirror))))))
+                  (for [bounce 1 reflections &until stop?]
+                    (when (<= mirror 0) (set stop? true))
+                    (let [(br bg bb) (values r g b)
+                          k (* 2 (+ (* vx mx) (* vy my) (* vz mz)))
+                          rx (- vx (* k mx)) ry (- vy (* k my)) rz (- vz (* k mz))
+                          s (* 2 (normal-delta qx qy qz))
+                          sx (+ qx (* mx s)) sy (+ qy (* my s)) sz (+ qz (* mz s))
+                          tr (march sx sy sz rx ry rz)]
+                      (if stop? nil
+                          (>= tr draw)
+                          (do (set (r g b) (values (* (+ r (/ er bounce)) 0.5)
+                                                   (* (+ g (/ eg bounce)) 0.5)
+                                                   (* (+ b (/ eb bounce)) 0.5)))
+                              (mix-in br bg bb)
+                              (table.insert result.path -1)
+                              (set stop? true))
+                          (let [hx (+ sx (* rx tr)) hy (+ sy (* ry tr)) hz (+ sz (* rz tr))
+                                (hnx hny hnz) (normal hx hy hz)
+                                (_ j hr hg hb hit-mirror) (map-color hx hy hz)
+                                hl (* (lightness hx hy hz hnx hny hnz) 0.5)]
+                            (table.insert result.path (or (object-index j) 0))
+                            (set (qx qy qz) (values hx hy hz))
+                            (set (mx my mz) (values hnx hny hnz))
+                            (set (vx vy vz) (values rx ry rz))
+                            (set (r g b) (values (* (+ r (* hr hl)) 0.66)
+                                                 (* (+ g (* hg hl)) 0.66)
+                                                 (* (+ b (* hb hl)) 0.66)))
+                            (mix-in br bg bb)
+                            (set mirror hit-mirror))))))
+                _ (error (.. "reference: unknown view " (tostring view))))))
+        (set result.color [(clamp01 r) (clamp01 g) (clamp01 b)])
+        result))
+
+    {: map : map-color : march : normal : lightness : trace}))
+
+(fn ray-setup [cam width height]
+  "A function (px py) -> dx dy dz giving the primary ray through the centre of pixel
+(px, py), 0-based from the top-left of a width x height target."
+  (let [(f r u) (camera.basis cam)
+        pd (camera.projection-distance cam)
+        [fx fy fz] f [rx ry rz] r [ux uy uz] u
+        aspect (/ width height)]
+    (fn [px py]
+      (let [uvx (* (- (/ (+ px 0.5) width) 0.5) aspect)
+            uvy (- (/ (+ py 0.5) height) 0.5)]
+        (normalize (+ (* fx pd) (* rx uvx) (* ux uvy))
+                   (+ (* fy pd) (* ry uvx) (* uy uvy))
+                   (+ (* fz pd) (* rz uvx) (* uz uvy)))))))
+
+(fn render-pixels [scene plan cam width height pixels]
+  "Reference colours of `pixels` (a list of [x y], 0-based from the top-left) of a
+width x height image of `scene` lowered to `plan` seen by camera state `cam`.
+Returns a list of {:x :y :color [r g b] (0..1, clamped) :hit? :distance t :steps n
+:object (scene index of the object hit, or nil) :shadowed? :lightness :path}, in the
+order of `pixels`. :path lists the scene index of the object hit by the primary ray
+and each bounce (-1: the bounce escaped)."
+  (let [T (tracer scene plan {:cam-pos cam.pos
+                             :pixel-angle (/ 1 (* (camera.projection-distance cam) height))})
+        ray (ray-setup cam width height)
+        [ox oy oz] cam.pos]
+    (icollect [_ [x y] (ipairs pixels)]
+      (let [(dx dy dz) (ray x y)
+            result (T.trace ox oy oz dx dy dz)]
+        (set result.x x)
+        (set result.y y)
+        result))))
+
+{: tracer : ray-setup : render-pixels : heat-color}
