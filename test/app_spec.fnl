@@ -68,4 +68,36 @@
                                "--render scenes/missing.fnl --out test/out/m.png"])]
           (let [(code out) (run args)]
             (assert.are.equal 1 code args)
-            (assert.truthy (out:find "error: " 1 true) args)))))))
+            (assert.truthy (out:find "error: " 1 true) args)))))
+
+    (it "prints the generated shader from another working directory"
+      (fn []
+        (let [root (: (io.popen "pwd") :read :*l)
+              text (with-open [p (io.popen (.. "cd /tmp && SDL_VIDEODRIVER=offscreen timeout 120 love "
+                                               root " --print-shader " root "/scenes/seed.fnl 2>&1; echo \"exit:$?\""))]
+                     (p:read :*a))]
+          (assert.truthy (text:find "exit:0" 1 true) text)
+          (assert.truthy (text:find "float raymarch(" 1 true) text))))
+
+    (it "lists every primitive and operation with --kinds"
+      (fn []
+        (let [(code out) (run "--kinds")]
+          (assert.are.equal 0 code out)
+          (assert.truthy (out:find "primitives %(%d+%)"))
+          (assert.truthy (out:find "  :torus  exact  :radius 1, :thickness 0.25" 1 true) out)
+          (assert.truthy (out:find "  :ellipsoid  bound  " 1 true) out)
+          (assert.truthy (out:find "  :smooth-union  2+ children  bound  :radius 0.25, :kernel :poly" 1 true) out))))
+
+    (it "prints the lowered tree with each node's class with --tree"
+      (fn []
+        (let [(code out) (run "--tree scenes/twisted-tower.fnl")]
+          (assert.are.equal 0 code out)
+          (assert.truthy (out:find "plane x1  exact  (kind-grouped: objects[1])" 1 true) out)
+          (assert.truthy (out:find "twist  bound, Lipschitz" 1 true) out)
+          (assert.truthy (out:find "objects[2].children[2]" 1 true) out))))
+
+    (it "refuses --gpu without --probe"
+      (fn []
+        (let [(code out) (run "--render scenes/seed.fnl --out test/out/x.png --gpu")]
+          (assert.are.equal 1 code)
+          (assert.truthy (out:find "--gpu only goes with --probe" 1 true) out))))))

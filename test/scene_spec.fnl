@@ -143,7 +143,7 @@
           (assert.are.equal 500 d.render.max-steps)
           (assert.are.same {:max-reflections 16 :max-steps 100000 :max-objects 5000
                             :world 1e7 :min-length 1e-6 :max-epsilon 10 :min-fov 0.1
-                            :max-fov 179 :max-name 80}
+                            :max-fov 179 :max-name 80 :max-depth 32 :max-nodes 2000}
                            scene.limits))))))
 
 (describe "scene loader: error messages"
@@ -178,15 +178,15 @@
        ["{:objects [{:kind :box :size 5}]}"
         "t.fnl:1: objects[1].size: must be three positive numbers like [1 1 1], got 5"]
        ["{:objects [{:kind :sphere :radus 1}]}"
-        "t.fnl:1: objects[1].radus: unknown field (did you mean :radius?); known fields: :color :kind :pos :radius"]
-       ["{:objects [{:kind :plane :pos [0 0 0]}]}"
-        "t.fnl:1: objects[1].pos: unknown field; known fields: :color :height :kind"]
+        "t.fnl:1: objects[1].radus: unknown field (did you mean :radius?); known fields: :color :kind :mirror :pos :radius :rotate :scale"]
+       ["{:objects [{:kind :plane :size [0 0 0]}]}"
+        "t.fnl:1: objects[1].size: unknown field; known fields: :color :height :kind :mirror :normal :pos :rotate :scale"]
        ["{:objects [{:kind :spere}]}"
-        "t.fnl:1: objects[1].kind: unknown kind :spere (did you mean :sphere?); known kinds: :sphere :box :plane"]
-       ["{:objects [{:kind :torus}]}"
-        "t.fnl:1: objects[1].kind: unknown kind :torus; known kinds: :sphere :box :plane"]
+        "t.fnl:1: objects[1].kind: unknown kind :spere (did you mean :sphere?) (`love . --kinds` lists them all)"]
+       ["{:objects [{:kind :teapot}]}"
+        "t.fnl:1: objects[1].kind: unknown kind :teapot (`love . --kinds` lists them all)"]
        ["{:objects [{:radius 1}]}"
-        "t.fnl:1: objects[1]: missing :kind; one of :sphere :box :plane"]
+        "t.fnl:1: objects[1]: missing :kind (see `love . --kinds` for the list)"]
        ["{:objects [{:kind 3}]}"
         "t.fnl:1: objects[1].kind: must be a kind name like :sphere, got 3"]
        ["{:objects [5]}"
@@ -359,17 +359,17 @@
     (it "points at unknown kinds, unknown fields and missing kinds"
       (fn []
         (assert.are.equal
-          "t.fnl:2: objects[2].kind: unknown kind :boxx (did you mean :box?); known kinds: :sphere :box :plane"
+          "t.fnl:2: objects[2].kind: unknown kind :boxx (did you mean :box?) (`love . --kinds` lists them all)"
           (load-error "{:objects [{:kind :sphere}
            {:kind :boxx
             :size [1 1 1]}]}"))
         (assert.are.equal
-          "t.fnl:3: objects[2].sise: unknown field (did you mean :size?); known fields: :color :kind :pos :size"
+          "t.fnl:3: objects[2].sise: unknown field (did you mean :size?); known fields: :color :kind :mirror :pos :rotate :scale :size"
           (load-error "{:objects [{:kind :sphere}
            {:kind :box
             :sise [1 1 1]}]}"))
         (assert.are.equal
-          "t.fnl:2: objects[2]: missing :kind; one of :sphere :box :plane"
+          "t.fnl:2: objects[2]: missing :kind (see `love . --kinds` for the list)"
           (load-error "{:objects [{:kind :sphere}
            {:pos [1 1 1]}]}"))))
 

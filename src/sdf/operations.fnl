@@ -25,7 +25,7 @@
 
 (fn rad [deg] (* deg (/ pi 180)))
 
-(fn all-exact [children]
+(fn all-exact [_ children]
   (var exact? true)
   (each [_ c (ipairs children)] (when (not= c.class :exact) (set exact? false)))
   (if exact? :exact :bound))

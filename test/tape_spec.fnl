@@ -1,0 +1,84 @@
+;; Lowering scene trees to the tape, and what the emitters make of it: only what a
+;; scene uses reaches the shader, the output is deterministic, the structure key
+;; tells value edits from structural ones, classes and Lipschitz factors per node.
+
+(local load (require :src.scene.load))
+(local plan-mod (require :src.render.plan))
+(local codegen (require :src.render.codegen))
+(local uniforms (require :src.render.uniforms))
+(local lower (require :src.sdf.lower))
+(local camera (require :src.render.camera))
+
+(fn plan-of [objects-text]
+  (let [(s err) (load.load-string (.. "{:objects [" objects-text "]}") "t.fnl")]
+    (assert s err)
+    (values (assert (plan-mod.scene->plan s)) s)))
+
+(fn shader-of [objects-text]
+  (assert (codegen.shader (plan-of objects-text) :core)))
+
+(describe "the tape"
+  (fn []
+    (it "puts only the functions a scene uses into its shader"
+      (fn []
+        (let [text (shader-of "{:kind :union :children [{:kind :sphere :pos [1 0 0]} {:kind :torus}]}")]
+          (assert.truthy (text:find "float sdTorus(" 1 true))
+          (assert.truthy (text:find "float opUnion(" 1 true))
+          (assert.falsy (text:find "opTwist" 1 true))
+          (assert.falsy (text:find "sdOctahedron" 1 true))
+          (assert.falsy (text:find "opSmoothUnion" 1 true)))
+        (let [text (shader-of "{:kind :twist :children [{:kind :octahedron}]}")]
+          (assert.truthy (text:find "vec3 opTwist(" 1 true))
+          (assert.truthy (text:find "float opTwistDistance(" 1 true))
+          (assert.falsy (text:find "opUnion" 1 true)))))
+
+    (it "leaves scenes of the original kinds on the kind-grouped path, without a tape"
+      (fn []
+        (let [p (plan-of "{:kind :sphere :pos [1 2 3] :radius 2} {:kind :plane :height 1}")]
+          (assert.is_nil p.tape)
+          (assert.falsy (: (codegen.shader p :core) :find "uTape" 1 true)))
+        ;; A rotation or a material's mirror amount moves an object onto the tape.
+        (assert.truthy (. (plan-of "{:kind :box :rotate [0 0 10]}") :tape))
+        (assert.truthy (. (plan-of "{:kind :sphere :mirror 0.5}") :tape))))
+
+    (it "is deterministic, and its key changes with structure, not with values"
+      (fn []
+        (let [a "{:kind :smooth-union :radius 0.3 :children [{:kind :sphere :color [1 0 0]} {:kind :box :pos [1 0 0]}]}"
+              b "{:kind :smooth-union :radius 0.7 :children [{:kind :sphere :color [0 1 0]} {:kind :box :pos [2 0 0]}]}"
+              c "{:kind :smooth-union :kernel :exp :radius 0.3 :children [{:kind :sphere} {:kind :box :pos [1 0 0]}]}"
+              d "{:kind :union :children [{:kind :sphere} {:kind :box :pos [1 0 0]}]}"]
+          (assert.are.equal (shader-of a) (shader-of a))
+          (assert.are.equal (. (plan-of a) :key) (. (plan-of b) :key))
+          (assert.are.equal (shader-of a) (shader-of b))
+          (assert.are_not.equal (. (plan-of a) :key) (. (plan-of c) :key))
+          (assert.are_not.equal (. (plan-of a) :key) (. (plan-of d) :key)))))
+
+    (it "sends tree parameters in uTape, the outermost translation camera-relative"
+      (fn []
+        (let [(p s) (plan-of "{:kind :sphere :radius 2 :pos [100 200 300] :mirror 0.5}")
+              cam (doto (camera.from-scene s) (tset :pos [90 190 290]))
+              us (uniforms.pack s p cam 64 48)
+              tape (accumulate [found nil _ u (ipairs us)] (or found (and (= u.name "uTape") u)))]
+          (assert.truthy tape)
+          ;; Row 0: the translation, minus the camera; then the radius, the material.
+          (assert.are.same [10 10 10] [(. tape.values 1) (. tape.values 2) (. tape.values 3)])
+          (assert.are.equal 2 (. tape.values 5))
+          (assert.are.same [1 1 1 0.5] [(. tape.values 9) (. tape.values 10) (. tape.values 11)
+                                        (. tape.values 12)]))))
+
+    (it "knows each node's class, Lipschitz factor and bounds"
+      (fn []
+        (let [p (plan-of "{:kind :union :children [{:kind :twist :angle 90 :children [{:kind :box :size [2 2 4]}]} {:kind :displace :amplitude 0.1 :frequency 10 :children [{:kind :sphere}]} {:kind :sphere :pos [5 0 0]}]}")
+              lines (lower.describe p.tape)
+              text (table.concat lines "\n")]
+          ;; The implicit translation (shorthand), then the union and its children.
+          (assert.truthy (text:find "union  bound  " 1 true) text)
+          (assert.truthy (text:find "twist  bound, Lipschitz 2.61" 1 true) text)
+          (assert.truthy (text:find "box  exact  bounds ±1 ±1 ±2  objects[1].children[1].children[1]" 1 true) text)
+          (assert.truthy (text:find "displace  bound, Lipschitz 2.73" 1 true) text)
+          (assert.truthy (text:find "sphere  exact  bounds ±1 ±1 ±1" 1 true) text))))
+
+    (it "divides a displaced distance by its Lipschitz factor in both evaluators"
+      (fn []
+        (let [text (shader-of "{:kind :displace :amplitude 0.1 :frequency 10 :children [{:kind :sphere}]}")]
+          (assert.truthy (text:find "* 0.366025404;  // Lipschitz 2.73205" 1 true) text))))))
