@@ -1,4 +1,4 @@
-;; `make report`: accuracy against run time for every scene (see src/report.fnl).
+;; `make report`: accuracy against run time for every scene (see src/verify/report.fnl).
 ;;   luajit tools/fnl.lua tools/report.fnl [--quick] [--out DIR] [--scene FILE]...
 ;; Writes DIR/report.md, DIR/<scene>.png (gnuplot) and DIR/results.tsv; DIR is report/
 ;; (report/tmp/quick with --quick). Progress goes to stderr.
@@ -6,9 +6,9 @@
 ;; The candidate defaults, measured in the same run as the article's settings and
 ;; stated for the seed scene at the end of the report. Keys left out (or the whole
 ;; table left empty) fall back to the scene loader's defaults.
-(local defaults {})   ; the loader's defaults (src/scene.fnl), chosen from this report
+(local defaults {})   ; the loader's defaults (src/scene/load.fnl), chosen from this report
 
-(local report (require :src.report))
+(local report (require :src.verify.report))
 
 ;; Why the defaults are what they are: written by hand from the fronts of a full run,
 ;; kept with the report so that the reasoning sits next to the numbers.

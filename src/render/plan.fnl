@@ -47,6 +47,8 @@
   (let [costs (icollect [_ k (ipairs plan.kinds)]
                 (.. "a " (or k.entry.shown-as k.kind) " takes "
                     (registry.slots-per-object k.entry)))
+        _ (when plan.tape
+            (table.insert costs (.. "the scene trees take " (length plan.tape.rows))))
         over (- plan.uniform-vectors limit)]
     (.. scene.file ": objects: the scene needs " plan.uniform-vectors
         " uniform vectors but the driver allows " limit " (" fixed-uniform-vectors
