@@ -87,9 +87,9 @@
                                  "uniform vec3 uBoxColor[3];" "uniform float uPlaneHeight[1];"
                                  "uniform vec3 uPlaneColor[1];" "uniform int uReflections;"
                                  ;; A few objects of a kind are written out one by one.
-                                 "    d = min(d, sdSphere(p, uSphere[1]));"
-                                 "    d = min(d, sdBox(p, uBoxCenter[2], uBoxHalfSize[2]));"
-                                 "    d = min(d, sdPlane(p, uPlaneHeight[0]));"
+                                 "    d = min(d, sdSphere(p - uSphere[1].xyz, uSphere[1].w));"
+                                 "    d = min(d, sdBox(p - uBoxCenter[2], uBoxHalfSize[2]));"
+                                 "    d = min(d, sdPlane(p, vec3(0.0, 0.0, 1.0), uPlaneHeight[0]));"
                                  "    if (di < d) { d = di; color = uBoxColor[2]; }"])]
             (assert-has text line))
           (assert-lacks text "for (int i = 0; i < 2;")
@@ -108,11 +108,11 @@
         (let [text (shader-of "{:objects [{:kind :plane}]}")]
           (assert-lacks text "sdSphere")
           (assert-lacks text "sdBox")
-          (assert-has text "sdPlane(p, uPlaneHeight[0])"))
+          (assert-has text "sdPlane(p, vec3(0.0, 0.0, 1.0), uPlaneHeight[0])"))
         ;; More than eight of a kind: a loop over the arrays.
         (let [text (shader-of (.. "{:objects [" (string.rep "{:kind :sphere} " 9) "]}"))]
           (assert-has text "for (int i = 0; i < 9; i++) {")
-          (assert-has text "        d = min(d, sdSphere(p, uSphere[i]));"))))
+          (assert-has text "        d = min(d, sdSphere(p - uSphere[i].xyz, uSphere[i].w));"))))
 
     (it "has no reflection code when reflections are 0"
       (fn []

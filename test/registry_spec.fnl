@@ -1,6 +1,7 @@
 ;; Specs for src/sdf/registry.fnl: kinds, parameters, CPU distance functions at known points
 ;; and the uniform packers (camera-relative values).
 (local registry (require :src.sdf.registry))
+(local primitives (require :src.sdf.primitives))
 
 (fn near [expected actual ?tol]
   (let [tol (or ?tol 1e-12)]
@@ -53,7 +54,7 @@
         (assert.are.equal 3 (registry.slots-per-object (registry.lookup :box)))
         (assert.are.equal 2 (registry.slots-per-object (registry.lookup :plane)))))
 
-    (it "names uniforms and GLSL that exist in each kind's chunk"
+    (it "names uniforms and GLSL that exist in each kind's descriptor or chunk"
       (fn []
         (assert.are.same ["uSphere" "uSphereColor"]
                          (icollect [_ u (ipairs (. (registry.lookup :sphere) :uniforms))] u.name))
@@ -62,10 +63,10 @@
         (assert.are.same ["uPlaneHeight" "uPlaneColor"]
                          (icollect [_ u (ipairs (. (registry.lookup :plane) :uniforms))] u.name))
         (each [_ e (ipairs registry.kinds)]
-          (let [f (assert (io.open e.chunk :rb))
-                text (f:read :*a)
+          (let [text (if e.chunk
+                         (with-open [f (assert (io.open e.chunk :rb))] (f:read :*a))
+                         (. (primitives.lookup e.primitive) :glsl))
                 fname (e.distance-glsl:match "^(%w+)%(")]
-            (f:close)
             (assert.truthy fname)
             (assert.truthy (text:find (.. "float " fname "(") 1 true))
             (assert.is_true e.exact?)

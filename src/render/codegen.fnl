@@ -5,6 +5,7 @@
 (local registry (require :src.sdf.registry))
 (local files (require :src.util.files))
 (local emit-glsl (require :src.sdf.emit-glsl))
+(local primitives (require :src.sdf.primitives))
 
 ;; Chunks are read through the program's one file reader (project files, from any
 ;; working directory); tests may swap the reader. Chunks are cached by path. A chunk
@@ -135,10 +136,17 @@ and forget cached ones."
         colors? (or (= view :shaded) (= view :glow))
         sections [(fill "shaders/pipeline/prelude.glsl" {:feature-uniforms (feature-uniforms plan)})
                   (uniform-declarations plan)]]
-    (each [_ k (ipairs plan.kinds)]
-      (table.insert sections (fill k.entry.chunk {})))
-    (when plan.tape
-      (table.insert sections (emit-glsl.functions plan.tape)))
+    ;; Distance functions: the grouped kinds' (a descriptor's, or the large sphere's
+    ;; own chunk), then the tape's; each function once.
+    (let [defined {}]
+      (each [_ k (ipairs plan.kinds)]
+        (if k.entry.chunk
+            (table.insert sections (fill k.entry.chunk {}))
+            (let [d (primitives.lookup k.entry.primitive)]
+              (tset defined d.glsl-name true)
+              (table.insert sections (emit-glsl.text-lines d.glsl)))))
+      (when plan.tape
+        (table.insert sections (emit-glsl.functions plan.tape defined))))
     (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms plan)
                                                      :color-terms (color-terms plan)}))
     (when (not colors?)

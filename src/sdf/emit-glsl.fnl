@@ -72,19 +72,25 @@
        (each [_ ins (ipairs code)] (emit-instr out ins materials?))
        out))
 
-(fn functions [tape]
-  "GLSL definitions of every helper and function the tape uses, in first-use order."
-  (let [out []]
+(fn text-lines [text]
+  "The lines of `text`."
+  (icollect [line (: (.. text "\n") :gmatch "([^\n]*)\n")] line))
+
+(fn functions [tape ?defined]
+  "GLSL definitions of every helper and function the tape uses, in first-use order,
+but those named in `?defined` (GLSL name -> true: already in the shader)."
+  (let [out []
+        defined (or ?defined {})]
     (each [_ u (ipairs tape.used)]
       (when (u.name:find "^helper:")
         (table.insert out (. primitives.helpers u.desc))))
     (each [_ u (ipairs tape.used)]
-      (when (not (u.name:find "^helper:"))
+      (when (and (not (u.name:find "^helper:")) (not (. defined u.name)))
         (table.insert out u.desc.glsl)))
     (let [lines []]
       (each [i text (ipairs out)]
         (when (> i 1) (table.insert lines ""))
-        (each [line (: (.. text "\n") :gmatch "([^\n]*)\n")] (table.insert lines line)))
+        (each [_ line (ipairs (text-lines text))] (table.insert lines line)))
       lines)))
 
 (fn declarations [tape]
@@ -113,4 +119,4 @@ its mirror amount in gMirror when `mirrors?`)."
          (if mirrors? (.. " gMirror = " o.mout ".a;") "") " }")
      "}"]))
 
-{: functions : declarations : distance-terms : color-terms}
+{: functions : declarations : distance-terms : color-terms : text-lines}

@@ -1,32 +1,34 @@
-;; The primitive registry: one entry per kind holds its parameters with their checks,
-;; its uniform layout, its GLSL distance function and its CPU distance function, so the
-;; shader and the CPU reference marcher are described in one place.
+;; The kind-grouped path: the first version's flat spheres, boxes and planes, drawn from
+;; per-kind uniform arrays (one loop or unrolled block per kind) rather than the tape.
+;; Each entry holds the kind's parameters as scene files write them, its uniform layout,
+;; and how it calls its primitive descriptor (src/sdf/primitives/) with the position
+;; applied: the GLSL function and the CPU form are the descriptor's, described once.
 
 (local sqrt math.sqrt)
 (local abs math.abs)
 (local max math.max)
 (local min math.min)
 
+(local primitives (require :src.sdf.primitives))
+
+(local sphere-cpu (. (primitives.lookup :sphere) :cpu))
+(local box-cpu (. (primitives.lookup :box) :cpu))
+(local plane-cpu (. (primitives.lookup :plane) :cpu))
+
 (fn sphere-distance [o x y z]
-  "Exact distance from (x y z) to sphere `o` (world coordinates, double)."
-  (let [[cx cy cz] o.pos
-        dx (- x cx) dy (- y cy) dz (- z cz)]
-    (- (sqrt (+ (* dx dx) (* dy dy) (* dz dz))) o.radius)))
+  "Distance from (x y z) to sphere `o` (world coordinates, double)."
+  (let [[cx cy cz] o.pos]
+    (sphere-cpu (- x cx) (- y cy) (- z cz) o.radius)))
 
 (fn box-distance [o x y z]
-  "Exact signed distance from (x y z) to the axis-aligned box `o`."
+  "Signed distance from (x y z) to the axis-aligned box `o`."
   (let [[cx cy cz] o.pos
-        [sx sy sz] o.size
-        qx (- (abs (- x cx)) (* sx 0.5))
-        qy (- (abs (- y cy)) (* sy 0.5))
-        qz (- (abs (- z cz)) (* sz 0.5))
-        ox (max qx 0) oy (max qy 0) oz (max qz 0)]
-    (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz)))
-       (min (max qx qy qz) 0))))
+        [sx sy sz] o.size]
+    (box-cpu (- x cx) (- y cy) (- z cz) (* sx 0.5) (* sy 0.5) (* sz 0.5))))
 
-(fn plane-distance [o _x _y z]
-  "Exact signed distance from (x y z) to the ground plane z = o.height."
-  (- z o.height))
+(fn plane-distance [o x y z]
+  "Signed distance from (x y z) to the ground plane z = o.height."
+  (plane-cpu x y z 0 0 1 o.height))
 
 ;;; Uniform packers: each takes the object and the camera position and returns the
 ;;; values of one array element. Positions are made camera-relative here, in double.
@@ -53,12 +55,12 @@
     :params [{:name :pos :type :vec3 :default [0 0 0]}
              {:name :radius :type :positive :default 1}
              {:name :color :type :color :default [1 1 1]}]
-    :chunk "shaders/sdf/sphere.glsl"
+    :primitive :sphere
     :exact? true
     :uniforms [{:name "uSphere" :type :vec4
                 :pack (fn [o cam] (let [[x y z] (relative o.pos cam)] [x y z o.radius]))}
                {:name "uSphereColor" :type :vec3 :pack (fn [o] o.color)}]
-    :distance-glsl "sdSphere(p, uSphere[i])"
+    :distance-glsl "sdSphere(p - uSphere[i].xyz, uSphere[i].w)"
     :color-glsl "uSphereColor[i]"
     :distance sphere-distance
     ;; Lowering: large spheres take the large-sphere code (same CPU distance).
@@ -82,25 +84,25 @@
     :params [{:name :pos :type :vec3 :default [0 0 0]}
              {:name :size :type :size3 :default [1 1 1]}
              {:name :color :type :color :default [1 1 1]}]
-    :chunk "shaders/sdf/box.glsl"
+    :primitive :box
     :exact? true
     :uniforms [{:name "uBoxCenter" :type :vec3 :pack (fn [o cam] (relative o.pos cam))}
                {:name "uBoxHalfSize" :type :vec3
                 :pack (fn [o] (let [[x y z] o.size] [(* x 0.5) (* y 0.5) (* z 0.5)]))}
                {:name "uBoxColor" :type :vec3 :pack (fn [o] o.color)}]
-    :distance-glsl "sdBox(p, uBoxCenter[i], uBoxHalfSize[i])"
+    :distance-glsl "sdBox(p - uBoxCenter[i], uBoxHalfSize[i])"
     :color-glsl "uBoxColor[i]"
     :distance box-distance}
    {:kind :plane
     :doc "Ground plane z = :height, facing up."
     :params [{:name :height :type :number :default 0}
              {:name :color :type :color :default [1 1 1]}]
-    :chunk "shaders/sdf/plane.glsl"
+    :primitive :plane
     :exact? true
     :uniforms [{:name "uPlaneHeight" :type :float
                 :pack (fn [o [_ _ cz]] [(- o.height cz)])}
                {:name "uPlaneColor" :type :vec3 :pack (fn [o] o.color)}]
-    :distance-glsl "sdPlane(p, uPlaneHeight[i])"
+    :distance-glsl "sdPlane(p, vec3(0.0, 0.0, 1.0), uPlaneHeight[i])"
     :color-glsl "uPlaneColor[i]"
     :distance plane-distance}])
 
