@@ -135,10 +135,11 @@
                         st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "seed, broken -min" st))
                     (assert.is_false (passes? st budget)))
-                  ;; A sign flipped in the box's offset: abs(p - c) becomes abs(p + c).
+                  ;; A sign flipped in the boxes' offset: sdBox(p - c, h) becomes
+                  ;; sdBox(p + c, h) in every call (three boxes, in map and mapColor).
                   (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
-                                      "abs%(p %- c%)" "abs(p + c)")
-                        _ (assert.are.equal 1 n)
+                                      "sdBox%(p %- uBoxCenter" "sdBox(p + uBoxCenter")
+                        _ (assert.are.equal 6 n)
                         st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "seed, broken p+c" st))
                     (assert.is_false (passes? st budget))))))
