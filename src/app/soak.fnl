@@ -7,6 +7,7 @@
 (local play (require :src.app.play))
 (local frame (require :src.backend.frame))
 (local filestat (require :src.util.filestat))
+(local camera (require :src.render.camera))
 (local {: median} (require :src.verify.compare))
 
 (local structures 12)   ; distinct sphere counts, more than the shader cache holds
@@ -63,8 +64,20 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
         path (.. (os.tmpname) ".fnl")
         canvas (love.graphics.newCanvas 128 112)
         original (frame.read-text o.scene)
-        recoloured (original:gsub "(:kind :sphere[^}]-:color %[)[^%]]*%]" "%11 1 0]" 1)
-        added (recoloured:gsub ":objects %[" ":objects [{:kind :sphere :radius 1 :pos [0 0 14] :color [1 1 1]}\n" 1)
+        ;; A sphere's colour, or else the first colour in the file.
+        recoloured (let [(text n) (original:gsub "(:kind :sphere[^}]-:color %[)[^%]]*%]" "%11 1 0]" 1)]
+                     (if (> n 0) text
+                         (pick-values 1 (original:gsub "(:color%s*%[)[^%]]*%]" "%11 1 0]" 1))))
+        ;; The added sphere sits 6 units in front of the file's camera, so it shows.
+        [ax ay az] (case (frame.load-scene o.scene)
+                     scene (let [[px py pz] scene.camera.pos
+                                 [fx fy fz] (camera.basis (camera.from-scene scene))]
+                             [(+ px (* 6 fx)) (+ py (* 6 fy)) (+ pz (* 6 fz))])
+                     _ [0 0 14])
+        added (recoloured:gsub ":objects%s*%["
+                               (string.format ":objects [{:kind :sphere :radius 1 :pos [%.6f %.6f %.6f] :color [1 1 1]}\n"
+                                              ax ay az)
+                               1)
         broken (recoloured:gsub "}%s*$" "")]
     (fn step! [text]
       ;; The clock moved forward instead of waiting: first too soon (nothing loads),
@@ -83,7 +96,7 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
     (let [image0 (step! original)
           compiles0 state.cache.compiles
           image1 (step! recoloured)]
-      (report "recolouring a sphere changes the next frame without a shader compile"
+      (report "recolouring an object changes the next frame without a shader compile"
               (and (not= image0 image1) (= state.cache.compiles compiles0)
                    (= state.error nil) (not= recoloured original)))
       (let [image2 (step! added)]
