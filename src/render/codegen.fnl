@@ -121,13 +121,32 @@ and forget cached ones."
       (table.insert lines "uniform bool uGlow;"))
     lines))
 
+(fn parts [path]
+  "The parts of chunk `path`, split at `// @part NAME` lines: name -> lines (the
+comment lines before the first part are the chunk's own documentation)."
+  (let [out {}]
+    (var current nil)
+    (each [line (: (.. (chunk path) "\n") :gmatch "([^\n]*)\n")]
+      (let [name (line:match "^// @part ([%w%-]+)%s*$")]
+        (if name (do (set current []) (tset out name current))
+            current (table.insert current line))))
+    out))
+
+(fn mirror-slots [plan]
+  ;; Part-mirror materials add a few lines to the bounce loop; other scenes get none,
+  ;; so their shaders stay as they were.
+  (if plan.mirrors?
+      (let [p (parts "shaders/shading/mirror.glsl")]
+        {:mirror-start p.start :mirror-before p.before :mirror-mix p.mix :mirror-next p.next})
+      {:mirror-start [] :mirror-before [] :mirror-mix [] :mirror-next []}))
+
 (fn view-lines [plan]
   (case plan.view
     :shaded (fill "shaders/views/shaded.glsl"
                   {:glow (if plan.glow? (when-switched plan "uGlow" (fill "shaders/shading/glow.glsl" {})) [])
-                   :reflections (if (not plan.reflections?) []
-                                    plan.mirrors? (fill "shaders/shading/reflect-mirror.glsl" {})
-                                    (fill "shaders/shading/reflect.glsl" {}))})
+                   :reflections (if plan.reflections?
+                                    (fill "shaders/shading/reflect.glsl" (mirror-slots plan))
+                                    [])})
     view (fill (.. "shaders/views/" view ".glsl") {})))
 
 (fn body-lines [plan]
