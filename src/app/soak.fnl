@@ -38,6 +38,13 @@
 (fn broken-text [i]
   (. broken-texts (+ 1 (% i (length broken-texts)))))
 
+(fn temp-scene-path []
+  ;; os.tmpname creates the file it names: take the unique name, remove that file
+  ;; (it would be left behind empty), and use the name with .fnl added.
+  (let [base (os.tmpname)]
+    (os.remove base)
+    (.. base ".fnl")))
+
 (fn write! [path text]
   (with-open [f (assert (io.open path :wb))] (f:write text)))
 
@@ -61,7 +68,7 @@
   "The edits a person makes to a real scene file (o.scene, a copy in a temp file):
 recolour a sphere, add a sphere, break the file, fix it. Prints one line per step."
   (let [state play.state
-        path (.. (os.tmpname) ".fnl")
+        path (temp-scene-path)
         canvas (love.graphics.newCanvas 128 112)
         original (frame.read-text o.scene)
         ;; A sphere's colour, or else the first colour in the file.
@@ -74,10 +81,16 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
                                  [fx fy fz] (camera.basis (camera.from-scene scene))]
                              [(+ px (* 6 fx)) (+ py (* 6 fy)) (+ pz (* 6 fz))])
                      _ [0 0 14])
-        added (recoloured:gsub ":objects%s*%["
-                               (string.format ":objects [{:kind :sphere :radius 1 :pos [%.6f %.6f %.6f] :color [1 1 1]}\n"
-                                              ax ay az)
-                               1)
+        sphere (string.format "{:kind :sphere :radius 1 :pos [%.6f %.6f %.6f] :color [1 1 1]}"
+                              ax ay az)
+        ;; A literal list gets the sphere first; a list built in code (`:objects ring`)
+        ;; gets it inserted by a `let` around the name.
+        added (let [(text n) (recoloured:gsub ":objects%s*%[" (.. ":objects [" sphere "\n") 1)]
+                (if (> n 0) text
+                    (pick-values 1 (recoloured:gsub ":objects%s+([%a_][%w_%-]*)"
+                                                    (.. ":objects (let [o %1] (table.insert o 1 "
+                                                        sphere ") o)")
+                                                    1))))
         broken (recoloured:gsub "}%s*$" "")]
     (fn step! [text]
       ;; The clock moved forward instead of waiting: first too soon (nothing loads),
@@ -143,7 +156,7 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
 (fn run [o]
   "Run `o.cycles` reload cycles; true when every check held."
   (let [state play.state
-        path (.. (os.tmpname) ".fnl")
+        path (temp-scene-path)
         canvas (love.graphics.newCanvas 64 48)
         failures []
         times {:value [] :structural []}
