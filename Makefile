@@ -9,7 +9,11 @@ HEADLESS = SDL_VIDEODRIVER=offscreen
 deps:
 	@bash tools/install-deps.sh
 
+# Without a display the window would open nowhere and the player run unseen forever.
 run: deps
+	@if [ -z "$$DISPLAY$$WAYLAND_DISPLAY$$SDL_VIDEODRIVER" ]; then \
+	  echo "make run: no display (DISPLAY and WAYLAND_DISPLAY are unset): run it in a desktop session, or under xvfb-run to try it headless" >&2; \
+	  exit 1; fi
 	love . $(SCENE)
 
 # The suite also makes a quick accuracy report, whose plots need gnuplot.

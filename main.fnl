@@ -67,6 +67,10 @@
                      (each [_ l (ipairs (lower.describe plan.tape))] (io.write l "\n")))
                    (love.event.quit 0))))))
 
+(fn help []
+  (io.write cli.usage "\n")
+  (love.event.quit 0))
+
 (fn kinds []
   (each [_ l (ipairs ((. (require :src.sdf.card) :lines)))] (io.write l "\n"))
   (love.event.quit 0))
@@ -94,7 +98,7 @@
     (play-mod.start! o)))
 
 (local modes {:print-shader print-shader :render render :bench bench
-              :probe probe :tree tree :kinds kinds
+              :probe probe :tree tree :kinds kinds :help help
               :bench-report bench-report :soak soak :play play})
 
 (fn headless-error-handler [message]

@@ -14,6 +14,25 @@
         (assert.are.same {:mode :play :scene "scenes/seed.fnl" :frames 5 :cycles 300} (cli.parse []))
         (assert.are.equal "scenes/seed.fnl" cli.default-scene)))
 
+    (it "parses --help and -h, and refuses any other single-dash word"
+      (fn []
+        (assert.are.equal :help (. (cli.parse ["--help"]) :mode))
+        (assert.are.equal :help (. (cli.parse ["-h"]) :mode))
+        (let [(o err) (cli.parse ["-x"])]
+          (assert.is_nil o)
+          (assert.are.equal "unknown option -x" err))))
+
+    (it "parses the scene-tree modes: --probe (with --gpu), --tree, --kinds"
+      (fn []
+        (assert.are.same {:mode :probe :scene "a.fnl" :gpu? true :frames 5 :cycles 300}
+                         (cli.parse ["--probe" "a.fnl" "--gpu"]))
+        (assert.are.same {:mode :tree :scene "a.fnl" :frames 5 :cycles 300}
+                         (cli.parse ["--tree" "a.fnl"]))
+        (assert.are.equal :kinds (. (cli.parse ["--kinds"]) :mode))
+        (let [(o err) (cli.parse ["--tree" "a.fnl" "--gpu"])]
+          (assert.is_nil o)
+          (assert.are.equal "--gpu only goes with --probe" err))))
+
     (it "plays a scene given as the only argument"
       (fn []
         (assert.are.same {:mode :play :scene "scenes/other.fnl" :frames 5 :cycles 300}

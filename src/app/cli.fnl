@@ -16,6 +16,7 @@
        love . --probe SCENE [--gpu]          distance and material at points `x y z` read from stdin
        love . --tree SCENE                   the lowered scene tree, each node's class and bounds
        love . --kinds                        every primitive and operation, with parameters
+       love . --help                         this text
 VIEW is one of shaded, normals, glow, heat.")
 
 (local value-flags {:--out :out :--size :size :--frames :frames :--view :view
@@ -63,7 +64,7 @@ VIEW is one of shaded, normals, glow, heat.")
 
 (fn parse [args]
   "Parse the game's arguments (after LÖVE's own). Returns an options table
-{:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:probe|:tree|:kinds
+{:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:probe|:tree|:kinds|:help
  :scene :out :size [w h] :frames n :view v :target t :gpu? (probe on the GPU)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]
     (var i 1)
@@ -79,6 +80,8 @@ VIEW is one of shaded, normals, glow, heat.")
                     (set o.scene next-arg)
                     (set i (+ i 1))))
             (= a "--gpu") (set o.gpu? true)
+            (or (= a "--help") (= a "-h"))
+            (set o.mode :help)
             (or (= a "--bench-report") (= a "--soak") (= a "--kinds"))
             (if (not= o.mode :play) (set err (.. a ": only one mode at a time"))
                 (set o.mode (a:sub 3)))
@@ -86,7 +89,8 @@ VIEW is one of shaded, normals, glow, heat.")
             (if (= next-arg nil) (set err (.. a " needs a value"))
                 (do (tset o (. value-flags a) next-arg)
                     (set i (+ i 1))))
-            (a:match "^%-%-") (set err (.. "unknown option " a))
+            ;; -x as well as --x: a single-dash word is never a scene file.
+            (a:match "^%-.") (set err (.. "unknown option " a))
             o.scene (set err (.. "unexpected argument " a))
             (set o.scene a)))
       (set i (+ i 1)))

@@ -88,7 +88,10 @@ On any failure the last good scene keeps running and the error is shown."
                 (when (or fresh? (not state.cam)
                           (and (not user-moved?) (not (same-camera? file-cam (camera.from-scene old)))))
                   (set state.cam file-cam))
-                (when (file-changed? #$.render.scale) (set state.scale scene.render.scale))
+                ;; A render scale chosen with - and = stays when [ and ] open another
+                ;; scene (on a slow machine, 1 would mean a few frames a second).
+                (when (and (file-changed? #$.render.scale) (not (and fresh? old state.user-scale?)))
+                  (set state.scale scene.render.scale))
                 (set state.reflections reflections)
                 (set state.scene scene)
                 (set state.path path)
@@ -192,6 +195,7 @@ the reflection count changed (not every frame)."
 
 (fn change-scale! [factor]
   (set state.scale (math.max 0.1 (math.min 1 (* state.scale factor))))
+  (set state.user-scale? true)
   (say! (string.format "render scale: %.2f" state.scale)))
 
 (fn cycle-view! []
