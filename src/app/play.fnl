@@ -18,7 +18,7 @@
 (local dead-zone 0.2)   ; the article's gamepad dead zone
 
 (local state {:scene nil :path nil :cam nil :view :shaded :reflections 0
-              :scale 1 :hud? true :cache nil :canvas nil :message nil
+              :scale 1 :hud? true :cache nil :canvas nil :message nil :taps {} :dragging? false
               :message-until 0 :error nil :gamepad nil :watch nil :poll-at 0
               :reloads 0 :progress (progress.new)})
 
@@ -154,21 +154,32 @@ the reflection count changed (not every frame)."
 
 (fn down? [...] (love.keyboard.isDown ...))
 
+;; At a frame a second a short tap is pressed and released between two updates, so
+;; love.keyboard.isDown never sees it: a press counts as held for at least this long.
+(local tap-seconds 0.15)
+
+(fn held [key dt]
+  "Seconds `key` counts as held this update: the frame time while it is down, and at
+least tap-seconds for a key pressed since the last update."
+  (let [tapped? (. state.taps key)]
+    (if (down? key) (if tapped? (math.max dt tap-seconds) dt)
+        tapped? tap-seconds
+        0)))
+
 (fn handle-keyboard [dt]
   (let [cam state.cam
-        shift? (down? :lshift :rshift)]
-    (when (down? :w) (camera.move-forward! cam (* move-speed dt)))
-    (when (down? :s) (camera.move-forward! cam (* (- move-speed) dt)))
-    (when (down? :d)
-      (if shift? (camera.strafe! cam (* move-speed dt)) (camera.turn! cam (* turn-speed dt))))
-    (when (down? :a)
-      (if shift? (camera.strafe! cam (* (- move-speed) dt)) (camera.turn! cam (* (- turn-speed) dt))))
-    (when (down? :q) (camera.pitch! cam (* turn-speed dt)))
-    (when (down? :e) (camera.pitch! cam (* (- turn-speed) dt)))
-    (when (down? :r) (camera.elevate! cam (* move-speed dt)))
-    (when (down? :f) (camera.elevate! cam (* (- move-speed) dt)))
-    (when (down? :o) (camera.zoom! cam (* (- fov-speed) dt)))
-    (when (down? :p) (camera.zoom! cam (* fov-speed dt)))))
+        shift? (down? :lshift :rshift)
+        w (held :w dt) s (held :s dt) a (held :a dt) d (held :d dt)]
+    (when (> (+ w s) 0) (camera.move-forward! cam (* move-speed (- w s))))
+    (when (> (+ a d) 0)
+      (if shift? (camera.strafe! cam (* move-speed (- d a))) (camera.turn! cam (* turn-speed (- d a)))))
+    (let [q (held :q dt) e (held :e dt)]
+      (when (> (+ q e) 0) (camera.pitch! cam (* turn-speed (- q e)))))
+    (let [r (held :r dt) f (held :f dt)]
+      (when (> (+ r f) 0) (camera.elevate! cam (* move-speed (- r f)))))
+    (let [o (held :o dt) p (held :p dt)]
+      (when (> (+ o p) 0) (camera.zoom! cam (* fov-speed (- p o))))))
+  (set state.taps {}))
 
 (fn axis [pad name]
   (let [v (pad:getGamepadAxis name)]
@@ -226,6 +237,7 @@ the reflection count changed (not every frame)."
       (say! (.. "saved " (love.filesystem.getSaveDirectory) "/" name)))))
 
 (fn keypressed [key]
+  (tset state.taps key true)
   (let [alt? (down? :lalt :ralt)]
     (case key
       :escape (love.event.quit 0)
@@ -250,8 +262,16 @@ the reflection count changed (not every frame)."
     :rightshoulder (change-reflections! 1)
     :back (cycle-view!)))
 
+;; A drag is motion between a press and its release, in event order: motion queued
+;; before a click (a slow frame) must not turn the camera, as isDown would make it.
+(fn mousepressed [_ _ button]
+  (when (or (= button 1) (= button 2)) (set state.dragging? true)))
+
+(fn mousereleased []
+  (when (not (or (love.mouse.isDown 1) (love.mouse.isDown 2))) (set state.dragging? false)))
+
 (fn mousemoved [_ _ dx dy]
-  (when (and state.cam (or (love.mouse.isDown 1) (love.mouse.isDown 2)))
+  (when (and state.cam state.dragging?)
     (camera.turn! state.cam (* dx mouse-degrees-per-pixel))
     (camera.pitch! state.cam (* dy mouse-degrees-per-pixel))))
 
@@ -357,6 +377,8 @@ the reflection count changed (not every frame)."
   (set love.keypressed keypressed)
   (set love.gamepadpressed gamepadpressed)
   (set love.mousemoved mousemoved)
+  (set love.mousepressed mousepressed)
+  (set love.mousereleased mousereleased)
   (set love.joystickadded (fn [j] (when (j:isGamepad) (set state.gamepad j)))))
 
 {: start! : state : load! : poll-file! : current-plan}
