@@ -122,7 +122,11 @@ moves it forward instead of waiting)."
       (let [info (file-info state.path)]
         (case (watch.poll! state.watch info (or ?now (filestat.now)))
           :changed (load! state.path false)
-          :deleted (say! (.. state.path " was deleted; the last good scene keeps running"))
+          ;; A file missing from the start was never there to be deleted: the load
+          ;; error on screen says so already.
+          :deleted (when state.watch.loaded
+                     (say! (.. state.path " was deleted"
+                               (if state.scene "; the last good scene keeps running" ""))))
           :unreadable (say! (.. state.path ": " (or state.watch.problem "it cannot be read")
                                 "; the last good scene keeps running")))))))
 
@@ -359,6 +363,9 @@ least tap-seconds for a key pressed since the last update."
     (io.stderr:write (.. "error: " (or state.error (.. options.scene ": no scene")) "\n"))
     (love.event.quit 1))
   (set love.update (fn [dt]
+                     ;; Nothing to render (a broken or missing first scene): the
+                     ;; message is on screen; do not spin at hundreds of frames a second.
+                     (when (not state.scene) (love.timer.sleep 0.05))
                      (progress.measured! state.progress dt)
                      (poll-file!)
                      (when state.cam
