@@ -333,7 +333,10 @@ least tap-seconds for a key pressed since the last update."
                  _ (progress.drawn! p))
           (nil err) (set state.error err)))
       (love.graphics.setColor 1 1 1 1)
-      (love.graphics.draw canvas 0 0 0 (/ 1 state.scale) (/ 1 state.scale))))
+      ;; Stretched to the window exactly: the canvas is the window times the scale
+      ;; rounded down, and 1 / scale would leave strips at the right and bottom.
+      (let [(ww wh) (love.graphics.getDimensions)]
+        (love.graphics.draw canvas 0 0 0 (/ ww (canvas:getWidth)) (/ wh (canvas:getHeight))))))
   (when state.hud?
     (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))
   (when state.error
