@@ -232,13 +232,24 @@ least tap-seconds for a key pressed since the last update."
 (fn toggle-fullscreen! []
   (love.window.setFullscreen (not (love.window.getFullscreen)) :desktop))
 
-(fn screenshot! []
-  (when state.canvas
-    (let [name (os.date "screenshot-%Y%m%d-%H%M%S.png")
-          data (state.canvas:newImageData)]
-      (data:encode :png name)
-      (data:release)
-      (say! (.. "saved " (love.filesystem.getSaveDirectory) "/" name)))))
+(fn screenshot! [bare?]
+  "F12: the window as it looks (window resolution, HUD and messages included);
+shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
+  (let [stamp (os.date "%Y%m%d-%H%M%S")
+        name (.. (if bare? "render-" "screenshot-") stamp ".png")
+        where (.. (love.filesystem.getSaveDirectory) "/" name)]
+    (if bare?
+        (when state.canvas
+          (let [data (state.canvas:newImageData)]
+            (data:encode :png name)
+            (data:release)
+            (say! (string.format "saved the bare render (%dx%d) to %s"
+                                 (state.canvas:getWidth) (state.canvas:getHeight) where))))
+        (love.graphics.captureScreenshot
+          (fn [data]
+            (data:encode :png name)
+            (say! (string.format "saved the window (%dx%d) to %s; shift+F12 saves the bare render"
+                                 (data:getWidth) (data:getHeight) where)))))))
 
 (fn keypressed [key]
   (tset state.taps key true)
@@ -250,7 +261,7 @@ least tap-seconds for a key pressed since the last update."
       :f1 (set state.hud? (not state.hud?))
       :f11 (toggle-fullscreen!)
       :return (when alt? (toggle-fullscreen!))
-      :f12 (screenshot!)
+      :f12 (screenshot! (down? :lshift :rshift))
       :f5 (load! state.path false)
       :k (change-reflections! -1)
       :l (change-reflections! 1)
