@@ -100,4 +100,27 @@
       (fn []
         (let [(code out) (run "--render scenes/seed.fnl --out test/out/x.png --gpu")]
           (assert.are.equal 1 code)
-          (assert.truthy (out:find "--gpu only goes with --probe" 1 true) out))))))
+          (assert.truthy (out:find "--gpu only goes with --probe" 1 true) out))))
+
+    (it "fills the window at a render scale that does not divide it (no black strips)"
+      (fn []
+        (write-file "test/out/scale77.fnl"
+                    "{:render {:scale 0.77 :reflections 0 :shadows false}
+ :environment [0.5 0.6 0.7]
+ :objects [{:kind :plane :height 0 :color [0.8 0.8 0.8]}]}")
+        (os.remove "test/out/scale77.png")
+        (let [(code out) (run "test/out/scale77.fnl --shot test/out/scale77.png --frames 2")
+              img (assert (png.read-file "test/out/scale77.png") out)
+              px (fn [x y] (let [i (* 4 (+ x (* y img.width)))]
+                             (+ (. img.pixels i) (. img.pixels (+ i 1)) (. img.pixels (+ i 2)))))]
+          (assert.are.equal 0 code out)
+          ;; The last column and the last row show the scene, not the black clear colour.
+          (assert.is_true (> (px (- img.width 1) 10) 0) "black strip at the right")
+          (assert.is_true (> (px 10 (- img.height 1)) 0) "black strip at the bottom"))))
+
+    (it "make run says there is no display and exits non-zero without one"
+      (fn []
+        (let [text (with-open [p (io.popen "env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER timeout 60 make -s run 2>&1; echo \"exit:$?\"")]
+                     (p:read :*a))]
+          (assert.truthy (text:find "make run: no display" 1 true) text)
+          (assert.falsy (text:match "exit:0%s*$") text))))))

@@ -22,4 +22,16 @@
             ;; Flat: within 10% of the warmed-up figure (the GC's own slack).
             (assert.is_true (< (tonumber final) (* 1.1 (tonumber warm)))))
           (let [(warm final) (out:match "live shaders after cycle %d+: (%d+), at the end: (%d+)")]
-            (assert.are.equal warm final)))))))
+            (assert.are.equal warm final)))))
+
+    ;; The scripted edits must work on any scene: gallery builds its object list in
+    ;; code (`:objects ring`), organic writes `:objects` and its list on two lines and
+    ;; is a scene tree, colonnade has no coloured sphere.
+    (each [_ name (ipairs [:gallery :organic :colonnade])]
+      (it (.. "passes its reload checks on scenes/" name ".fnl")
+        (fn []
+          (let [out (with-open [p (io.popen (.. "SDL_VIDEODRIVER=offscreen timeout 300 love . --soak scenes/"
+                                                name ".fnl --cycles 6 2>&1; echo \"exit:$?\""))]
+                      (p:read :*a))]
+            (assert.truthy (out:find "soak checks: 0 failed" 1 true) out)
+            (assert.truthy (out:match "exit:0%s*$") out)))))))
