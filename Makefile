@@ -4,7 +4,7 @@
 SCENE ?= scenes/seed.fnl
 HEADLESS = SDL_VIDEODRIVER=offscreen
 
-.PHONY: deps run test bench golden report report-quick clean
+.PHONY: deps run test bench golden report report-quick dist clean
 
 deps:
 	@bash tools/install-deps.sh
@@ -18,7 +18,7 @@ run: deps
 
 # The suite also makes a quick accuracy report, whose plots need gnuplot.
 test:
-	@bash tools/install-deps.sh gnuplot-nox
+	@bash tools/install-deps.sh gnuplot-nox zip
 	@$(HEADLESS) bash tools/run-tests.sh
 
 bench: deps
@@ -37,5 +37,10 @@ report-quick: deps
 golden: deps
 	$(HEADLESS) luajit tools/fnl.lua tools/golden.fnl
 
+# dist/fennel-raymarcher.love: plays with `love dist/fennel-raymarcher.love` anywhere LÖVE is.
+dist: deps
+	@bash tools/install-deps.sh zip
+	@bash tools/dist.sh
+
 clean:
-	rm -rf out test/out
+	rm -rf out test/out dist

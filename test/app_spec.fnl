@@ -123,4 +123,21 @@
         (let [text (with-open [p (io.popen "env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER timeout 60 make -s run 2>&1; echo \"exit:$?\"")]
                      (p:read :*a))]
           (assert.truthy (text:find "make run: no display" 1 true) text)
-          (assert.falsy (text:match "exit:0%s*$") text))))))
+          (assert.falsy (text:match "exit:0%s*$") text))))
+
+    (it "packs a .love that plays bundled and outside scenes from another directory"
+      (fn []
+        (let [root (: (io.popen "pwd") :read :*l)
+              sh (fn [cmd]
+                   (let [text (with-open [p (io.popen (.. cmd " 2>&1; echo \"exit:$?\""))] (p:read :*a))]
+                     (values (tonumber (text:match "exit:(%d+)%s*$")) text)))
+              (code out) (sh "bash tools/dist.sh")]
+          (assert.are.equal 0 code out)
+          (each [_ scene (ipairs ["scenes/organic.fnl" (.. root "/scenes/flower.fnl")])]
+            (os.remove "/tmp/raymarcher-dist-test.png")
+            (let [(rcode rout) (sh (.. "cd /tmp && SDL_VIDEODRIVER=offscreen timeout 120 love " root
+                                       "/dist/fennel-raymarcher.love --render " scene
+                                       " --out /tmp/raymarcher-dist-test.png --size 64x48"))]
+              (assert.are.equal 0 rcode rout)
+              (assert.truthy (png.read-file "/tmp/raymarcher-dist-test.png") rout)))
+          (os.remove "/tmp/raymarcher-dist-test.png"))))))

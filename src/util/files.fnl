@@ -48,7 +48,8 @@ nil and a message without the path (the caller names the file)."
   (case (read-io path ?max-bytes)
     text text
     (nil err) (let [lfs (love-filesystem)
-                    info (and lfs lfs.getInfo (not (err:find "directory" 1 true))
+                    ;; Not for a directory ("No such file or directory" is a missing file).
+                    info (and lfs lfs.getInfo (not= err "it is a directory")
                               (lfs.getInfo path :file))]
                 (if info
                     (lfs.read path ?max-bytes)
