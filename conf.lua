@@ -43,7 +43,7 @@ function love.conf(t)
   t.modules.physics = false
   t.modules.video = false
   if has_arg("--print-shader") or has_arg("--kinds") or has_arg("--tree")
-     or has_arg("--help") or has_arg("-h")
+     or has_arg("--help") or has_arg("-h") or has_arg("--export-shader")
      or (has_arg("--probe") and not has_arg("--gpu")) then
     t.window = nil
     t.modules.window = false

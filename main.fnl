@@ -67,6 +67,19 @@
                      (each [_ l (ipairs (lower.describe plan.tape))] (io.write l "\n")))
                    (love.event.quit 0))))))
 
+(fn export-shader [o]
+  (let [frame (require :src.backend.frame)
+        export (require :src.render.export)
+        (scene err) (frame.load-scene o.scene)
+        (plan perr) (if scene (frame.plan-for scene) (values nil err))
+        (text xerr) (if plan (export.shadertoy scene plan) (values nil perr))]
+    (if (not text) (fail! xerr)
+        (case (io.open o.out :wb)
+          f (do (f:write text) (f:close)
+                (print (.. "wrote " o.out " (Shadertoy: paste it into a new shader's Image tab)"))
+                (love.event.quit 0))
+          (nil ferr) (fail! (.. o.out ": cannot write: " (tostring ferr)))))))
+
 (fn help []
   (io.write cli.usage "\n")
   (love.event.quit 0))
@@ -98,7 +111,7 @@
     (play-mod.start! o)))
 
 (local modes {:print-shader print-shader :render render :bench bench
-              :probe probe :tree tree :kinds kinds :help help
+              :probe probe :tree tree :kinds kinds :help help :export-shader export-shader
               :bench-report bench-report :soak soak :play play})
 
 (fn headless-error-handler [message]

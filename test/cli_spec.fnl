@@ -33,6 +33,15 @@
           (assert.is_nil o)
           (assert.are.equal "--gpu only goes with --probe" err))))
 
+    (it "parses --export-shader, which writes a .glsl file"
+      (fn []
+        (assert.are.same {:mode :export-shader :scene "a.fnl" :out "a.glsl" :frames 5 :cycles 300}
+                         (cli.parse ["--export-shader" "a.fnl" "--out" "a.glsl"]))
+        (assert.are.equal "--export-shader needs --out FILE.glsl"
+                          (select 2 (cli.parse ["--export-shader" "a.fnl"])))
+        (assert.are.equal "--out must name a .glsl file, got a.png"
+                          (select 2 (cli.parse ["--export-shader" "a.fnl" "--out" "a.png"])))))
+
     (it "plays a scene given as the only argument"
       (fn []
         (assert.are.same {:mode :play :scene "scenes/other.fnl" :frames 5 :cycles 300}

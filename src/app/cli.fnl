@@ -16,13 +16,14 @@
        love . --probe SCENE [--gpu]          distance and material at points `x y z` read from stdin
        love . --tree SCENE                   the lowered scene tree, each node's class and bounds
        love . --kinds                        every primitive and operation, with parameters
+       love . --export-shader SCENE --out FILE.glsl   a Shadertoy shader with the values baked in
        love . --help                         this text
 VIEW is one of shaded, normals, glow, heat.")
 
 (local value-flags {:--out :out :--size :size :--frames :frames :--view :view
                     :--target :target :--shot :shot :--cycles :cycles})
 (local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench
-                   :--probe :probe :--tree :tree})
+                   :--probe :probe :--tree :tree :--export-shader :export-shader})
 
 (fn parse-size [s]
   (let [(w h) (s:match "^(%d+)[xX](%d+)$")
@@ -46,7 +47,11 @@ VIEW is one of shaded, normals, glow, heat.")
 (fn check-options [o]
   (if (and (= o.mode :render) (not o.out))
       (values nil "--render needs --out FILE.png")
-      (and o.out (not (o.out:match "%.png$")))
+      (and (= o.mode :export-shader) (not o.out))
+      (values nil "--export-shader needs --out FILE.glsl")
+      (and o.out (= o.mode :export-shader) (not (o.out:match "%.glsl$")))
+      (values nil (.. "--out must name a .glsl file, got " o.out))
+      (and o.out (not= o.mode :export-shader) (not (o.out:match "%.png$")))
       (values nil (.. "--out must name a .png file, got " o.out))
       (and o.shot (not (o.shot:match "%.png$")))
       (values nil (.. "--shot must name a .png file, got " o.shot))
@@ -65,6 +70,7 @@ VIEW is one of shaded, normals, glow, heat.")
 (fn parse [args]
   "Parse the game's arguments (after LÖVE's own). Returns an options table
 {:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:probe|:tree|:kinds|:help
+ |:export-shader
  :scene :out :size [w h] :frames n :view v :target t :gpu? (probe on the GPU)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]
     (var i 1)

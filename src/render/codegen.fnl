@@ -195,7 +195,8 @@ comment lines before the first part are the chunk's own documentation)."
 (local targets
   {:love {:header ["#pragma language glsl3"] :entry "shaders/entry/love.glsl"}
    :core {:header ["#version 330 core" "out vec4 fragColor;"] :entry "shaders/entry/core.glsl"}
-   :probe {:header ["#pragma language glsl3"] :entry "shaders/entry/probe.glsl"}})
+   :probe {:header ["#pragma language glsl3"] :entry "shaders/entry/probe.glsl"}
+   :shadertoy {:header [] :entry "shaders/entry/shadertoy.glsl"}})
 
 (fn generate [plan target]
   (let [out []

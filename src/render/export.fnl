@@ -1,0 +1,55 @@
+;; Shader export: a scene's generated shader with every uniform baked in as a constant,
+;; in Shadertoy's form (mainImage, iResolution), to paste into Shadertoy or any GLSL
+;; host. Pure: runs under plain LuaJIT.
+
+(local codegen (require :src.render.codegen))
+(local uniforms (require :src.render.uniforms))
+(local camera (require :src.render.camera))
+
+(fn float-literal [v]
+  ;; Nine significant digits give back the same float32; always with a decimal point
+  ;; or an exponent, as GLSL wants for a float.
+  (let [s (string.format "%.9g" v)]
+    (if (or (s:find "[%.e]") (s:find "inf") (s:find "nan")) s (.. s ".0"))))
+
+(fn value-literal [kind vals i]
+  (let [n (. uniforms.components kind)]
+    (case kind
+      :float (float-literal (. vals i))
+      :int (string.format "%d" (. vals i))
+      :bool (if (= 0 (. vals i)) "false" "true")
+      _ (.. kind "(" (table.concat (fcollect [k 0 (- n 1)] (float-literal (. vals (+ i k)))) ", ")
+            ")"))))
+
+(fn constant [u]
+  (let [n (. uniforms.components u.type)]
+    (if u.count
+        (.. "const " u.type " " u.name "[" u.count "] = " u.type "[" u.count "]("
+            (table.concat (fcollect [e 0 (- u.count 1)] (value-literal u.type u.values (+ 1 (* e n))))
+                          ", ")
+            ");")
+        (.. "const " u.type " " u.name " = " (value-literal u.type u.values 1) ";"))))
+
+(fn shadertoy [scene plan]
+  "The shader of `scene` lowered to `plan`, seen from the scene's camera, as a
+Shadertoy fragment shader: every uniform a constant but the resolution (iResolution).
+Returns the text, or nil and a message."
+  (case (codegen.shader plan :shadertoy)
+    (nil err) (values nil err)
+    text (let [values-by-name (collect [_ u (ipairs (uniforms.pack scene plan (camera.from-scene scene) 1 1))]
+                                u.name u)
+               out [(.. "// " scene.name ": exported by `love . --export-shader` (Shadertoy form; every")
+                    "// value is baked in, so a changed scene needs another export)."]]
+           (var missing nil)
+           (each [line (: (.. text "\n") :gmatch "([^\n]*)\n")]
+             (let [(name trailer) (line:match "^uniform %w+ ([%w_]+)[^;]*;(.*)$")]
+               (if (= name "uResolution") (table.insert out (.. "vec2 uResolution;" trailer))
+                   name (case (. values-by-name name)
+                          u (table.insert out (.. (constant u) trailer))
+                          _ (set missing name))
+                   (table.insert out line))))
+           (if missing
+               (values nil (.. "export: no value for the uniform " missing))
+               (.. (table.concat out "\n") "\n")))))
+
+{: shadertoy : float-literal}
