@@ -80,6 +80,11 @@
                 (love.event.quit 0))
           (nil ferr) (fail! (.. o.out ": cannot write: " (tostring ferr)))))))
 
+(fn record [o]
+  (case ((. (require :src.app.record) :run) o)
+    true (love.event.quit 0)
+    (_ err) (fail! err)))
+
 (fn help []
   (io.write cli.usage "\n")
   (love.event.quit 0))
@@ -112,6 +117,7 @@
 
 (local modes {:print-shader print-shader :render render :bench bench
               :probe probe :tree tree :kinds kinds :help help :export-shader export-shader
+              :record record
               :bench-report bench-report :soak soak :play play})
 
 (fn headless-error-handler [message]

@@ -140,4 +140,18 @@
                                        " --out /tmp/raymarcher-dist-test.png --size 64x48"))]
               (assert.are.equal 0 rcode rout)
               (assert.truthy (png.read-file "/tmp/raymarcher-dist-test.png") rout)))
-          (os.remove "/tmp/raymarcher-dist-test.png"))))))
+          (os.remove "/tmp/raymarcher-dist-test.png"))))
+
+    (it "records the same frames twice, and a turntable turns"
+      (fn []
+        (os.execute "rm -rf test/out/rec-a test/out/rec-b")
+        (let [(code out) (run "--record scenes/flower.fnl --out test/out/rec-a --frames 3 --size 32x24 --turntable")
+              (code2 out2) (run "--record scenes/flower.fnl --out test/out/rec-b --frames 3 --size 32x24 --turntable")
+              read (fn [path] (with-open [f (assert (io.open path :rb))] (f:read :*a)))]
+          (assert.are.equal 0 code out)
+          (assert.are.equal 0 code2 out2)
+          (assert.truthy (out:find "frame 3/3" 1 true) out)
+          (for [i 1 3]
+            (let [name (string.format "frame-%04d.png" i)]
+              (assert.are.equal (read (.. "test/out/rec-a/" name)) (read (.. "test/out/rec-b/" name)) name)))
+          (assert.are_not.equal (read "test/out/rec-a/frame-0001.png") (read "test/out/rec-a/frame-0002.png")))))))

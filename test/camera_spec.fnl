@@ -178,3 +178,24 @@
           (assert.are.equal 179 c.fov)
           (camera.zoom! c -500)
           (assert.are.equal 1 c.fov))))))
+
+(describe "camera: turntable orbit"
+  (fn []
+    (it "keeps height and distance, and looks at the centre"
+      (fn []
+        (let [cam {:pos [10 0 5] :yaw 0 :pitch 0 :fov 60}
+              c [0 0 1]
+              o (camera.orbit cam c 90)
+              [x y z] o.pos
+              [fx fy fz] (camera.forward o)
+              ;; The unit vector from the camera to the centre.
+              (dx dy dz) (values (- 0 x) (- 0 y) (- 1 z))
+              len (math.sqrt (+ (* dx dx) (* dy dy) (* dz dz)))]
+          (assert.is_true (< (math.abs x) 1e-9))
+          (assert.is_true (< (math.abs (- y 10)) 1e-9))
+          (assert.are.equal 5 z)
+          (assert.is_true (< (math.abs (- fx (/ dx len))) 1e-9))
+          (assert.is_true (< (math.abs (- fy (/ dy len))) 1e-9))
+          (assert.is_true (< (math.abs (- fz (/ dz len))) 1e-9))
+          ;; The original camera is left alone.
+          (assert.are.same [10 0 5] cam.pos))))))

@@ -42,6 +42,18 @@
         (assert.are.equal "--out must name a .glsl file, got a.png"
                           (select 2 (cli.parse ["--export-shader" "a.fnl" "--out" "a.png"])))))
 
+    (it "parses --record with --out DIR, --frames, --fps, --size and --turntable"
+      (fn []
+        (assert.are.same {:mode :record :scene "a.fnl" :out "frames" :frames 12 :fps 24
+                          :size [64 48] :turntable? true :cycles 300}
+                         (cli.parse ["--record" "a.fnl" "--out" "frames" "--frames" "12" "--fps" "24"
+                                     "--size" "64x48" "--turntable"]))
+        (assert.are.equal "--record needs --out DIR" (select 2 (cli.parse ["--record" "a.fnl"])))
+        (assert.are.equal "--turntable only goes with --record"
+                          (select 2 (cli.parse ["--render" "a.fnl" "--out" "a.png" "--turntable"])))
+        (assert.are.equal "--fps must be a whole number >= 1, got 0"
+                          (select 2 (cli.parse ["--record" "a.fnl" "--out" "d" "--fps" "0"])))))
+
     (it "plays a scene given as the only argument"
       (fn []
         (assert.are.same {:mode :play :scene "scenes/other.fnl" :frames 5 :cycles 300}

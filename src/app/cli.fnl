@@ -17,13 +17,15 @@
        love . --tree SCENE                   the lowered scene tree, each node's class and bounds
        love . --kinds                        every primitive and operation, with parameters
        love . --export-shader SCENE --out FILE.glsl   a Shadertoy shader with the values baked in
+       love . --record SCENE --out DIR --frames N [--fps F] [--size WxH] [--turntable]
        love . --help                         this text
 VIEW is one of shaded, normals, glow, heat.")
 
 (local value-flags {:--out :out :--size :size :--frames :frames :--view :view
-                    :--target :target :--shot :shot :--cycles :cycles})
+                    :--target :target :--shot :shot :--cycles :cycles :--fps :fps})
 (local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench
-                   :--probe :probe :--tree :tree :--export-shader :export-shader})
+                   :--probe :probe :--tree :tree :--export-shader :export-shader
+                   :--record :record})
 
 (fn parse-size [s]
   (let [(w h) (s:match "^(%d+)[xX](%d+)$")
@@ -47,11 +49,17 @@ VIEW is one of shaded, normals, glow, heat.")
 (fn check-options [o]
   (if (and (= o.mode :render) (not o.out))
       (values nil "--render needs --out FILE.png")
+      (and (= o.mode :record) (not o.out))
+      (values nil "--record needs --out DIR")
+      (and o.turntable? (not= o.mode :record))
+      (values nil "--turntable only goes with --record")
+      (and o.fps (not= o.mode :record))
+      (values nil "--fps only goes with --record")
       (and (= o.mode :export-shader) (not o.out))
       (values nil "--export-shader needs --out FILE.glsl")
       (and o.out (= o.mode :export-shader) (not (o.out:match "%.glsl$")))
       (values nil (.. "--out must name a .glsl file, got " o.out))
-      (and o.out (not= o.mode :export-shader) (not (o.out:match "%.png$")))
+      (and o.out (not= o.mode :export-shader) (not= o.mode :record) (not (o.out:match "%.png$")))
       (values nil (.. "--out must name a .png file, got " o.out))
       (and o.shot (not (o.shot:match "%.png$")))
       (values nil (.. "--shot must name a .png file, got " o.shot))
@@ -86,6 +94,7 @@ VIEW is one of shaded, normals, glow, heat.")
                     (set o.scene next-arg)
                     (set i (+ i 1))))
             (= a "--gpu") (set o.gpu? true)
+            (= a "--turntable") (set o.turntable? true)
             (or (= a "--help") (= a "-h"))
             (set o.mode :help)
             (or (= a "--bench-report") (= a "--soak") (= a "--kinds"))
@@ -104,7 +113,7 @@ VIEW is one of shaded, normals, glow, heat.")
       (let [size (parse-size o.size)]
         (if size (set o.size size)
             (set err (.. "--size must look like 1920x1080, got " o.size)))))
-    (each [_ field (ipairs [:frames :cycles])]
+    (each [_ field (ipairs [:frames :cycles :fps])]
       (when (and (not err) (= (type (. o field)) :string))
         (let [n (tonumber (. o field))]
           (if (and n (>= n 1) (< n math.huge) (= n (math.floor n))) (tset o field n)

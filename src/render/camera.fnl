@@ -92,5 +92,21 @@ centres are at +0.5."
   "Widen the field of view by `degrees`, kept within 1 to 179."
   (set cam.fov (clamp (+ cam.fov degrees) 1 179)))
 
-{: forward : basis : article-basis : projection-distance : ray-direction : from-scene
+(fn orbit [cam [cx cy cz] degrees]
+  "A copy of `cam` turned `degrees` about the vertical axis through c (keeping its
+height and horizontal distance) and looking at c: a turntable's camera."
+  (let [[px py pz] cam.pos
+        dx (- px cx) dy (- py cy)
+        r (math.sqrt (+ (* dx dx) (* dy dy)))
+        a (+ (math.atan2 dy dx) (* degrees rad))
+        x (+ cx (* r (math.cos a)))
+        y (+ cy (* r (math.sin a)))]
+    {:pos [x y pz]
+     ;; Facing the centre: the yaw of the direction back to it; pitch down by the
+     ;; angle of the drop to it (positive looks down).
+     :yaw (% (/ (math.atan2 (- cy y) (- cx x)) rad) 360)
+     :pitch (clamp (/ (math.atan2 (- pz cz) (math.max r 1e-9)) rad) -89.9 89.9)
+     :fov cam.fov}))
+
+{: forward : basis : article-basis : orbit : projection-distance : ray-direction : from-scene
  : move-forward! : strafe! : elevate! : turn! : pitch! : zoom!}

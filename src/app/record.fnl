@@ -1,0 +1,60 @@
+;; `love . --record SCENE --out DIR --frames N [--fps F] [--size WxH] [--turntable]`:
+;; frames at t = i / F written as DIR/frame-0001.png ..., deterministically (the same
+;; command gives the same files), with progress on stderr. --turntable orbits the
+;; camera once around the scene's centre over the recording.
+
+(local frame (require :src.backend.frame))
+(local gpu (require :src.backend.gpu))
+(local camera (require :src.render.camera))
+
+(fn scene-centre [scene]
+  "The middle of the box around the objects' placements (planes and unplaced trees
+excepted), or a point 10 units in front of the camera when there is none."
+  (let [points (icollect [_ o (ipairs scene.objects)]
+                 (if (and o.tree o.tree.pos) o.tree.pos
+                     (and o.tree (= o.tree.kind :translate)) o.tree.offset
+                     o.pos))]
+    (if (= (length points) 0)
+        (let [[x y z] scene.camera.pos
+              [fx fy fz] (camera.forward (camera.from-scene scene))]
+          [(+ x (* 10 fx)) (+ y (* 10 fy)) (+ z (* 10 fz))])
+        (fcollect [i 1 3]
+          (let [lo (accumulate [m math.huge _ p (ipairs points)] (math.min m (. p i)))
+                hi (accumulate [m (- math.huge) _ p (ipairs points)] (math.max m (. p i)))]
+            (* 0.5 (+ lo hi)))))))
+
+(fn ensure-dir [dir]
+  (os.execute (.. "mkdir -p '" (dir:gsub "'" "'\\''") "'")))
+
+(fn run [o]
+  "Record o.frames frames of o.scene into o.out. Returns true, or nil and a message."
+  (case (frame.load-scene o.scene)
+    (nil err) (values nil err)
+    scene
+    (case (frame.plan-for scene)
+      (nil err) (values nil err)
+      plan
+      (let [[w h] (or o.size [640 360])
+            fps (or o.fps 30)
+            cache (gpu.new-cache)
+            canvas (love.graphics.newCanvas w h)
+            cam0 (camera.from-scene scene)
+            centre (scene-centre scene)]
+        (ensure-dir o.out)
+        (var err nil)
+        (for [i 0 (- o.frames 1) &until err]
+          (let [cam (if o.turntable? (camera.orbit cam0 centre (/ (* 360 i) o.frames)) cam0)
+                path (string.format "%s/frame-%04d.png" o.out (+ i 1))]
+            (case (frame.render-to-canvas! cache canvas scene plan cam)
+              (nil e) (set err e)
+              _ (case (frame.write-png canvas path)
+                  (nil e) (set err e)))
+            (io.stderr:write (string.format "\rframe %d/%d (t = %.3f s)" (+ i 1) o.frames (/ i fps)))
+            (io.stderr:flush)))
+        (io.stderr:write "\n")
+        (if err (values nil err)
+            (do (print (string.format "wrote %d frames of %dx%d to %s/frame-0001.png ..."
+                                      o.frames w h o.out))
+                true))))))
+
+{: run : scene-centre}
