@@ -4,6 +4,7 @@
 
 (local camera (require :src.render.camera))
 (local frame (require :src.backend.frame))
+(local scene-mod (require :src.scene.load))
 (local gpu (require :src.backend.gpu))
 (local plan-mod (require :src.render.plan))
 (local watch (require :src.app.watch))
@@ -19,6 +20,7 @@
 
 (local state {:scene nil :path nil :cam nil :view :shaded :reflections 0
               :scale 1 :hud? true :cache nil :canvas nil :message nil :taps {} :dragging? false
+              :time 0 :paused? false
               :message-until 0 :error nil :gamepad nil :watch nil :poll-at 0
               :reloads 0 :progress (progress.new)})
 
@@ -93,6 +95,9 @@ On any failure the last good scene keeps running and the error is shown."
                 (when (and (file-changed? #$.render.scale) (not (and fresh? old state.user-scale?)))
                   (set state.scale scene.render.scale))
                 (set state.reflections reflections)
+                ;; A new file starts its functions of time at 0; an edit keeps the clock.
+                (if fresh? (set state.time 0)
+                    (scene-mod.animated? scene) (scene-mod.animate scene state.time))
                 (set state.scene scene)
                 (set state.path path)
                 (set state.error nil)
@@ -129,6 +134,17 @@ moves it forward instead of waiting)."
                                (if state.scene "; the last good scene keeps running" ""))))
           :unreadable (say! (.. state.path ": " (or state.watch.problem "it cannot be read")
                                 "; the last good scene keeps running")))))))
+
+(fn advance-time! [dt]
+  "Functions of time in the scene: move the clock (unless paused) and set their values
+for it; the plan is lowered again (values only: no shader compile). A failing function
+shows its message and keeps the last values."
+  (when (and state.scene (scene-mod.animated? state.scene) (or (not state.paused?) state.step?))
+    (set state.time (+ state.time (if state.step? (/ 1 30) dt)))
+    (set state.step? false)
+    (case (scene-mod.animate state.scene state.time)
+      true (set state.plan-memo nil)
+      (nil err) (set state.error err))))
 
 (fn current-plan []
   "The plan of the scene on screen, lowered again only when the scene, the view or
@@ -267,6 +283,9 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
       :l (change-reflections! 1)
       "-" (change-scale! 0.8)
       "=" (change-scale! 1.25)
+      :space (do (set state.paused? (not state.paused?))
+                 (say! (if state.paused? "paused (. steps a frame)" "playing")))
+      "." (when state.paused? (set state.step? true))
       "[" (cycle-scene! -1)
       "]" (cycle-scene! 1))))
 
@@ -306,6 +325,10 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
       (table.insert lines (string.format "pos: %.2f %.2f %.2f  yaw %.1f  pitch %.1f"
                                          (. cam.pos 1) (. cam.pos 2) (. cam.pos 3)
                                          cam.yaw cam.pitch)))
+    (when (and state.scene (scene-mod.animated? state.scene))
+      (table.insert lines (string.format "t = %.2f s%s" state.time
+                                         (if state.paused? " (paused; space plays, . steps)"
+                                             " (space pauses)"))))
     (when (> state.progress.bands 1)
       (table.insert lines (string.format "progressive: %d bands, one per frame (a full frame takes %.1f s)"
                                          state.progress.bands
@@ -382,6 +405,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
                      (when (not state.scene) (love.timer.sleep 0.05))
                      (progress.measured! state.progress dt)
                      (poll-file!)
+                     (advance-time! dt)
                      (when state.cam
                        (handle-keyboard dt)
                        (handle-gamepad dt))))

@@ -39,13 +39,22 @@ excepted), or a point 10 units in front of the camera when there is none."
             cache (gpu.new-cache)
             canvas (love.graphics.newCanvas w h)
             cam0 (camera.from-scene scene)
-            centre (scene-centre scene)]
+            centre (scene-centre scene)
+            scene-mod (require :src.scene.load)]
         (ensure-dir o.out)
         (var err nil)
         (for [i 0 (- o.frames 1) &until err]
-          (let [cam (if o.turntable? (camera.orbit cam0 centre (/ (* 360 i) o.frames)) cam0)
+          ;; Functions of time take their values at t = i / fps; the plan is lowered
+          ;; again for them (values only: the shader stays).
+          (let [t (/ i fps)
+                (animated-ok? aerr) (if (scene-mod.animated? scene) (scene-mod.animate scene t) true)
+                (plan perr) (if (not animated-ok?) (values nil aerr)
+                                (scene-mod.animated? scene) (frame.plan-for scene)
+                                plan)
+                cam (if o.turntable? (camera.orbit cam0 centre (/ (* 360 i) o.frames))
+                        (camera.from-scene scene))
                 path (string.format "%s/frame-%04d.png" o.out (+ i 1))]
-            (case (frame.render-to-canvas! cache canvas scene plan cam)
+            (case (if plan (frame.render-to-canvas! cache canvas scene plan cam) (values nil perr))
               (nil e) (set err e)
               _ (case (frame.write-png canvas path)
                   (nil e) (set err e)))

@@ -214,8 +214,39 @@ Long words get none: no name is that long, and the distance would cost time."
                                                (text.quote-string v))))
       v))
 
-(fn check [ctx path v kind]
-  (case kind
+;;; Functions of time: a value given as (fn [t] ...) is evaluated at t = 0 here, and
+;;; again every frame by `animate`, each call with its own small step budget.
+
+;; Types whose values only reach uniforms; the others change the shader.
+(local animatable {:number true :positive true :vec3 true :size3 true :color true
+                   :direction true :degrees true :fraction true :length0 true :lengths3 true
+                   :pitch true :fov true})
+
+;; Lua steps one call of a function of time may take (it runs every frame).
+(local time-steps 100000)
+
+(fn time-call [ctx path f t]
+  (let [(ok? v) (sandbox.run (fn [] (f t)) ctx.file ctx.env {:steps time-steps :collect? false})]
+    (if ok? v
+        (fail ctx path (.. "the function of time failed at t = " t ": "
+                           (sandbox.error-message v))))))
+
+(fn check-animated [ctx path f kind checker]
+  (when (not (. animatable kind))
+    (fail ctx path "cannot be a function of time: it changes the shader, not only its values"))
+  (let [v (time-call ctx path f 0)]
+    (when (= (type v) :function)
+      (fail ctx path "a function of time must return a value, not another function"))
+    (let [checked (checker v)]
+      (table.insert ctx.animated {: path : f : checker :checker-ctx ctx})
+      checked)))
+
+(var check nil)
+
+(set check (fn [ctx path v kind]
+  (if (= (type v) :function)
+      (check-animated ctx path v kind #(check ctx path $ kind))
+      (case kind
     :number (check-number ctx path v "a number from -1e7 to 1e7" coordinate?)
     :positive (check-number ctx path v "a positive number from 1e-6 to 1e7" length?)
     :non-negative (check-number ctx path v "a number from 0 to 10"
@@ -253,11 +284,12 @@ Long words get none: no name is that long, and the distance would cost time."
                          "a whole number from 0 to 1000" #(and (= $ (math.floor $)) (<= 0 $ 1000)))
     :fraction (check-number ctx path v "a number from 0 to 1" #(<= 0 $ 1))
     :length0 (check-number ctx path v "a number from 0 to 1e7" #(<= 0 $ limits.world))
-    _ (error (.. "unknown field type " (tostring kind)))))
+    _ (error (.. "unknown field type " (tostring kind)))))))
 
 (fn check-param [ctx path v spec]
   "Check one descriptor parameter (see src/sdf/primitives.fnl for the types)."
-  (case spec.type
+  (case (if (= (type v) :function) :function spec.type)
+    :function (check-animated ctx path v spec.type #(check-param ctx path $ spec))
     :degrees (check-number ctx path v (.. "a number of degrees from " spec.min " to " spec.max)
                            #(<= spec.min $ spec.max))
     :count (check-number ctx path v (.. "a whole number from " (or spec.min 1) " to " (or spec.max 64))
@@ -463,7 +495,7 @@ forms and the checked text; or nil and a message."
                      code (case ((or _G.loadstring load) code (.. "@" file))
                             (nil err) (values nil (clean-fennel-message err file))
                             chunk (let [(ok? value) (sandbox.run chunk file env)]
-                                    (if ok? (values true value forms source)
+                                    (if ok? (values true value forms source env)
                                         (sandbox.sandbox-error? value)
                                         (values nil (sandbox.error-message value))
                                         (values nil (clean-fennel-message
@@ -474,16 +506,46 @@ forms and the checked text; or nil and a message."
 Returns the scene (plain data, defaults filled in) or nil and a message
 'file:line: field: reason'."
   (let [file (or ?file "scene")
-        (ok? value forms checked-source) (evaluate source file)]
+        (ok? value forms checked-source env) (evaluate source file)]
     (if (not ok?)
         (values nil (safe-message value))
         ;; Field lines come from the last form: the table the file evaluates to.
-        (let [ctx {: file :source checked-source :ast (and forms (. forms (length forms)))}
+        (let [ctx {: file :source checked-source :ast (and forms (. forms (length forms)))
+                   : env :animated []}
               (ok? result) (pcall validate value ctx)]
-          (if ok? result
+          (if ok?
+              (do (when (> (length ctx.animated) 0)
+                    (set result.animated ctx.animated))
+                  result)
               (and (= (type result) :table) result.scene-error)
               (values nil (safe-message result.scene-error))
               (error result))))))
+
+(fn target-of [scene path]
+  ;; The table and key in the validated scene that `path` (a field path of the file)
+  ;; names: the same, but that a tree object's nodes sit under its :tree.
+  (var t scene)
+  (for [i 1 (- (length path) 1)]
+    (set t (. t (. path i)))
+    (when (and (= i 2) (= (. path 1) :objects) t.tree) (set t t.tree)))
+  (values t (. path (length path))))
+
+(fn animated? [scene]
+  "True when some value of `scene` is a function of time."
+  (not= nil scene.animated))
+
+(fn animate [scene t]
+  "Set every function-of-time value of `scene` (in place) to its value at time `t`
+(seconds), checked as at load. Returns true, or nil and a message 'file:line: field:
+reason' (a value out of range, a function that fails or runs too long)."
+  (let [(ok? err) (pcall (fn []
+                           (each [_ a (ipairs (or scene.animated []))]
+                             (let [v (a.checker (time-call (. a :checker-ctx) a.path a.f t))
+                                   (target key) (target-of scene a.path)]
+                               (tset target key v)))))]
+    (if ok? true
+        (and (= (type err) :table) err.scene-error) (values nil (safe-message err.scene-error))
+        (error err 0))))
 
 (fn read-capped [path]
   "The text of the file at `path` (see files.read-user), reading at most one byte past
@@ -509,5 +571,5 @@ through love.filesystem."
   "The sandbox's limits (file size, nesting, steps, memory)."
   sandbox.limits)
 
-{: load-string : load-file : read-capped : limits-of-files : defaults : limits : default-environment
+{: load-string : load-file : read-capped : animate : animated? : limits-of-files : defaults : limits : default-environment
  : hit-tests : normal-methods}

@@ -238,13 +238,20 @@ the file system, the process, the loader or the compiler."
 
 ;;; Running, within limits
 
-(fn run [chunk file env]
+(fn steps-text [n]
+  (if (>= n 1e6) (.. (math.floor (/ n 1e6)) " million") (tostring (math.floor n))))
+
+(fn run [chunk file env ?options]
   "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
 message past the step or memory limit. Returns true and the value, or false and an
-error (a string from the scene's code, or a sandbox error)."
-  (let [memory-start (collectgarbage :count)
+error (a string from the scene's code, or a sandbox error). `?options`: :steps (a
+smaller step limit, for the functions of time called every frame) and :collect?
+(false: no full garbage collection afterwards, also for those calls)."
+  (let [options (or ?options {})
+        steps (or options.steps limits.steps)
+        memory-start (collectgarbage :count)
         memory-limit (* 1024 limits.memory-mb)
-        max-hooks (/ limits.steps limits.hook-every)
+        max-hooks (/ steps limits.hook-every)
         cpu-start (os.clock)
         state {:hooks 0 :stopped nil}
         stop! (fn [message]
@@ -256,9 +263,8 @@ error (a string from the scene's code, or a sandbox error)."
                (when (not state.stopped)
                  (set state.hooks (+ state.hooks 1))
                  (when (> state.hooks max-hooks)
-                   (stop! (.. file ": the scene ran for more than "
-                              (math.floor (/ limits.steps 1e6))
-                              " million steps and was stopped (an endless loop?)")))
+                   (stop! (.. file ": the scene ran for more than " (steps-text steps)
+                              " steps and was stopped (an endless loop?)")))
                  (when (> (- (collectgarbage :count) memory-start) memory-limit)
                    (stop! (.. file ": the scene built more than " limits.memory-mb
                               " MB of data and was stopped")))
@@ -282,7 +288,7 @@ error (a string from the scene's code, or a sandbox error)."
       (debug.sethook)
       (set string-meta.__index real-index)
       (tset capped-files 1 nil)
-      (collectgarbage)
+      (when (not= false options.collect?) (collectgarbage))
       (if state.stopped (values false {:sandbox marker :message state.stopped})
           (not outer-ok?) (values false ok?)
           (values ok? value)))))
