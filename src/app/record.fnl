@@ -66,4 +66,4 @@ excepted), or a point 10 units in front of the camera when there is none."
                                       o.frames w h o.out))
                 true))))))
 
-{: run : scene-centre}
+{: run}

@@ -52,4 +52,4 @@ Returns the text, or nil and a message."
                (values nil (.. "export: no value for the uniform " missing))
                (.. (table.concat out "\n") "\n")))))
 
-{: shadertoy : float-literal}
+{: shadertoy}

@@ -250,4 +250,4 @@ what `--tree` prints."
     (each [_ o (ipairs tape.objects)] (walk o.info 0))
     lines))
 
-{: lower : describe : class-label : default-material}
+{: lower : describe}

@@ -646,4 +646,4 @@ float wStairsUnion(float a, float b, float r, float n) {
   "The operation kinds, sorted."
   (doto (icollect [_ d (ipairs operations)] d.kind) table.sort))
 
-{:all operations : lookup : kind-names : variant : rotation-rows : repeat-cell}
+{:all operations : lookup : kind-names : variant}

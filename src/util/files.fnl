@@ -71,4 +71,4 @@ or nil and a message."
                       (_ err) (values nil (.. dir ": " (tostring err))))
           _ (values nil "listing a folder needs LuaFileSystem (lua-filesystem)")))))
 
-{: read-project : read-user : list-project :project-root (fn [] root)}
+{: read-project : read-user : list-project}
