@@ -5,6 +5,7 @@
 (local camera (require :src.render.camera))
 (local frame (require :src.backend.frame))
 (local scene-mod (require :src.scene.load))
+(local adaptive (require :src.app.adaptive))
 (local gpu (require :src.backend.gpu))
 (local plan-mod (require :src.render.plan))
 (local watch (require :src.app.watch))
@@ -20,7 +21,8 @@
 
 (local state {:scene nil :path nil :cam nil :view :shaded :reflections 0
               :scale 1 :hud? true :cache nil :canvas nil :message nil :taps {} :dragging? false
-              :time 0 :paused? false
+              :time 0 :paused? false :adaptive (adaptive.new 1) :move-canvas nil
+              :move-times []
               :message-until 0 :error nil :gamepad nil :watch nil :poll-at 0
               :reloads 0 :progress (progress.new)})
 
@@ -157,6 +159,26 @@ the reflection count changed (not every frame)."
           (set state.plan-memo {:scene state.scene :view state.view
                                 :reflections state.reflections : plan : err})
           (values plan err)))))
+
+;; While the camera moves the image is drawn whole at a lower resolution, chosen to
+;; hold this frame rate; when it stops, the full resolution is refined in bands.
+(local interactive-fps 30)
+
+(fn ensure-move-canvas! []
+  (let [(ww wh) (love.graphics.getDimensions)
+        s state.adaptive.scale
+        w (math.max 1 (math.floor (* ww s)))
+        h (math.max 1 (math.floor (* wh s)))]
+    (when (or (not state.move-canvas)
+              (not= w (state.move-canvas:getWidth)) (not= h (state.move-canvas:getHeight)))
+      (when state.move-canvas (state.move-canvas:release))
+      (set state.move-canvas (love.graphics.newCanvas w h))
+      (state.move-canvas:setFilter :linear :linear))
+    state.move-canvas))
+
+(fn median [xs]
+  (let [sorted (doto (icollect [_ x (ipairs xs)] x) table.sort)]
+    (. sorted (math.max 1 (math.ceil (/ (length sorted) 2))))))
 
 (fn ensure-canvas! []
   (let [(ww wh) (love.graphics.getDimensions)
@@ -316,9 +338,13 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
         canvas state.canvas
         lines [(string.format "%d fps  %.1f ms" (love.timer.getFPS)
                               (* 1000 (love.timer.getAverageDelta)))]]
-    (when canvas
-      (table.insert lines (string.format "%dx%d (scale %.2f)" (canvas:getWidth)
-                                         (canvas:getHeight) state.scale)))
+    (if (and state.adaptive.moving? state.move-canvas)
+        (table.insert lines (string.format "%dx%d while moving (holding %d fps; full scale %.2f)"
+                                           (state.move-canvas:getWidth) (state.move-canvas:getHeight)
+                                           interactive-fps state.scale))
+        canvas
+        (table.insert lines (string.format "%dx%d (scale %.2f)" (canvas:getWidth)
+                                           (canvas:getHeight) state.scale)))
     (when state.scene
       (table.insert lines (.. "scene: " (text.printable state.scene.name 80) "  view: " state.view))
       (table.insert lines (string.format "reflections: %d  fov: %.1f" state.reflections cam.fov))
@@ -329,7 +355,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
       (table.insert lines (string.format "t = %.2f s%s" state.time
                                          (if state.paused? " (paused; space plays, . steps)"
                                              " (space pauses)"))))
-    (when (> state.progress.bands 1)
+    (when (and (> state.progress.bands 1) (not state.adaptive.moving?))
       (table.insert lines (string.format "progressive: %d bands, one per frame (a full frame takes %.1f s)"
                                          state.progress.bands
                                          (* state.progress.bands (love.timer.getAverageDelta)))))
@@ -355,22 +381,57 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
     (love.graphics.printf message (+ x 8) (+ y 6) (+ width 1))
     (love.graphics.setColor 1 1 1 1)))
 
+(fn draw-stretched [canvas]
+  ;; Stretched to the window exactly: the canvas is the window times the scale
+  ;; rounded down, and 1 / scale would leave strips at the right and bottom.
+  (let [(ww wh) (love.graphics.getDimensions)]
+    (love.graphics.setColor 1 1 1 1)
+    (love.graphics.draw canvas 0 0 0 (/ ww (canvas:getWidth)) (/ wh (canvas:getHeight)))))
+
+(fn draw-moving [plan]
+  ;; The whole image at the moving scale, every frame.
+  (let [canvas (ensure-move-canvas!)]
+    (case (frame.render-to-canvas! state.cache canvas state.scene plan state.cam)
+      (nil err) (set state.error err))
+    (draw-stretched canvas)))
+
+(fn draw-still [plan]
+  (let [canvas (ensure-canvas!)
+        refine state.refine]
+    (when (and refine refine.copy?)
+      ;; Just stopped: start from the last moving image, scaled up, and refine it.
+      (set refine.copy? false)
+      (when state.move-canvas
+        (love.graphics.push :all)
+        (love.graphics.setCanvas canvas)
+        (love.graphics.draw state.move-canvas 0 0 0
+                            (/ (canvas:getWidth) (state.move-canvas:getWidth))
+                            (/ (canvas:getHeight) (state.move-canvas:getHeight)))
+        (love.graphics.pop))
+      (set state.progress (progress.new)))
+    ;; One band of the image per frame when a whole frame would take too long.
+    (let [p state.progress
+          rows (when (> p.bands 1) [(progress.rows p (canvas:getHeight))])]
+      (case (frame.render-to-canvas! state.cache canvas state.scene plan state.cam rows)
+        (nil err) (set state.error err)
+        _ (progress.drawn! p)))
+    (when (and refine (progress.complete? state.progress))
+      (set state.refine nil)
+      (say! (string.format "moving: %d frames at %dx%d, median %.0f ms; full %dx%d %.0f ms after stopping"
+                           (length state.move-times)
+                           (if state.move-canvas (state.move-canvas:getWidth) 0)
+                           (if state.move-canvas (state.move-canvas:getHeight) 0)
+                           (* 1000 (or (median state.move-times) 0))
+                           (canvas:getWidth) (canvas:getHeight)
+                           (* 1000 (- (love.timer.getTime) refine.start))))
+      (set state.move-times []))
+    (draw-stretched canvas)))
+
 (fn draw []
   (when state.scene
-    (let [canvas (ensure-canvas!)]
-      ;; One band of the image per frame when a whole frame would take too long.
-      (let [p state.progress
-            rows (when (> p.bands 1) [(progress.rows p (canvas:getHeight))])]
-        (case (current-plan)
-          plan (case (frame.render-to-canvas! state.cache canvas state.scene plan state.cam rows)
-                 (nil err) (set state.error err)
-                 _ (progress.drawn! p))
-          (nil err) (set state.error err)))
-      (love.graphics.setColor 1 1 1 1)
-      ;; Stretched to the window exactly: the canvas is the window times the scale
-      ;; rounded down, and 1 / scale would leave strips at the right and bottom.
-      (let [(ww wh) (love.graphics.getDimensions)]
-        (love.graphics.draw canvas 0 0 0 (/ ww (canvas:getWidth)) (/ wh (canvas:getHeight))))))
+    (case (current-plan)
+      plan (if state.adaptive.moving? (draw-moving plan) (draw-still plan))
+      (nil err) (set state.error err)))
   (when state.hud?
     (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))
   (when state.error
@@ -408,7 +469,11 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
                      (advance-time! dt)
                      (when state.cam
                        (handle-keyboard dt)
-                       (handle-gamepad dt))))
+                       (handle-gamepad dt)
+                       (case (adaptive.update! state.adaptive state.cam dt (/ 1 interactive-fps)
+                                               state.scale)
+                         :moving (table.insert state.move-times dt)
+                         :stopped (set state.refine {:start (love.timer.getTime) :copy? true})))))
   (var frames 0)
   (set love.draw (fn []
                    (draw)
