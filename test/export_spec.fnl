@@ -19,15 +19,7 @@
       text
       "void main() { mainImage(shadertoyOut, gl_FragCoord.xy); }\n"))
 
-(fn glslang [source]
-  (let [base (os.tmpname)
-        path (.. base ".frag")]
-    (os.remove base)
-    (with-open [f (assert (io.open path :wb))] (f:write source))
-    (let [out (with-open [p (io.popen (.. "glslangValidator " path " 2>&1; echo \"exit:$?\""))]
-                (p:read :*a))]
-      (os.remove path)
-      (values (not= nil (out:match "exit:0%s*$")) out))))
+(local glslang (. (require :test.support.glslang) :ok?))
 
 (fn render [ctx source us]
   (let [program (assert (headless.compile ctx source))

@@ -6,15 +6,7 @@
 (local codegen (require :src.render.codegen))
 (local headless (require :src.backend.headless))
 
-(fn glslang-ok? [source]
-  (let [path (os.tmpname)
-        frag (.. path ".frag")]
-    (with-open [f (assert (io.open frag :wb))] (f:write source))
-    (let [out (with-open [p (io.popen (.. "glslangValidator " frag " 2>&1; echo \"exit:$?\""))]
-                (p:read :*a))]
-      (os.remove frag)
-      (os.remove path)
-      (values (not= nil (out:match "exit:0%s*$")) out))))
+(local glslang-ok? (. (require :test.support.glslang) :ok?))
 
 (fn synthetic-scene [kinds {: shadows : reflections : glow}]
   (let [objects (icollect [_ k (ipairs kinds)]

@@ -6,6 +6,7 @@
 (local frame (require :src.backend.frame))
 (local scene-mod (require :src.scene.load))
 (local adaptive (require :src.app.adaptive))
+(local {: median} (require :src.verify.compare))
 (local gpu (require :src.backend.gpu))
 (local plan-mod (require :src.render.plan))
 (local watch (require :src.app.watch))
@@ -175,10 +176,6 @@ the reflection count changed (not every frame)."
       (set state.move-canvas (love.graphics.newCanvas w h))
       (state.move-canvas:setFilter :linear :linear))
     state.move-canvas))
-
-(fn median [xs]
-  (let [sorted (doto (icollect [_ x (ipairs xs)] x) table.sort)]
-    (. sorted (math.max 1 (math.ceil (/ (length sorted) 2))))))
 
 (fn ensure-canvas! []
   (let [(ww wh) (love.graphics.getDimensions)
