@@ -111,6 +111,9 @@
       true (love.event.quit 0)
       (_ err) (fail! err))))
 
+(fn input-check [o]
+  ((. (require :src.app.input-check) :run) o))
+
 (fn play [o]
   (let [play-mod (require :src.app.play)]
     (play-mod.start! o)))
@@ -118,7 +121,7 @@
 (local modes {:print-shader print-shader :render render :bench bench
               :probe probe :tree tree :kinds kinds :help help :export-shader export-shader
               :record record
-              :bench-report bench-report :soak soak :play play})
+              :bench-report bench-report :soak soak :input-check input-check :play play})
 
 (fn headless-error-handler [message]
   ;; Outside play mode nobody looks at LÖVE's error screen, and in a script or CI it

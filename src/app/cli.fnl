@@ -13,6 +13,7 @@
        love . --bench SCENE [--size WxH] [--frames N]
        love . --bench-report [--frames N]    the benchmark behind `make bench`
        love . --soak [--cycles N]            hot-reload soak test (edits a temp scene)
+       love . --input-check                  the player driven by scripted keys and mouse
        love . --probe SCENE [--gpu]          distance and material at points `x y z` read from stdin
        love . --tree SCENE                   the lowered scene tree, each node's class and bounds
        love . --kinds                        every primitive and operation, with parameters
@@ -77,7 +78,7 @@ VIEW is one of shaded, normals, glow, heat.")
 
 (fn parse [args]
   "Parse the game's arguments (after LÖVE's own). Returns an options table
-{:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:probe|:tree|:kinds|:help
+{:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:input-check|:probe|:tree|:kinds|:help
  |:export-shader
  :scene :out :size [w h] :frames n :view v :target t :gpu? (probe on the GPU)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]
@@ -97,7 +98,7 @@ VIEW is one of shaded, normals, glow, heat.")
             (= a "--turntable") (set o.turntable? true)
             (or (= a "--help") (= a "-h"))
             (set o.mode :help)
-            (or (= a "--bench-report") (= a "--soak") (= a "--kinds"))
+            (or (= a "--bench-report") (= a "--soak") (= a "--kinds") (= a "--input-check"))
             (if (not= o.mode :play) (set err (.. a ": only one mode at a time"))
                 (set o.mode (a:sub 3)))
             (. value-flags a)

@@ -13,6 +13,8 @@
 (local filestat (require :src.util.filestat))
 (local progress (require :src.app.progress))
 (local text (require :src.util.text))
+(local params (require :src.scene.params))
+(local panel (require :src.app.panel))
 
 (local move-speed 10)   ; world units per second
 (local turn-speed 90)   ; degrees per second
@@ -25,7 +27,10 @@
               :time 0 :paused? false :adaptive (adaptive.new 1) :move-canvas nil
               :move-times []
               :message-until 0 :error nil :gamepad nil :watch nil :poll-at 0
-              :reloads 0 :progress (progress.new)})
+              :reloads 0 :progress (progress.new)
+              ;; The parameter panel: open?, the slider being dragged, and the values
+              ;; moved away from the file's, by name ({:value :base}, see params).
+              :panel {:open? false :drag nil :overrides {} :status ""}})
 
 (fn scenes-in-folder []
   (let [items (love.filesystem.getDirectoryItems "scenes")]
@@ -70,7 +75,10 @@ On any failure the last good scene keeps running and the error is shown."
   (let [start (love.timer.getTime)
         info (file-info path)
         old state.scene
-        (scene err) (frame.load-scene path)]
+        ;; Slider positions not yet saved survive an edit of the file (params drops
+        ;; one whose literal the edit changed); a new file starts from its own values.
+        _ (when fresh? (set state.panel.overrides {}))
+        (scene err) (frame.load-scene path {:overrides state.panel.overrides})]
     (when (or fresh? (not state.watch))
       (set state.watch (watch.new info)))
     (watch.loaded! state.watch info)
@@ -119,6 +127,51 @@ itself is shown like a broken file, and the last good scene keeps running."
       (set state.error (.. path ": the scene could not be loaded (an internal error): "
                            (tostring err))))
     (set state.progress (progress.new))))
+
+(fn apply-parameters! []
+  "The panel moved a value: evaluate the scene's text again with the panel's values
+(a value edit compiles nothing; a switch that changes the shader compiles it once)."
+  (let [(scene err) (scene-mod.load-string state.scene.source state.path
+                                           {:overrides state.panel.overrides})]
+    (if (not scene)
+        (set state.error err)
+        (do (when (scene-mod.animated? scene) (scene-mod.animate scene state.time))
+            (set state.scene scene)
+            (set state.error nil)))))
+
+(fn parameter-status []
+  (let [changed (accumulate [n 0 _ p (ipairs (or (?. state.scene :params) []))]
+                  (if (params.same-value? p.value p.default) n (+ n 1)))]
+    (if (> changed 0) (.. changed " unsaved") state.panel.status)))
+
+(fn save-parameters! []
+  "Write the panel's values into the scene file (only those literals change); the
+file watcher then reloads it as a value edit."
+  (when (?. state.scene :params)
+    (case (params.save! state.path state.scene.params)
+      (nil err) (do (set state.panel.status "not saved") (say! err))
+      n (do (set state.panel.overrides {})
+            (set state.panel.status "saved")
+            (say! (string.format "saved %d value%s to %s" n (if (= n 1) "" "s") state.path))))))
+
+(fn set-parameter! [p v]
+  (tset state.panel.overrides p.name {:value v :base p.default})
+  (set state.panel.status "")
+  (apply-parameters!))
+
+(fn reset-parameters! []
+  (set state.panel.overrides {})
+  (set state.panel.status "")
+  (apply-parameters!))
+
+(fn toggle-panel! []
+  (if (?. state.scene :params)
+      (set state.panel.open? (not state.panel.open?))
+      (say! "this scene has no parameters: mark a value in the file with (param :name value {:min A :max B})")))
+
+(fn panel-layout []
+  (when (and state.panel.open? (?. state.scene :params))
+    (panel.layout state.scene.params (love.graphics.getWidth))))
 
 (fn poll-file! [?now]
   "Look at the watched file, ten times a second at most (quick enough to feel
@@ -287,9 +340,12 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
                                  (data:getWidth) (data:getHeight) where)))))))
 
 (fn keypressed [key]
-  (tset state.taps key true)
-  (let [alt? (down? :lalt :ralt)]
+  (let [alt? (down? :lalt :ralt)
+        ctrl? (down? :lctrl :rctrl)]
+    (when (not ctrl?) (tset state.taps key true))
     (case key
+      :f2 (toggle-panel!)
+      (where :s ctrl?) (save-parameters!)
       :escape (love.event.quit 0)
       :tab (cycle-view!)
       :h (set state.hud? (not state.hud?))
@@ -317,16 +373,43 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
 
 ;; A drag is motion between a press and its release, in event order: motion queued
 ;; before a click (a slow frame) must not turn the camera, as isDown would make it.
-(fn mousepressed [_ _ button]
-  (when (or (= button 1) (= button 2)) (set state.dragging? true)))
+(fn press-panel! [item x]
+  (case item.kind
+    :slider (do (set state.panel.drag item)
+                (set-parameter! item.param (panel.with-value item (panel.slider-value item x))))
+    :checkbox (set-parameter! item.param (not item.param.value))
+    :save (save-parameters!)
+    :reset (reset-parameters!)))
+
+(fn mousepressed [x y button]
+  ;; A press on the panel works the panel and never turns the camera.
+  (case (and (= button 1) (let [lay (panel-layout)] (and lay (panel.hit lay x y))))
+    :panel nil
+    item (press-panel! item x)
+    _ (when (or (= button 1) (= button 2)) (set state.dragging? true))))
 
 (fn mousereleased []
+  (set state.panel.drag nil)
   (when (not (or (love.mouse.isDown 1) (love.mouse.isDown 2))) (set state.dragging? false)))
 
-(fn mousemoved [_ _ dx dy]
-  (when (and state.cam state.dragging?)
-    (camera.turn! state.cam (* dx mouse-degrees-per-pixel))
-    (camera.pitch! state.cam (* dy mouse-degrees-per-pixel))))
+(fn drag-slider! [x]
+  ;; The dragged item belongs to the layout of the scene as it was; the parameter
+  ;; is found again by name in the scene as it is now.
+  (let [item state.panel.drag
+        p (accumulate [found nil _ q (ipairs (or (?. state.scene :params) [])) &until found]
+            (when (= q.name item.param.name) q))]
+    (when p
+      (let [live (doto (collect [k v (pairs item)] k v) (tset :param p))
+            v (panel.with-value live (panel.slider-value live x))]
+        (when (not (params.same-value? v p.value))
+          (set-parameter! p v))))))
+
+(fn mousemoved [x _ dx dy]
+  (if state.panel.drag
+      (drag-slider! x)
+      (and state.cam state.dragging?)
+      (do (camera.turn! state.cam (* dx mouse-degrees-per-pixel))
+          (camera.pitch! state.cam (* dy mouse-degrees-per-pixel)))))
 
 ;;; Drawing
 
@@ -348,6 +431,9 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
       (table.insert lines (string.format "pos: %.2f %.2f %.2f  yaw %.1f  pitch %.1f"
                                          (. cam.pos 1) (. cam.pos 2) (. cam.pos 3)
                                          cam.yaw cam.pitch)))
+    (when (and (?. state.scene :params) (not state.panel.open?))
+      (table.insert lines (string.format "F2: %d parameter%s" (length state.scene.params)
+                                         (if (= 1 (length state.scene.params)) "" "s"))))
     (when (and state.scene (scene-mod.animated? state.scene))
       (table.insert lines (string.format "t = %.2f s%s" state.time
                                          (if state.paused? " (paused; space plays, . steps)"
@@ -431,6 +517,8 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
       (nil err) (set state.error err)))
   (when state.hud?
     (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))
+  (case (panel-layout)
+    lay (panel.draw! lay (parameter-status)))
   (when state.error
     (draw-text-box (.. state.error
                        (if state.scene
@@ -488,4 +576,4 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
   (set love.mousereleased mousereleased)
   (set love.joystickadded (fn [j] (when (j:isGamepad) (set state.gamepad j)))))
 
-{: start! : state : load! : poll-file! : current-plan}
+{: start! : state : load! : poll-file! : current-plan : save-parameters! : set-parameter!}

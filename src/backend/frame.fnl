@@ -11,9 +11,10 @@
 the bundled scenes inside the game folder (see files.read-user)."
   (scene-mod.read-capped path))
 
-(fn load-scene [path]
-  "Load and validate the scene file at `path`: scene, or nil and a message."
-  (scene-mod.load-file path read-text))
+(fn load-scene [path ?options]
+  "Load and validate the scene file at `path` (`?options` as scene-mod.load-string
+takes them): scene, or nil and a message."
+  (scene-mod.load-file path read-text ?options))
 
 (fn render-to-canvas! [cache canvas scene plan cam ?rows]
   "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas`; only the rows

@@ -7,6 +7,7 @@
 (local operations (require :src.sdf.operations))
 (local lower (require :src.sdf.lower))
 (local sandbox (require :src.scene.sandbox))
+(local params (require :src.scene.params))
 (local files (require :src.util.files))
 (local text (require :src.util.text))
 
@@ -480,10 +481,11 @@ Long words get none: no name is that long, and the distance would cost time."
 UTF-8 from a hostile file or path) and at most a few lines long."
   (text.escape msg max-message))
 
-(fn evaluate [source file]
-  "Check, compile and run scene `source`: true, the value it evaluates to, its parsed
-forms and the checked text; or nil and a message."
-  (let [env (sandbox.safe-env)
+(fn evaluate [source file rec]
+  "Check, compile and run scene `source`, recording its parameters in `rec`: true,
+the value it evaluates to, its parsed forms and the checked text; or nil and a
+message."
+  (let [env (doto (sandbox.safe-env) (tset :param (params.param-function rec)))
         allowed (doto (icollect [k (pairs env)] k) table.sort)]
     (case (sandbox.check-source source file)
       (nil msg) (values nil msg)
@@ -501,14 +503,23 @@ forms and the checked text; or nil and a message."
                                         (values nil (clean-fennel-message
                                                      (sandbox.error-message value) file)))))))))))
 
-(fn load-string [source ?file]
+(fn load-string [source ?file ?options]
   "Evaluate scene `source` in a sandbox and validate it.
 Returns the scene (plain data, defaults filled in) or nil and a message
-'file:line: field: reason'."
+'file:line: field: reason'. `?options.overrides` maps parameter names to the values
+their (param ...) calls give instead of the file's; the scene's :params lists them
+(see src/scene/params.fnl) and its :source is the text, to load it again with others."
   (let [file (or ?file "scene")
-        (ok? value forms checked-source env) (evaluate source file)]
-    (if (not ok?)
+        rec (params.collector (?. ?options :overrides))
+        (ok? value forms checked-source env) (evaluate source file rec)
+        (sites-ok? site-err) (if (> (length rec.list) 0) (params.sites source file) true)]
+    (if (and (not ok?) rec.failed)
+        (values nil (safe-message (.. file ":" (or (params.failure-line source file rec) "?") ": "
+                                      rec.failed.message)))
+        (not ok?)
         (values nil (safe-message value))
+        (not sites-ok?)
+        (values nil (safe-message site-err))
         ;; Field lines come from the last form: the table the file evaluates to.
         (let [ctx {: file :source checked-source :ast (and forms (. forms (length forms)))
                    : env :animated []}
@@ -516,6 +527,9 @@ Returns the scene (plain data, defaults filled in) or nil and a message
           (if ok?
               (do (when (> (length ctx.animated) 0)
                     (set result.animated ctx.animated))
+                  (when (> (length rec.list) 0)
+                    (set result.params rec.list)
+                    (set result.source source))
                   result)
               (and (= (type result) :table) result.scene-error)
               (values nil (safe-message result.scene-error))
@@ -552,13 +566,13 @@ reason' (a value out of range, a function that fails or runs too long)."
 the size limit (so /dev/zero or a huge file costs nothing)."
   (files.read-user path (+ sandbox.limits.file-bytes 1)))
 
-(fn load-file [path ?read]
-  "Read and load the scene file at `path` (see load-string). `?read` reads a file's
-text (default: io.open, at most the size limit and a byte), so the app can read
-through love.filesystem."
+(fn load-file [path ?read ?options]
+  "Read and load the scene file at `path` (see load-string, which takes `?options`).
+`?read` reads a file's text (default: io.open, at most the size limit and a byte), so
+the app can read through love.filesystem."
   (let [(source err) ((or ?read read-capped) path)]
     (if source
-        (load-string source path)
+        (load-string source path ?options)
         (values nil (safe-message (.. path ": cannot read the scene file: "
                                       (tostring (or err "no such file"))))))))
 

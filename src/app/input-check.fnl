@@ -1,0 +1,170 @@
+;; `love . --input-check`: drives the player through LÖVE's own event queue, as a
+;; person at a slow machine would: a key tapped between two frames, a click after the
+;; pointer moved with no button held, - before ] (another scene), F12, and the
+;; parameter panel (drag a slider, tick a switch, save into the file). Every event is
+;; pushed with love.event.push and reaches the player through love.run, exactly like
+;; real input; keyboard state (isDown) stays empty, as for a tap too short to be seen.
+
+(local play (require :src.app.play))
+(local camera (require :src.render.camera))
+(local panel (require :src.app.panel))
+
+(local scene-text
+  ";; a scene for the input check: comments and odd layout stay as they are
+{:name \"input check\"
+ :camera {:pos [0 -8 1.5] :yaw 90 :pitch 0 :fov 60}
+ :light {:pos [-6 -12 10]}
+ :render {:reflections 1
+          :shadows   (param :shadows true)}   ; a switch (it changes the shader)
+ :objects [{:kind :sphere
+            :radius (param :radius
+                           1   {:min 0.5 :max 2})
+            :pos [0 0 1] :color (param :tint [0.8 0.3 0.2])}
+           {:kind :plane :height 0 :color [0.6 0.6 0.6]}]}
+")
+
+(fn temp-path []
+  (let [base (os.tmpname)]
+    (os.remove base)
+    (.. base ".fnl")))
+
+(fn read [path]
+  (case (io.open path :rb) f (let [s (f:read :*a)] (f:close) s)))
+
+(fn distance [a b]
+  (let [dx (- (. a 1) (. b 1)) dy (- (. a 2) (. b 2)) dz (- (. a 3) (. b 3))]
+    (math.sqrt (+ (* dx dx) (* dy dy) (* dz dz)))))
+
+(fn push-key [key]
+  (love.event.push :keypressed key key false)
+  (love.event.push :keyreleased key key))
+
+(fn item-named [label]
+  (let [lay (panel.layout play.state.scene.params (love.graphics.getWidth))]
+    (accumulate [found nil _ item (ipairs lay.items) &until found]
+      (when (= item.label label) item))))
+
+(fn script [path check]
+  "The checks, one yield per frame: events pushed before a yield are handled in the
+next frame."
+  (let [state play.state
+        wait (fn [?n] (for [_ 1 (or ?n 1)] (coroutine.yield)))]
+    (wait 3)
+    ;; A tap: pressed and released between two updates.
+    (let [before [(. state.cam.pos 1) (. state.cam.pos 2) (. state.cam.pos 3)]]
+      (push-key :w)
+      (wait 2)
+      (let [moved (distance before state.cam.pos)]
+        (check (> moved 0.5) (string.format "a tapped key moves the camera (moved %.2f units)" moved))))
+    (let [yaw state.cam.yaw]
+      (push-key :d)
+      (wait 2)
+      (check (> (math.abs (- state.cam.yaw yaw)) 5)
+             (string.format "a tapped key turns the camera (%.1f degrees)" (- state.cam.yaw yaw))))
+    ;; Motion with no button held, then a click and a small drag.
+    (let [yaw state.cam.yaw]
+      (love.event.push :mousemoved 300 100 280 0 false)
+      (love.event.push :mousepressed 300 100 1 false 1)
+      (love.event.push :mousemoved 310 100 10 0 false)
+      (love.event.push :mousereleased 310 100 1 false 1)
+      (love.event.push :mousemoved 20 100 -290 0 false)
+      (wait 2)
+      (let [turned (- state.cam.yaw yaw)]
+        (check (< (math.abs (- (math.abs turned) 2)) 1e-6)
+               (string.format "only motion between press and release turns the camera (%.1f degrees; 2 expected)" turned))))
+    ;; F12: the window as it looks, at window resolution, whatever the render scale.
+    (push-key "-")
+    (push-key "-")
+    (wait 2)
+    (set state.message nil)
+    (push-key :f12)
+    (wait 4)
+    (let [(w h name) (string.match (or state.message "") "saved the window %((%d+)x(%d+)%) to .-/([^/]+%.png)")
+          data (and name (love.filesystem.getInfo name) (love.image.newImageData name))]
+      (check (and data (= (data:getWidth) (love.graphics.getWidth))
+                  (= (data:getHeight) (love.graphics.getHeight))
+                  (= (tonumber w) (love.graphics.getWidth)))
+             (string.format "F12 saves the window at its own size (%s; window %dx%d, render scale %.2f)"
+                            (tostring state.message) (love.graphics.getWidth) (love.graphics.getHeight)
+                            state.scale))
+      (when name (love.filesystem.remove name)))
+    ;; The parameter panel.
+    (push-key :f2)
+    (wait 2)
+    (check state.panel.open? "F2 opens the parameter panel")
+    (let [item (item-named "radius")
+          compiles state.cache.compiles]
+      (love.event.push :mousepressed (+ item.x (* 0.75 item.w)) (+ item.y 5) 1 false 1)
+      (love.event.push :mousemoved (+ item.x (* 0.25 (- item.w 1))) (+ item.y 5) -100 0 false)
+      (love.event.push :mousereleased (+ item.x (* 0.25 (- item.w 1))) (+ item.y 5) 1 false 1)
+      (let [yaw state.cam.yaw]
+        (wait 2)
+        (let [r (. state.scene.objects 1 :radius)]
+          (check (< (math.abs (- r 0.875)) 1e-9)
+                 (string.format "dragging the radius slider to a quarter sets 0.875 (got %s)" r))
+          (check (= state.cache.compiles compiles)
+                 (string.format "dragging a slider compiles no shader (%d compiled)" (- state.cache.compiles compiles)))
+          (check (= yaw state.cam.yaw) "dragging a slider does not turn the camera"))))
+    (let [box (item-named "shadows")]
+      (love.event.push :mousepressed (+ box.x 5) (+ box.y 5) 1 false 1)
+      (love.event.push :mousereleased (+ box.x 5) (+ box.y 5) 1 false 1)
+      (wait 2)
+      (check (= false state.scene.render.shadows) "clicking the checkbox switches shadows off"))
+    (let [g (item-named "tint g")]
+      (love.event.push :mousepressed (+ g.x g.w -1) (+ g.y 5) 1 false 1)
+      (love.event.push :mousereleased (+ g.x g.w -1) (+ g.y 5) 1 false 1)
+      (wait 2)
+      (check (= 1 (. state.scene.objects 1 :color 2)) "the colour's green slider at its end sets 1"))
+    (let [save (item-named "Save to file (ctrl+s)")
+          reloads state.reloads]
+      (love.event.push :mousepressed (+ save.x 5) (+ save.y 5) 1 false 1)
+      (love.event.push :mousereleased (+ save.x 5) (+ save.y 5) 1 false 1)
+      (wait 2)
+      (let [expected (-> scene-text
+                         (string.gsub "%(param :shadows true%)" "(param :shadows false)")
+                         (string.gsub "\n                           1   " "\n                           0.875   ")
+                         (string.gsub "%[0%.8 0%.3 0%.2%]" "[0.8 1 0.2]"))]
+        (check (= (read path) expected)
+               (.. "Save writes only the three literals into the file"
+                   (if (= (read path) expected) "" (.. "; it reads:\n" (tostring (read path)))))))
+      ;; The watcher loads a file once it has settled (0.2 s): up to 3 s of frames.
+      (let [until (+ (love.timer.getTime) 3)]
+        (while (and (= state.reloads reloads) (< (love.timer.getTime) until))
+          (wait)))
+      (check (and (> state.reloads reloads) (not state.last-load.compiled?) (= state.error nil))
+             (string.format "the saved file is reloaded as a value edit (%d reloads, %s)"
+                            (- state.reloads reloads)
+                            (if (?. state.last-load :compiled?) "compiled" "uniforms only"))))
+    ;; ] opens the next bundled scene and keeps the render scale chosen with -.
+    (let [scale state.scale]
+      (push-key "]")
+      (wait 2)
+      (check (and (< scale 1) (= state.scale scale) (not= state.path path))
+             (string.format "] keeps the render scale chosen with - (%.2f, was %.2f)" state.scale scale)))))
+
+(fn run [o]
+  "Start the player on a temporary scene and run the checks; quits with 0 when
+every check held, else 1."
+  (let [path (temp-path)
+        failures []
+        check (fn [ok? what]
+                (print (.. "input check: " what ": " (if ok? "ok" "FAILED")))
+                (when (not ok?) (table.insert failures what)))]
+    (with-open [f (assert (io.open path :wb))] (f:write scene-text))
+    (love.window.setMode 320 180)
+    (set play.state.quiet? true)
+    (play.start! {:scene path :frames 0})
+    (let [co (coroutine.create #(script path check))
+          update love.update]
+      (set love.update
+           (fn [dt]
+             (update dt)
+             (let [(ok? err) (coroutine.resume co)]
+               (when (not ok?)
+                 (check false (.. "the check itself failed: " (debug.traceback co (tostring err)))))
+               (when (not= (coroutine.status co) :suspended)
+                 (os.remove path)
+                 (print (string.format "input checks: %d failed" (length failures)))
+                 (love.event.quit (if (= 0 (length failures)) 0 1)))))))))
+
+{: run}
