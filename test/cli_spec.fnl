@@ -22,6 +22,17 @@
           (assert.is_nil o)
           (assert.are.equal "unknown option -x" err))))
 
+    (it "parses --target-fps for playing (the frame rate held while moving) and --input-check"
+      (fn []
+        (assert.are.equal 15 (. (cli.parse ["a.fnl" "--target-fps" "15"]) :target-fps))
+        (assert.are.same [nil "--target-fps only goes with playing a scene"]
+                         [(cli.parse ["--render" "a.fnl" "--out" "a.png" "--target-fps" "15"])])
+        (assert.are.same [nil "--target-fps must be at most 240, got 500"]
+                         [(cli.parse ["--target-fps" "500"])])
+        (assert.are.same [nil "--target-fps must be a whole number >= 1, got 0.5"]
+                         [(cli.parse ["--target-fps" "0.5"])])
+        (assert.are.equal :input-check (. (cli.parse ["--input-check"]) :mode))))
+
     (it "parses the scene-tree modes: --probe (with --gpu), --tree, --kinds"
       (fn []
         (assert.are.same {:mode :probe :scene "a.fnl" :gpu? true :frames 5 :cycles 300}

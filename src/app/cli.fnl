@@ -6,7 +6,7 @@
 (local default-scene "scenes/seed.fnl")
 
 (local usage
-  "usage: love . [SCENE]                       play SCENE (default scenes/seed.fnl)
+  "usage: love . [SCENE] [--target-fps N]      play SCENE (default scenes/seed.fnl), moving at N fps (30)
        love . [SCENE] --shot FILE.png [--frames N]   play N frames, save the window, quit
        love . --render SCENE --out FILE.png [--size WxH] [--view VIEW]
        love . --print-shader SCENE [--view VIEW] [--target love|core]
@@ -23,7 +23,8 @@
 VIEW is one of shaded, normals, glow, heat.")
 
 (local value-flags {:--out :out :--size :size :--frames :frames :--view :view
-                    :--target :target :--shot :shot :--cycles :cycles :--fps :fps})
+                    :--target :target :--shot :shot :--cycles :cycles :--fps :fps
+                    :--target-fps :target-fps})
 (local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench
                    :--probe :probe :--tree :tree :--export-shader :export-shader
                    :--record :record})
@@ -56,6 +57,10 @@ VIEW is one of shaded, normals, glow, heat.")
       (values nil "--turntable only goes with --record")
       (and o.fps (not= o.mode :record))
       (values nil "--fps only goes with --record")
+      (and o.target-fps (not= o.mode :play))
+      (values nil "--target-fps only goes with playing a scene")
+      (and o.target-fps (> o.target-fps 240))
+      (values nil (.. "--target-fps must be at most 240, got " o.target-fps))
       (and (= o.mode :export-shader) (not o.out))
       (values nil "--export-shader needs --out FILE.glsl")
       (and o.out (= o.mode :export-shader) (not (o.out:match "%.glsl$")))
@@ -114,7 +119,7 @@ VIEW is one of shaded, normals, glow, heat.")
       (let [size (parse-size o.size)]
         (if size (set o.size size)
             (set err (.. "--size must look like 1920x1080, got " o.size)))))
-    (each [_ field (ipairs [:frames :cycles :fps])]
+    (each [_ field (ipairs [:frames :cycles :fps :target-fps])]
       (when (and (not err) (= (type (. o field)) :string))
         (let [n (tonumber (. o field))]
           (if (and n (>= n 1) (< n math.huge) (= n (math.floor n))) (tset o field n)

@@ -140,7 +140,18 @@ next frame."
       (push-key "]")
       (wait 2)
       (check (and (< scale 1) (= state.scale scale) (not= state.path path))
-             (string.format "] keeps the render scale chosen with - (%.2f, was %.2f)" state.scale scale)))))
+             (string.format "] keeps the render scale chosen with - (%.2f, was %.2f)" state.scale scale)))
+    ;; A scene file that is not there: the window says it cannot be read (not that it
+    ;; was deleted), also after the watcher has looked at it for a while.
+    (let [missing (.. path ".missing.fnl")]
+      (play.load! missing true)
+      (set state.message nil)
+      (let [until (+ (love.timer.getTime) 1.5)]
+        (while (< (love.timer.getTime) until) (wait)))
+      (check (and state.error (state.error:find "cannot read the scene file" 1 true)
+                  (not (string.find (or state.message "") "deleted" 1 true)))
+             (string.format "a missing scene says it cannot be read, not that it was deleted (%s / %s)"
+                            (tostring state.error) (tostring state.message))))))
 
 (fn run [o]
   "Start the player on a temporary scene and run the checks; quits with 0 when

@@ -216,7 +216,7 @@ the reflection count changed (not every frame)."
 
 ;; While the camera moves the image is drawn whole at a lower resolution, chosen to
 ;; hold this frame rate; when it stops, the full resolution is refined in bands.
-(local interactive-fps 30)
+(local default-interactive-fps 30)
 
 (fn ensure-move-canvas! []
   (let [(ww wh) (love.graphics.getDimensions)
@@ -421,7 +421,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
     (if (and state.adaptive.moving? state.move-canvas)
         (table.insert lines (string.format "%dx%d while moving (holding %d fps; full scale %.2f)"
                                            (state.move-canvas:getWidth) (state.move-canvas:getHeight)
-                                           interactive-fps state.scale))
+                                           state.interactive-fps state.scale))
         canvas
         (table.insert lines (string.format "%dx%d (scale %.2f)" (canvas:getWidth)
                                            (canvas:getHeight) state.scale)))
@@ -540,6 +540,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
 (fn start! [options]
   "Play the scene file named in `options.scene`: install the LÖVE callbacks."
   (set state.cache (gpu.new-cache))
+  (set state.interactive-fps (or options.target-fps default-interactive-fps))
   (load! options.scene true)
   (when (and options.shot (not state.scene))
     ;; Nothing to shoot: a script waits on this run, so fail like --render does.
@@ -555,7 +556,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
                      (when state.cam
                        (handle-keyboard dt)
                        (handle-gamepad dt)
-                       (case (adaptive.update! state.adaptive state.cam dt (/ 1 interactive-fps)
+                       (case (adaptive.update! state.adaptive state.cam dt (/ 1 state.interactive-fps)
                                                state.scale)
                          :moving (table.insert state.move-times dt)
                          :stopped (set state.refine {:start (love.timer.getTime) :copy? true})))))

@@ -40,6 +40,9 @@ Returns the text, or nil and a message."
                                 u.name u)
                out [(.. "// " scene.name ": exported by `love . --export-shader` (Shadertoy form; every")
                     "// value is baked in, so a changed scene needs another export)."]]
+           (when scene.animated
+             ;; Functions of time are Lua code run in the sandbox; GLSL cannot run them.
+             (table.insert out "// The scene's functions of time are baked at t = 0 (iTime is not used)."))
            (var missing nil)
            (each [line (: (.. text "\n") :gmatch "([^\n]*)\n")]
              (let [(name trailer) (line:match "^uniform %w+ ([%w_]+)[^;]*;(.*)$")]
