@@ -86,11 +86,12 @@
                                  "uniform vec3 uBoxCenter[3];" "uniform vec3 uBoxHalfSize[3];"
                                  "uniform vec3 uBoxColor[3];" "uniform float uPlaneHeight[1];"
                                  "uniform vec3 uPlaneColor[1];" "uniform int uReflections;"
-                                 ;; A few objects of a kind are written out one by one.
-                                 "    d = min(d, sdSphere(p - uSphere[1].xyz, uSphere[1].w));"
-                                 "    d = min(d, sdBox(p - uBoxCenter[2], uBoxHalfSize[2]));"
-                                 "    d = min(d, sdPlane(p, vec3(0.0, 0.0, 1.0), uPlaneHeight[0]));"
-                                 "    if (di < d) { d = di; color = uBoxColor[2]; }"])]
+                                 ;; A few objects of a kind are written out one by one,
+                                 ;; reading the copies made once per pixel.
+                                 "    d = min(d, sdSphere(p - gSphere[1].xyz, gSphere[1].w));"
+                                 "    d = min(d, sdBox(p - gBoxCenter[2], gBoxHalfSize[2]));"
+                                 "    d = min(d, sdPlane(p, vec3(0.0, 0.0, 1.0), gPlaneHeight[0]));"
+                                 "    if (di < d) { d = di; color = gBoxColor[2]; }"])]
             (assert-has text line))
           (assert-lacks text "for (int i = 0; i < 2;")
           (assert-lacks text "for (int i = 0; i < 3;")
@@ -108,7 +109,7 @@
         (let [text (shader-of "{:objects [{:kind :plane}]}")]
           (assert-lacks text "sdSphere")
           (assert-lacks text "sdBox")
-          (assert-has text "sdPlane(p, vec3(0.0, 0.0, 1.0), uPlaneHeight[0])"))
+          (assert-has text "sdPlane(p, vec3(0.0, 0.0, 1.0), gPlaneHeight[0])"))
         ;; More than eight of a kind: a loop over the arrays.
         (let [text (shader-of (.. "{:objects [" (string.rep "{:kind :sphere} " 9) "]}"))]
           (assert-has text "for (int i = 0; i < 9; i++) {")
@@ -122,7 +123,7 @@
           (assert-lacks (strip-comments text) "bounce"))
         (let [text (shader-of "{:objects [{:kind :sphere}] :render {:reflections 1}}")]
           (assert-has text "uniform int uReflections;")
-          (assert-has text "for (int bounce = 1; bounce <= uReflections; bounce++) {"))))
+          (assert-has text "for (int bounce = 1; bounce <= gReflections; bounce++) {"))))
 
     (it "has no shadow code when shadows are off"
       (fn []
@@ -147,17 +148,34 @@
           (each [_ line (ipairs ["uniform int uCountSphere;" "uniform int uCountBox;"
                                  "uniform int uCountPlane;" "uniform bool uShadows;"
                                  "uniform bool uGlow;" "uniform int uReflections;"
-                                 "if (uShadows) {" "if (uGlow) {"
-                                 "for (int i = 0; i < uCountSphere; i++) {"
-                                 "for (int i = 0; i < uCountPlane; i++) {"
+                                 "if (gShadows) {" "if (gGlow) {"
+                                 "for (int i = 0; i < gCountSphere; i++) {"
+                                 "for (int i = 0; i < gCountPlane; i++) {"
                                  "// sphere: 2 slots"])]
             (assert-has text line))
           (assert-lacks text "const int i"))))
 
+    (it "reads each uniform once per pixel, into a global copy, but arrays indexed in a loop"
+      (fn []
+        (let [text (shader-of "{:objects [{:kind :sphere} {:kind :sphere :pos [1 0 0]} {:kind :box}]}" nil :core)
+              many (shader-of (.. "{:objects [" (string.rep "{:kind :sphere} " 9) "]}") nil :core)]
+          (each [_ line (ipairs ["vec4 gSphere[2];" "float gDrawDist;" "void loadUniforms() {"
+                                 "    gSphere[0] = uSphere[0];" "    gSphere[1] = uSphere[1];"
+                                 "    gDrawDist = uDrawDist;" "void main() {\n    loadUniforms();"])]
+            (assert-has text line))
+          ;; Outside the declarations and loadUniforms, no uniform is read but the
+          ;; resolution.
+          (let [body (: (text:gsub "void loadUniforms%(%) {.-\n}" "") :gsub "\nuniform [^\n]*" "")]
+            (each [name (body:gmatch "%f[%w_](u%u[%w_]*)")]
+              (assert.are.equal "uResolution" name)))
+          ;; Nine spheres are a loop over uSphere[i]: that array stays a uniform.
+          (assert-has many "        d = min(d, sdSphere(p - uSphere[i].xyz, uSphere[i].w));")
+          (assert-lacks many "gSphere"))))
+
     (it "generates a scene with no objects"
       (fn []
         (let [text (shader-of "{:objects []}" nil :core)]
-          (assert-has text "float map(vec3 p) {\n    float d = uDrawDist;\n    return d;\n}")
+          (assert-has text "float map(vec3 p) {\n    float d = gDrawDist;\n    return d;\n}")
           (assert-lacks text "uniform vec4")
           (assert-lacks text "sdSphere"))))))
 
@@ -178,7 +196,7 @@
           (assert-lacks normals "mapColor")
           (assert-lacks heat "mapColor")
           (assert-lacks heat "calcNormal")
-          (assert-has heat "float h = clamp(float(steps) / float(uMaxSteps), 0.0, 1.0);")
+          (assert-has heat "float h = clamp(float(steps) / float(gMaxSteps), 0.0, 1.0);")
           (assert-has glow "mapColor(ro + rd * t, surface);")
           (assert-lacks glow "calcNormal")
           (assert-has glow "return vec3(float(steps) / 100.0);"))))
@@ -260,7 +278,8 @@
         ;; about ints: array sizes, int loops, the int step counters, the header.
         (let [int-lines ["^#version 330 core$" "^%s*uniform [%w]+ [%w]+%[%d+%];$"
                          "^%s*for %(int i = 0; i < %w+; i%+%+%) {$"
-                         "^%s*for %(int bounce = 1; bounce <= uReflections; bounce%+%+%) {$"
+                         "^%s*for %(int bounce = 1; bounce <= gReflections; bounce%+%+%) {$"
+                         "^%s*[%w]+ [%w]+%[%d+%];$" "^%s*g%w+%[%d+%] = u%w+%[%d+%];$"
                          "^%s*{ const int i = 0;$" "^%s*steps = 0;$" "^%s*steps = i %+ 1;$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]

@@ -138,7 +138,7 @@
                   ;; A sign flipped in the boxes' offset: sdBox(p - c, h) becomes
                   ;; sdBox(p + c, h) in every call (three boxes, in map and mapColor).
                   (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
-                                      "sdBox%(p %- uBoxCenter" "sdBox(p + uBoxCenter")
+                                      "sdBox%(p %- gBoxCenter" "sdBox(p + gBoxCenter")
                         _ (assert.are.equal 6 n)
                         st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "seed, broken p+c" st))

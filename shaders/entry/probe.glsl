@@ -5,6 +5,7 @@ uniform sampler2D uPoints;
 uniform int uProbeChannel;
 
 vec4 effect(vec4 vertexColor, Image tex, vec2 texCoord, vec2 screenCoord) {
+    loadUniforms();
     vec3 p = texelFetch(uPoints, ivec2(screenCoord), 0).xyz;
     vec3 color;
     float d = mapColor(p, color);

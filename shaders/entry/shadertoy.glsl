@@ -3,5 +3,6 @@
 // the resolution comes from the host.
 void mainImage(out vec4 fragColor, in vec2 fragCoord) {
     uResolution = iResolution.xy;
+    loadUniforms();
     fragColor = vec4(render(vec2(fragCoord.x, iResolution.y - fragCoord.y)), 1.0);
 }
