@@ -24,11 +24,13 @@
     (gpu.finish! canvas)
     (* 1000 (- (love.timer.getTime) start))))
 
-(fn make-variant [{: label : scene-path : size : plan-options : source-path}]
-  "A benchmark variant: a compiled shader, its uniforms and a canvas, or nil and a message."
+(fn make-variant [{: label : scene-path : size : plan-options : source-path : render}]
+  "A benchmark variant: a compiled shader, its uniforms and a canvas, or nil and a
+message. `render` overrides some of the scene's render settings."
   (case (frame.load-scene scene-path)
     (nil err) (values nil err)
-    scene (case (frame.plan-for scene plan-options)
+    scene (case (do (each [k v (pairs (or render {}))] (tset scene.render k v))
+                    (frame.plan-for scene plan-options))
             (nil err) (values nil err)
             plan (let [[w h] size
                        source (if source-path
@@ -69,43 +71,92 @@
                                   v.compile-ms v.first-ms (- v.first-ms v.median)))
             true))))
 
+(fn image-difference [a b]
+  "Mean and max per-channel difference (0-255) between the canvases of variants `a`
+and `b`, and the share of pixels that differ by more than 8/255 in some channel."
+  (let [da (a.canvas:newImageData)
+        db (b.canvas:newImageData)
+        (w h) (da:getDimensions)]
+    (var sum 0)
+    (var worst 0)
+    (var over 0)
+    (for [y 0 (- h 1) 4]
+      (for [x 0 (- w 1) 4]
+        (let [(r1 g1 b1) (da:getPixel x y)
+              (r2 g2 b2) (db:getPixel x y)
+              d (* 255 (math.max (math.abs (- r1 r2)) (math.abs (- g1 g2)) (math.abs (- b1 b2))))]
+          (set sum (+ sum d))
+          (set worst (math.max worst d))
+          (when (> d 8) (set over (+ over 1))))))
+    (da:release)
+    (db:release)
+    (let [n (* (math.ceil (/ w 4)) (math.ceil (/ h 4)))]
+      (values (/ sum n) worst (/ over n)))))
+
+(local defaults-render
+  ;; The scene defaults for the march (src/scene/load.fnl), over the seed's article
+  ;; settings.
+  (let [d (. ((. (require :src.scene.load) :defaults)) :render)]
+    {:hit-test d.hit-test :normals d.normals :relaxation d.relaxation :epsilon d.epsilon
+     :max-steps d.max-steps}))
+
 (fn report [o]
-  "`make bench`: generated vs hand-written shader, specialized vs all-features shader,
-and our frame times next to the article's CPU program."
-  (let [hd [1920 1080]
+  "`make bench`: the seed scene with the article's settings and with the defaults next
+to an analytic ray tracer of it (the floor), each lever's gain before and after, the
+showcase scenes, and our pixel rate next to the article's CPU program."
+  (let [fhd [1920 1080]
+        hd [1280 720]
         small [256 224]
-        specs [{:label "seed, generated, 1920x1080" :scene-path "scenes/seed.fnl" :size hd}
-               {:label "seed, hand-written, 1920x1080" :scene-path "scenes/seed.fnl" :size hd
-                :source-path "test/bench/seed-handwritten.glsl"}
-               {:label "spheres, specialized, 1920x1080" :scene-path "scenes/spheres.fnl" :size hd}
-               {:label "spheres, all features, 1920x1080" :scene-path "scenes/spheres.fnl" :size hd
-                :plan-options {:uber? true}}
-               {:label "seed, generated, 256x224" :scene-path "scenes/seed.fnl" :size small}]
+        direct {:load-once? false}
+        specs [{:id :floor :label "seed, analytic ray tracer (floor)" :scene-path "scenes/seed.fnl"
+                :size fhd :source-path "test/bench/seed-analytic.glsl"}
+               {:id :article-direct :label "seed, article's settings, uniforms where used"
+                :scene-path "scenes/seed.fnl" :size fhd :plan-options direct}
+               {:id :article :label "seed, article's settings" :scene-path "scenes/seed.fnl" :size fhd}
+               {:id :defaults-direct :label "seed, defaults, uniforms where used"
+                :scene-path "scenes/seed.fnl" :size fhd :plan-options direct :render defaults-render}
+               {:id :defaults :label "seed, defaults" :scene-path "scenes/seed.fnl" :size fhd
+                :render defaults-render}
+               {:id :gallery-direct :label "gallery 1280x720, uniforms where used"
+                :scene-path "scenes/gallery.fnl" :size hd :plan-options direct}
+               {:id :gallery :label "gallery 1280x720" :scene-path "scenes/gallery.fnl" :size hd}
+               {:id :organic-direct :label "organic 1280x720, uniforms where used"
+                :scene-path "scenes/organic.fnl" :size hd :plan-options direct}
+               {:id :organic :label "organic 1280x720" :scene-path "scenes/organic.fnl" :size hd}
+               {:id :small :label "seed, article's settings, 256x224" :scene-path "scenes/seed.fnl"
+                :size small}]
+        v {}
         variants []]
     (var err nil)
     (each [_ spec (ipairs specs) &until err]
       (case (make-variant spec)
         (nil e) (set err e)
-        v (table.insert variants v)))
+        made (do (tset v spec.id made) (table.insert variants made))))
     (if err
         (values nil err)
-        (let [[gen hand spec uber small-gen] variants
-              (_ version _ device) (love.graphics.getRendererInfo)]
+        (let [(_ version _ device) (love.graphics.getRendererInfo)
+              ratio (fn [a b] (/ (. v a :median) (. v b :median)))]
           (print (.. "renderer: " device " (OpenGL " version ")"))
           (print (.. "frames per variant: " o.frames ", interleaved, after one warm-up round"))
           (run-rounds! variants o.frames)
-          (each [_ v (ipairs variants)]
-            (print (string.format "%-36s median %8.1f ms" v.label v.median)))
-          (print (string.format "generated / hand-written (seed, 1920x1080): %.3f (goal <= 1.05)"
-                                (/ gen.median hand.median)))
-          (print (string.format "specialized / all features (spheres, 1920x1080): %.3f"
-                                (/ spec.median uber.median)))
+          (print "seed at 1920x1080 unless said:")
+          (each [_ x (ipairs variants)]
+            (print (string.format "  %-48s median %8.1f ms" x.label x.median)))
+          (print (string.format "seed / analytic floor (1920x1080): article's settings %.2fx, defaults %.2fx (goal <= 1.5x)"
+                                (ratio :article :floor) (ratio :defaults :floor)))
+          (print (string.format "lever: uniforms read once per pixel: seed article's %.2fx, seed defaults %.2fx, gallery %.2fx, organic %.2fx faster"
+                                (ratio :article-direct :article) (ratio :defaults-direct :defaults)
+                                (ratio :gallery-direct :gallery) (ratio :organic-direct :organic)))
+          (let [(mean worst share) (image-difference v.article v.floor)]
+            (print (string.format "image, article's settings vs the analytic tracer: mean %.2f/255, max %.0f/255, %.1f%% of pixels over 8/255 (one pixel in 16 compared)"
+                                  mean worst (* 100 share))))
           (print (string.format "article's CPU program, seed 256x224: %d ms; ours %.1f ms (%.0fx faster)"
-                                article-ms-256x224 small-gen.median
-                                (/ article-ms-256x224 small-gen.median)))
-          (print (string.format "pixel rate at 1920x1080 vs the article's at 256x224: %.0fx"
-                                (/ (/ (* 1920 1080) gen.median)
-                                   (/ (* 256 224) article-ms-256x224))))
+                                article-ms-256x224 v.small.median
+                                (/ article-ms-256x224 v.small.median)))
+          (each [_ [id what] (ipairs [[:article "article's settings"] [:defaults "defaults"] [:floor "analytic floor"]])]
+            (print (string.format "pixel rate at 1920x1080 vs the article's at 256x224, %s: %.0fx"
+                                  what (/ (/ (* 1920 1080) (. v id :median))
+                                          (/ (* 256 224) article-ms-256x224)))))
           true))))
 
 {: run-scene : report}

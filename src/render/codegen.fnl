@@ -256,7 +256,8 @@ entry point."
     (each [i s (ipairs sections)]
       (when (> i 1) (table.insert body ""))
       (flatten-into body "" s))
-    (flatten-into out "" (load-once body))
+    (flatten-into out "" (if plan.load-once? (load-once body)
+                             (doto body (table.insert "") (table.insert "void loadUniforms() {}"))))
     (table.insert out "")
     (flatten-into out ""
                   (fill target.entry

@@ -37,6 +37,7 @@
     (table.insert parts (.. "hit:" plan.hit-test))
     (when plan.normals (table.insert parts (.. "normals:" plan.normals)))
     (when plan.uber? (table.insert parts "uber"))
+    (when (not plan.load-once?) (table.insert parts "uniforms-direct"))
     (table.insert parts (.. "view:" plan.view))
     (when plan.tape
       (table.insert parts (.. "tape:" plan.tape.key))
@@ -62,6 +63,8 @@
   :reflections    override the scene's reflection count (the player's k/l keys)
   :uniform-limit  uniform vectors the driver allows (default 4096, llvmpipe's)
   :probe?         for the probe shader: colours and mirror amounts, no lighting
+  :load-once?     false: read uniforms where they are used instead of once per pixel
+                  (the benchmark's before-and-after of that lever)
 Returns the plan, or nil and a message when the scene does not fit the budget."
   (let [options (or ?options {})
         view (or options.view :shaded)
@@ -81,6 +84,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                      :count n :capacity (if uber? (math.max n 1) n)})))
         shaded? (= view :shaded)
         plan {: kinds : view : uber?
+              :load-once? (not= false options.load-once?)
               ;; The kind-grouped objects in shader order, then the tree objects.
               :objects (let [out []]
                          (each [_ k (ipairs kinds)]
