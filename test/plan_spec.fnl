@@ -35,7 +35,9 @@
           (assert.are.equal true p.reflections?)
           (assert.are.equal false p.glow?)
           (assert.are.equal 3 p.reflections)
+          ;; The seed keeps the article's march: no bounds.
           (assert.are.equal 47 p.uniform-vectors)
+          (assert.is_nil p.bounds)
           (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections hit:fixed normals:one-sided view:shaded" p.key))))
 
     (it "orders objects by kind, keeping file order within a kind"
@@ -55,7 +57,7 @@
           (assert.are.same [] p.kinds)
           (assert.are.same [] p.objects)
           (assert.are.equal 32 p.uniform-vectors)
-          (assert.are.equal "shadows reflections relaxed hit:relative normals:tetrahedron view:shaded" p.key))))
+          (assert.are.equal "shadows reflections relaxed hit:relative normals:tetrahedron bounds:0 view:shaded" p.key))))
 
     (it "includes every kind in an uber plan, with at least one slot each"
       (fn []
@@ -121,7 +123,7 @@
     (local base-key (key-of base))
 
     (it "is the expected text"
-      (fn [] (assert.are.equal "sphere:1 box:1 shadows reflections relaxed hit:relative normals:tetrahedron view:shaded" base-key)))
+      (fn [] (assert.are.equal "sphere:1 box:1 shadows reflections relaxed hit:relative normals:tetrahedron bounds:2 view:shaded" base-key)))
 
     (it "changes with structure"
       (fn []

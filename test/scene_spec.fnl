@@ -28,7 +28,7 @@
         (assert.are.same [0.901 0.976 1] s.environment)
         (assert.are.same {:max-steps 500 :epsilon 1e-4 :draw-distance 1000
                           :reflections 3 :shadows true :glow false :scale 1
-                          :hit-test :fixed :normals :one-sided :relaxation 1}
+                          :hit-test :fixed :normals :one-sided :relaxation 1 :bounds false}
                          s.render)))
 
     (it "has three boxes, two spheres and a plane, in file order"
@@ -84,7 +84,8 @@
           ;; The defaults chosen from the accuracy report, not the article's.
           (assert.are.same {:max-steps 500 :epsilon 1e-4 :draw-distance 1000
                             :reflections 3 :shadows true :glow false :scale 1
-                            :hit-test :relative :normals :tetrahedron :relaxation 1.5}
+                            :hit-test :relative :normals :tetrahedron :relaxation 1.5
+                            :bounds true}
                            s.render)
           (assert.are.same [] s.objects))))
 

@@ -66,8 +66,9 @@
    ;; changes where two objects are equally near: measured 1 over (max 4.5), and 7
    ;; pixels on those borders move under a nudge.
    "scenes/stress/max-steps-one.fnl" {:shaded {:over 1 :max 4.5} :normals exact :stable 7}
-   ;; 10 bounces between parallel mirrors: still exact.
-   "scenes/stress/mirrors.fnl" {:shaded exact :normals exact :stable 0}
+   ;; 10 bounces between parallel mirrors: still exact. With bounds (issue 11) one
+   ;; pixel moves under a nudge: a tenth bounce that grazes a mirror's bounding sphere.
+   "scenes/stress/mirrors.fnl" {:shaded exact :normals exact :stable 1}
    ;; One silhouette pixel moves under a nudge.
    "scenes/stress/pitch-down.fnl" {:shaded exact :normals exact :stable 1}
    "scenes/stress/pitch-up.fnl" {:shaded exact :normals exact :stable 0}
@@ -87,8 +88,9 @@
    ;; the problem this variant shows, against 24 with the defaults).
    "scenes/stress/tiny-objects-article.fnl" {:shaded exact :normals exact :stable 61}
    ;; A 1e-6 nudge is 0.1% of this scene's size (1e-3): the tiny sphere's reflections
-   ;; move: measured 24 pixels (worst axis).
-   "scenes/stress/tiny-objects.fnl" {:shaded exact :normals exact :stable 24}})
+   ;; move: measured 24 pixels (worst axis); 26 with bounds (issue 11), whose span
+   ;; starts the march at a sphere 1e-3 across instead of at the camera.
+   "scenes/stress/tiny-objects.fnl" {:shaded exact :normals exact :stable 26}})
 
 ;; Scenes not rendered at the default size.
 (local sizes {"scenes/stress/tall-window.fnl" [1 1000]})

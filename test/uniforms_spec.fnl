@@ -166,7 +166,7 @@
           (each [_ source (ipairs ["{:objects []}" "{:objects [{:kind :box} {:kind :box}]}"])]
             (let [(list p) (pack-scene (load source) options)
                   capacity (collect [_ k (ipairs p.kinds)] k.kind k.capacity)
-                  arrays (icollect [_ u (ipairs list)] (when u.count u))]
+                  arrays (icollect [_ u (ipairs list)] (when (and u.count (not= u.name "uBounds")) u))]
               (each [_ u (ipairs arrays)]
                 (let [kind (if (u.name:find "^uSphere") :sphere (u.name:find "^uLargeSphere") :large-sphere
                                (u.name:find "^uBox") :box :plane)]

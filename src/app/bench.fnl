@@ -108,23 +108,28 @@ showcase scenes, and our pixel rate next to the article's CPU program."
         hd [1280 720]
         small [256 224]
         direct {:load-once? false}
-        specs [{:id :floor :label "seed, analytic ray tracer (floor)" :scene-path "scenes/seed.fnl"
+        no-bounds {:bounds false}
+        defaults-no-bounds (doto (collect [k x (pairs defaults-render)] k x) (tset :bounds false))
+        seed "scenes/seed.fnl"
+        specs [{:id :floor :label "seed, analytic ray tracer (floor)" :scene-path seed
                 :size fhd :source-path "test/bench/seed-analytic.glsl"}
-               {:id :article-direct :label "seed, article's settings, uniforms where used"
-                :scene-path "scenes/seed.fnl" :size fhd :plan-options direct}
-               {:id :article :label "seed, article's settings" :scene-path "scenes/seed.fnl" :size fhd}
-               {:id :defaults-direct :label "seed, defaults, uniforms where used"
-                :scene-path "scenes/seed.fnl" :size fhd :plan-options direct :render defaults-render}
-               {:id :defaults :label "seed, defaults" :scene-path "scenes/seed.fnl" :size fhd
-                :render defaults-render}
-               {:id :gallery-direct :label "gallery 1280x720, uniforms where used"
-                :scene-path "scenes/gallery.fnl" :size hd :plan-options direct}
+               {:id :article-none :label "seed, article's, uniforms where used" :scene-path seed
+                :size fhd :plan-options direct}
+               {:id :article :label "seed, article's (no bounds: the article's march)"
+                :scene-path seed :size fhd}
+               {:id :defaults-none :label "seed, defaults, no levers" :scene-path seed :size fhd
+                :plan-options direct :render defaults-no-bounds}
+               {:id :defaults-once :label "seed, defaults, uniforms once" :scene-path seed
+                :size fhd :render defaults-no-bounds}
+               {:id :defaults :label "seed, defaults (uniforms once + bounds)" :scene-path seed
+                :size fhd :render defaults-render}
+               {:id :gallery-none :label "gallery 1280x720, no levers"
+                :scene-path "scenes/gallery.fnl" :size hd :plan-options direct :render no-bounds}
                {:id :gallery :label "gallery 1280x720" :scene-path "scenes/gallery.fnl" :size hd}
-               {:id :organic-direct :label "organic 1280x720, uniforms where used"
-                :scene-path "scenes/organic.fnl" :size hd :plan-options direct}
+               {:id :organic-none :label "organic 1280x720, no levers"
+                :scene-path "scenes/organic.fnl" :size hd :plan-options direct :render no-bounds}
                {:id :organic :label "organic 1280x720" :scene-path "scenes/organic.fnl" :size hd}
-               {:id :small :label "seed, article's settings, 256x224" :scene-path "scenes/seed.fnl"
-                :size small}]
+               {:id :small :label "seed, article's, 256x224" :scene-path seed :size small}]
         v {}
         variants []]
     (var err nil)
@@ -144,12 +149,17 @@ showcase scenes, and our pixel rate next to the article's CPU program."
             (print (string.format "  %-48s median %8.1f ms" x.label x.median)))
           (print (string.format "seed / analytic floor (1920x1080): article's settings %.2fx, defaults %.2fx (goal <= 1.5x)"
                                 (ratio :article :floor) (ratio :defaults :floor)))
-          (print (string.format "lever: uniforms read once per pixel: seed article's %.2fx, seed defaults %.2fx, gallery %.2fx, organic %.2fx faster"
-                                (ratio :article-direct :article) (ratio :defaults-direct :defaults)
-                                (ratio :gallery-direct :gallery) (ratio :organic-direct :organic)))
-          (let [(mean worst share) (image-difference v.article v.floor)]
-            (print (string.format "image, article's settings vs the analytic tracer: mean %.2f/255, max %.0f/255, %.1f%% of pixels over 8/255 (one pixel in 16 compared)"
-                                  mean worst (* 100 share))))
+          (print (string.format "lever, uniforms read once per pixel: seed article's %.2fx, seed defaults without bounds %.2fx faster"
+                                (ratio :article-none :article) (ratio :defaults-none :defaults-once)))
+          (print (string.format "lever, bounds (seed, defaults, uniforms once): %.2fx faster"
+                                (ratio :defaults-once :defaults)))
+          (print (string.format "all levers: seed defaults %.2fx, gallery %.2fx, organic %.2fx faster"
+                                (ratio :defaults-none :defaults)
+                                (ratio :gallery-none :gallery) (ratio :organic-none :organic)))
+          (each [_ id (ipairs [:article :defaults])]
+            (let [(mean worst share) (image-difference (. v id) v.floor)]
+              (print (string.format "image, %s vs the analytic tracer: mean %.2f/255, max %.0f/255, %.1f%% of pixels over 8/255 (one pixel in 16 compared)"
+                                    id mean worst (* 100 share)))))
           (print (string.format "article's CPU program, seed 256x224: %d ms; ours %.1f ms (%.0fx faster)"
                                 article-ms-256x224 v.small.median
                                 (/ article-ms-256x224 v.small.median)))

@@ -85,6 +85,9 @@ and forget cached ones."
     (when plan.tape
       (table.insert lines (.. "// scene trees: " (length plan.tape.objects) " objects"))
       (each [_ l (ipairs (emit-glsl.declarations plan.tape))] (table.insert lines l)))
+    (when (and plan.bounds (> plan.bounds.count 0))
+      (table.insert lines (.. "uniform vec4 uBounds[" plan.bounds.count
+                              "];  // bounding spheres of the finite objects (camera-relative)")))
     (when plan.mirrors?
       (table.insert lines "float gMirror = 1.0;  // mirror amount of what mapColor found last"))
     lines))
@@ -93,6 +96,57 @@ and forget cached ones."
   [(icollect [_ k (ipairs plan.kinds)]
      (kind-loop k plan [(.. "    d = min(d, " k.entry.distance-glsl ");")]))
    (if plan.tape (emit-glsl.distance-terms plan.tape) [])])
+
+(fn bounded-lines [plan]
+  "mapFinite, planesHit and boundsSpan: what march-bounded.glsl reads (see
+src/render/bounds.fnl)."
+  (let [finite (icollect [_ k (ipairs plan.kinds)] (when (not= k.kind :plane) k))
+        planes (icollect [_ k (ipairs plan.kinds)] (when (= k.kind :plane) k))
+        n plan.bounds.count
+        indented (fn [lines] (doto [] (flatten-into "    " lines)))]
+    ["// The finite objects only: the planes are met in closed form by planesHit."
+     "float mapFinite(vec3 p) {"
+     "    float d = uDrawDist;"
+     (indented (distance-terms (doto (collect [k v (pairs plan)] k v) (tset :kinds finite))))
+     "    return d;"
+     "}"
+     ""
+     "// The nearest ground plane along the ray (a plane is the solid half-space below its"
+     "// height): 0 from inside it, the draw distance when the ray meets none."
+     "float planesHit(vec3 ro, vec3 rd) {"
+     "    float t = uDrawDist;"
+     (indented (icollect [_ k (ipairs planes)]
+                 (kind-loop k plan ["    if (ro.z <= uPlaneHeight[i]) {"
+                                    "        t = 0.0;"
+                                    "    } else if (rd.z < 0.0) {"
+                                    "        t = min(t, (uPlaneHeight[i] - ro.z) / rd.z);"
+                                    "    }"])))
+     "    return t;"
+     "}"
+     ""
+     "// Where the ray is inside some bounding sphere: the first entry and the last exit,"
+     "// or (draw distance, 0) when it meets none. From the point of closest approach, so"
+     "// a far ray passing near a small sphere loses nothing to cancellation."
+     "vec2 boundsSpan(vec3 ro, vec3 rd) {"
+     "    float enter = uDrawDist;"
+     "    float exit = 0.0;"
+     (if (> n 0)
+         [(.. "    for (int i = 0; i < " n "; i++) {")
+          "        vec3 q = ro - uBounds[i].xyz;"
+          "        float b = dot(q, rd);"
+          "        vec3 a = q - b * rd;"
+          "        float disc = uBounds[i].w * uBounds[i].w - dot(a, a);"
+          "        if (disc >= 0.0) {"
+          "            float s = sqrt(disc);"
+          "            if (s - b > 0.0) {"
+          "                enter = min(enter, -b - s);"
+          "                exit = max(exit, s - b);"
+          "            }"
+          "        }"
+          "    }"]
+         [])
+     "    return vec2(enter, min(exit, uDrawDist));"
+     "}"]))
 
 (fn color-terms [plan]
   ;; One `di` for the whole function: unrolled blocks share it.
@@ -176,9 +230,12 @@ comment lines before the first part are the chunk's own documentation)."
                   (when (line:find "^// The same minimum") i))]
         (for [i (length lines) (- cut 1) -1] (table.remove lines i))))
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
+    (when plan.bounds
+      (table.insert sections (bounded-lines plan)))
     ;; Only the glow and heat views read the step count; elsewhere it is not kept.
     (let [count-step (if (or plan.glow? (= view :glow) (= view :heat)) ["steps = i + 1;"] [])]
-      (table.insert sections (fill (if plan.relaxed? "shaders/pipeline/march-relaxed.glsl" "shaders/pipeline/march.glsl")
+      (table.insert sections (fill (.. "shaders/pipeline/march" (if plan.relaxed? "-relaxed" "")
+                                       (if plan.bounds "-bounded" "") ".glsl")
                                    {:count-step count-step})))
     (when normals?
       (table.insert sections (fill "shaders/pipeline/normal.glsl"

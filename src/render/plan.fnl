@@ -4,6 +4,7 @@
 
 (local registry (require :src.sdf.registry))
 (local lower (require :src.sdf.lower))
+(local bounds (require :src.render.bounds))
 
 (local views [:shaded :normals :glow :heat])
 
@@ -38,6 +39,7 @@
     (when plan.normals (table.insert parts (.. "normals:" plan.normals)))
     (when plan.uber? (table.insert parts "uber"))
     (when (not plan.load-once?) (table.insert parts "uniforms-direct"))
+    (when plan.bounds (table.insert parts (.. "bounds:" plan.bounds.count)))
     (table.insert parts (.. "view:" plan.view))
     (when plan.tape
       (table.insert parts (.. "tape:" plan.tape.key))
@@ -65,6 +67,8 @@
   :probe?         for the probe shader: colours and mirror amounts, no lighting
   :load-once?     false: read uniforms where they are used instead of once per pixel
                   (the benchmark's before-and-after of that lever)
+  :bounds?        false: march every object everywhere, planes too (see
+                  src/render/bounds.fnl; the benchmark's before of that lever)
 Returns the plan, or nil and a message when the scene does not fit the budget."
   (let [options (or ?options {})
         view (or options.view :shaded)
@@ -107,6 +111,11 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
     (set plan.uniform-vectors
          (accumulate [n (+ fixed-uniform-vectors (if tape (length tape.rows) 0)) _ k (ipairs kinds)]
            (+ n (* k.capacity (registry.slots-per-object k.entry)))))
+    ;; Bounds take a vector each: a scene that fits only without them goes without.
+    (let [b (bounds.plan-bounds plan scene options)]
+      (when (and b (<= (+ plan.uniform-vectors b.count) limit))
+        (set plan.bounds b)
+        (set plan.uniform-vectors (+ plan.uniform-vectors b.count))))
     (set plan.key (structure-key plan))
     (if lower-error (values nil (.. scene.file ": " lower-error))
         (> plan.uniform-vectors limit) (values nil (budget-message scene plan limit))

@@ -4,6 +4,17 @@
 
 (local camera (require :src.render.camera))
 (local registry (require :src.sdf.registry))
+(local bounds (require :src.render.bounds))
+
+(fn hit-threshold [scene plan cam height]
+  "The shader's hitThreshold on the CPU: a step under this at `dist` from the camera
+is a hit (see shaders/pipeline/hit/)."
+  (let [eps scene.render.epsilon]
+    (case plan.hit-test
+      :fixed (fn [_] eps)
+      :relative (fn [dist] (* eps dist))
+      :pixel (let [k (/ eps (* (camera.projection-distance cam) height))]
+               (fn [dist] (* k dist))))))
 
 (local components {:float 1 :int 1 :bool 1 :vec2 2 :vec3 3 :vec4 4})
 
@@ -69,7 +80,10 @@ by name. Booleans are sent as 0 or 1 with :type :bool."
     (when plan.tape
       (table.insert out {:name "uTape" :type :vec4 :values (tape-values plan.tape cam.pos)
                          :count (length plan.tape.rows)}))
+    (when (and plan.bounds (> plan.bounds.count 0))
+      (table.insert out {:name "uBounds" :type :vec4 :count plan.bounds.count
+                         :values (bounds.spheres plan cam.pos (hit-threshold scene plan cam height))}))
     (table.sort out (fn [a b] (< a.name b.name)))
     out))
 
-{: pack : components}
+{: pack : components : hit-threshold}

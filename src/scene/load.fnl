@@ -39,7 +39,10 @@ scene never changes another's defaults."
             :scale {:type :scale :default 1}
             :hit-test {:type :hit-test :default :relative}
             :normals {:type :normal-method :default :tetrahedron}
-            :relaxation {:type :relaxation :default 1.5}}})
+            :relaxation {:type :relaxation :default 1.5}
+            ;; Bounding spheres tested before marching, ground planes in closed form
+            ;; (src/render/bounds.fnl): the same image, several times faster.
+            :bounds {:type :boolean :default true}}})
 
 (local hit-tests [:fixed :relative :pixel])
 (local normal-methods [:one-sided :central :tetrahedron])
@@ -462,7 +465,12 @@ Long words get none: no name is that long, and the distance would cost time."
   ;; Fennel's parse and compile errors carry the file and line already; keep the first
   ;; line (the rest repeats the source with a caret) and strip the 'Parse error in' prefix.
   (let [first-line (or (msg:match "^[^\n]+") msg)]
-    (let [msg (if (first-line:find file 1 true) first-line (.. file ": " first-line))
+    (let [msg (if (first-line:find "stack overflow" 1 true)
+                  ;; Lua names the line only when the overflow happens in the scene's
+                  ;; own code, not in a library call or the step hook: one message.
+                  (.. file ": stack overflow")
+                  (first-line:find file 1 true) first-line
+                  (.. file ": " first-line))
           ident (or (msg:match "unknown identifier: ([%w_]+)")
                     (msg:match "expected local ([%w_]+)"))]
       (if ident

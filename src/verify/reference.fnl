@@ -8,6 +8,7 @@
 (local camera (require :src.render.camera))
 (local registry (require :src.sdf.registry))
 (local emit-lua (require :src.sdf.emit-lua))
+(local bounds (require :src.render.bounds))
 
 (local sqrt math.sqrt)
 (local abs math.abs)
@@ -76,6 +77,28 @@ Positions are in world coordinates."
           (when (< di d) (set d di))))
       d)
 
+    ;; With bounds (src/render/bounds.fnl), as the shader: the grouped planes met in
+    ;; closed form, the other objects marched over the span of their bounding spheres.
+    (local finite (icollect [i o (ipairs grouped)] (when (not= o.kind :plane) i)))
+    (local plane-heights (icollect [_ o (ipairs grouped)] (when (= o.kind :plane) o.height)))
+
+    (fn map-finite [x y z]
+      (var d draw)
+      (each [_ i (ipairs finite)]
+        (let [di ((. fns i) (. objs i) x y z)]
+          (when (< di d) (set d di))))
+      (for [i 1 m]
+        (let [di ((. tree-distance i) x y z)]
+          (when (< di d) (set d di))))
+      d)
+
+    (fn planes-hit [oz dz]
+      ;; A plane is the solid half-space below its height.
+      (accumulate [t draw _ h (ipairs plane-heights)]
+        (if (<= oz h) 0
+            (< dz 0) (math.min t (/ (- h oz) dz))
+            t)))
+
     (fn map-color [x y z]
       ;; Strictly smaller wins, so ties go to the earlier object in plan order.
       ;; Returns the distance, the index into plan.objects (or nil) and the colour and
@@ -113,18 +136,29 @@ Positions are in world coordinates."
       (let [dist (distance-from-camera x y z)]
         (math.max (threshold dist) (* 0.000001 (+ 1 dist)))))
 
+    (local bound-spheres (when plan.bounds
+                           (bounds.spheres plan [cx cy cz] threshold true)))
+
     (fn march [ox oy oz dx dy dz]
       ;; Plain sphere tracing when relaxation is 1; over-relaxed (Keinert et al.)
       ;; with a fall back to the last safe point when two spheres stop overlapping.
-      (let [t0 (distance-from-camera ox oy oz)]
-        (var t 0)
-        (var t-prev 0)
+      ;; With bounds: from the span's entry to its exit or the nearest plane, and
+      ;; the plane's distance when the ray passes the end.
+      (let [t0 (distance-from-camera ox oy oz)
+            f (if bound-spheres map-finite map)
+            t-plane (if bound-spheres (planes-hit oz dz) draw)
+            (enter exit) (if bound-spheres (bounds.span bound-spheres ox oy oz dx dy dz draw)
+                             (values 0 draw))
+            t-end (math.min t-plane exit)]
+        (var t (math.max enter 0))
+        (var t-prev t)
         (var r-prev 0)
         (var omega relaxation)
         (var steps 0)
-        (var done? false)
+        (var done? (and bound-spheres (>= t t-end)))
+        (when done? (set t t-plane))
         (for [i 0 (- max-steps 1) &until done?]
-          (let [d (map (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
+          (let [d (f (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
             (set steps (+ i 1))
             (if (and (> omega 1) (< (+ (abs d) r-prev) (- t t-prev)))
                 (do (set t (+ t-prev r-prev))
@@ -135,7 +169,13 @@ Positions are in world coordinates."
                 (do (set t-prev t)
                     (set r-prev (abs d))
                     (set t (+ t (* omega d)))
-                    (when (>= t draw) (set done? true))))))
+                    (when (>= t t-end)
+                      (if (not bound-spheres) (set done? true)
+                          ;; An over-relaxed step past the end may have jumped a
+                          ;; surface: only a plain step past it ends the march.
+                          (>= (+ t-prev r-prev) t-end) (do (set t t-plane) (set done? true))
+                          (do (set t (+ t-prev r-prev))
+                              (set omega 1))))))))
         (values t steps)))
 
     (fn safe-normalize [x y z]

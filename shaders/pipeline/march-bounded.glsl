@@ -1,0 +1,30 @@
+// Sphere tracing with bounds (issue 11): the ground planes are met in closed form, and
+// only the finite objects are marched (mapFinite), only from where the ray enters the
+// first of their bounding spheres to where it leaves the last one or meets a plane.
+// Otherwise the article's march: returns the distance travelled, steps counts distance
+// evaluations, a hit is a distance below the draw distance (a ray out of steps counts
+// where it stopped, as in the article).
+float raymarch(vec3 ro, vec3 rd, out int steps) {
+    float t0 = length(ro);   // the camera is at the origin: distance already travelled
+    float tPlane = planesHit(ro, rd);
+    vec2 span = boundsSpan(ro, rd);
+    float tEnd = min(tPlane, span.y);
+    float t = max(span.x, 0.0);
+    steps = 0;
+    if (t >= tEnd) {
+        return tPlane;
+    }
+    for (int i = 0; i < uMaxSteps; i++) {
+        float d = mapFinite(ro + rd * t);
+        float threshold = hitThreshold(t0 + t);
+        // @slot count-step
+        t += d;
+        if (d < threshold) {
+            return t;
+        }
+        if (t >= tEnd) {
+            return tPlane;
+        }
+    }
+    return t;
+}

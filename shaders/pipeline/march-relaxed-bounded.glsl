@@ -1,0 +1,44 @@
+// Over-relaxed sphere tracing (Keinert et al. 2014) with bounds: as march-bounded.glsl
+// (planes in closed form, the finite objects marched over the span of their bounding
+// spheres), with steps of omega times the distance bound and the fall back to the last
+// safe point of march-relaxed.glsl.
+float raymarch(vec3 ro, vec3 rd, out int steps) {
+    float t0 = length(ro);
+    float tPlane = planesHit(ro, rd);
+    vec2 span = boundsSpan(ro, rd);
+    float tEnd = min(tPlane, span.y);
+    float t = max(span.x, 0.0);
+    float tPrev = t;
+    float rPrev = 0.0;
+    float omega = uRelaxation;
+    steps = 0;
+    if (t >= tEnd) {
+        return tPlane;
+    }
+    for (int i = 0; i < uMaxSteps; i++) {
+        float d = mapFinite(ro + rd * t);
+        // @slot count-step
+        if (omega > 1.0 && abs(d) + rPrev < t - tPrev) {
+            t = tPrev + rPrev;
+            omega = 1.0;
+            continue;
+        }
+        if (d < hitThreshold(t0 + t)) {
+            t += d;
+            return t;
+        }
+        tPrev = t;
+        rPrev = abs(d);
+        t += omega * d;
+        if (t >= tEnd) {
+            // An over-relaxed step past the end may have jumped a surface: only a
+            // plain step past it ends the march; otherwise go on from the plain step.
+            if (tPrev + rPrev >= tEnd) {
+                return tPlane;
+            }
+            t = tPrev + rPrev;
+            omega = 1.0;
+        }
+    }
+    return t;
+}

@@ -1,0 +1,91 @@
+;; Bounds the marcher tests a ray against before it marches (issue 11): a bounding
+;; sphere for every finite object, and the kind-grouped ground planes met in closed
+;; form. A ray then marches only the finite objects, only over the span where it is
+;; inside some object's bound, and stops at the nearest plane. Pure: runs under plain
+;; LuaJIT; the GLSL (shaders/pipeline/march-bounded.glsl) and the CPU reference
+;; (src/verify/reference.fnl) follow the same rules.
+
+(fn length3 [[x y z]] (math.sqrt (+ (* x x) (* y y) (* z z))))
+
+(fn tree-infos [plan]
+  "Each tree object's lowered root info, by the object's index in the scene."
+  (collect [_ t (ipairs (or (?. plan :tape :objects) []))] t.index t.info))
+
+(fn object-sphere [o infos]
+  "World centre and radius of a sphere holding object `o`, or nil when it has none
+(an infinite tree node, or a sphere of radius 1000 or more, whose bound would lose
+float32 precision near its surface). `infos`: see tree-infos."
+  (if o.tree
+      ;; A tree object's root is the translation of its placement; its child's
+      ;; bounds are half extents about that point.
+      (let [child (?. infos o.index :children 1)
+            b (and child child.bounds)]
+        (when b [(or o.tree.pos [0 0 0]) (length3 b)]))
+      (= o.kind :sphere) (when (< o.radius 1000) [o.pos o.radius])
+      (= o.kind :box) (let [[x y z] o.size] [o.pos (* 0.5 (length3 [x y z]))])
+      nil))
+
+(fn grouped-plane? [o]
+  (and (not o.tree) (= o.kind :plane)))
+
+(fn finite-objects [plan]
+  "The objects a bounded plan marches: every one but the kind-grouped ground planes
+(a plane inside a scene tree has no bound, so the plan has none)."
+  (icollect [_ o (ipairs plan.objects)] (when (not (grouped-plane? o)) o)))
+
+(fn plan-bounds [plan scene options]
+  "{:count n} when every object of `plan` but the grouped planes has a bounding
+sphere (`n` of them), else nil: then the marcher marches everything everywhere, as
+the article's does. The scene's :render :bounds false, or `options.bounds?` false
+(the benchmark's before), switch it off."
+  (when (and (not= false options.bounds?) scene.render.bounds (not plan.uber?))
+    (let [finite (finite-objects plan)
+          infos (tree-infos plan)
+          all? (accumulate [ok? true _ o (ipairs finite) &until (not ok?)]
+                 (not= nil (object-sphere o infos)))]
+      (when all? {:count (length finite)}))))
+
+(fn margin [radius centre-distance hit-threshold]
+  ;; A ray that passes within the hit threshold of a surface counts as a hit: the
+  ;; bound grows by twice the threshold where the object is, and by a thousandth of
+  ;; its radius for float32 rounding in the GPU's test.
+  (+ (* 2 (hit-threshold (+ centre-distance radius))) (* 0.001 radius)))
+
+(fn spheres [plan cam-pos hit-threshold ?world?]
+  "The bounding spheres of the finite objects of `plan`, camera-relative (in double;
+in world coordinates with `?world?`) and grown by `margin`, as one flat list x y z r
+per object."
+  (let [[cx cy cz] (if ?world? [0 0 0] cam-pos)
+        [kx ky kz] cam-pos
+        infos (tree-infos plan)
+        out []]
+    (each [_ o (ipairs (finite-objects plan))]
+      (let [[[x y z] r] (object-sphere o infos)
+            rel [(- x cx) (- y cy) (- z cz)]
+            grown (+ r (margin r (length3 [(- x kx) (- y ky) (- z kz)]) hit-threshold))]
+        (each [_ v (ipairs [(. rel 1) (. rel 2) (. rel 3) grown])] (table.insert out v))))
+    out))
+
+(fn span [spheres ox oy oz dx dy dz far]
+  "Where the ray o + t d (d a unit vector) is inside some bounding sphere of the flat
+list `spheres`: enter and exit t, the union's first entry and last exit, or far and
+0 when it meets none. The same arithmetic as boundsSpan in the shader."
+  (var enter far)
+  (var exit 0)
+  (for [i 1 (length spheres) 4]
+    ;; From the point of closest approach (no cancellation of large squares when a
+    ;; far ray passes near a small sphere).
+    (let [qx (- ox (. spheres i)) qy (- oy (. spheres (+ i 1))) qz (- oz (. spheres (+ i 2)))
+          r (. spheres (+ i 3))
+          b (+ (* qx dx) (* qy dy) (* qz dz))
+          ax (- qx (* b dx)) ay (- qy (* b dy)) az (- qz (* b dz))
+          disc (- (* r r) (+ (* ax ax) (* ay ay) (* az az)))]
+      (when (>= disc 0)
+        (let [s (math.sqrt disc)
+              t1 (+ (- b) s)]
+          (when (> t1 0)
+            (set enter (math.min enter (- (- b) s)))
+            (set exit (math.max exit t1)))))))
+  (values enter (math.min exit far)))
+
+{: plan-bounds : spheres : span : object-sphere}
