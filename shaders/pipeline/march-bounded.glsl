@@ -1,14 +1,16 @@
 // Sphere tracing with bounds (issue 11): the ground planes are met in closed form, and
 // only the finite objects are marched (mapFinite), only from where the ray enters the
-// first of their bounding spheres to where it leaves the last one or meets a plane.
+// first of their bounding spheres to where it leaves the last one, meets a plane or
+// reaches tMax (a shadow ray ends at the light). Past the end it returns the plane's
+// distance (the draw distance when there is none), which may lie beyond tMax.
 // Otherwise the article's march: returns the distance travelled, steps counts distance
 // evaluations, a hit is a distance below the draw distance (a ray out of steps counts
 // where it stopped, as in the article).
-float raymarch(vec3 ro, vec3 rd, out int steps) {
+float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float t0 = length(ro);   // the camera is at the origin: distance already travelled
     float tPlane = planesHit(ro, rd);
     vec2 span = boundsSpan(ro, rd);
-    float tEnd = min(tPlane, span.y);
+    float tEnd = min(min(tPlane, span.y), tMax);
     float t = max(span.x, 0.0);
     steps = 0;
     if (t >= tEnd) {
@@ -27,4 +29,9 @@ float raymarch(vec3 ro, vec3 rd, out int steps) {
         }
     }
     return t;
+}
+
+// Up to the draw distance: primary and mirror rays.
+float raymarch(vec3 ro, vec3 rd, out int steps) {
+    return raymarchTo(ro, rd, uDrawDist, steps);
 }

@@ -2,11 +2,11 @@
 // (planes in closed form, the finite objects marched over the span of their bounding
 // spheres), with steps of omega times the distance bound and the fall back to the last
 // safe point of march-relaxed.glsl.
-float raymarch(vec3 ro, vec3 rd, out int steps) {
+float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float t0 = length(ro);
     float tPlane = planesHit(ro, rd);
     vec2 span = boundsSpan(ro, rd);
-    float tEnd = min(tPlane, span.y);
+    float tEnd = min(min(tPlane, span.y), tMax);
     float t = max(span.x, 0.0);
     float tPrev = t;
     float rPrev = 0.0;
@@ -41,4 +41,9 @@ float raymarch(vec3 ro, vec3 rd, out int steps) {
         }
     }
     return t;
+}
+
+// Up to the draw distance: primary and mirror rays.
+float raymarch(vec3 ro, vec3 rd, out int steps) {
+    return raymarchTo(ro, rd, uDrawDist, steps);
 }

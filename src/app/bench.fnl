@@ -98,7 +98,7 @@ and `b`, and the share of pixels that differ by more than 8/255 in some channel.
   ;; settings.
   (let [d (. ((. (require :src.scene.load) :defaults)) :render)]
     {:hit-test d.hit-test :normals d.normals :relaxation d.relaxation :epsilon d.epsilon
-     :max-steps d.max-steps}))
+     :max-steps d.max-steps :bounds d.bounds}))
 
 (fn report [o]
   "`make bench`: the seed scene with the article's settings and with the defaults next

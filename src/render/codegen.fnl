@@ -244,7 +244,11 @@ comment lines before the first part are the chunk's own documentation)."
       (table.insert sections
                     (fill "shaders/shading/light.glsl"
                           {:shadow (if plan.shadows?
-                                       (when-switched plan "uShadows" (fill "shaders/shading/shadow.glsl" {}))
+                                       (when-switched plan "uShadows"
+                                                     (fill (if plan.bounds
+                                                               "shaders/shading/shadow-to-light.glsl"
+                                                               "shaders/shading/shadow.glsl")
+                                                           {}))
                                        [])})))
     (table.insert sections (fill "shaders/pipeline/render.glsl" {:view (view-lines plan)}))
     sections))

@@ -139,7 +139,7 @@ Positions are in world coordinates."
     (local bound-spheres (when plan.bounds
                            (bounds.spheres plan [cx cy cz] threshold true)))
 
-    (fn march [ox oy oz dx dy dz]
+    (fn march [ox oy oz dx dy dz ?t-max]
       ;; Plain sphere tracing when relaxation is 1; over-relaxed (Keinert et al.)
       ;; with a fall back to the last safe point when two spheres stop overlapping.
       ;; With bounds: from the span's entry to its exit or the nearest plane, and
@@ -149,7 +149,7 @@ Positions are in world coordinates."
             t-plane (if bound-spheres (planes-hit oz dz) draw)
             (enter exit) (if bound-spheres (bounds.span bound-spheres ox oy oz dx dy dz draw)
                              (values 0 draw))
-            t-end (math.min t-plane exit)]
+            t-end (math.min t-plane exit (or ?t-max draw))]
         (var t (math.max enter 0))
         (var t-prev t)
         (var r-prev 0)
@@ -208,9 +208,12 @@ Positions are in world coordinates."
                               (values nx ny nz))
             lambert (clamp01 (+ (* ldx nx) (* ldy ny) (* ldz nz)))]
         (if (and shadows? (> lambert 0))
+            ;; With bounds the shadow ray ends at the light (shadow-to-light.glsl);
+            ;; the article's goes on to the draw distance.
             (let [s (* 2 (normal-delta px py pz))
-                  ts (march (+ px (* nx s)) (+ py (* ny s)) (+ pz (* nz s)) ldx ldy ldz)]
-              (if (< ts draw) (values (* lambert 0.5) true) (values lambert false)))
+                  limit (if bound-spheres len draw)
+                  ts (march (+ px (* nx s)) (+ py (* ny s)) (+ pz (* nz s)) ldx ldy ldz limit)]
+              (if (< ts limit) (values (* lambert 0.5) true) (values lambert false)))
             (values lambert false))))
 
     (fn object-index [i]
