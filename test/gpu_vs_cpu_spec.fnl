@@ -186,4 +186,31 @@
                           _ (assert.are.equal 1 n)
                           st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                       (print (report-line (.. "gallery, " label) st))
-                      (assert.is_false (passes? st budget))))))))))))
+                      (assert.is_false (passes? st budget)))))))
+
+            (it "ends shadow rays at the light in a bounded scene, and catches a shader that does not"
+              (fn []
+                ;; A box above the light: with bounds it casts no shadow on the floor
+                ;; below the light; the article's shadow ray (to the draw distance) would.
+                (with-open [f (assert (io.open "test/out/light-below-box.fnl" :wb))]
+                  (f:write "{:camera {:pos [0 -12 4] :yaw 90 :pitch -15 :fov 60}
+                             :light {:pos [0 0 5]}
+                             :render {:reflections 0}
+                             :objects [{:kind :box :size [20 20 1] :pos [0 0 9]}
+                                       {:kind :sphere :radius 1 :pos [3 0 1]}
+                                       {:kind :plane :height 0 :color [0.8 0.8 0.8]}]}"))
+                (let [prepared (prepare "test/out/light-below-box.fnl" {:view :shaded})
+                      budget {:over 2 :max 40}
+                      shader (codegen.shader prepared.plan :core)]
+                  (assert.truthy prepared.plan.bounds)
+                  (assert.is_true (passes? (compare-image prepared (gpu-render ctx prepared)) budget))
+                  ;; The article's shadow ray in the shader only: to the draw distance,
+                  ;; and any hit shadows.
+                  (let [(source n) (-> shader
+                                       (: :gsub "raymarchTo%(p %+ n %* %(2%.0 %* normalDelta%(p%)%), l, lightDist,"
+                                          "raymarchTo(p + n * (2.0 * normalDelta(p)), l, gDrawDist,")
+                                       (: :gsub "if %(ts < lightDist%)" "if (ts < gDrawDist)"))
+                        _ (assert.are.equal 1 n)
+                        st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
+                    (print (report-line "light below a box, shadow past the light" st))
+                    (assert.is_false (passes? st budget)))))))))))
