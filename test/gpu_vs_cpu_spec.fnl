@@ -207,9 +207,9 @@
                   ;; The article's shadow ray in the shader only: to the draw distance,
                   ;; and any hit shadows.
                   (let [(source n) (-> shader
-                                       (: :gsub "raymarchTo%(p %+ n %* %(2%.0 %* normalDelta%(p%)%), l, lightDist,"
+                                       (: :gsub "raymarchTo%(p %+ n %* %(2%.0 %* normalDelta%(p%)%), l, reach,"
                                           "raymarchTo(p + n * (2.0 * normalDelta(p)), l, gDrawDist,")
-                                       (: :gsub "if %(ts < lightDist%)" "if (ts < gDrawDist)"))
+                                       (: :gsub "if %(ts < reach%)" "if (ts < gDrawDist)"))
                         _ (assert.are.equal 1 n)
                         st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "light below a box, shadow past the light" st))

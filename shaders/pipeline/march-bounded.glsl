@@ -2,7 +2,7 @@
 // only the finite objects are marched (mapFinite), only from where the ray enters the
 // first of their bounding spheres to where it leaves the last one, meets a plane or
 // reaches tMax (a shadow ray ends at the light). Past the end it returns the plane's
-// distance (the draw distance when there is none), which may lie beyond tMax.
+// distance when the plane comes before tMax, else tMax itself: a miss.
 // Otherwise the article's march: returns the distance travelled, steps counts distance
 // evaluations, a hit is a distance below the draw distance (a ray out of steps counts
 // where it stopped, as in the article).
@@ -14,7 +14,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float t = max(span.x, 0.0);
     steps = 0;
     if (t >= tEnd) {
-        return tPlane;
+        return min(tPlane, tMax);
     }
     for (int i = 0; i < uMaxSteps; i++) {
         float d = mapFinite(ro + rd * t);
@@ -25,7 +25,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             return t;
         }
         if (t >= tEnd) {
-            return tPlane;
+            return min(tPlane, tMax);
         }
     }
     return t;

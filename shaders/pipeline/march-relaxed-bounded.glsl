@@ -13,7 +13,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float omega = uRelaxation;
     steps = 0;
     if (t >= tEnd) {
-        return tPlane;
+        return min(tPlane, tMax);
     }
     for (int i = 0; i < uMaxSteps; i++) {
         float d = mapFinite(ro + rd * t);
@@ -34,7 +34,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             // An over-relaxed step past the end may have jumped a surface: only a
             // plain step past it ends the march; otherwise go on from the plain step.
             if (tPrev + rPrev >= tEnd) {
-                return tPlane;
+                return min(tPlane, tMax);
             }
             t = tPrev + rPrev;
             omega = 1.0;

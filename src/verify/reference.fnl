@@ -155,8 +155,11 @@ Positions are in world coordinates."
         (var r-prev 0)
         (var omega relaxation)
         (var steps 0)
+        ;; Past the end: the plane when it comes before the limit, else the limit
+        ;; (a miss).
+        (local t-past (math.min t-plane (or ?t-max draw)))
         (var done? (and bound-spheres (>= t t-end)))
-        (when done? (set t t-plane))
+        (when done? (set t t-past))
         (for [i 0 (- max-steps 1) &until done?]
           (let [d (f (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
             (set steps (+ i 1))
@@ -173,7 +176,7 @@ Positions are in world coordinates."
                       (if (not bound-spheres) (set done? true)
                           ;; An over-relaxed step past the end may have jumped a
                           ;; surface: only a plain step past it ends the march.
-                          (>= (+ t-prev r-prev) t-end) (do (set t t-plane) (set done? true))
+                          (>= (+ t-prev r-prev) t-end) (do (set t t-past) (set done? true))
                           (do (set t (+ t-prev r-prev))
                               (set omega 1))))))))
         (values t steps)))
@@ -211,7 +214,7 @@ Positions are in world coordinates."
             ;; With bounds the shadow ray ends at the light (shadow-to-light.glsl);
             ;; the article's goes on to the draw distance.
             (let [s (* 2 (normal-delta px py pz))
-                  limit (if bound-spheres len draw)
+                  limit (if bound-spheres (math.min (- len (* 2 (normal-delta lx ly lz))) draw) draw)
                   ts (march (+ px (* nx s)) (+ py (* ny s)) (+ pz (* nz s)) ldx ldy ldz limit)]
               (if (< ts limit) (values (* lambert 0.5) true) (values lambert false)))
             (values lambert false))))
