@@ -124,4 +124,4 @@ to `v`: a number, or a new list of three."
               (g.printf item.label item.x (text-y item) item.w :center))))
     (g.setColor 1 1 1 1)))
 
-{: layout : hit : slider-value : with-value : item-value : draw! : width}
+{: layout : hit : slider-value : with-value : draw!}

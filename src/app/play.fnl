@@ -577,4 +577,4 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
   (set love.mousereleased mousereleased)
   (set love.joystickadded (fn [j] (when (j:isGamepad) (set state.gamepad j)))))
 
-{: start! : state : load! : poll-file! : current-plan : save-parameters! : set-parameter!}
+{: start! : state : load! : poll-file! : current-plan}

@@ -86,4 +86,4 @@ by name. Booleans are sent as 0 or 1 with :type :bool."
     (table.sort out (fn [a b] (< a.name b.name)))
     out))
 
-{: pack : components : hit-threshold}
+{: pack : components}

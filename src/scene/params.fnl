@@ -271,4 +271,4 @@ was loaded are kept. Returns the count of literals changed, or nil and a message
                     _ (do (os.remove tmp)
                           (values nil (.. path ": cannot save: " (tostring (or e "rename failed")))))))))))))
 
-{: collector : param-function : failure-line : same-value? : sites : write-back : save! : kind-of : max-params}
+{: collector : param-function : failure-line : same-value? : sites : write-back : save!}
