@@ -179,12 +179,30 @@
             (assert.are.same [0 0 0] normals.color)
             (let [g (/ glow.steps 100)] (assert.are.same [g g g] glow.color))))))
 
+    (it "lets a ray out of steps pass to the background by default"
+      (fn []
+        ;; The same skimming ray: with bounds the plane is met in closed form, so
+        ;; skim past a sphere instead; out of steps, it is a miss (the draw distance)
+        ;; without bounds, and meets the plane beyond with them.
+        (let [src (fn [bounds] (.. "{:camera {:pos [0 0 0.01] :yaw 0 :pitch 0 :fov 60}
+                                    :render {:max-steps 50 :hit-test :fixed :relaxation 1 :bounds " bounds "}
+                                    :objects [{:kind :sphere :radius 100 :pos [0 0 -100]}]}"))
+              w (setup (src "false"))
+              (t steps) (w.T.march 0 0 0.01 1 0 0)]
+          (assert.are.equal 50 steps)
+          (assert.are.equal 1000 t)
+          (let [wb (setup (src "true"))
+                (tb) (wb.T.march 0 0 0.01 1 0 0)]
+            (assert.are.equal 1000 tb)))))
+
     (it "never takes more steps than max-steps"
       (fn []
         ;; A ray skimming the plane 0.01 above it never gets within epsilon and never
-        ;; reaches the draw distance: it spends the whole budget and counts as a hit.
+        ;; reaches the draw distance: it spends the whole budget and counts as a hit
+        ;; where it stopped (the article's :out-of-steps :surface).
         (let [w (setup "{:camera {:pos [0 0 0.01] :yaw 0 :pitch 0 :fov 60}
-                         :render {:max-steps 50 :hit-test :fixed :relaxation 1 :bounds false}
+                         :render {:max-steps 50 :hit-test :fixed :relaxation 1 :bounds false
+                                  :out-of-steps :surface}
                          :objects [{:kind :plane :height 0}]}")
               (t steps) (w.T.march 0 0 0.01 1 0 0)]
           (assert.are.equal 50 steps)

@@ -28,7 +28,8 @@
         (assert.are.same [0.901 0.976 1] s.environment)
         (assert.are.same {:max-steps 500 :epsilon 1e-4 :draw-distance 1000
                           :reflections 3 :shadows true :glow false :scale 1
-                          :hit-test :fixed :normals :one-sided :relaxation 1 :bounds false}
+                          :hit-test :fixed :normals :one-sided :relaxation 1 :bounds false
+                          :out-of-steps :surface}
                          s.render)))
 
     (it "has three boxes, two spheres and a plane, in file order"
@@ -85,7 +86,7 @@
           (assert.are.same {:max-steps 500 :epsilon 1e-4 :draw-distance 1000
                             :reflections 3 :shadows true :glow false :scale 1
                             :hit-test :relative :normals :tetrahedron :relaxation 1.5
-                            :bounds true}
+                            :bounds true :out-of-steps :background}
                            s.render)
           (assert.are.same [] s.objects))))
 
@@ -179,9 +180,9 @@
        ["{:objects [{:kind :box :size 5}]}"
         "t.fnl:1: objects[1].size: must be three positive numbers like [1 1 1], got 5"]
        ["{:objects [{:kind :sphere :radus 1}]}"
-        "t.fnl:1: objects[1].radus: unknown field (did you mean :radius?); known fields: :color :kind :mirror :pos :radius :rotate :scale"]
+        "t.fnl:1: objects[1].radus: unknown field (did you mean :radius?); known fields: :color :emission :kind :mirror :pos :radius :rotate :roughness :scale"]
        ["{:objects [{:kind :plane :size [0 0 0]}]}"
-        "t.fnl:1: objects[1].size: unknown field; known fields: :color :height :kind :mirror :normal :pos :rotate :scale"]
+        "t.fnl:1: objects[1].size: unknown field; known fields: :color :emission :height :kind :mirror :normal :pos :rotate :roughness :scale"]
        ["{:objects [{:kind :spere}]}"
         "t.fnl:1: objects[1].kind: unknown kind :spere (did you mean :sphere?) (`love . --kinds` lists them all)"]
        ["{:objects [{:kind :teapot}]}"
@@ -200,9 +201,9 @@
        ["{:objects {:a 1}}"
         "t.fnl:1: objects: must be a list [...] of objects, not a table with named fields"]
        ["{:objects [] :lite {}}"
-        "t.fnl:1: lite: unknown field; known fields: :camera :environment :light :name :objects :render"]
+        "t.fnl:1: lite: unknown field; known fields: :camera :environment :light :lighting :name :objects :render"]
        ["{:objects [] :rendr {}}"
-        "t.fnl:1: rendr: unknown field (did you mean :render?); known fields: :camera :environment :light :name :objects :render"]
+        "t.fnl:1: rendr: unknown field (did you mean :render?); known fields: :camera :environment :light :lighting :name :objects :render"]
        ["{:objects [] :name 5}"
         "t.fnl:1: name: must be a string, got 5"]
        ["{:objects [] :environment [2 0 0]}"
@@ -365,7 +366,7 @@
            {:kind :boxx
             :size [1 1 1]}]}"))
         (assert.are.equal
-          "t.fnl:3: objects[2].sise: unknown field (did you mean :size?); known fields: :color :kind :mirror :pos :rotate :scale :size"
+          "t.fnl:3: objects[2].sise: unknown field (did you mean :size?); known fields: :color :emission :kind :mirror :pos :rotate :roughness :scale :size"
           (load-error "{:objects [{:kind :sphere}
            {:kind :box
             :sise [1 1 1]}]}"))

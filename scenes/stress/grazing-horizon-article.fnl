@@ -9,6 +9,7 @@
  :camera {:pos [0 0 0.01] :yaw 90 :pitch 0.5 :fov 60}
  :light {:pos [-30 20 20]}
  :render {:draw-distance 100000 :hit-test :fixed :epsilon 1e-4 :normals :one-sided
-          :relaxation 1 :max-steps 500 :bounds false}
+          :relaxation 1 :max-steps 500 :bounds false
+          :out-of-steps :surface}
  :objects [{:kind :plane :height 0 :color [0.8 0.8 0.75]}
            {:kind :sphere :radius 1 :pos [2 30 1] :color [0.8 0.3 0.2]}]}

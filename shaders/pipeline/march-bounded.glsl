@@ -28,6 +28,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             return min(tPlane, tMax);
         }
     }
+    // @slot out-of-steps
     return t;
 }
 

@@ -40,6 +40,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             omega = 1.0;
         }
     }
+    // @slot out-of-steps
     return t;
 }
 

@@ -20,14 +20,15 @@ float raymarch(vec3 ro, vec3 rd, out int steps) {
         }
         if (d < hitThreshold(t0 + t)) {
             t += d;
-            break;
+            return t;
         }
         tPrev = t;
         rPrev = abs(d);
         t += omega * d;
         if (t >= uDrawDist) {
-            break;
+            return t;
         }
     }
+    // @slot out-of-steps
     return t;
 }

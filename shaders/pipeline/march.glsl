@@ -14,8 +14,9 @@ float raymarch(vec3 ro, vec3 rd, out int steps) {
         // @slot count-step
         t += d;
         if (d < threshold || t >= uDrawDist) {
-            break;
+            return t;
         }
     }
+    // @slot out-of-steps
     return t;
 }

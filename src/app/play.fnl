@@ -65,7 +65,8 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
        (= (. a.pos 1) (. b.pos 1)) (= (. a.pos 2) (. b.pos 2)) (= (. a.pos 3) (. b.pos 3))))
 
 (fn plan-with [scene reflections]
-  (plan-mod.scene->plan scene {:view state.view :reflections reflections}))
+  (plan-mod.scene->plan scene {:view state.view :reflections reflections
+                               :model (when state.classic? :classic)}))
 
 (fn load-unprotected! [path fresh?]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
@@ -207,10 +208,10 @@ shows its message and keeps the last values."
 the reflection count changed (not every frame)."
   (let [memo state.plan-memo]
     (if (and memo (= memo.scene state.scene) (= memo.view state.view)
-             (= memo.reflections state.reflections))
+             (= memo.reflections state.reflections) (= memo.classic? state.classic?))
         (values memo.plan memo.err)
         (let [(plan err) (plan-with state.scene state.reflections)]
-          (set state.plan-memo {:scene state.scene :view state.view
+          (set state.plan-memo {:scene state.scene :view state.view :classic? state.classic?
                                 :reflections state.reflections : plan : err})
           (values plan err)))))
 
@@ -301,6 +302,13 @@ least tap-seconds for a key pressed since the last update."
   (set state.user-scale? true)
   (say! (string.format "render scale: %.2f" state.scale)))
 
+(fn toggle-model! []
+  (if (and state.scene state.scene.lighting)
+      (do (set state.classic? (not state.classic?))
+          (say! (if state.classic? "lighting: the article's classic model (m: modern)"
+                    "lighting: modern (m: classic)")))
+      (say! "lighting: this scene has no :lighting section, so only the classic model")))
+
 (fn cycle-view! []
   (let [views plan-mod.views]
     (var next-view (. views 1))
@@ -348,6 +356,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
       (where :s ctrl?) (save-parameters!)
       :escape (love.event.quit 0)
       :tab (cycle-view!)
+      :m (toggle-model!)
       :h (set state.hud? (not state.hud?))
       :f1 (set state.hud? (not state.hud?))
       :f11 (toggle-fullscreen!)

@@ -73,6 +73,9 @@ and forget cached ones."
                              (: :gsub "%[i%]" (.. "[" index "]"))))))
       [(.. "for (int i = 0; i < " (count-bound k plan) "; i++) {") body "}"]))
 
+(fn modern-materials? [plan]
+  (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8))))
+
 (fn uniform-declarations [plan]
   (let [lines []]
     (each [_ k (ipairs plan.kinds)]
@@ -88,8 +91,30 @@ and forget cached ones."
     (when (and plan.bounds (> plan.bounds.count 0))
       (table.insert lines (.. "uniform vec4 uBounds[" plan.bounds.count
                               "];  // bounding spheres of the finite objects (camera-relative)")))
-    (when plan.mirrors?
-      (table.insert lines "float gMirror = 1.0;  // mirror amount of what mapColor found last"))
+    (let [modern? (modern-materials? plan)]
+      (when (or plan.mirrors? modern?)
+        (table.insert lines (.. "float gMirror = " (if modern? "0.0" "1.0")
+                                ";  // mirror amount of what mapColor found last")))
+      (when modern?
+        (table.insert lines "vec4 gMaterial = vec4(0.5, 0.0, 0.0, 0.0);  // its roughness and emission")))
+    (when plan.lighting
+      (let [l plan.lighting]
+        (table.insert lines (.. "// modern lighting: " l.lights (if (= l.lights 1) " light" " lights")))
+        (table.insert lines (.. "const int kLightCount = " l.lights ";"))
+        (when l.soft? (table.insert lines (.. "const int kShadowSteps = " l.shadow-steps ";")))
+        (each [_ line (ipairs [(.. "uniform vec4 uLights[" l.lights "];      // point: position, range; sun: direction, 0")
+                               (.. "uniform vec4 uLightColors[" l.lights "];    // linear colour times intensity, softness")
+                               "uniform vec3 uSkyZenith;                // linear"
+                               "uniform vec3 uSkyHorizon;"
+                               "uniform vec2 uSunEdge;                  // cosines of the sun disc's outer, inner radius"
+                               "uniform float uAmbient;"
+                               "uniform float uExposure;"])]
+          (table.insert lines line))
+        (when l.ao? (table.insert lines "uniform vec2 uAo;                      // strength, radius"))
+        (when l.fog?
+          (table.insert lines "uniform vec4 uFog;                     // linear colour, density")
+          (table.insert lines "uniform float uFogFalloff;             // per unit of height")
+          (table.insert lines "uniform float uCamHeight;              // the camera's world z"))))
     lines))
 
 (fn distance-terms [plan]
@@ -150,7 +175,9 @@ src/render/bounds.fnl)."
 
 (fn color-terms [plan]
   ;; One `di` for the whole function: unrolled blocks share it.
-  [(if plan.mirrors? "gMirror = 1.0;" [])
+  [(if (modern-materials? plan) "gMirror = 0.0; gMaterial = vec4(0.5, 0.0, 0.0, 0.0);"
+       plan.mirrors? "gMirror = 1.0;"
+       [])
    (if (> (length plan.kinds) 0) "float di;" [])
    (icollect [_ k (ipairs plan.kinds)]
      (kind-loop k plan [(.. "    di = " k.entry.distance-glsl ";")
@@ -194,14 +221,49 @@ comment lines before the first part are the chunk's own documentation)."
         {:mirror-start p.start :mirror-before p.before :mirror-mix p.mix :mirror-next p.next})
       {:mirror-start [] :mirror-before [] :mirror-mix [] :mirror-next []}))
 
+(fn modern-lines [plan]
+  "The modern model's functions (sky, occlusion, fog, shadows, direct light), each
+only when the plan has it."
+  (let [l plan.lighting
+        march (if plan.bounds
+                  "float ts = raymarchTo(o, l, reach, shadowSteps);"
+                  "float ts = raymarch(o, l, shadowSteps);")]
+    [(fill "shaders/shading/modern/sky.glsl" {})
+     (if l.ao? (fill "shaders/shading/modern/occlusion.glsl" {}) [])
+     (if l.fog? (fill "shaders/shading/modern/fog.glsl" {}) [])
+     (if plan.shadows?
+         (fill (.. "shaders/shading/modern/shadow-" (if l.soft? "soft" "hard") ".glsl")
+               {:shadow-march [march]})
+         [])
+     (fill "shaders/shading/modern/lights.glsl"
+           {:shadow (if plan.shadows? ["visible = visibility(origin, l, reach, uLightColors[i].w);"] [])
+            :specular (if l.specular? (fill "shaders/shading/modern/specular.glsl" {}) [])})]))
+
 (fn view-lines [plan]
   (case plan.view
-    :shaded (fill "shaders/views/shaded.glsl"
+    :shaded (if plan.lighting
+                (fill "shaders/views/modern.glsl"
+                      {:bounce-loop [(.. "for (int bounce = 0; bounce <= "
+                                         (if plan.reflections? "uReflections" "0") "; bounce++) {")]
+                       :occlusion (if plan.lighting.ao? ["occ = occlusion(p, n);"] [])
+                       :fog (if plan.lighting.fog?
+                                ["through = fogTransmittance(origin, dir, t);"
+                                 "radiance += weight * ((1.0 - through) * fogColor(dir));"]
+                                [])})
+                (fill "shaders/views/shaded.glsl"
                   {:glow (if plan.glow? (when-switched plan "uGlow" (fill "shaders/shading/glow.glsl" {})) [])
                    :reflections (if plan.reflections?
                                     (fill "shaders/shading/reflect.glsl" (mirror-slots plan))
-                                    [])})
+                                    [])}))
     view (fill (.. "shaders/views/" view ".glsl") {})))
+
+(fn out-of-steps-lines [plan]
+  ;; A ray that spends its step budget without meeting the hit test: the article
+  ;; shades it where it stopped (:surface); :background treats it as passing every
+  ;; finite object, so it meets a ground plane if one lies ahead, else the sky.
+  (case plan.out-of-steps
+    :surface []
+    :background (if plan.bounds ["return min(tPlane, tMax);"] ["return uDrawDist;"])))
 
 (fn body-lines [plan]
   (let [view plan.view
@@ -236,11 +298,12 @@ comment lines before the first part are the chunk's own documentation)."
     (let [count-step (if (or plan.glow? (= view :glow) (= view :heat)) ["steps = i + 1;"] [])]
       (table.insert sections (fill (.. "shaders/pipeline/march" (if plan.relaxed? "-relaxed" "")
                                        (if plan.bounds "-bounded" "") ".glsl")
-                                   {:count-step count-step})))
+                                   {:count-step count-step
+                                    :out-of-steps (out-of-steps-lines plan)})))
     (when normals?
       (table.insert sections (fill "shaders/pipeline/normal.glsl"
                                    {:method (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl") {})})))
-    (when (= view :shaded)
+    (when (and (= view :shaded) (not plan.lighting))
       (table.insert sections
                     (fill "shaders/shading/light.glsl"
                           {:shadow (if plan.shadows?
@@ -250,6 +313,8 @@ comment lines before the first part are the chunk's own documentation)."
                                                                "shaders/shading/shadow.glsl")
                                                            {}))
                                        [])})))
+    (when (and (= view :shaded) plan.lighting)
+      (each [_ s (ipairs (modern-lines plan))] (table.insert sections s)))
     (table.insert sections (fill "shaders/pipeline/render.glsl" {:view (view-lines plan)}))
     sections))
 

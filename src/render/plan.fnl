@@ -39,6 +39,11 @@
     (when plan.normals (table.insert parts (.. "normals:" plan.normals)))
     (when plan.uber? (table.insert parts "uber"))
     (when (not plan.load-once?) (table.insert parts "uniforms-direct"))
+    (when plan.lighting
+      (let [l plan.lighting]
+        (table.insert parts (.. "modern lights:" l.lights (if l.soft? " soft" "") (if l.ao? " ao" "")
+                                (if l.fog? " fog" "") (if l.specular? " specular" "")))))
+    (when (= plan.out-of-steps :surface) (table.insert parts "out-of-steps:surface"))
     (when plan.bounds (table.insert parts (.. "bounds:" plan.bounds.count)))
     (table.insert parts (.. "view:" plan.view))
     (when plan.tape
@@ -69,6 +74,8 @@
                   (the benchmark's before-and-after of that lever)
   :bounds?        false: march every object everywhere, planes too (see
                   src/render/bounds.fnl; the benchmark's before of that lever)
+  :model          :classic draws a scene that has :lighting with the article's model
+                  (the player's m key)
 Returns the plan, or nil and a message when the scene does not fit the budget."
   (let [options (or ?options {})
         view (or options.view :shaded)
@@ -79,7 +86,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
         (tape lower-error) (if (> (length trees) 0)
                                (lower.lower (icollect [_ o (ipairs trees)]
                                               (doto (collect [k v (pairs o.tree)] k v)
-                                                (tset :index o.index))))
+                                                (tset :index o.index)))
+                                            {:modern? (not= nil scene.lighting)})
                                (values nil nil))
         kinds (icollect [_ g (ipairs groups)]
                 (let [n (length g.objects)]
@@ -103,6 +111,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :glow? (and shaded? (or uber? scene.render.glow))
               :relaxed? (or uber? (> scene.render.relaxation 1))
               :hit-test scene.render.hit-test
+              :out-of-steps (or scene.render.out-of-steps :background)
               ;; Only the shaded and normals views compute normals.
               :normals (when (or shaded? (= view :normals)) scene.render.normals)
               : reflections}
@@ -116,6 +125,22 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
       (when (and b (<= (+ plan.uniform-vectors b.count) limit))
         (set plan.bounds b)
         (set plan.uniform-vectors (+ plan.uniform-vectors b.count))))
+    ;; The modern lighting model (a :lighting section): which of its features the
+    ;; shader holds.
+    (when (and shaded? scene.lighting (not options.probe?) (not= options.model :classic))
+      (let [l scene.lighting]
+        (set plan.lighting
+             {:lights (length l.lights)
+              :soft? (and plan.shadows?
+                          (accumulate [soft? false _ light (ipairs l.lights)]
+                            (or soft? (> light.softness 0))))
+              :ao? (> l.ao 0)
+              :fog? (> l.fog 0)
+              :specular? l.specular
+              ;; Steps of a soft shadow ray at most: its penumbra estimate needs every
+              ;; step, so it cannot skip empty space by bounds; a ray that has not
+              ;; reached the light by then counts as lit.
+              :shadow-steps 128})))
     (set plan.key (structure-key plan))
     (if lower-error (values nil (.. scene.file ": " lower-error))
         (> plan.uniform-vectors limit) (values nil (budget-message scene plan limit))

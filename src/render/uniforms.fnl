@@ -53,6 +53,41 @@ object's outermost translation) are made camera-relative here, in double."
             (append! out [x y z w]))))
     out))
 
+(fn linear [[r g b] ?k]
+  "An sRGB colour in linear light (the shader's gamma of 2.2), times `?k`."
+  (let [k (or ?k 1)]
+    [(* k (math.pow r 2.2)) (* k (math.pow g 2.2)) (* k (math.pow b 2.2))]))
+
+(fn lighting-uniforms [lighting plan cam-pos]
+  "The modern model's uniforms (see src/render/codegen.fnl)."
+  (let [positions []
+        colors []
+        out []
+        sun (* (/ lighting.sun-size 180) math.pi)]
+    (each [_ l (ipairs lighting.lights)]
+      (if (= l.kind :sun)
+          (append! positions [(. l.direction 1) (. l.direction 2) (. l.direction 3) 0])
+          (append! positions (doto (relative l.pos cam-pos) (table.insert l.range))))
+      (append! colors (doto (linear l.color l.intensity) (table.insert l.softness))))
+    (append! out
+             [{:name "uLights" :type :vec4 :values positions :count (length lighting.lights)}
+              {:name "uLightColors" :type :vec4 :values colors :count (length lighting.lights)}
+              {:name "uSkyZenith" :type :vec3 :values (linear lighting.sky-zenith)}
+              {:name "uSkyHorizon" :type :vec3 :values (linear lighting.sky-horizon)}
+              ;; No disc: cosines above 1, where smoothstep gives 0.
+              {:name "uSunEdge" :type :vec2 :values (if (> sun 0) [(math.cos sun) (math.cos (* 0.8 sun))]
+                                                        [2 3])}
+              {:name "uAmbient" :type :float :values [lighting.ambient]}
+              {:name "uExposure" :type :float :values [lighting.exposure]}])
+    (when plan.lighting.ao?
+      (table.insert out {:name "uAo" :type :vec2 :values [lighting.ao lighting.ao-radius]}))
+    (when plan.lighting.fog?
+      (table.insert out {:name "uFog" :type :vec4
+                         :values (doto (linear lighting.fog-color) (table.insert lighting.fog))})
+      (table.insert out {:name "uFogFalloff" :type :float :values [lighting.fog-falloff]})
+      (table.insert out {:name "uCamHeight" :type :float :values [(. cam-pos 3)]}))
+    out))
+
 (fn pack [scene plan cam width height]
   "Uniforms for drawing `scene` lowered to `plan`, seen by camera state `cam`, into a
 `width` x `height` target: a list of {:name :type :values [numbers] :count n} sorted
@@ -77,6 +112,8 @@ by name. Booleans are sent as 0 or 1 with :type :bool."
       (table.insert out {:name "uShadows" :type :bool :values [(if render.shadows 1 0)]})
       (table.insert out {:name "uGlow" :type :bool :values [(if render.glow 1 0)]}))
     (append! out (kind-uniforms plan cam.pos))
+    (when plan.lighting
+      (append! out (lighting-uniforms scene.lighting plan cam.pos)))
     (when plan.tape
       (table.insert out {:name "uTape" :type :vec4 :values (tape-values plan.tape cam.pos)
                          :count (length plan.tape.rows)}))
@@ -86,4 +123,4 @@ by name. Booleans are sent as 0 or 1 with :type :bool."
     (table.sort out (fn [a b] (< a.name b.name)))
     out))
 
-{: pack : components}
+{: pack : components : linear}

@@ -42,12 +42,48 @@ scene never changes another's defaults."
             :relaxation {:type :relaxation :default 1.5}
             ;; Bounding spheres tested before marching, ground planes in closed form
             ;; (src/render/bounds.fnl): the same image, several times faster.
-            :bounds {:type :boolean :default true}}})
+            :bounds {:type :boolean :default true}
+            ;; A ray that spends every step without a hit: :surface shades it where it
+            ;; stopped (the article's: a dark smear along grazing silhouettes and the
+            ;; horizon); :background lets it pass the finite objects to a ground plane
+            ;; or the sky.
+            :out-of-steps {:type :out-of-steps :default :background}}})
+
+;; The modern lighting model (issue 10), chosen by a :lighting section; a scene without
+;; one keeps the article's classic model. Colours are sRGB as picked; the shader works
+;; in linear light. Each feature is compiled in only when it is on (see plan.fnl).
+(local lighting-spec
+  {:model {:type :model :default :modern}
+   :sky-zenith {:type :color :default [0.3 0.5 0.85]}
+   :sky-horizon {:type :color :default [0.75 0.85 0.95]}
+   :sun-size {:type :sun-size :default 1.5}     ; the sun disc's radius, degrees (0: none)
+   :ambient {:type :intensity :default 0.5}      ; light from the sky, times its colour
+   :specular {:type :boolean :default true}
+   :ao {:type :fraction :default 0.8}            ; ambient occlusion strength (0: off)
+   :ao-radius {:type :positive :default 0.5}
+   :fog {:type :fog :default 0}                  ; density per unit (0: off)
+   :fog-color {:type :color :default [0.75 0.85 0.95]}
+   :fog-falloff {:type :fog :default 0}          ; thinning per unit of height (0: even)
+   :exposure {:type :intensity :default 1}})
+
+(local light-specs
+  {:sun {:direction {:type :direction :default [0.4 -0.3 0.85]}   ; toward the sun
+         :color {:type :color :default [1 0.95 0.85]}
+         :intensity {:type :intensity :default 3}
+         :softness {:type :softness :default 0.05}}
+   :point {:pos {:type :vec3 :default [0 0 10]}
+           :color {:type :color :default [1 1 1]}
+           :intensity {:type :intensity :default 3}
+           :range {:type :positive :default 10}   ; half the light is left at this distance
+           :softness {:type :softness :default 0}}})
+
+(local light-kinds [:point :sun])
+(local max-lights 8)
 
 (local hit-tests [:fixed :relative :pixel])
 (local normal-methods [:one-sided :central :tetrahedron])
 
-(local top-level-keys [:name :camera :light :environment :render :objects])
+(local top-level-keys [:name :camera :light :environment :render :lighting :objects])
 
 (local limits {:max-reflections 16 :max-steps 100000 :max-objects 5000
                ;; Coordinates and lengths: float32 holds them with room to spare
@@ -224,7 +260,8 @@ Long words get none: no name is that long, and the distance would cost time."
 ;; Types whose values only reach uniforms; the others change the shader.
 (local animatable {:number true :positive true :vec3 true :size3 true :color true
                    :direction true :degrees true :fraction true :length0 true :lengths3 true
-                   :pitch true :fov true})
+                   :pitch true :fov true :intensity true :emission true :softness true :sun-size true
+   :fog true})
 
 ;; Lua steps one call of a function of time may take (it runs every frame).
 (local time-steps 100000)
@@ -287,6 +324,13 @@ Long words get none: no name is that long, and the distance would cost time."
     :counts3 (check-vec3 ctx path v "three whole numbers from 0 to 1000 like [3 3 0]"
                          "a whole number from 0 to 1000" #(and (= $ (math.floor $)) (<= 0 $ 1000)))
     :fraction (check-number ctx path v "a number from 0 to 1" #(<= 0 $ 1))
+    :intensity (check-number ctx path v "a number from 0 to 1000" #(<= 0 $ 1000))
+    :emission (check-number ctx path v "a number from 0 to 100" #(<= 0 $ 100))
+    :softness (check-number ctx path v "a penumbra width per unit distance from 0 to 1" #(<= 0 $ 1))
+    :sun-size (check-number ctx path v "a number of degrees from 0 to 20" #(<= 0 $ 20))
+    :fog (check-number ctx path v "a number from 0 to 10" #(<= 0 $ 10))
+    :model (check-choice ctx path v [:classic :modern])
+    :out-of-steps (check-choice ctx path v [:background :surface])
     :length0 (check-number ctx path v "a number from 0 to 1e7" #(<= 0 $ limits.world))
     _ (error (.. "unknown field type " (tostring kind)))))))
 
@@ -314,19 +358,60 @@ Long words get none: no name is that long, and the distance would cost time."
               (.. "unknown field" (suggestion k allowed)
                   "; known fields: :" (table.concat sorted " :")))))))
 
-(fn check-section [ctx name value]
-  (let [spec (. sections name)
-        fields (doto (icollect [k (pairs spec)] k) table.sort)
-        given (or value {})
+(fn check-fields [ctx path given spec]
+  (let [fields (doto (icollect [k (pairs spec)] k) table.sort)
+        given (or given {})
         out {}]
     (when (or (not= (type given) :table) (not= nil (. given 1)))
-      (fail ctx [name] (.. "must be a table like {:" (. fields 1) " ...}, got " (describe-value given))))
-    (check-keys ctx [name] given fields)
+      (fail ctx path (.. "must be a table like {:" (. fields 1) " ...}, got " (describe-value given))))
+    (check-keys ctx path given fields)
     (each [_ field (ipairs fields)]
       (let [v (. given field)
             f (. spec field)]
-        (tset out field (if (= v nil) (fresh f.default) (check ctx [name field] v f.type)))))
+        (tset out field (if (= v nil) (fresh f.default) (check ctx (sub-path path field) v f.type)))))
     out))
+
+(fn check-section [ctx name value]
+  (check-fields ctx [name] value (. sections name)))
+
+(fn check-light [ctx path l]
+  (when (or (not= (type l) :table) (not= nil (. l 1)))
+    (fail ctx path (.. "must be a light like {:kind :sun :direction [0 -1 2]}, got "
+                       (describe-value l))))
+  (when (= l.kind nil)
+    (fail ctx path "missing :kind (:sun, a light from a direction, or :point)"))
+  (let [kind (check-choice ctx (sub-path path :kind) l.kind light-kinds)
+        rest (collect [k v (pairs l)] (when (not= k :kind) (values k v)))]
+    (doto (check-fields ctx path rest (. light-specs kind))
+      (tset :kind kind))))
+
+(fn check-lighting [ctx value light]
+  "The :lighting section, or nil for the classic model. Without :lights, one sun
+shines from where the classic :light is (seen from the origin)."
+  (when (not= value nil)
+    (when (or (not= (type value) :table) (not= nil (. value 1)))
+      (fail ctx [:lighting] (.. "must be a table like {:model :modern}, got " (describe-value value))))
+    (let [lights value.lights
+          rest (collect [k v (pairs value)] (when (not= k :lights) (values k v)))
+          out (check-fields ctx [:lighting] rest lighting-spec)
+          path [:lighting :lights]]
+      (set out.lights
+           (if (= lights nil)
+               (let [[x y z] light.pos
+                     len (math.sqrt (+ (* x x) (* y y) (* z z)))]
+                 [{:kind :sun :direction (if (> len 0) [(/ x len) (/ y len) (/ z len)] [0 0 1])
+                   :color [1 0.95 0.85] :intensity 3 :softness 0.05}])
+               (do
+                 (when (or (not= (type lights) :table)
+                           (accumulate [bad? false k (pairs lights)]
+                             (or bad? (not= (type k) :number) (< k 1) (> k (length lights)))))
+                   (fail ctx path (.. "must be a list of lights like [{:kind :sun}], got "
+                                      (describe-value lights))))
+                 (when (> (length lights) max-lights)
+                   (fail ctx path (.. "has " (length lights) " lights; at most " max-lights
+                                      " are allowed (remove " (- (length lights) max-lights) ")")))
+                 (icollect [i l (ipairs lights)] (check-light ctx (sub-path path i) l)))))
+      (when (= out.model :modern) out))))
 
 (fn all-kind-names []
   (let [names (primitives.kind-names)]
@@ -334,8 +419,11 @@ Long words get none: no name is that long, and the distance would cost time."
     (doto names table.sort)))
 
 ;; Fields every tree node may carry: placement shorthands and its material.
-(local shorthand-fields [:pos :rotate :scale :color :mirror])
-(local shorthand-types {:pos :vec3 :rotate :vec3 :scale :positive :color :color :mirror :fraction})
+(local shorthand-fields [:pos :rotate :scale :color :mirror :roughness :emission])
+(local shorthand-types {:pos :vec3 :rotate :vec3 :scale :positive :color :color :mirror :fraction
+                        :roughness :fraction :emission :emission})
+;; Material fields that only the modern model reads.
+(local modern-fields {:roughness true :emission true})
 
 ;; The original three kinds, written as before (only these fields), are drawn by the
 ;; kind-grouped fast path: their shader and image do not change.
@@ -383,7 +471,11 @@ Long words get none: no name is that long, and the distance would cost time."
     (let [out {:kind o.kind :path (path->string path) :path-list path}]
       (each [_ f (ipairs shorthand-fields)]
         (let [v (. o f)]
-          (when (not= v nil) (tset out f (check ctx (sub-path path f) v (. shorthand-types f))))))
+          (when (not= v nil)
+            (when (and (. modern-fields f) (not ctx.modern?))
+              (fail ctx (sub-path path f)
+                    "is read only by the modern lighting model: add :lighting {:model :modern} to the scene"))
+            (tset out f (check ctx (sub-path path f) v (. shorthand-types f))))))
       (each [_ p (ipairs desc.params)]
         (let [v (. o p.name)]
           (tset out p.name (if (not= v nil) (check-param ctx (sub-path path p.name) v p)
@@ -451,10 +543,14 @@ Long words get none: no name is that long, and the distance would cost time."
   (when (> (length value.objects) limits.max-objects)
     (fail ctx [:objects] (.. "has " (length value.objects) " objects; at most "
                              limits.max-objects " are allowed")))
+  (local light (check-section ctx :light value.light))
+  (local lighting (check-lighting ctx value.lighting light))
+  (set ctx.modern? (not= nil lighting))
   {:name (or value.name (: (ctx.file:match "([^/]+)$") :gsub "%.fnl$" ""))
    :file ctx.file
    :camera (check-section ctx :camera value.camera)
-   :light (check-section ctx :light value.light)
+   : light
+   : lighting
    :environment (if (= value.environment nil) (fresh default-environment)
                     (check ctx [:environment] value.environment :color))
    :render (check-section ctx :render value.render)

@@ -28,12 +28,22 @@
 
 (var emit-code nil)
 
+;; Material registers: vec4 (colour, mirror amount), or in the modern model mat2x4
+;; (that, then roughness and emission): see :material-size in src/sdf/lower.fnl.
+(local material-types {4 {:type "vec4" :zero "vec4(0.0)" :mix "mix"}
+                       8 {:type "mat2x4" :zero "mat2x4(0.0)" :mix "mixMaterial"}})
+
+(var mt (. material-types 4))
+
 (fn emit-instr [out ins materials?]
   (case ins.op
     :prim (table.insert out (.. "float " ins.dout " = "
                                 (call ins.desc.glsl-name (reg ins.pin) ins.args) ";"))
     :material (when materials?
-                (table.insert out (.. "vec4 " ins.mout " = uTape[" ins.row "];")))
+                (table.insert out (if (= mt.type "vec4")
+                                      (.. "vec4 " ins.mout " = uTape[" ins.row "];")
+                                      (.. "mat2x4 " ins.mout " = mat2x4(uTape[" ins.row "], uTape["
+                                          (+ ins.row 1) "]);"))))
     :point (table.insert out (.. "vec3 " ins.pout " = "
                                  (call ins.desc.glsl-name (reg ins.pin) ins.args) ";"))
     :post (table.insert out (.. "float " ins.dout " = "
@@ -47,13 +57,13 @@
                (table.insert out (.. "float " ins.dout " = "
                                      (call ins.desc.glsl-name (.. ins.da ", " ins.db) ins.args) ";"))
                (when materials?
-                 (table.insert out (.. "vec4 " ins.mout " = mix(" ins.mb ", " ins.ma ", "
+                 (table.insert out (.. mt.type " " ins.mout " = " mt.mix "(" ins.mb ", " ins.ma ", "
                                        (call (weight-name ins.desc) (.. ins.da ", " ins.db) ins.args)
                                        ");"))))
     :cells (let [c (.. "c" (ins.dout:sub 2))
                  body []]
              (table.insert out (.. "float " ins.dout " = 1e30;"))
-             (when materials? (table.insert out (.. "vec4 " ins.mout " = vec4(0.0);")))
+             (when materials? (table.insert out (.. mt.type " " ins.mout " = " mt.zero ";")))
              (table.insert out (.. "for (int " c " = 0; " c " < " ins.count "; " c "++) {"))
              ;; The cell index is the last argument.
              (table.insert body (.. "vec3 " ins.cell-p " = "
@@ -87,6 +97,10 @@ but those named in `?defined` (GLSL name -> true: already in the shader)."
     (each [_ u (ipairs tape.used)]
       (when (and (not (u.name:find "^helper:")) (not (. defined u.name)))
         (table.insert out u.desc.glsl)))
+    (when (= tape.material-size 8)
+      (table.insert out (.. "// Blends two-row materials as mix() blends vec4 ones.\n"
+                            "mat2x4 mixMaterial(mat2x4 a, mat2x4 b, float w) {\n"
+                            "    return a * (1.0 - w) + b * w;\n}")))
     (let [lines []]
       (each [i text (ipairs out)]
         (when (> i 1) (table.insert lines ""))
@@ -111,12 +125,17 @@ but those named in `?defined` (GLSL name -> true: already in the shader)."
 
 (fn color-terms [tape mirrors?]
   "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
-its mirror amount in gMirror when `mirrors?`)."
-  (icollect [_ o (ipairs tape.objects)]
-    [(object-comment o) "{"
-     (icollect [_ l (ipairs (emit-code [] o.code true))] (.. "    " l))
-     (.. "    if (" o.dout " < d) { d = " o.dout "; color = " o.mout ".rgb;"
-         (if mirrors? (.. " gMirror = " o.mout ".a;") "") " }")
-     "}"]))
+its mirror amount in gMirror when `mirrors?`; with two-row materials, always, and
+the second row in gMaterial)."
+  (set mt (. material-types tape.material-size))
+  (let [modern? (= tape.material-size 8)]
+    (icollect [_ o (ipairs tape.objects)]
+      (let [row (if modern? (.. o.mout "[0]") o.mout)]
+        [(object-comment o) "{"
+         (icollect [_ l (ipairs (emit-code [] o.code true))] (.. "    " l))
+         (.. "    if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
+             (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
+             (if modern? (.. " gMaterial = " o.mout "[1];") "") " }")
+         "}"]))))
 
 {: functions : declarations : distance-terms : color-terms : text-lines}

@@ -5,8 +5,13 @@
 
 (local max-locals 150)   ; Lua allows 200 locals per function; beyond, a table holds them
 
-(fn new-emitter [table-mode?]
-  (let [e {:lines [] :fns [] :fn-index {} : table-mode?}]
+;; Material components: colour and mirror amount, and in the modern model roughness,
+;; emission and two spare (see :material-size in src/sdf/lower.fnl).
+(local material-components {4 ["r" "g" "b" "a"] 8 ["r" "g" "b" "a" "k" "e" "u" "v"]})
+
+(fn new-emitter [table-mode? material-size]
+  (let [e {:lines [] :fns [] :fn-index {} : table-mode?
+           :comps (. material-components (or material-size 4))}]
     (fn e.fn-ref [f]
       (when (not (. e.fn-index f))
         (table.insert e.fns f)
@@ -35,12 +40,12 @@
       (.. "local " name "x, " name "y, " name "z")))
 
 (fn material [e name]
-  (table.concat (icollect [_ c (ipairs ["r" "g" "b" "a"])] (e.r (.. name c))) ", "))
+  (table.concat (icollect [_ c (ipairs e.comps)] (e.r (.. name c))) ", "))
 
 (fn material-decl [e name]
   (if e.table-mode?
       (material e name)
-      (.. "local " (table.concat (icollect [_ c (ipairs ["r" "g" "b" "a"])] (.. name c)) ", "))))
+      (.. "local " (table.concat (icollect [_ c (ipairs e.comps)] (.. name c)) ", "))))
 
 (fn call [e f first args ?rest]
   (let [parts [first]]
@@ -55,8 +60,10 @@
     :prim (e.line indent (.. (e.decl ins.dout) " = " (call e ins.desc.cpu (point e ins.pin) ins.args)))
     :material (when materials?
                 (let [base (* ins.row 4)]
-                  (e.line indent (.. (material-decl e ins.mout) " = S[" (+ base 1) "], S["
-                                     (+ base 2) "], S[" (+ base 3) "], S[" (+ base 4) "]"))))
+                  (e.line indent (.. (material-decl e ins.mout) " = "
+                                     (table.concat (fcollect [k 1 (length e.comps)]
+                                                     (.. "S[" (+ base k) "]"))
+                                                   ", ")))))
     :point (e.line indent (.. (point-decl e ins.pout) " = "
                               (call e ins.desc.cpu (point e ins.pin) ins.args)))
     :post (e.line indent (.. (e.decl ins.dout) " = "
@@ -74,7 +81,7 @@
           ;; GLSL's mix(mb, ma, w) = mb * (1 - w) + ma * w.
           (e.line indent (.. (material-decl e ins.mout) " = "
                              (table.concat
-                              (icollect [_ c (ipairs ["r" "g" "b" "a"])]
+                              (icollect [_ c (ipairs e.comps)]
                                 (let [a (e.r (.. ins.ma c)) b (e.r (.. ins.mb c))]
                                   (.. b " * (1 - " (e.r w) ") + " a " * " (e.r w))))
                               ", "))))))
@@ -82,7 +89,8 @@
     (let [c (.. "c" (ins.dout:sub 2))
           dout (e.r ins.dout)]
       (e.line indent (.. (e.decl ins.dout) " = 1e30"))
-      (when materials? (e.line indent (.. (material-decl e ins.mout) " = 0, 0, 0, 0")))
+      (when materials? (e.line indent (.. (material-decl e ins.mout) " = "
+                                          (table.concat (icollect [_ _ (ipairs e.comps)] "0") ", "))))
       (e.line indent (.. "for " c " = 0, " (- ins.count 1) " do"))
       (e.line (+ indent 1) (.. (point-decl e ins.cell-p) " = "
                                (call e ins.desc.cpu (.. c ", " (point e ins.pin)) ins.args)))
@@ -99,9 +107,11 @@
      (fn [e code materials? indent]
        (each [_ ins (ipairs code)] (emit-instr e ins materials? indent))))
 
-(fn count-registers [code]
+(fn count-registers [code per]
+  ;; Locals per instruction, at most: a material's components (or a point and a
+  ;; distance, fewer).
   (accumulate [n 0 _ ins (ipairs code)]
-    (+ n 4 (if ins.body (count-registers ins.body) 0))))
+    (+ n per (if ins.body (count-registers ins.body per) 0))))
 
 (fn object-source [e o materials?]
   (e.line 0 (.. "FN[#FN + 1] = function(x, y, z)"))
@@ -119,12 +129,12 @@
 (fn compile [tape]
   "CPU evaluators for `tape`'s objects, in world coordinates and double precision:
 {:distance [(fn [x y z]) -> d per object] :material [(fn [x y z]) -> d r g b mirror
-per object] :source text}."
+(and with :material-size 8: roughness emission and two spare) per object] :source text}."
   (let [sources []
         out {:distance [] :material []}]
     (each [_ materials? (ipairs [false true])]
       (each [_ o (ipairs tape.objects)]
-        (let [e (new-emitter (> (count-registers o.code) max-locals))]
+        (let [e (new-emitter (> (count-registers o.code (or tape.material-size 4)) max-locals) tape.material-size)]
           (e.line 0 "local S, F, FN = ...")
           (object-source e o materials?)
           (let [source (table.concat e.lines "\n")

@@ -28,9 +28,12 @@
 (local sizes primitives.glsl-types)
 
 (local default-material [1 1 1 1])   ; white, a full mirror: the article's surfaces
+;; The modern model's materials take two rows: colour and mirror amount, then
+;; roughness and emission. Unset, a surface is matte white plastic.
+(local modern-material [1 1 1 0 0.5 0 0 0])
 
-(fn new-state []
-  {:rows [] :relative [] :used {} :used-list [] :counter 0 :key []})
+(fn new-state [?modern?]
+  {:rows [] :relative [] :used {} :used-list [] :counter 0 :key [] :modern? ?modern?})
 
 (fn fresh! [st prefix]
   (set st.counter (+ st.counter 1))
@@ -67,12 +70,19 @@
 (fn material-row! [st material]
   (when (not= (. material 4) 1) (set st.mirrors? true))
   (table.insert st.rows [(. material 1) (. material 2) (. material 3) (. material 4)])
-  (- (length st.rows) 1))
+  (when st.modern?
+    (table.insert st.rows [(. material 5) (. material 6) (. material 7) (. material 8)]))
+  (- (length st.rows) (if st.modern? 2 1)))
 
 (fn node-material [node inherited]
-  (if (or node.color node.mirror)
-      (let [[r g b] (or node.color [(. inherited 1) (. inherited 2) (. inherited 3)])]
-        [r g b (if (= node.mirror nil) (. inherited 4) node.mirror)])
+  (if (or node.color node.mirror node.roughness node.emission)
+      (let [[r g b] (or node.color [(. inherited 1) (. inherited 2) (. inherited 3)])
+            m (icollect [_ v (ipairs inherited)] v)]
+        (tset m 1 r) (tset m 2 g) (tset m 3 b)
+        (when (not= node.mirror nil) (tset m 4 node.mirror))
+        (when (and (not= node.roughness nil) (. m 5)) (tset m 5 node.roughness))
+        (when (and (not= node.emission nil) (. m 6)) (tset m 6 node.emission))
+        m)
       inherited))
 
 (fn wrap-shorthand [node]
@@ -119,8 +129,8 @@ translate(rotate(scale(node)))."
   (let [form (operations.variant desc node)
         ;; Twist and bend pack their child's radius: lower the child once aside.
         args-values (if desc.needs-bounds
-                        (let [child (. (lower-node (new-state) [] (. node.children 1) "p0"
-                                                   default-material)
+                        (let [child (. (lower-node (new-state st.modern?) [] (. node.children 1) "p0"
+                                                   (if st.modern? modern-material default-material))
                                        :info)
                               reason (.. ":" desc.kind " needs a child bounded in " desc.needs-bounds
                                          " (its Lipschitz factor grows with the child's size)")]
@@ -207,22 +217,25 @@ translate(rotate(scale(node)))."
                  :implicit? true})
         code []
         before (length st.rows)
-        result (lower-node st code top "p0" default-material)]
+        result (lower-node st code top "p0" (if st.modern? modern-material default-material))]
     ;; The translate's arguments are the first row this object allocated.
     (table.insert st.relative before)
     (table.insert st.key ";")
     {:index node.index :code code :dout result.dout :mout result.mout :info result.info}))
 
-(fn lower [objects]
+(fn lower [objects ?options]
   "Lower the validated tree objects `objects` (each with :index, its scene index and
 :path) into a tape (see the top of this file), or nil and a message naming the node
 when a node cannot be lowered (a twist of an unbounded child), then that node and the
-reason alone."
-  (let [st (new-state)
+reason alone. Option :modern? gives every material two rows (:material-size 8)."
+  (let [options (or ?options {})
+        st (new-state options.modern?)
         (ok? objs) (pcall #(icollect [_ o (ipairs objects)] (lower-object st o)))]
     (if ok?
         (do (table.insert st.key (.. "rows:" (length st.rows)))
+            (when st.modern? (table.insert st.key "materials:8"))
             {:objects objs :rows st.rows :relative st.relative :mirrors? st.mirrors?
+             :material-size (if st.modern? 8 4)
              :used (icollect [_ name (ipairs st.used-list)] {: name :desc (. st.used name)})
              :key (table.concat st.key " ")})
         (and (= (type objs) :table) objs.lower-error) (values nil objs.lower-error objs.node

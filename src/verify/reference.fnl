@@ -9,6 +9,7 @@
 (local registry (require :src.sdf.registry))
 (local emit-lua (require :src.sdf.emit-lua))
 (local bounds (require :src.render.bounds))
+(local lighting (require :src.verify.lighting))
 
 (local sqrt math.sqrt)
 (local abs math.abs)
@@ -57,6 +58,7 @@ Positions are in world coordinates."
         shadows? (and shaded? plan.shadows?)
         glow? (and shaded? plan.glow?)
         reflections (if (and shaded? plan.reflections?) plan.reflections 0)
+        modern? (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8)))
         objs plan.objects
         ;; Grouped objects come first in plan.objects, then the tree objects.
         grouped (icollect [_ o (ipairs objs)] (when (not o.tree) o))
@@ -103,21 +105,24 @@ Positions are in world coordinates."
       ;; Strictly smaller wins, so ties go to the earlier object in plan order.
       ;; Returns the distance, the index into plan.objects (or nil) and the colour and
       ;; mirror amount of the material found.
+      ;; In the modern model also its roughness and emission (grouped objects: matte,
+      ;; 0.5 and none; the classic model's are full mirrors).
       (var d draw)
       (var best nil)
-      (var (r g b mirror) (values 0 0 0 1))
+      (var (r g b mirror rough emit) (values 0 0 0 (if modern? 0 1) 0.5 0))
       (for [i 1 n]
         (let [di ((. fns i) (. objs i) x y z)]
           (when (< di d) (set d di) (set best i))))
       (when best
         (let [[cr cg cb] (. objs best :color)] (set (r g b) (values cr cg cb))))
       (for [i 1 m]
-        (let [(di mr mg mb ma) ((. tree-material i) x y z)]
+        (let [(di mr mg mb ma mk me) ((. tree-material i) x y z)]
           (when (< di d)
             (set d di)
             (set best (+ n i))
-            (set (r g b mirror) (values mr mg mb ma)))))
-      (values d best r g b mirror))
+            (set (r g b mirror) (values mr mg mb ma))
+            (when modern? (set (rough emit) (values mk me))))))
+      (values d best r g b mirror rough emit))
 
     (fn threshold [dist]
       ;; The hit test: a step shorter than this is a hit. dist is the distance from
@@ -179,6 +184,10 @@ Positions are in world coordinates."
                           (>= (+ t-prev r-prev) t-end) (do (set t t-past) (set done? true))
                           (do (set t (+ t-prev r-prev))
                               (set omega 1))))))))
+        ;; Out of steps without a hit: the article shades where the ray stopped;
+        ;; :background lets it pass the finite objects (see codegen's out-of-steps).
+        (when (and (not done?) (= plan.out-of-steps :background))
+          (set t (if bound-spheres t-past draw)))
         (values t steps)))
 
     (fn safe-normalize [x y z]
@@ -222,12 +231,21 @@ Positions are in world coordinates."
     (fn object-index [i]
       (when i (. objs i :index)))
 
+    (var modern-shade nil)
+
     (fn trace [ox oy oz dx dy dz]
       (let [(t steps) (march ox oy oz dx dy dz)
             hit? (< t draw)
             result {:hit? hit? :distance t :steps steps :path []}]
         (var (r g b) (values 0 0 0))
-        (if (= view :heat)
+        (if (and shaded? modern-shade)
+            (let [(mr mg mb path) (modern-shade ox oy oz dx dy dz t)]
+              (set (r g b) (values mr mg mb))
+              (set result.path path)
+              (when hit?
+                (let [(_ i) (map-color (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
+                  (set result.object (object-index i)))))
+            (= view :heat)
             (do (set (r g b) (heat-color (/ steps max-steps)))
                 (when hit?
                   (let [(_ i) (map-color (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
@@ -301,7 +319,11 @@ Positions are in world coordinates."
         (set result.color [(clamp01 r) (clamp01 g) (clamp01 b)])
         result))
 
-    {: map : map-color : march : normal : lightness : trace}))
+    (local closures {: map : map-color : march : normal : lightness : trace : normal-delta
+                     : threshold : distance-from-camera})
+    (when (and shaded? plan.lighting)
+      (set modern-shade (lighting.shader closures scene plan)))
+    closures))
 
 (fn ray-setup [cam width height]
   "A function (px py) -> dx dy dz giving the primary ray through the centre of pixel

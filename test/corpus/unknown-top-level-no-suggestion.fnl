@@ -1,4 +1,4 @@
-;; expect: test/corpus/unknown-top-level-no-suggestion.fnl:3: soundtrack: unknown field; known fields: :camera :environment :light :name :objects :render
+;; expect: test/corpus/unknown-top-level-no-suggestion.fnl:3: soundtrack: unknown field; known fields: :camera :environment :light :lighting :name :objects :render
 {:name "music"
  :soundtrack "song.ogg"
  :objects []}

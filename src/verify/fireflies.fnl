@@ -1,0 +1,42 @@
+;; Fireflies: single pixels brighter (or darker) than every one of their eight
+;; neighbours by more than a set amount. A true image can have such a pixel only for
+;; a feature smaller than a pixel; a marcher makes them when a normal taken across an
+;; edge sends a bounce or a highlight the wrong way. Pure: works on any image given
+;; as width, height and a pixel reader.
+
+(fn luma [r g b]
+  ;; Rec. 709 weights on the stored (display) values, 0..255.
+  (+ (* 0.2126 r) (* 0.7152 g) (* 0.0722 b)))
+
+(fn find [width height read threshold]
+  "Pixels of a width x height image (read: (fn [x y]) -> r g b, 0..255) whose luma is
+above the brightest of its eight neighbours, or below the darkest, by more than
+`threshold` (0..255). Border pixels are not judged. Returns a list of {:x :y :by},
+`by` the margin, largest first."
+  (let [out []]
+    (for [y 1 (- height 2)]
+      (for [x 1 (- width 2)]
+        (let [l (luma (read x y))]
+          (var lo math.huge)
+          (var hi (- math.huge))
+          (for [dy -1 1]
+            (for [dx -1 1]
+              (when (or (not= dx 0) (not= dy 0))
+                (let [n (luma (read (+ x dx) (+ y dy)))]
+                  (when (< n lo) (set lo n))
+                  (when (> n hi) (set hi n))))))
+          (let [by (math.max (- l hi) (- lo l))]
+            (when (> by threshold)
+              (table.insert out {: x : y : by}))))))
+    (table.sort out (fn [a b] (> a.by b.by)))
+    out))
+
+(fn rgba-reader [image]
+  "A pixel reader for {:width :height :pixels} with RGBA bytes, row 0 at the top
+(0-based FFI arrays, as png.decode and the headless renderer give)."
+  (let [{: width : pixels} image]
+    (fn [x y]
+      (let [i (* 4 (+ x (* y width)))]
+        (values (. pixels i) (. pixels (+ i 1)) (. pixels (+ i 2)))))))
+
+{: find : rgba-reader : luma}

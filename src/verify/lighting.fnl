@@ -1,0 +1,213 @@
+;; The modern lighting model (issue 10) on the CPU, in double precision: the
+;; reference for shaders/views/modern.glsl and shaders/shading/modern/, written from
+;; the same description (the scene's :lighting section, lowered by plan.fnl and packed
+;; by uniforms.fnl), never from the GLSL text. Uses a reference tracer's closures for
+;; the distance field, its marches and its normals.
+
+(local uniforms (require :src.render.uniforms))
+
+(local sqrt math.sqrt)
+(local exp math.exp)
+(local max math.max)
+(local min math.min)
+
+(fn clamp01 [v]
+  (if (< v 0) 0 (> v 1) 1 v))
+
+(fn smoothstep [e0 e1 x]
+  (let [t (clamp01 (/ (- x e0) (- e1 e0)))]
+    (* t t (- 3 (* 2 t)))))
+
+(fn safe-normalize [x y z]
+  (let [len (sqrt (+ (* x x) (* y y) (* z z)))]
+    (if (> len 0) (values (/ x len) (/ y len) (/ z len)) (values 0 0 1))))
+
+(fn mix [a b w] (+ (* a (- 1 w)) (* b w)))
+
+(fn shader [T scene plan]
+  "A function (ox oy oz dx dy dz t) -> r g b: the modern model's display colour
+(0..1) of the ray from (ox oy oz) along (dx dy dz) whose primary march gave `t`, for
+`scene` lowered to `plan` (plan.lighting set), using tracer `T` (see
+reference.tracer). Also returns the path: the plan index of each surface met, -1 for
+the sky."
+  (let [L scene.lighting
+        features plan.lighting
+        draw scene.render.draw-distance
+        reflections (if plan.reflections? plan.reflections 0)
+        lights (icollect [_ l (ipairs L.lights)]
+                 (let [[r g b] (uniforms.linear l.color l.intensity)]
+                   {:sun? (= l.kind :sun) :dir l.direction :pos l.pos :range l.range
+                    :softness l.softness : r : g : b
+                    ;; The fog's tint toward a sun: its colour over its brightest part.
+                    :tint (let [m (max r g b 0.000001)] [(/ r m) (/ g m) (/ b m)])}))
+        [zr zg zb] (uniforms.linear L.sky-zenith)
+        [hr hg hb] (uniforms.linear L.sky-horizon)
+        [fr fg fb] (uniforms.linear L.fog-color)
+        fog-max (max fr fg fb)
+        sun (* (/ L.sun-size 180) math.pi)
+        (edge0 edge1) (if (> sun 0) (values (math.cos sun) (math.cos (* 0.8 sun))) (values 2 3))
+        shadows? plan.shadows?
+        soft? features.soft?
+        shadow-steps features.shadow-steps
+        map T.map
+        march T.march
+        threshold T.threshold
+        normal-delta T.normal-delta]
+
+    (fn sky [dx dy dz]
+      (let [w (sqrt (clamp01 dz))
+            dark (- 1 (* 0.5 (clamp01 (* -4 dz))))]
+        (var (r g b) (values (* (mix hr zr w) dark) (* (mix hg zg w) dark) (* (mix hb zb w) dark)))
+        (each [_ l (ipairs lights)]
+          (when l.sun?
+            (let [[lx ly lz] l.dir
+                  disc (* 8 (smoothstep edge0 edge1 (+ (* dx lx) (* dy ly) (* dz lz))))]
+              (set (r g b) (values (+ r (* l.r disc)) (+ g (* l.g disc)) (+ b (* l.b disc)))))))
+        (values r g b)))
+
+    (fn hard-visibility [ox oy oz lx ly lz reach]
+      (let [ts (march ox oy oz lx ly lz reach)]
+        (if (< ts reach) 0 1)))
+
+    (fn soft-visibility [ox oy oz lx ly lz reach softness]
+      ;; Quilez's improved penumbra estimate, as shadow-soft.glsl.
+      (let [t0 (T.distance-from-camera ox oy oz)]
+        (var seen 1)
+        (var t 0)
+        (var h-prev 1e10)
+        (var result nil)
+        (for [_ 1 shadow-steps &until result]
+          (let [h (map (+ ox (* lx t)) (+ oy (* ly t)) (+ oz (* lz t)))]
+            (if (< h (threshold (+ t0 t)))
+                (set result 0)
+                (let [y (/ (* h h) (* 2 h-prev))
+                      closest (sqrt (max (- (* h h) (* y y)) 0))]
+                  (set seen (min seen (/ closest (* softness (max (- t y) 1e-6)))))
+                  (set h-prev h)
+                  (set t (+ t h))
+                  (when (>= t reach) (set result -1))))))
+        (if (= result 0) 0
+            (let [s (clamp01 seen)] (* s s (- 3 (* 2 s)))))))
+
+    (fn visibility [ox oy oz lx ly lz reach softness]
+      (if (not shadows?) 1
+          (and soft? (> softness 0)) (soft-visibility ox oy oz lx ly lz reach softness)
+          (hard-visibility ox oy oz lx ly lz reach)))
+
+    (fn direct-light [px py pz nx ny nz vx vy vz ar ag ab mirror roughness]
+      (var (r g b) (values 0 0 0))
+      (let [s (* 2 (normal-delta px py pz))
+            ox (+ px (* nx s)) oy (+ py (* ny s)) oz (+ pz (* nz s))]
+        (each [_ l (ipairs lights)]
+          (let [(lx ly lz falloff reach)
+                (if l.sun?
+                    (let [[x y z] l.dir] (values x y z 1 draw))
+                    (let [[qx qy qz] l.pos
+                          tx (- qx px) ty (- qy py) tz (- qz pz)
+                          dist (sqrt (+ (* tx tx) (* ty ty) (* tz tz)))
+                          q (/ dist l.range)]
+                      (values (if (> dist 0) (/ tx dist) nx) (if (> dist 0) (/ ty dist) ny)
+                              (if (> dist 0) (/ tz dist) nz)
+                              (/ 1 (+ 1 (* q q)))
+                              (min (- dist (* 2 (normal-delta qx qy qz))) draw))))
+                lambert (+ (* nx lx) (* ny ly) (* nz lz))]
+            (when (> lambert 0)
+              (let [visible (visibility ox oy oz lx ly lz reach l.softness)
+                    k (* falloff lambert visible)
+                    lr (* l.r k) lg (* l.g k) lb (* l.b k)]
+                (set (r g b) (values (+ r (* ar lr)) (+ g (* ag lg)) (+ b (* ab lb))))
+                (when features.specular?
+                  (let [(hx hy hz) (safe-normalize (+ lx vx) (+ ly vy) (+ lz vz))
+                        shininess (math.pow 2 (+ 1 (* 10 (- 1 roughness))))
+                        f0 (mix 0.04 1 mirror)
+                        fresnel (+ f0 (* (- 1 f0)
+                                         (math.pow (- 1 (clamp01 (+ (* lx hx) (* ly hy) (* lz hz)))) 5)))
+                        spec (* fresnel (/ (+ shininess 8) 8)
+                                (math.pow (clamp01 (+ (* nx hx) (* ny hy) (* nz hz))) shininess))]
+                    (set (r g b) (values (+ r (* lr (mix 1 ar mirror) spec))
+                                         (+ g (* lg (mix 1 ag mirror) spec))
+                                         (+ b (* lb (mix 1 ab mirror) spec)))))))))))
+      (values r g b))
+
+    (fn occlusion [px py pz nx ny nz]
+      (var occ 0)
+      (var weight 1)
+      (var total 0)
+      (for [i 1 5]
+        (let [h (/ (* L.ao-radius i) 5)
+              d (map (+ px (* nx h)) (+ py (* ny h)) (+ pz (* nz h)))]
+          (set occ (+ occ (* weight (clamp01 (/ (- h d) h)))))
+          (set total (+ total weight))
+          (set weight (* weight 0.5))))
+      (clamp01 (- 1 (/ (* L.ao occ) total))))
+
+    (fn fog-transmittance [oz dz t]
+      (let [k (* L.fog-falloff dz t)
+            thinning (if (> (math.abs k) 0.0001) (/ (- 1 (exp (- k))) k) 1)]
+        (exp (- (* L.fog (exp (- (* L.fog-falloff oz))) t thinning)))))
+
+    (fn fog-color [dx dy dz]
+      (var (r g b) (values fr fg fb))
+      (each [_ l (ipairs lights)]
+        (when l.sun?
+          (let [[lx ly lz] l.dir
+                [tr tg tb] l.tint
+                w (math.pow (max (+ (* dx lx) (* dy ly) (* dz lz)) 0) 8)]
+            (set (r g b) (values (mix r (* tr fog-max) w) (mix g (* tg fog-max) w)
+                                 (mix b (* tb fog-max) w))))))
+      (values r g b))
+
+    (fn [ox oy oz dx dy dz t-primary]
+      (var (rr rg rb) (values 0 0 0))      ; radiance
+      (var (wr wg wb) (values 1 1 1))      ; path weight
+      (var (qx qy qz) (values ox oy oz))   ; segment origin
+      (var (vx vy vz) (values dx dy dz))   ; segment direction
+      (var t t-primary)
+      (var done? false)
+      (local path [])
+      (for [bounce 0 reflections &until done?]
+        (when (> bounce 0) (set t (march qx qy qz vx vy vz)))
+        (if (>= t draw)
+            (let [(sr sg sb) (sky vx vy vz)]
+              (set (rr rg rb) (values (+ rr (* wr sr)) (+ rg (* wg sg)) (+ rb (* wb sb))))
+              (table.insert path -1)
+              (set done? true))
+            (let [px (+ qx (* vx t)) py (+ qy (* vy t)) pz (+ qz (* vz t))
+                  (nx ny nz) (T.normal px py pz)
+                  (_ i cr cg cb mirror roughness emission) (T.map-color px py pz)
+                  ar (math.pow cr 2.2) ag (math.pow cg 2.2) ab (math.pow cb 2.2)
+                  cos-view (clamp01 (- (+ (* nx vx) (* ny vy) (* nz vz))))
+                  f0 (mix 0.04 1 mirror)
+                  smooth (- 1 roughness)
+                  reflected (* (+ f0 (* (- 1 f0) (math.pow (- 1 cos-view) 5))) smooth smooth)
+                  occ (if features.ao? (occlusion px py pz nx ny nz) 1)
+                  sky-w (+ 0.5 (* 0.5 nz))
+                  amb (* L.ambient occ)
+                  (lr lg lb) (direct-light px py pz nx ny nz (- vx) (- vy) (- vz) ar ag ab
+                                           mirror roughness)
+                  keep (- 1 reflected)
+                  sr (+ (* keep (+ lr (* ar (mix hr zr sky-w) amb))) (* ar emission))
+                  sg (+ (* keep (+ lg (* ag (mix hg zg sky-w) amb))) (* ag emission))
+                  sb (+ (* keep (+ lb (* ab (mix hb zb sky-w) amb))) (* ab emission))
+                  through (if features.fog? (fog-transmittance qz vz t) 1)]
+              (table.insert path (or i 0))
+              (when features.fog?
+                (let [(gr gg gb) (fog-color vx vy vz)
+                      f (- 1 through)]
+                  (set (rr rg rb) (values (+ rr (* wr f gr)) (+ rg (* wg f gg)) (+ rb (* wb f gb))))))
+              (set (wr wg wb) (values (* wr through) (* wg through) (* wb through)))
+              (set (rr rg rb) (values (+ rr (* wr sr)) (+ rg (* wg sg)) (+ rb (* wb sb))))
+              (set (wr wg wb) (values (* wr reflected (mix 1 ar mirror))
+                                      (* wg reflected (mix 1 ag mirror))
+                                      (* wb reflected (mix 1 ab mirror))))
+              (if (< (max wr wg wb) 0.002)
+                  (set done? true)
+                  (let [s (* 2 (normal-delta px py pz))
+                        k (* 2 (+ (* vx nx) (* vy ny) (* vz nz)))]
+                    (set (qx qy qz) (values (+ px (* nx s)) (+ py (* ny s)) (+ pz (* nz s))))
+                    (set (vx vy vz) (values (- vx (* k nx)) (- vy (* k ny)) (- vz (* k nz)))))))))
+      (let [e L.exposure
+            display (fn [c] (math.pow (- 1 (exp (- (* c e)))) (/ 1 2.2)))]
+        (values (display rr) (display rg) (display rb) path)))))
+
+{: shader}
