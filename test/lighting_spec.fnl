@@ -209,3 +209,32 @@
                     (assert.is_true (> replaced 0) (.. "the mutation of " name " found nothing to change"))
                     (assert.is_false (passes? st budget)
                                      (.. name " cut from the GLSL still passes: " (report-line name st))))))))))))
+
+(describe "anti-aliasing: supersampling"
+  (fn []
+    (it "is compiled in only when :samples is above 1, and checked from 1 to 4"
+      (fn []
+        (assert.is_nil (: (shader-of (.. "{" objects "}")) :find "kSamples" 1 true))
+        (let [text (shader-of (.. "{:render {:samples 3} " objects "}"))]
+          (assert.is_truthy (text:find "const int kSamples = 3;" 1 true))
+          (assert.is_truthy (text:find "vec3 renderSample(vec2 pixel) {" 1 true)))
+        (assert.matches "render.samples: must be an integer from 1 to 4, got 5"
+                        (load-error (.. "{:render {:samples 5} " objects "}")))))
+
+    (let [(ctx why) (headless.context)]
+      (if (not ctx)
+          (pending (.. "OSMesa is not available: " (tostring why)))
+          (let [prepared (prepare "scenes/lighting.fnl" {:render {:samples 2}})
+                budget {:over 2 :max 40}]
+            (it "averages the same rays on the GPU and the reference (2 x 2, the modern model)"
+              (fn []
+                (let [st (compare-image prepared (gpu-render ctx prepared))]
+                  (print (report-line "lighting 2x2" st))
+                  (assert.is_true (passes? st budget) (describe-failures "lighting 2x2" st budget)))))
+            (it "fails when the GLSL takes one sample"
+              (fn []
+                (let [st (compare-image prepared
+                                        (gpu-render ctx prepared
+                                                    {:source #(pick-values 1 ($:gsub "return sum / float%(kSamples %* kSamples%);"
+                                                                                     "return clamp(renderSample(pixel), 0.0, 1.0);"))}))]
+                  (assert.is_false (passes? st budget) (report-line "one sample" st))))))))))

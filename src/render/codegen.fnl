@@ -316,6 +316,14 @@ only when the plan has it."
     (when (and (= view :shaded) plan.lighting)
       (each [_ s (ipairs (modern-lines plan))] (table.insert sections s)))
     (table.insert sections (fill "shaders/pipeline/render.glsl" {:view (view-lines plan)}))
+    (when (> plan.samples 1)
+      ;; render() becomes one sample; the entry point's render() averages N x N.
+      (let [lines (. sections (length sections))]
+        (each [i line (ipairs lines)]
+          (when (= line "vec3 render(vec2 pixel) {")
+            (tset lines i "vec3 renderSample(vec2 pixel) {"))))
+      (table.insert sections (fill "shaders/pipeline/supersample.glsl"
+                                   {:grid [(.. "const int kSamples = " plan.samples ";")]})))
     sections))
 
 (local targets

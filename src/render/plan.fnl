@@ -44,6 +44,7 @@
         (table.insert parts (.. "modern lights:" l.lights (if l.soft? " soft" "") (if l.ao? " ao" "")
                                 (if l.fog? " fog" "") (if l.specular? " specular" "")))))
     (when (= plan.out-of-steps :surface) (table.insert parts "out-of-steps:surface"))
+    (when (> plan.samples 1) (table.insert parts (.. "samples:" plan.samples)))
     (when plan.bounds (table.insert parts (.. "bounds:" plan.bounds.count)))
     (table.insert parts (.. "view:" plan.view))
     (when plan.tape
@@ -74,6 +75,7 @@
                   (the benchmark's before-and-after of that lever)
   :bounds?        false: march every object everywhere, planes too (see
                   src/render/bounds.fnl; the benchmark's before of that lever)
+  :samples        supersampling, N x N rays per pixel (default the scene's)
   :model          :classic draws a scene that has :lighting with the article's model
                   (the player's m key)
 Returns the plan, or nil and a message when the scene does not fit the budget."
@@ -112,6 +114,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :relaxed? (or uber? (> scene.render.relaxation 1))
               :hit-test scene.render.hit-test
               :out-of-steps (or scene.render.out-of-steps :background)
+              :samples (or options.samples scene.render.samples 1)
               ;; Only the shaded and normals views compute normals.
               :normals (when (or shaded? (= view :normals)) scene.render.normals)
               : reflections}

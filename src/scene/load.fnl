@@ -37,6 +37,8 @@ scene never changes another's defaults."
             :shadows {:type :boolean :default true}
             :glow {:type :boolean :default false}
             :scale {:type :scale :default 1}
+            ;; Supersampling: N x N rays per pixel on a regular grid, averaged.
+            :samples {:type :samples :default 1}
             :hit-test {:type :hit-test :default :relative}
             :normals {:type :normal-method :default :tetrahedron}
             :relaxation {:type :relaxation :default 1.5}
@@ -331,6 +333,7 @@ Long words get none: no name is that long, and the distance would cost time."
     :fog (check-number ctx path v "a number from 0 to 10" #(<= 0 $ 10))
     :model (check-choice ctx path v [:classic :modern])
     :out-of-steps (check-choice ctx path v [:background :surface])
+    :samples (check-integer ctx path v 1 4)
     :length0 (check-number ctx path v "a number from 0 to 1e7" #(<= 0 $ limits.world))
     _ (error (.. "unknown field type " (tostring kind)))))))
 

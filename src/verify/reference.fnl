@@ -326,15 +326,16 @@ Positions are in world coordinates."
     closures))
 
 (fn ray-setup [cam width height]
-  "A function (px py) -> dx dy dz giving the primary ray through the centre of pixel
-(px, py), 0-based from the top-left of a width x height target."
+  "A function (px py ?sx ?sy) -> dx dy dz giving the primary ray through pixel
+(px, py), 0-based from the top-left of a width x height target, at (?sx, ?sy) inside
+it (0..1; default its centre, 0.5 0.5)."
   (let [(f r u) (camera.basis cam)
         pd (camera.projection-distance cam)
         [fx fy fz] f [rx ry rz] r [ux uy uz] u
         aspect (/ width height)]
-    (fn [px py]
-      (let [uvx (* (- (/ (+ px 0.5) width) 0.5) aspect)
-            uvy (- (/ (+ py 0.5) height) 0.5)]
+    (fn [px py ?sx ?sy]
+      (let [uvx (* (- (/ (+ px (or ?sx 0.5)) width) 0.5) aspect)
+            uvy (- (/ (+ py (or ?sy 0.5)) height) 0.5)]
         (normalize (+ (* fx pd) (* rx uvx) (* ux uvy))
                    (+ (* fy pd) (* ry uvx) (* uy uvy))
                    (+ (* fz pd) (* rz uvx) (* uz uvy)))))))
@@ -345,14 +346,26 @@ width x height image of `scene` lowered to `plan` seen by camera state `cam`.
 Returns a list of {:x :y :color [r g b] (0..1, clamped) :hit? :distance t :steps n
 :object (scene index of the object hit, or nil) :shadowed? :lightness :path}, in the
 order of `pixels`. :path lists the scene index of the object hit by the primary ray
-and each bounce (-1: the bounce escaped)."
+and each bounce (-1: the bounce escaped). With supersampling (plan.samples N > 1) the
+colour is the mean of N x N rays on a grid inside the pixel, each clamped, as the
+shader's; the other fields are the first ray's."
   (let [T (tracer scene plan {:cam-pos cam.pos
                              :pixel-angle (/ 1 (* (camera.projection-distance cam) height))})
         ray (ray-setup cam width height)
-        [ox oy oz] cam.pos]
+        [ox oy oz] cam.pos
+        n (or plan.samples 1)]
     (icollect [_ [x y] (ipairs pixels)]
-      (let [(dx dy dz) (ray x y)
-            result (T.trace ox oy oz dx dy dz)]
+      (let [result (if (= n 1)
+                       (T.trace ox oy oz (ray x y))
+                       (let [sum [0 0 0]]
+                         (var first nil)
+                         (for [j 0 (- n 1)]
+                           (for [i 0 (- n 1)]
+                             (let [r (T.trace ox oy oz (ray x y (/ (+ i 0.5) n) (/ (+ j 0.5) n)))]
+                               (when (not first) (set first r))
+                               (for [c 1 3] (tset sum c (+ (. sum c) (. r.color c)))))))
+                         (set first.color (icollect [_ v (ipairs sum)] (/ v (* n n))))
+                         first))]
         (set result.x x)
         (set result.y y)
         result))))
