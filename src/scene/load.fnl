@@ -402,8 +402,10 @@ shines from where the classic :light is (seen from the origin)."
            (if (= lights nil)
                (let [[x y z] light.pos
                      len (math.sqrt (+ (* x x) (* y y) (* z z)))]
-                 [{:kind :sun :direction (if (> len 0) [(/ x len) (/ y len) (/ z len)] [0 0 1])
-                   :color [1 0.95 0.85] :intensity 3 :softness 0.05}])
+                 ;; A sun with the defaults of light-specs, but its direction.
+                 [(doto (collect [field f (pairs light-specs.sun)] field (fresh f.default))
+                    (tset :kind :sun)
+                    (tset :direction (if (> len 0) [(/ x len) (/ y len) (/ z len)] [0 0 1])))])
                (do
                  (when (or (not= (type lights) :table)
                            (accumulate [bad? false k (pairs lights)]
