@@ -281,7 +281,11 @@
                          "^%s*for %(int i = 0; i < %w+; i%+%+%) {$"
                          "^%s*for %(int bounce = 1; bounce <= gReflections; bounce%+%+%) {$"
                          "^%s*[%w]+ [%w]+%[%d+%];$" "^%s*g%w+%[%d+%] = u%w+%[%d+%];$"
-                         "^%s*{ const int i = 0;$" "^%s*steps = 0;$" "^%s*steps = i %+ 1;$"]]
+                         "^%s*{ const int i = 0;$" "^%s*steps = 0;$" "^%s*steps = i %+ 1;$"
+                         ;; object numbers for the nearest object's normal (map-object.glsl)
+                         "^int gObject = %-1;" "^%s*gObject = %-1;$" " gObject = [%d i%+]+; }$"
+                         "^%s*if %(gObject == %d+%) " "^%s*if %(gObject < %d+%) {$" "^%s*if %(gObject < 0%) return map%(p%);$"
+                         "^%s*int i = gObject %- %d+;$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]
               (let [masked (-> line (: :gsub "%d+%.%d+" "F") (: :gsub "%[%d+%]" "[N]"))]

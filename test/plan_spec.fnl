@@ -38,7 +38,7 @@
           ;; The seed keeps the article's march: no bounds.
           (assert.are.equal 47 p.uniform-vectors)
           (assert.is_nil p.bounds)
-          (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections hit:fixed normals:one-sided out-of-steps:surface view:shaded" p.key))))
+          (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections hit:fixed normals:one-sided normals-of:scene out-of-steps:surface view:shaded" p.key))))
 
     (it "orders objects by kind, keeping file order within a kind"
       (fn []
@@ -73,7 +73,7 @@
           (assert.are.equal (+ 32 (* 2 2) 3 3 2) p.uniform-vectors)
           (assert.are.equal "sphere:2 large-sphere:1 box:1 plane:1 shadows reflections glow relaxed hit:relative normals:tetrahedron uber view:shaded" p.key))
         (let [p (assert (plan.scene->plan seed {:uber? true}))]
-          (assert.are.equal "sphere:2 large-sphere:1 box:3 plane:1 shadows reflections glow relaxed hit:fixed normals:one-sided uber out-of-steps:surface view:shaded"
+          (assert.are.equal "sphere:2 large-sphere:1 box:3 plane:1 shadows reflections glow relaxed hit:fixed normals:one-sided normals-of:scene uber out-of-steps:surface view:shaded"
                             p.key))))))
 
 (describe "plan: features and views"
@@ -103,7 +103,7 @@
             (assert.are.equal false p.shadows?)
             (assert.are.equal false p.reflections?)
             (assert.are.equal false p.glow?)
-            (assert.are.equal (.. "sphere:2 box:3 plane:1 hit:fixed" (if (= view :normals) " normals:one-sided" "") " out-of-steps:surface view:" view) p.key)))))
+            (assert.are.equal (.. "sphere:2 box:3 plane:1 hit:fixed" (if (= view :normals) " normals:one-sided normals-of:scene" "") " out-of-steps:surface view:" view) p.key)))))
 
     (it "knows its views and rejects others"
       (fn []

@@ -223,6 +223,25 @@
             (assert.is_true (<= 0 r.steps s.render.max-steps))
             (each [_ c (ipairs r.color)] (assert.is_true (<= 0 c 1)))))))
 
+    (it "takes the normal from the nearest object alone, unless :normals-of is :scene"
+      (fn []
+        ;; A point by the crease where a box stands on the floor, the floor within the
+        ;; finite differences' reach (but not the box's own bottom edge): the
+        ;; whole scene's gradient points between the face and the floor (the gallery's
+        ;; fireflies); the nearest object's is the box face's.
+        (let [source "{:render {:normals :central :hit-test :fixed :epsilon 1e-3 %s}
+                       :objects [{:kind :box :size [2 2 2] :pos [0 0 1]}
+                                 {:kind :plane :height 0}]}"
+              object (setup (string.format source ""))
+              whole (setup (string.format source ":normals-of :scene"))]
+          (assert.are.equal :object object.plan.normals-of)
+          (assert-vec [0 -1 0] [(object.T.normal 0.3 -1.0004 0.0012)] 1e-9 "object normal")
+          (let [[nx ny nz] [(whole.T.normal 0.3 -1.0004 0.0012)]]
+            (assert.is_true (> nz 0.1)  ; tilted toward the floor by over 6 degrees
+                            (string.format "whole-scene normal [%g %g %g]" nx ny nz)))
+          (assert.is_true (object.T.crease? 0.3 -1.0004 0.0012))
+          (assert.is_false (object.T.crease? 0.3 -1.0004 0.5)))))
+
     (it "maps steps to the heat colours"
       (fn []
         (assert.are.same [0 0 0.5] [(reference.heat-color 0)])

@@ -28,7 +28,7 @@
         (assert.are.same [0.901 0.976 1] s.environment)
         (assert.are.same {:max-steps 500 :epsilon 1e-4 :draw-distance 1000
                           :reflections 3 :shadows true :glow false :scale 1
-                          :hit-test :fixed :normals :one-sided :relaxation 1 :bounds false
+                          :hit-test :fixed :normals :one-sided :normals-of :scene :relaxation 1 :bounds false
                           :out-of-steps :surface :samples 1}
                          s.render)))
 
@@ -85,7 +85,7 @@
           ;; The defaults chosen from the accuracy report, not the article's.
           (assert.are.same {:max-steps 500 :epsilon 1e-4 :draw-distance 1000
                             :reflections 3 :shadows true :glow false :scale 1
-                            :hit-test :relative :normals :tetrahedron :relaxation 1.5
+                            :hit-test :relative :normals :tetrahedron :normals-of :object :relaxation 1.5
                             :bounds true :out-of-steps :background :samples 1}
                            s.render)
           (assert.are.same [] s.objects))))

@@ -8,7 +8,7 @@
 {:name "stress grazing horizon article"
  :camera {:pos [0 0 0.01] :yaw 90 :pitch 0.5 :fov 60}
  :light {:pos [-30 20 20]}
- :render {:draw-distance 100000 :hit-test :fixed :epsilon 1e-4 :normals :one-sided
+ :render {:draw-distance 100000 :hit-test :fixed :epsilon 1e-4 :normals :one-sided :normals-of :scene
           :relaxation 1 :max-steps 500 :bounds false
           :out-of-steps :surface}
  :objects [{:kind :plane :height 0 :color [0.8 0.8 0.75]}

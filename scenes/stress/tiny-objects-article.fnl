@@ -7,7 +7,7 @@
 {:name "stress tiny objects article"
  :camera {:pos [0 -0.001 0.0002] :yaw 90 :pitch 35 :fov 60}
  :light {:pos [-0.003 -0.002 0.004]}
- :render {:hit-test :fixed :epsilon 1e-4 :normals :one-sided :relaxation 1 :max-steps 500
+ :render {:hit-test :fixed :epsilon 1e-4 :normals :one-sided :normals-of :scene :relaxation 1 :max-steps 500
           :bounds false :out-of-steps :surface}
  :objects [{:kind :sphere :radius 0.0001 :pos [-0.00015 0 0.0001] :color [0.56 0.11 0.05]}
            {:kind :box :size [0.0001 0.0001 0.0001] :pos [0.00015 0 0.00005] :color [0.79 0.69 0.59]}

@@ -14,10 +14,10 @@ for (int bounce = 1; bounce <= uReflections; bounce++) {
         break;
     }
     p = origin + r * tr;
-    n = calcNormal(p);
-    dir = r;
     vec3 hitColor;
     mapColor(p, hitColor);
+    n = calcNormal(p);
+    dir = r;
     color = (color + hitColor * lightness(p, n) * 0.5) * 0.66;
     // @slot mirror-mix
     // @slot mirror-next

@@ -16,9 +16,9 @@ vec3 dir = rd;
         break;
     }
     vec3 p = origin + dir * t;
-    vec3 n = calcNormal(p);
     vec3 albedo;
-    mapColor(p, albedo);
+    mapColor(p, albedo);  // first: calcNormal may read the object it found
+    vec3 n = calcNormal(p);
     albedo = pow(albedo, vec3(2.2));
     float mirror = gMirror;
     float roughness = gMaterial.x;

@@ -5,9 +5,9 @@ if (t >= uDrawDist) {
     return background;
 }
 vec3 p = ro + rd * t;
-vec3 n = calcNormal(p);
 vec3 surface;
-mapColor(p, surface);
+mapColor(p, surface);  // first: calcNormal may read the object it found
+vec3 n = calcNormal(p);
 vec3 color = surface * lightness(p, n);
 // @slot reflections
 return color;

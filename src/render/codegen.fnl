@@ -70,8 +70,29 @@ and forget cached ones."
         (icollect [_ line (ipairs body)]
           (pick-values 1 (-> line
                              (: :gsub "^    " "")
-                             (: :gsub "%[i%]" (.. "[" index "]"))))))
+                             (: :gsub "%[i%]" (.. "[" index "]"))
+                             (: :gsub "(%d+) %+ @index" #(tostring (+ (tonumber $1) index)))))))
       [(.. "for (int i = 0; i < " (count-bound k plan) "; i++) {") body "}"]))
+
+(fn object-normals? [plan]
+  ;; Normals from the nearest object's own distance (see map-object.glsl).
+  (and (not= nil plan.normals) (= plan.normals-of :object)))
+
+(fn object-bases [plan]
+  ;; The number gObject gives each kind's first slot (kind -> number), and the tree
+  ;; objects' first: slots in shader order, as plan.objects.
+  (var next 0)
+  (let [bases (collect [_ k (ipairs plan.kinds)]
+                (let [b next] (set next (+ next k.capacity)) (values k.kind b)))]
+    (values bases next)))
+
+(fn object-id [k plan line]
+  ;; `line` with @id written as the object's number: the slot's own in a written-out
+  ;; block, `base + i` in a loop (see kind-loop).
+  (let [base (. (object-bases plan) k.kind)]
+    (if (and (not plan.uber?) (<= k.capacity max-unrolled))
+        (pick-values 1 (line:gsub "@id" (.. base " + @index")))
+        (pick-values 1 (line:gsub "@id" (if (= base 0) "i" (.. base " + i")))))))
 
 (fn modern-materials? [plan]
   (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8))))
@@ -91,6 +112,8 @@ and forget cached ones."
     (when (and plan.bounds (> plan.bounds.count 0))
       (table.insert lines (.. "uniform vec4 uBounds[" plan.bounds.count
                               "];  // bounding spheres of the finite objects (camera-relative)")))
+    (when (object-normals? plan)
+      (table.insert lines "int gObject = -1;  // the object mapColor found nearest last (-1: none)"))
     (let [modern? (modern-materials? plan)]
       (when (or plan.mirrors? modern?)
         (table.insert lines (.. "float gMirror = " (if modern? "0.0" "1.0")
@@ -178,11 +201,31 @@ src/render/bounds.fnl)."
   [(if (modern-materials? plan) "gMirror = 0.0; gMaterial = vec4(0.5, 0.0, 0.0, 0.0);"
        plan.mirrors? "gMirror = 1.0;"
        [])
+   (if (object-normals? plan) "gObject = -1;" [])
    (if (> (length plan.kinds) 0) "float di;" [])
    (icollect [_ k (ipairs plan.kinds)]
      (kind-loop k plan [(.. "    di = " k.entry.distance-glsl ";")
-                        (.. "    if (di < d) { d = di; color = " k.entry.color-glsl "; }")]))
-   (if plan.tape (emit-glsl.color-terms plan.tape plan.mirrors?) [])])
+                        (.. "    if (di < d) { d = di; color = " k.entry.color-glsl ";"
+                            (if (object-normals? plan) (object-id k plan " gObject = @id;") "")
+                            " }")]))
+   (if plan.tape
+       (emit-glsl.color-terms plan.tape plan.mirrors?
+                              (when (object-normals? plan) (select 2 (object-bases plan))))
+       [])])
+
+(fn object-terms [plan]
+  ;; mapObject's cases: a written-out slot by its number, a loop's slots by range
+  ;; (earlier numbers have returned already), each tree object by its number.
+  (let [(bases tree-base) (object-bases plan)]
+    [(icollect [_ k (ipairs plan.kinds)]
+       (if (and (not plan.uber?) (<= k.capacity max-unrolled))
+           (kind-loop k plan [(object-id k plan (.. "    if (gObject == @id) return "
+                                                    k.entry.distance-glsl ";"))])
+           [(.. "if (gObject < " (+ (. bases k.kind) k.capacity) ") {")
+            (.. "    int i = gObject" (if (= (. bases k.kind) 0) "" (.. " - " (. bases k.kind))) ";")
+            (.. "    return " k.entry.distance-glsl ";")
+            "}"]))
+     (if plan.tape (emit-glsl.object-terms plan.tape tree-base) [])]))
 
 ;;; Features
 
@@ -255,6 +298,10 @@ only when the plan has it."
                    :reflections (if plan.reflections?
                                     (fill "shaders/shading/reflect.glsl" (mirror-slots plan))
                                     [])}))
+    :normals (fill "shaders/views/normals.glsl"
+                   {:nearest (if (object-normals? plan)
+                                 ["vec3 surface;" "mapColor(ro + rd * t, surface);  // sets gObject"]
+                                 [])})
     view (fill (.. "shaders/views/" view ".glsl") {})))
 
 (fn out-of-steps-lines [plan]
@@ -268,7 +315,8 @@ only when the plan has it."
 (fn body-lines [plan]
   (let [view plan.view
         normals? (or (= view :shaded) (= view :normals))
-        colors? (or (= view :shaded) (= view :glow))
+        ;; The normals view reads mapColor's gObject when normals are the object's.
+        colors? (or (= view :shaded) (= view :glow) (and (= view :normals) (object-normals? plan)))
         sections [(fill "shaders/pipeline/prelude.glsl" {:feature-uniforms (feature-uniforms plan)})
                   (uniform-declarations plan)]]
     ;; Distance functions: the grouped kinds' (a descriptor's, or the large sphere's
@@ -291,6 +339,9 @@ only when the plan has it."
             cut (accumulate [at nil i line (ipairs lines) &until at]
                   (when (line:find "^// The same minimum") i))]
         (for [i (length lines) (- cut 1) -1] (table.remove lines i))))
+    (when (object-normals? plan)
+      (table.insert sections (fill "shaders/pipeline/map-object.glsl"
+                                   {:object-terms (object-terms plan)})))
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
     (when plan.bounds
       (table.insert sections (bounded-lines plan)))
@@ -302,7 +353,11 @@ only when the plan has it."
                                     :out-of-steps (out-of-steps-lines plan)})))
     (when normals?
       (table.insert sections (fill "shaders/pipeline/normal.glsl"
-                                   {:method (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl") {})})))
+                                   {:method (let [lines (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl") {})]
+                                              (if (object-normals? plan)
+                                                  (icollect [_ l (ipairs lines)]
+                                                    (pick-values 1 (l:gsub "%f[%w_]map%(" "mapObject(")))
+                                                  lines))})))
     (when (and (= view :shaded) (not plan.lighting))
       (table.insert sections
                     (fill "shaders/shading/light.glsl"

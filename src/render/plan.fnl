@@ -36,7 +36,8 @@
     (when plan.glow? (table.insert parts "glow"))
     (when plan.relaxed? (table.insert parts "relaxed"))
     (table.insert parts (.. "hit:" plan.hit-test))
-    (when plan.normals (table.insert parts (.. "normals:" plan.normals)))
+    (when plan.normals
+      (table.insert parts (.. "normals:" plan.normals (if (= plan.normals-of :scene) " normals-of:scene" ""))))
     (when plan.uber? (table.insert parts "uber"))
     (when (not plan.load-once?) (table.insert parts "uniforms-direct"))
     (when plan.lighting
@@ -117,6 +118,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :samples (or options.samples scene.render.samples 1)
               ;; Only the shaded and normals views compute normals.
               :normals (when (or shaded? (= view :normals)) scene.render.normals)
+              :normals-of (or scene.render.normals-of :object)
               : reflections}
         limit (or options.uniform-limit default-uniform-limit)]
     (assert (view? view) (.. "unknown view " (tostring view)))

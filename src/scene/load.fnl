@@ -41,6 +41,11 @@ scene never changes another's defaults."
             :samples {:type :samples :default 1}
             :hit-test {:type :hit-test :default :relative}
             :normals {:type :normal-method :default :tetrahedron}
+            ;; Whose distance the normal differentiates: the nearest object's alone
+            ;; (:object), or the whole scene's (:scene, the article's: across the
+            ;; crease where two objects meet it points between them, and a mirror
+            ;; bounce there lights a single pixel).
+            :normals-of {:type :normals-of :default :object}
             :relaxation {:type :relaxation :default 1.5}
             ;; Bounding spheres tested before marching, ground planes in closed form
             ;; (src/render/bounds.fnl): the same image, several times faster.
@@ -333,6 +338,7 @@ Long words get none: no name is that long, and the distance would cost time."
     :fog (check-number ctx path v "a number from 0 to 10" #(<= 0 $ 10))
     :model (check-choice ctx path v [:classic :modern])
     :out-of-steps (check-choice ctx path v [:background :surface])
+    :normals-of (check-choice ctx path v [:object :scene])
     :samples (check-integer ctx path v 1 4)
     :length0 (check-number ctx path v "a number from 0 to 1e7" #(<= 0 $ limits.world))
     _ (error (.. "unknown field type " (tostring kind)))))))

@@ -123,19 +123,30 @@ but those named in `?defined` (GLSL name -> true: already in the shader)."
      (icollect [_ l (ipairs (emit-code [] o.code false))] (.. "    " l))
      (.. "    d = min(d, " o.dout ");") "}"]))
 
-(fn color-terms [tape mirrors?]
+(fn color-terms [tape mirrors? ?first-id]
   "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
 its mirror amount in gMirror when `mirrors?`; with two-row materials, always, and
-the second row in gMaterial)."
+the second row in gMaterial). With `?first-id`, also its number in gObject: the
+tree objects are numbered from it in tape order (see object-terms)."
   (set mt (. material-types tape.material-size))
   (let [modern? (= tape.material-size 8)]
-    (icollect [_ o (ipairs tape.objects)]
+    (icollect [i o (ipairs tape.objects)]
       (let [row (if modern? (.. o.mout "[0]") o.mout)]
         [(object-comment o) "{"
          (icollect [_ l (ipairs (emit-code [] o.code true))] (.. "    " l))
          (.. "    if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
              (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
-             (if modern? (.. " gMaterial = " o.mout "[1];") "") " }")
+             (if modern? (.. " gMaterial = " o.mout "[1];") "")
+             (if ?first-id (.. " gObject = " (+ ?first-id i -1) ";") "") " }")
          "}"]))))
 
-{: functions : declarations : distance-terms : color-terms : text-lines}
+(fn object-terms [tape first-id]
+  "Lines for mapObject(): each tree object's distance alone, returned when gObject
+holds its number (numbered from `first-id` in tape order, as color-terms does)."
+  (icollect [i o (ipairs tape.objects)]
+    [(.. "if (gObject == " (+ first-id i -1) ") {  " (object-comment o))
+     (icollect [_ l (ipairs (emit-code [] o.code false))] (.. "    " l))
+     (.. "    return " o.dout ";")
+     "}"]))
+
+{: functions : declarations : distance-terms : color-terms : object-terms : text-lines}

@@ -39,4 +39,23 @@ above the brightest of its eight neighbours, or below the darkest, by more than
       (let [i (* 4 (+ x (* y width)))]
         (values (. pixels i) (. pixels (+ i 1)) (. pixels (+ i 2)))))))
 
-{: find : rgba-reader : luma}
+(fn unsupported [width height read read-fine threshold flat]
+  "Fireflies of an image (read) judged against a supersampled render of the same view
+(read-fine): isolated pixels (see `find`) whose luma is also more than `threshold`
+off the supersampled pixel's, where the supersampled image is flat around it (its
+3 x 3 luma range under `flat`): the true image is smooth there, so no sub-pixel
+feature explains the pixel. Returns {:x :y :by :off} like `find`'s."
+  (let [lf (fn [x y] (luma (read-fine x y)))]
+    (icollect [_ p (ipairs (find width height read threshold))]
+      (let [off (math.abs (- (luma (read p.x p.y)) (lf p.x p.y)))]
+        (var lo math.huge)
+        (var hi (- math.huge))
+        (for [dy -1 1]
+          (for [dx -1 1]
+            (let [v (lf (+ p.x dx) (+ p.y dy))]
+              (set lo (math.min lo v))
+              (set hi (math.max hi v)))))
+        (when (and (> off threshold) (< (- hi lo) flat))
+          {:x p.x :y p.y :by p.by : off})))))
+
+{: find : unsupported : rgba-reader : luma}

@@ -29,7 +29,7 @@
 (0..1) of the ray from (ox oy oz) along (dx dy dz) whose primary march gave `t`, for
 `scene` lowered to `plan` (plan.lighting set), using tracer `T` (see
 reference.tracer). Also returns the path: the plan index of each surface met, -1 for
-the sky."
+the sky, and the surface points met ([x y z] each)."
   (let [L scene.lighting
         features plan.lighting
         draw scene.render.draw-distance
@@ -165,6 +165,7 @@ the sky."
       (var t t-primary)
       (var done? false)
       (local path [])
+      (local points [])
       (for [bounce 0 reflections &until done?]
         (when (> bounce 0) (set t (march qx qy qz vx vy vz)))
         (if (>= t draw)
@@ -191,6 +192,7 @@ the sky."
                   sb (+ (* keep (+ lb (* ab (mix hb zb sky-w) amb))) (* ab emission))
                   through (if features.fog? (fog-transmittance qz vz t) 1)]
               (table.insert path (or i 0))
+              (table.insert points [px py pz])
               (when features.fog?
                 (let [(gr gg gb) (fog-color vx vy vz)
                       f (- 1 through)]
@@ -208,6 +210,6 @@ the sky."
                     (set (vx vy vz) (values (- vx (* k nx)) (- vy (* k ny)) (- vz (* k nz)))))))))
       (let [e L.exposure
             display (fn [c] (math.pow (- 1 (exp (- (* c e)))) (/ 1 2.2)))]
-        (values (display rr) (display rg) (display rb) path)))))
+        (values (display rr) (display rg) (display rb) path points)))))
 
 {: shader}

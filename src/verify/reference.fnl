@@ -36,10 +36,13 @@ Returns a table of closures
   :map        (fn [x y z]) -> distance (never above the draw distance)
   :map-color  (fn [x y z]) -> distance, index into plan.objects or nil
   :march      (fn [ox oy oz dx dy dz]) -> t, steps
-  :normal     (fn [x y z]) -> nx ny nz (one-sided differences)
+  :normal     (fn [x y z]) -> nx ny nz (plan.normals differences of the nearest
+               object's distance, or with :normals-of :scene the whole scene's)
   :lightness  (fn [px py pz nx ny nz]) -> lambert, shadowed?
   :trace      (fn [ox oy oz dx dy dz]) -> {:color [r g b] :hit? :distance :steps
-               :object (scene index or nil) :shadowed? :lightness :path}
+               :object (scene index or nil) :shadowed? :lightness :path :points}
+               (shaded view: :points, the surface points along the path)
+  :crease?    (fn [x y z]) -> whether two objects come within twice normal-delta
 Positions are in world coordinates."
   (let [options (or ?options {})
         [cx cy cz] (or options.cam-pos [0 0 0])
@@ -194,8 +197,26 @@ Positions are in world coordinates."
       (let [len (sqrt (+ (* x x) (* y y) (* z z)))]
         (if (> len 0) (values (/ x len) (/ y len) (/ z len)) (values 0 0 1))))
 
+    (fn object-map [i]
+      ;; The distance function of plan.objects[i] alone.
+      (if (<= i n) (let [f (. fns i) o (. objs i)] (fn [x y z] (f o x y z)))
+          (. tree-distance (- i n))))
+
+    (fn crease? [x y z]
+      ;; Two objects meet within the normal's finite-difference reach of the point:
+      ;; a whole-scene normal there points between their surfaces.
+      (let [reach (* 2 (normal-delta x y z))]
+        (var near 0)
+        (for [i 1 (+ n m)]
+          (when (< ((object-map i) x y z) reach) (set near (+ near 1))))
+        (>= near 2)))
+
     (fn normal [x y z]
-      (let [h (normal-delta x y z)]
+      (let [h (normal-delta x y z)
+            ;; The nearest object's own distance (:normals-of :object), as the
+            ;; shader's mapObject; the whole scene's with :scene or when none is near.
+            map (if (= plan.normals-of :scene) map
+                    (let [(_ i) (map-color x y z)] (if i (object-map i) map)))]
         (case normal-method
           :one-sided (let [d (map x y z)]
                        (safe-normalize (- d (map (- x h) y z))
@@ -239,9 +260,10 @@ Positions are in world coordinates."
             result {:hit? hit? :distance t :steps steps :path []}]
         (var (r g b) (values 0 0 0))
         (if (and shaded? modern-shade)
-            (let [(mr mg mb path) (modern-shade ox oy oz dx dy dz t)]
+            (let [(mr mg mb path points) (modern-shade ox oy oz dx dy dz t)]
               (set (r g b) (values mr mg mb))
               (set result.path path)
+              (set result.points points)
               (when hit?
                 (let [(_ i) (map-color (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
                   (set result.object (object-index i)))))
@@ -261,6 +283,7 @@ Positions are in world coordinates."
                   (_ i) (map-color px py pz)]
               (set result.object (object-index i))
               (table.insert result.path (or (object-index i) 0))
+              (set result.points [[px py pz]])
               (case view
                 :glow (let [(_ _ cr cg cb) (map-color px py pz)]
                         (set (r g b) (values cr cg cb)))
@@ -307,6 +330,7 @@ Positions are in world coordinates."
                                 (_ j hr hg hb hit-mirror) (map-color hx hy hz)
                                 hl (* (lightness hx hy hz hnx hny hnz) 0.5)]
                             (table.insert result.path (or (object-index j) 0))
+                            (table.insert result.points [hx hy hz])
                             (set (qx qy qz) (values hx hy hz))
                             (set (mx my mz) (values hnx hny hnz))
                             (set (vx vy vz) (values rx ry rz))
@@ -319,7 +343,7 @@ Positions are in world coordinates."
         (set result.color [(clamp01 r) (clamp01 g) (clamp01 b)])
         result))
 
-    (local closures {: map : map-color : march : normal : lightness : trace : normal-delta
+    (local closures {: map : map-color : march : normal : lightness : trace : normal-delta : crease?
                      : threshold : distance-from-camera})
     (when (and shaded? plan.lighting)
       (set modern-shade (lighting.shader closures scene plan)))

@@ -1,0 +1,9 @@
+// The distance to one object alone: the one the last mapColor call found nearest
+// (gObject). Normals differentiate it, so a point where two objects meet gets the
+// normal of the surface it lies on, not one pointing between them (with the whole
+// scene's distance, a mirror bounce from such a crease lights a single pixel).
+float mapObject(vec3 p) {
+    if (gObject < 0) return map(p);
+    // @slot object-terms
+    return map(p);
+}
