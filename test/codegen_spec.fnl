@@ -262,6 +262,12 @@
               (table.insert out (codegen.shader (assert (plan.scene->plan seed {: view : uber?}))
                                                 target)))))
         (table.insert out (shader-of "{:objects [{:kind :sphere}] :render {:glow true}}"))
+        ;; The modern model with every feature, trees and adaptive supersampling.
+        (table.insert out (shader-of "{:lighting {:ao 1 :fog 0.1 :lights [{:kind :sun :softness 0.1}]}
+                                      :render {:samples 3 :adaptive true}
+                                      :objects [{:kind :union :roughness 0.3
+                                                 :children [{:kind :box} {:kind :sphere :pos [1 0 0]}]}
+                                                {:kind :plane}]}"))
         out))
 
     (it "writes no exponent or bare-dot float literals"
@@ -285,7 +291,11 @@
                          ;; object numbers for the nearest object's normal (map-object.glsl)
                          "^int gObject = %-1;" "^%s*gObject = %-1;$" " gObject = [%d i%+]+; }$"
                          "^%s*if %(gObject == %d+%) " "^%s*if %(gObject < %d+%) {$" "^%s*if %(gObject < 0%) return map%(p%);$"
-                         "^%s*int i = gObject %- %d+;$"]]
+                         "^%s*int i = gObject %- %d+;$"
+                         ;; compile-time counts: lights, samples, shadow steps
+                         "^const int k%w+ = %d+;"
+                         "^%s*for %(int %w+ = %d+; %w+ <=? %w+; %w+%+%+%) {$"
+                         "^%s*if %(bounce > 0%) {$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]
               (let [masked (-> line (: :gsub "%d+%.%d+" "F") (: :gsub "%[%d+%]" "[N]"))]

@@ -177,7 +177,7 @@
   [["ambient occlusion" "occ = occlusion(p, n);" ""]
    ["fog" "through = fogTransmittance(origin, dir, t);" ""]
    ["specular" "c += radiance * mix(vec3(1.0), albedo, mirror)" "c += 0.0 * mix(vec3(1.0), albedo, mirror)"]
-   ["soft shadows" "seen = min(seen, closest / (softness * max(t - y, 1e-6)));" ""]
+   ["soft shadows" "seen = min(seen, closest / (softness * max(t - y, 0.000001)));" ""]
    ["Fresnel reflection" "radiance += weight * sky(dir);" "radiance += weight * uSkyHorizon;"]
    ["emission" "+ albedo * gMaterial.y;" ";"]
    ["point light falloff" "falloff = 1.0 / (1.0 + r * r);" ""]])
@@ -238,3 +238,36 @@
                                                     {:source #(pick-values 1 ($:gsub "return sum / float%(kSamples %* kSamples%);"
                                                                                      "return clamp(renderSample(pixel), 0.0, 1.0);"))}))]
                   (assert.is_false (passes? st budget) (report-line "one sample" st))))))))))
+
+(describe "anti-aliasing: adaptive"
+  (fn []
+    (it "is compiled in only with :adaptive and :samples above 1"
+      (fn []
+        (assert.is_nil (: (shader-of (.. "{:render {:adaptive true} " objects "}")) :find "needsSamples" 1 true))
+        (let [text (shader-of (.. "{:render {:samples 2 :adaptive true} " objects "}"))]
+          (assert.is_truthy (text:find "gNeedsSamples = needsSamples(rd, t, steps);" 1 true))
+          (assert.is_truthy (text:find "const int kEdgeSteps = 24;" 1 true)))
+        (assert.is_nil (: (shader-of (.. "{:render {:samples 2} " objects "}")) :find "needsSamples" 1 true))))
+
+    (let [(ctx why) (headless.context)]
+      (if (not ctx)
+          (pending (.. "OSMesa is not available: " (tostring why)))
+          (let [prepared (prepare "scenes/gallery.fnl" {:render {:samples 2 :adaptive true}})
+                ;; As full supersampling's; an edge test that flips between float and
+                ;; double on a pixel changes it by up to the edge's contrast, which the
+                ;; over-count allows twice.
+                budget {:over 2 :max 40}]
+            (it "finds the same edges on the GPU and in the reference (the gallery, 2 x 2)"
+              (fn []
+                (let [st (compare-image prepared (gpu-render ctx prepared))
+                      edges (accumulate [n 0 _ r (ipairs prepared.expected)] (if r.edge? (+ n 1) n))]
+                  (print (.. (report-line "gallery adaptive" st) "  edge pixels " edges))
+                  (assert.is_true (> edges 0) "no sampled pixel is an edge")
+                  (assert.is_true (passes? st budget) (describe-failures "gallery adaptive" st budget)))))
+            (it "fails when the GLSL finds no edge"
+              (fn []
+                (let [st (compare-image prepared
+                                        (gpu-render ctx prepared
+                                                    {:source #(pick-values 1 ($:gsub "if %(!gNeedsSamples%) {"
+                                                                                     "if (true) {"))}))]
+                  (assert.is_false (passes? st budget) (report-line "no edges" st))))))))))

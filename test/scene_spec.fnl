@@ -29,7 +29,7 @@
         (assert.are.same {:max-steps 500 :epsilon 1e-4 :draw-distance 1000
                           :reflections 3 :shadows true :glow false :scale 1
                           :hit-test :fixed :normals :one-sided :normals-of :scene :relaxation 1 :bounds false
-                          :out-of-steps :surface :samples 1}
+                          :out-of-steps :surface :samples 1 :adaptive false}
                          s.render)))
 
     (it "has three boxes, two spheres and a plane, in file order"
@@ -86,7 +86,7 @@
           (assert.are.same {:max-steps 500 :epsilon 1e-4 :draw-distance 1000
                             :reflections 3 :shadows true :glow false :scale 1
                             :hit-test :relative :normals :tetrahedron :normals-of :object :relaxation 1.5
-                            :bounds true :out-of-steps :background :samples 1}
+                            :bounds true :out-of-steps :background :samples 1 :adaptive false}
                            s.render)
           (assert.are.same [] s.objects))))
 

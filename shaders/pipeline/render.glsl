@@ -11,5 +11,6 @@ vec3 render(vec2 pixel) {
     vec3 rd = primaryRay(pixel);
     int steps;
     float t = raymarch(ro, rd, steps);
+    // @slot adaptive
     // @slot view
 }

@@ -345,8 +345,10 @@ only when the plan has it."
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
     (when plan.bounds
       (table.insert sections (bounded-lines plan)))
-    ;; Only the glow and heat views read the step count; elsewhere it is not kept.
-    (let [count-step (if (or plan.glow? (= view :glow) (= view :heat)) ["steps = i + 1;"] [])]
+    ;; Only the glow and heat views and adaptive supersampling read the step count;
+    ;; elsewhere it is not kept.
+    (let [count-step (if (or plan.glow? plan.adaptive? (= view :glow) (= view :heat))
+                         ["steps = i + 1;"] [])]
       (table.insert sections (fill (.. "shaders/pipeline/march" (if plan.relaxed? "-relaxed" "")
                                        (if plan.bounds "-bounded" "") ".glsl")
                                    {:count-step count-step
@@ -370,15 +372,38 @@ only when the plan has it."
                                        [])})))
     (when (and (= view :shaded) plan.lighting)
       (each [_ s (ipairs (modern-lines plan))] (table.insert sections s)))
-    (table.insert sections (fill "shaders/pipeline/render.glsl" {:view (view-lines plan)}))
+    (when plan.adaptive?
+      ;; The edge tests, before render() calls them; the averaging render() after.
+      (let [tests plan.edge-tests
+            constants [(.. "const int kSamples = " plan.samples ";")
+                       (.. "const int kEdgeSteps = " tests.edge-steps
+                           ";      // a centre ray this long grazed something")
+                       (string.format "const float kGrazing = %.2f;    // cosine of the view to the normal"
+                                      tests.grazing)
+                       (string.format "const float kEdgeTurn = %.6f;  // 1 - cosine: a turn this large is an edge"
+                                      tests.edge-turn)
+                       (string.format "const float kLimbTurn = %.6f;  // and this large where the view grazes"
+                                      tests.limb-turn)]]
+        (table.insert sections
+                      (icollect [_ line (ipairs (. (parts "shaders/pipeline/adaptive.glsl") :tests))]
+                        (if (= line "// @slot constants") constants line)))))
+    (table.insert sections (fill "shaders/pipeline/render.glsl"
+                                 {:view (view-lines plan)
+                                  :adaptive (if plan.adaptive?
+                                                ["if (gCentre) {"
+                                                 "    gNeedsSamples = needsSamples(rd, t, steps);"
+                                                 "}"]
+                                                [])}))
     (when (> plan.samples 1)
       ;; render() becomes one sample; the entry point's render() averages N x N.
       (let [lines (. sections (length sections))]
         (each [i line (ipairs lines)]
           (when (= line "vec3 render(vec2 pixel) {")
             (tset lines i "vec3 renderSample(vec2 pixel) {"))))
-      (table.insert sections (fill "shaders/pipeline/supersample.glsl"
-                                   {:grid [(.. "const int kSamples = " plan.samples ";")]})))
+      (table.insert sections (if plan.adaptive?
+                                 (. (parts "shaders/pipeline/adaptive.glsl") :render)
+                                 (fill "shaders/pipeline/supersample.glsl"
+                                       {:grid [(.. "const int kSamples = " plan.samples ";")]}))))
     sections))
 
 (local targets

@@ -39,6 +39,9 @@ scene never changes another's defaults."
             :scale {:type :scale :default 1}
             ;; Supersampling: N x N rays per pixel on a regular grid, averaged.
             :samples {:type :samples :default 1}
+            ;; With :samples N > 1: the N x N rays only in pixels whose centre ray
+            ;; finds an edge (shaders/pipeline/adaptive.glsl); the others take one.
+            :adaptive {:type :boolean :default false}
             :hit-test {:type :hit-test :default :relative}
             :normals {:type :normal-method :default :tetrahedron}
             ;; Whose distance the normal differentiates: the nearest object's alone

@@ -62,7 +62,7 @@
                                        ");"))))
     :cells (let [c (.. "c" (ins.dout:sub 2))
                  body []]
-             (table.insert out (.. "float " ins.dout " = 1e30;"))
+             (table.insert out (.. "float " ins.dout " = 10000000000.0;"))
              (when materials? (table.insert out (.. mt.type " " ins.mout " = " mt.zero ";")))
              (table.insert out (.. "for (int " c " = 0; " c " < " ins.count "; " c "++) {"))
              ;; The cell index is the last argument.

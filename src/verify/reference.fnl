@@ -343,7 +343,27 @@ Positions are in world coordinates."
         (set result.color [(clamp01 r) (clamp01 g) (clamp01 b)])
         result))
 
+    (fn needs-samples? [ox oy oz dx dy dz t steps]
+      ;; Adaptive supersampling's edge tests on a centre ray that went t with `steps`
+      ;; (see shaders/pipeline/adaptive.glsl and plan.edge-tests).
+      (let [tests plan.edge-tests]
+        (if (>= steps tests.edge-steps) true
+            (>= t draw) false
+            (let [px (+ ox (* dx t)) py (+ oy (* dy t)) pz (+ oz (* dz t))
+                  (nx ny nz) (normal px py pz)
+                  e (* t pixel-angle)
+                  qx (+ px (* dx e)) qy (+ py (* dy e)) qz (+ pz (* dz e))
+                  h (* 0.5 e)
+                  (ax ay az) (safe-normalize (- (map (+ qx h) qy qz) (map (- qx h) qy qz))
+                                             (- (map qx (+ qy h) qz) (map qx (- qy h) qz))
+                                             (- (map qx qy (+ qz h)) (map qx qy (- qz h))))
+                  turn (- 1 (+ (* nx ax) (* ny ay) (* nz az)))
+                  facing (- (+ (* nx dx) (* ny dy) (* nz dz)))]
+              (or (> turn tests.edge-turn)
+                  (and (< facing tests.grazing) (> turn tests.limb-turn)))))))
+
     (local closures {: map : map-color : march : normal : lightness : trace : normal-delta : crease?
+                     : needs-samples?
                      : threshold : distance-from-camera})
     (when (and shaded? plan.lighting)
       (set modern-shade (lighting.shader closures scene plan)))
@@ -372,15 +392,21 @@ Returns a list of {:x :y :color [r g b] (0..1, clamped) :hit? :distance t :steps
 order of `pixels`. :path lists the scene index of the object hit by the primary ray
 and each bounce (-1: the bounce escaped). With supersampling (plan.samples N > 1) the
 colour is the mean of N x N rays on a grid inside the pixel, each clamped, as the
-shader's; the other fields are the first ray's."
+shader's; the other fields are the first ray's. Adaptive (plan.adaptive?): the centre
+ray's result, unless it finds an edge (then :edge? is true and the colour is the
+grid's mean)."
   (let [T (tracer scene plan {:cam-pos cam.pos
                              :pixel-angle (/ 1 (* (camera.projection-distance cam) height))})
         ray (ray-setup cam width height)
         [ox oy oz] cam.pos
         n (or plan.samples 1)]
     (icollect [_ [x y] (ipairs pixels)]
-      (let [result (if (= n 1)
-                       (T.trace ox oy oz (ray x y))
+      (let [centre (when (or (= n 1) plan.adaptive?) (T.trace ox oy oz (ray x y)))
+            edge? (and plan.adaptive?
+                       (let [(dx dy dz) (ray x y)]
+                         (T.needs-samples? ox oy oz dx dy dz centre.distance centre.steps)))
+            result (if (or (= n 1) (and plan.adaptive? (not edge?)))
+                       centre
                        (let [sum [0 0 0]]
                          (var first nil)
                          (for [j 0 (- n 1)]
@@ -392,6 +418,7 @@ shader's; the other fields are the first ray's."
                          first))]
         (set result.x x)
         (set result.y y)
+        (when plan.adaptive? (set result.edge? edge?))
         result))))
 
 {: tracer : ray-setup : render-pixels : heat-color}

@@ -1,3 +1,3 @@
-;; expect: test/corpus/type-render-list.fnl:2: render: must be a table like {:bounds ...}, got a list of 3 items
+;; expect: test/corpus/type-render-list.fnl:2: render: must be a table like {:adaptive ...}, got a list of 3 items
 {:render [1 2 3]
  :objects []}

@@ -12,7 +12,7 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
     float t0 = length(o);
     float seen = 1.0;
     float t = 0.0;
-    float hPrev = 1e10;
+    float hPrev = 10000000000.0;
     for (int i = 0; i < kShadowSteps; i++) {
         float h = map(o + l * t);
         if (h < hitThreshold(t0 + t)) {
@@ -20,7 +20,7 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
         }
         float y = h * h / (2.0 * hPrev);
         float closest = sqrt(max(h * h - y * y, 0.0));
-        seen = min(seen, closest / (softness * max(t - y, 1e-6)));
+        seen = min(seen, closest / (softness * max(t - y, 0.000001)));
         hPrev = h;
         t += h;
         if (t >= reach) {
