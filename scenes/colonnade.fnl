@@ -7,6 +7,12 @@
  :camera {:pos [-2 -5.5 2.2] :yaw 35 :pitch 3 :fov 65}
  :light {:pos [-20 -30 40]}
  :environment [0.98 0.85 0.65]
+ ;; The modern look (see README, Lighting); m in the player shows the classic model.
+ :lighting {:lights [{:kind :sun :direction [-0.45 -0.6 0.55] :color [1 0.82 0.6]
+                      :intensity 3.2 :softness 0.04}]
+            :sky-zenith [0.35 0.5 0.8] :sky-horizon [0.98 0.85 0.65]
+            :ambient 0.45 :ao 0.8 :ao-radius 0.5
+            :fog 0.015 :fog-color [0.98 0.85 0.65] :exposure 1.1}
  :render {:reflections 1 :draw-distance 300}
  :objects
  [{:kind :plane :height -0.05 :color [0.3 0.28 0.26]}

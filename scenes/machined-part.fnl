@@ -13,6 +13,11 @@
  :camera {:pos [6.5 -7 5] :yaw 133 :pitch 28 :fov 55}
  :light {:pos [10 -14 22]}
  :environment [0.78 0.82 0.88]
+ ;; The modern look (see README, Lighting); m in the player shows the classic model.
+ :lighting {:lights [{:kind :sun :direction [0.4 -0.55 0.75] :intensity 3 :softness 0.03}
+                     {:kind :point :pos [-2 -4 3] :color [1 0.8 0.6] :intensity 1.5 :range 4}]
+            :sky-zenith [0.45 0.55 0.7] :sky-horizon [0.8 0.82 0.86]
+            :ambient 0.55 :ao 0.8 :ao-radius 0.3 :exposure 1.1}
  :render {:reflections 1 :draw-distance 200}
  :objects
  [{:kind :plane :height 0 :color [0.42 0.34 0.27]}
