@@ -43,12 +43,5 @@ vec3 render(vec2 pixel) {
     if (!gNeedsSamples) {
         return centre;
     }
-    vec3 sum = vec3(0.0);
-    for (int j = 0; j < kSamples; j++) {
-        for (int i = 0; i < kSamples; i++) {
-            vec2 offset = (vec2(float(i), float(j)) + 0.5) / float(kSamples) - 0.5;
-            sum += clamp(renderSample(pixel + offset), 0.0, 1.0);
-        }
-    }
-    return sum / float(kSamples * kSamples);
+    return gridSamples(pixel);
 }

@@ -1,8 +1,8 @@
+// @part grid
 // Supersampling: kSamples x kSamples rays per pixel on a regular grid inside it, each
 // clamped to the displayable range (as one sample's colour is when it is stored) and
 // averaged.
-// @slot grid
-vec3 render(vec2 pixel) {
+vec3 gridSamples(vec2 pixel) {
     vec3 sum = vec3(0.0);
     for (int j = 0; j < kSamples; j++) {
         for (int i = 0; i < kSamples; i++) {
@@ -11,4 +11,10 @@ vec3 render(vec2 pixel) {
         }
     }
     return sum / float(kSamples * kSamples);
+}
+
+// @part render
+// Every pixel gets the grid.
+vec3 render(vec2 pixel) {
+    return gridSamples(pixel);
 }

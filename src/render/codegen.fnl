@@ -254,6 +254,9 @@ comment lines before the first part are the chunk's own documentation)."
       (let [name (line:match "^// @part ([%w%-]+)%s*$")]
         (if name (do (set current []) (tset out name current))
             current (table.insert current line))))
+    ;; A blank line that only separates one part from the next is not the part's.
+    (each [_ lines (pairs out)]
+      (while (= (. lines (length lines)) "") (table.remove lines)))
     out))
 
 (fn mirror-slots [plan]
@@ -400,10 +403,13 @@ only when the plan has it."
         (each [i line (ipairs lines)]
           (when (= line "vec3 render(vec2 pixel) {")
             (tset lines i "vec3 renderSample(vec2 pixel) {"))))
-      (table.insert sections (if plan.adaptive?
-                                 (. (parts "shaders/pipeline/adaptive.glsl") :render)
-                                 (fill "shaders/pipeline/supersample.glsl"
-                                       {:grid [(.. "const int kSamples = " plan.samples ";")]}))))
+      (let [grid (parts "shaders/pipeline/supersample.glsl")]
+        (table.insert sections
+                      [(if plan.adaptive? [] [(.. "const int kSamples = " plan.samples ";")])
+                       grid.grid
+                       (if plan.adaptive?
+                           (. (parts "shaders/pipeline/adaptive.glsl") :render)
+                           grid.render)])))
     sections))
 
 (local targets
