@@ -291,7 +291,7 @@
                          ;; object numbers for the nearest object's normal (map-object.glsl)
                          "^int gObject = %-1;" "^%s*gObject = %-1;$" " gObject = [%d i%+]+; }$"
                          "^%s*if %(gObject == %d+%) " "^%s*if %(gObject < %d+%) {$" "^%s*if %(gObject < 0%) return map%(p%);$"
-                         "^%s*int i = gObject %- %d+;$"
+                         "^%s*int i = gObject %- %d+;$" "^%s*if %(gObject != [%d i%+]+%) "
                          ;; compile-time counts: lights, samples, shadow steps
                          "^const int k%w+ = %d+;"
                          "^%s*for %(int %w+ = %d+; %w+ <=? %w+; %w+%+%+%) {$"

@@ -62,11 +62,12 @@
 (local threshold 40)
 (local flat 20)
 
-(fn prepare [file render]
+(fn prepare [file render ?plan-options]
   (let [(s err) (scene.load-file file)]
     (assert s err)
     (each [k v (pairs render)] (tset s.render k v))
-    (let [(p perr) (plan.scene->plan s {:view :shaded})]
+    (let [(p perr) (plan.scene->plan s (doto (collect [k v (pairs (or ?plan-options {}))] k v)
+                                         (tset :view :shaded)))]
       (assert p perr)
       {:scene s :plan p :cam (camera.from-scene s)})))
 
@@ -84,13 +85,14 @@
 (fn reader [image]
   (fn [x y] (headless.pixel image x y)))
 
-(fn crease-fireflies [ctx file ?render]
+(fn crease-fireflies [ctx file ?render ?plan-options]
   "Fireflies of `file` at 1 sample per pixel (see `threshold`) whose path, traced by
 the CPU reference with the same settings, meets a surface where two objects come
 within the normal's reach: the crease fireflies of issue 10. Also the count of all."
   (let [render-fields (or ?render {})
-        one (prepare file render-fields)
-        fine (prepare file (doto (collect [k v (pairs render-fields)] k v) (tset :samples 4)))
+        one (prepare file render-fields ?plan-options)
+        fine (prepare file (doto (collect [k v (pairs render-fields)] k v) (tset :samples 4))
+                      ?plan-options)
         [width height] size
         found (fireflies.unsupported width height (reader (render ctx one))
                                      (reader (render ctx fine)) threshold flat)
@@ -116,6 +118,14 @@ within the normal's reach: the crease fireflies of issue 10. Also the count of a
       (if (not ctx)
           (pending (.. "OSMesa is not available: " (tostring why)))
           (do
+            (it "finds no crease firefly in scenes/machined-part.fnl at 640x360 (classic model)"
+              (fn []
+                ;; The wire guard and the bracket stand on the bench: their own bottom
+                ;; edges lie in the crease (21 fireflies there before normal-crease.glsl).
+                (let [(found all) (crease-fireflies ctx "scenes/machined-part.fnl" {} {:model :classic})]
+                  (print (string.format "fireflies machined part (classic): %d unsupported by the 4x4 render, %d at a crease"
+                                        all (length found)))
+                  (assert.are.equal 0 (length found) (listing found)))))
             (it "finds no crease firefly in scenes/gallery.fnl at 640x360"
               (fn []
                 ;; The case of issue 10: mirror bounces from the stacked boxes' edges.

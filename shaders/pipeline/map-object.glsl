@@ -7,3 +7,10 @@ float mapObject(vec3 p) {
     // @slot object-terms
     return map(p);
 }
+
+// The distance to every object but that one: what a point on it has beside it.
+float mapOthers(vec3 p) {
+    float d = uDrawDist;
+    // @slot others-terms
+    return d;
+}

@@ -213,6 +213,14 @@ src/render/bounds.fnl)."
                               (when (object-normals? plan) (select 2 (object-bases plan))))
        [])])
 
+(fn others-terms [plan]
+  ;; mapOthers' terms: map's, each but gObject's.
+  (let [(_ tree-base) (object-bases plan)]
+    [(icollect [_ k (ipairs plan.kinds)]
+       (kind-loop k plan [(object-id k plan (.. "    if (gObject != @id) d = min(d, "
+                                                k.entry.distance-glsl ");"))]))
+     (if plan.tape (emit-glsl.distance-terms plan.tape tree-base) [])]))
+
 (fn object-terms [plan]
   ;; mapObject's cases: a written-out slot by its number, a loop's slots by range
   ;; (earlier numbers have returned already), each tree object by its number.
@@ -344,7 +352,8 @@ only when the plan has it."
         (for [i (length lines) (- cut 1) -1] (table.remove lines i))))
     (when (object-normals? plan)
       (table.insert sections (fill "shaders/pipeline/map-object.glsl"
-                                   {:object-terms (object-terms plan)})))
+                                   {:object-terms (object-terms plan)
+                                    :others-terms (others-terms plan)})))
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
     (when plan.bounds
       (table.insert sections (bounded-lines plan)))
@@ -361,8 +370,12 @@ only when the plan has it."
                                    {:method (let [lines (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl") {})]
                                               (if (object-normals? plan)
                                                   (icollect [_ l (ipairs lines)]
-                                                    (pick-values 1 (l:gsub "%f[%w_]map%(" "mapObject(")))
-                                                  lines))})))
+                                                    (pick-values 1 (-> l
+                                                                       (: :gsub "%f[%w_]map%(" "mapObject(")
+                                                                       (: :gsub "^vec3 calcNormal%(" "vec3 objectNormal("))))
+                                                  lines))}))
+      (when (object-normals? plan)
+        (table.insert sections (fill "shaders/pipeline/normal-crease.glsl" {}))))
     (when (and (= view :shaded) (not plan.lighting))
       (table.insert sections
                     (fill "shaders/shading/light.glsl"

@@ -116,10 +116,12 @@ but those named in `?defined` (GLSL name -> true: already in the shader)."
 (fn object-comment [o]
   (.. "// " o.info.path ": " o.info.kind))
 
-(fn distance-terms [tape]
-  "Lines for map(): each tree object's distance, folded into d."
-  (icollect [_ o (ipairs tape.objects)]
-    [(object-comment o) "{"
+(fn distance-terms [tape ?first-id]
+  "Lines for map(): each tree object's distance, folded into d. With `?first-id`, for
+mapOthers(): each but the one gObject numbers (see color-terms)."
+  (icollect [i o (ipairs tape.objects)]
+    [(object-comment o)
+     (if ?first-id (.. "if (gObject != " (+ ?first-id i -1) ") {") "{")
      (icollect [_ l (ipairs (emit-code [] o.code false))] (.. "    " l))
      (.. "    d = min(d, " o.dout ");") "}"]))
 

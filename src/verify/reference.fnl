@@ -211,13 +211,17 @@ Positions are in world coordinates."
           (when (< ((object-map i) x y z) reach) (set near (+ near 1))))
         (>= near 2)))
 
-    (fn normal [x y z]
-      (let [h (normal-delta x y z)
-            ;; The nearest object's own distance (:normals-of :object), as the
-            ;; shader's mapObject; the whole scene's with :scene or when none is near.
-            map (if (= plan.normals-of :scene) map
-                    (let [(_ i) (map-color x y z)] (if i (object-map i) map)))]
-        (case normal-method
+    (fn others-map [i]
+      ;; The distance to every object but plan.objects[i] (mapOthers).
+      (fn [x y z]
+        (var d draw)
+        (for [j 1 (+ n m)]
+          (when (not= j i)
+            (let [dj ((object-map j) x y z)] (when (< dj d) (set d dj)))))
+        d))
+
+    (fn differences [map x y z h]
+      (case normal-method
           :one-sided (let [d (map x y z)]
                        (safe-normalize (- d (map (- x h) y z))
                                        (- d (map x (- y h) z))
@@ -231,7 +235,25 @@ Positions are in world coordinates."
                              e (map (+ x h) (+ y h) (+ z h))]  ; k.xxx
                          (safe-normalize (+ a (- b) (- c) e)
                                          (+ (- a) (- b) c e)
-                                         (+ (- a) b (- c) e))))))
+                                         (+ (- a) b (- c) e)))))
+
+    (fn normal [x y z]
+      ;; The whole scene's differences with :normals-of :scene (or when no object is
+      ;; near); else the nearest object's own (mapObject), taken where another object
+      ;; comes within 2h at the point pushed out of its reach (normal-crease.glsl).
+      (let [h (normal-delta x y z)
+            (_ i) (map-color x y z)]
+        (if (or (= plan.normals-of :scene) (not i))
+            (differences map x y z h)
+            (let [others (others-map i)
+                  other (others x y z)]
+              (if (< other (* 2 h))
+                  (let [(ax ay az) (safe-normalize (- (others (+ x h) y z) (others (- x h) y z))
+                                                   (- (others x (+ y h) z) (others x (- y h) z))
+                                                   (- (others x y (+ z h)) (others x y (- z h))))
+                        push (- (* 2 h) other)]
+                    (differences (object-map i) (+ x (* ax push)) (+ y (* ay push)) (+ z (* az push)) h))
+                  (differences (object-map i) x y z h))))))
 
     (fn lightness [px py pz nx ny nz]
       (let [tx (- lx px) ty (- ly py) tz (- lz pz)
