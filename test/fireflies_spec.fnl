@@ -48,9 +48,8 @@
 (local scene (require :src.scene.load))
 (local plan (require :src.render.plan))
 (local camera (require :src.render.camera))
-(local codegen (require :src.render.codegen))
-(local uniforms (require :src.render.uniforms))
 (local reference (require :src.verify.reference))
+(local {: gpu-render} (require :test.support.gpu-check))
 
 (local size [640 360])
 
@@ -69,18 +68,7 @@
     (let [(p perr) (plan.scene->plan s (doto (collect [k v (pairs (or ?plan-options {}))] k v)
                                          (tset :view :shaded)))]
       (assert p perr)
-      {:scene s :plan p :cam (camera.from-scene s)})))
-
-(fn render [ctx prepared]
-  (let [[width height] size
-        {:scene s :plan p : cam} prepared
-        (program err) (headless.compile ctx (codegen.shader p :core))]
-    (assert program err)
-    (let [(image rerr) (headless.render ctx program {: width : height
-                                                     :uniforms (uniforms.pack s p cam width height)})]
-      (headless.release ctx program)
-      (assert image rerr)
-      image)))
+      {:scene s :plan p :cam (camera.from-scene s) :width (. size 1) :height (. size 2)})))
 
 (fn reader [image]
   (fn [x y] (headless.pixel image x y)))
@@ -94,8 +82,8 @@ within the normal's reach: the crease fireflies of issue 10. Also the count of a
         fine (prepare file (doto (collect [k v (pairs render-fields)] k v) (tset :samples 4))
                       ?plan-options)
         [width height] size
-        found (fireflies.unsupported width height (reader (render ctx one))
-                                     (reader (render ctx fine)) threshold flat)
+        found (fireflies.unsupported width height (reader (gpu-render ctx one))
+                                     (reader (gpu-render ctx fine)) threshold flat)
         T (reference.tracer one.scene one.plan
                             {:cam-pos one.cam.pos
                              :pixel-angle (/ 1 (* (camera.projection-distance one.cam) height))})
