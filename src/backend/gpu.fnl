@@ -58,12 +58,32 @@ whether it was compiled now, or nil and a message."
         (fcollect [i 1 (length vs) n]
           (fcollect [j 0 (- n 1)] (. vs (+ i j)))))))
 
+;; A field's textures as LÖVE images, by the texture table they were made from: the
+;; tables live as long as their plan, so a texture is uploaded once, not every frame.
+(local images (setmetatable {} {:__mode :k}))
+
+(fn float-image [tex]
+  "The rgba32f image of texture `tex` ({:width :height :data}), made on first use."
+  (or (. images tex)
+      (let [ffi (require :ffi)
+            data (love.image.newImageData tex.width tex.height :rgba32f)
+            ptr (ffi.cast "float *" (data:getFFIPointer))
+            vs tex.data]
+        (for [i 1 (length vs)] (tset ptr (- i 1) (. vs i)))
+        (let [image (love.graphics.newImage data)]
+          (image:setFilter :nearest :nearest)
+          (data:release)
+          (tset images tex image)
+          image))))
+
 (fn send! [shader us]
   "Send the uniform list `us` (from uniforms.pack) to `shader`, skipping any the driver
 dropped."
   (each [_ u (ipairs us)]
     (when (shader:hasUniform u.name)
-      (shader:send u.name ((or table.unpack unpack) (love-values u))))))
+      (if (= u.type :texture)
+          (shader:send u.name (float-image u.texture))
+          (shader:send u.name ((or table.unpack unpack) (love-values u)))))))
 
 (fn draw! [shader us width height]
   "Draw the full-screen quad of `width` x `height` with `shader` into the current target."

@@ -19,6 +19,7 @@
            :RGBA8 0x8058
            :RGBA32F 0x8814
            :TEXTURE_2D 0x0DE1
+           :TEXTURE0 0x84C0
            :TEXTURE_MIN_FILTER 0x2801
            :TEXTURE_MAG_FILTER 0x2800
            :NEAREST 0x2600
@@ -73,6 +74,7 @@
         :glDeleteTextures "void (*)(int, const unsigned int *)"
         :glBindTexture "void (*)(unsigned int, unsigned int)"
         :glTexParameteri "void (*)(unsigned int, unsigned int, int)"
+        :glActiveTexture "void (*)(unsigned int)"
         :glTexImage2D "void (*)(unsigned int, int, int, int, int, int, unsigned int, unsigned int, const void *)"
         :glGenFramebuffers "void (*)(int, unsigned int *)"
         :glDeleteFramebuffers "void (*)(int, const unsigned int *)"
@@ -259,9 +261,23 @@ program id, or nil + the compile/link log followed by the offending source lines
                   (gl.glDeleteProgram program)
                   (values nil (.. "program failed to link:\n" log)))))))))
 
+(fn prepare-texture [u unit]
+  ;; A float texture uniform (a field's): its texels as a C float array, drawn from
+  ;; texture unit `unit`.
+  (let [{: width : height : data} u.texture
+        n (* width height 4)
+        arr (ffi.new "float[?]" n)]
+    (assert (<= (length data) n)
+            (.. "headless.render: texture " u.name " has more values than its size holds"))
+    (for [j 1 (length data)] (tset arr (- j 1) (. data j)))
+    {:name u.name :texture? true : unit : width : height : arr}))
+
 (fn prepare-uniforms [uniforms]
   "Check uniform specs and pack their values into C arrays before any GL work."
+  (var units 0)
   (icollect [i u (ipairs (or uniforms []))]
+    (if (= u.type :texture)
+        (do (set units (+ units 1)) (prepare-texture u units))
     (let [kind (. uniform-kinds u.type)
           vals (or u.values [])]
       (assert (= (type u.name) :string) (.. "headless.render: uniform " i " has no :name"))
@@ -275,14 +291,28 @@ program id, or nil + the compile/link log followed by the offending source lines
         (for [j 1 n]
           (let [v (. vals j)]
             (tset arr (- j 1) (if (= v true) 1 (= v false) 0 v))))
-        {:name u.name : fn-name :count (/ n per) : arr}))))
+        {:name u.name : fn-name :count (/ n per) : arr})))))
 
 (fn set-uniforms [gl program prepared]
-  "Upload prepared uniforms to the current program, skipping optimised-away ones."
-  (each [_ {: name : fn-name : count : arr} (ipairs prepared)]
-    (let [loc (gl.glGetUniformLocation program name)]
-      (when (not= loc -1)
-        ((. gl fn-name) loc count arr)))))
+  "Upload prepared uniforms to the current program, skipping optimised-away ones.
+Returns the textures it made, to delete after the draw."
+  (let [made []]
+    (each [_ u (ipairs prepared)]
+      (let [loc (gl.glGetUniformLocation program u.name)]
+        (if (and u.texture? (not= loc -1))
+            (let [tex (ffi.new "unsigned int[1]")]
+              (gl.glActiveTexture (+ GL.TEXTURE0 u.unit))
+              (gl.glGenTextures 1 tex)
+              (gl.glBindTexture GL.TEXTURE_2D (. tex 0))
+              (gl.glTexParameteri GL.TEXTURE_2D GL.TEXTURE_MIN_FILTER GL.NEAREST)
+              (gl.glTexParameteri GL.TEXTURE_2D GL.TEXTURE_MAG_FILTER GL.NEAREST)
+              (gl.glTexImage2D GL.TEXTURE_2D 0 GL.RGBA32F u.width u.height 0 GL.RGBA GL.FLOAT u.arr)
+              (gl.glUniform1iv loc 1 (ffi.new "int[1]" u.unit))
+              (gl.glActiveTexture GL.TEXTURE0)
+              (table.insert made tex))
+            (and (not u.texture?) (not= loc -1))
+            ((. gl u.fn-name) loc u.count u.arr))))
+    made))
 
 (fn render [ctx program options]
   "Draw program over a width x height target and read it back. options:
@@ -308,7 +338,8 @@ message on a GL error."
           c-type (if float? :float :uint8_t)
           row-bytes (* width 4 (if float? 4 1))
           raw (ffi.new (.. c-type "[?]") n)
-          pixels (ffi.new (.. c-type "[?]") n)]
+          pixels (ffi.new (.. c-type "[?]") n)
+          textures []]
       (gl.glGenTextures 1 tex)
       (gl.glBindTexture GL.TEXTURE_2D (. tex 0))
       (gl.glTexParameteri GL.TEXTURE_2D GL.TEXTURE_MIN_FILTER GL.NEAREST)
@@ -323,7 +354,8 @@ message on a GL error."
         (when complete?
           (gl.glViewport 0 0 width height)
           (gl.glUseProgram program)
-          (set-uniforms gl program uniforms)
+          (each [_ t (ipairs (set-uniforms gl program uniforms))]
+            (table.insert textures t))
           (gl.glDrawArrays GL.TRIANGLES 0 3)
           (gl.glFinish)
           (gl.glPixelStorei GL.PACK_ALIGNMENT 1)
@@ -334,6 +366,7 @@ message on a GL error."
           (gl.glDeleteFramebuffers 1 fbo)
           (gl.glBindTexture GL.TEXTURE_2D 0)
           (gl.glDeleteTextures 1 tex)
+          (each [_ t (ipairs textures)] (gl.glDeleteTextures 1 t))
           (drain-errors gl)
           (if (not complete?)
               (values nil (string.format "framebuffer incomplete (status 0x%04X) for %dx%d %s target%s"

@@ -29,9 +29,12 @@ float32 precision near its surface). `infos`: see tree-infos."
   (and (not o.tree) (= o.kind :plane)))
 
 (fn finite-objects [plan]
-  "The objects a bounded plan marches: every one but the kind-grouped ground planes
-(a plane inside a scene tree has no bound, so the plan has none)."
-  (icollect [_ o (ipairs plan.objects)] (when (not (grouped-plane? o)) o)))
+  "The objects a bounded plan marches by their bounding spheres: every one but the
+kind-grouped ground planes (a plane inside a scene tree has no bound, so the plan has
+none) and a field's (its grid bounds them; see src/render/field.fnl)."
+  (let [in-field (or plan.in-field {})]
+    (icollect [_ o (ipairs plan.objects)]
+      (when (not (or (grouped-plane? o) (. in-field o))) o))))
 
 (fn plan-bounds [plan scene options]
   "{:count n} when every object of `plan` but the grouped planes has a bounding

@@ -79,12 +79,14 @@ and forget cached ones."
   (and (not= nil plan.normals) (= plan.normals-of :object)))
 
 (fn object-bases [plan]
-  ;; The number gObject gives each kind's first slot (kind -> number), and the tree
-  ;; objects' first: slots in shader order, as plan.objects.
+  ;; The number gObject gives each kind's first slot (kind -> number), the tree
+  ;; objects' first and the field's first: slots in shader order, as plan.objects
+  ;; (kinds, field, trees).
   (var next 0)
   (let [bases (collect [_ k (ipairs plan.kinds)]
-                (let [b next] (set next (+ next k.capacity)) (values k.kind b)))]
-    (values bases next)))
+                (let [b next] (set next (+ next k.capacity)) (values k.kind b)))
+        field-base next]
+    (values bases (+ next (if plan.field plan.field.count 0)) field-base)))
 
 (fn object-id [k plan line]
   ;; `line` with @id written as the object's number: the slot's own in a written-out
@@ -140,9 +142,16 @@ and forget cached ones."
           (table.insert lines "uniform float uCamHeight;              // the camera's world z"))))
     lines))
 
+(fn field-term [plan skip]
+  ;; The field's part of a minimum, skipping object `skip` (a GLSL int expression).
+  (if plan.field
+      ["{" "    int best;" (.. "    d = min(d, fieldMap(p, " skip ", best));") "}"]
+      []))
+
 (fn distance-terms [plan]
   [(icollect [_ k (ipairs plan.kinds)]
      (kind-loop k plan [(.. "    d = min(d, " k.entry.distance-glsl ");")]))
+   (field-term plan "-1")
    (if plan.tape (emit-glsl.distance-terms plan.tape) [])])
 
 (fn bounded-lines [plan]
@@ -155,7 +164,9 @@ src/render/bounds.fnl)."
     ["// The finite objects only: the planes are met in closed form by planesHit."
      "float mapFinite(vec3 p) {"
      "    float d = uDrawDist;"
-     (indented (distance-terms (doto (collect [k v (pairs plan)] k v) (tset :kinds finite))))
+     ;; (and not the field's objects: march-field.glsl walks its grid)
+     (indented (distance-terms (doto (collect [k v (pairs plan)] k v)
+                                 (tset :kinds finite) (tset :field nil))))
      "    return d;"
      "}"
      ""
@@ -202,12 +213,26 @@ src/render/bounds.fnl)."
        plan.mirrors? "gMirror = 1.0;"
        [])
    (if (object-normals? plan) "gObject = -1;" [])
-   (if (> (length plan.kinds) 0) "float di;" [])
+   (if (or plan.field (> (length plan.kinds) 0)) "float di;" [])
    (icollect [_ k (ipairs plan.kinds)]
      (kind-loop k plan [(.. "    di = " k.entry.distance-glsl ";")
                         (.. "    if (di < d) { d = di; color = " k.entry.color-glsl ";"
                             (if (object-normals? plan) (object-id k plan " gObject = @id;") "")
                             " }")]))
+   (if plan.field
+       (let [(_ _ base) (object-bases plan)]
+         ["{"
+          "    int best;"
+          "    di = fieldMap(p, -1, best);"
+          "    if (di < d) {"
+          "        d = di;"
+          "        color = best >= 0 ? fieldColor(best) : vec3(0.0);"
+          (if (object-normals? plan)
+              (.. "        gObject = best >= 0 ? " (if (= base 0) "best" (.. base " + best")) " : -1;")
+              [])
+          "    }"
+          "}"])
+       [])
    (if plan.tape
        (emit-glsl.color-terms plan.tape plan.mirrors?
                               (when (object-normals? plan) (select 2 (object-bases plan))))
@@ -215,16 +240,17 @@ src/render/bounds.fnl)."
 
 (fn others-terms [plan]
   ;; mapOthers' terms: map's, each but gObject's.
-  (let [(_ tree-base) (object-bases plan)]
+  (let [(_ tree-base field-base) (object-bases plan)]
     [(icollect [_ k (ipairs plan.kinds)]
        (kind-loop k plan [(object-id k plan (.. "    if (gObject != @id) d = min(d, "
                                                 k.entry.distance-glsl ");"))]))
+     (field-term plan (if (= field-base 0) "gObject" (.. "gObject - " field-base)))
      (if plan.tape (emit-glsl.distance-terms plan.tape tree-base) [])]))
 
 (fn object-terms [plan]
   ;; mapObject's cases: a written-out slot by its number, a loop's slots by range
   ;; (earlier numbers have returned already), each tree object by its number.
-  (let [(bases tree-base) (object-bases plan)]
+  (let [(bases tree-base field-base) (object-bases plan)]
     [(icollect [_ k (ipairs plan.kinds)]
        (if (and (not plan.uber?) (<= k.capacity max-unrolled))
            (kind-loop k plan [(object-id k plan (.. "    if (gObject == @id) return "
@@ -233,6 +259,10 @@ src/render/bounds.fnl)."
             (.. "    int i = gObject" (if (= (. bases k.kind) 0) "" (.. " - " (. bases k.kind))) ";")
             (.. "    return " k.entry.distance-glsl ";")
             "}"]))
+     (if plan.field
+         [(.. "if (gObject < " tree-base ") return fieldObject(p, gObject"
+              (if (= field-base 0) "" (.. " - " field-base)) ");")]
+         [])
      (if plan.tape (emit-glsl.object-terms plan.tape tree-base) [])]))
 
 ;;; Features
@@ -341,6 +371,12 @@ only when the plan has it."
               (table.insert sections (emit-glsl.text-lines d.glsl)))))
       (when plan.tape
         (table.insert sections (emit-glsl.functions plan.tape defined))))
+    (when plan.field
+      (table.insert sections
+                    [(.. "const bool kFieldOthers = " (tostring (> plan.bounds.count 0))
+                         ";  // finite objects beside the field (mapFinite)")
+                     "const float kFieldTiny = 0.000001;  // a ray direction's smallest component"
+                     (fill "shaders/pipeline/field.glsl" {})]))
     (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms plan)
                                                      :color-terms (color-terms plan)}))
     (when (not colors?)
@@ -361,8 +397,9 @@ only when the plan has it."
     ;; elsewhere it is not kept.
     (let [count-step (if (or plan.glow? plan.adaptive? (= view :glow) (= view :heat))
                          ["steps = i + 1;"] [])]
-      (table.insert sections (fill (.. "shaders/pipeline/march" (if plan.relaxed? "-relaxed" "")
-                                       (if plan.bounds "-bounded" "") ".glsl")
+      (table.insert sections (fill (if plan.field "shaders/pipeline/march-field.glsl"
+                                       (.. "shaders/pipeline/march" (if plan.relaxed? "-relaxed" "")
+                                           (if plan.bounds "-bounded" "") ".glsl"))
                                    {:count-step count-step
                                     :out-of-steps (out-of-steps-lines plan)})))
     (when normals?

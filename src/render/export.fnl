@@ -3,6 +3,7 @@
 ;; host. Pure: runs under plain LuaJIT.
 
 (local codegen (require :src.render.codegen))
+(local field (require :src.render.field))
 (local uniforms (require :src.render.uniforms))
 (local camera (require :src.render.camera))
 
@@ -34,7 +35,12 @@
   "The shader of `scene` lowered to `plan`, seen from the scene's camera, as a
 Shadertoy fragment shader: every uniform a constant but the resolution (iResolution).
 Returns the text, or nil and a message."
-  (case (codegen.shader plan :shadertoy)
+  (case (if plan.field
+            (values nil (.. "export: " scene.name " keeps its " plan.field.count
+                            " spheres and boxes in float textures (a field), which a Shadertoy"
+                            " shader cannot hold; export takes scenes of fewer than "
+                            field.min-objects " spheres and boxes"))
+            (codegen.shader plan :shadertoy))
     (nil err) (values nil err)
     text (let [values-by-name (collect [_ u (ipairs (uniforms.pack scene plan (camera.from-scene scene) 1 1))]
                                 u.name u)

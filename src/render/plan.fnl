@@ -5,6 +5,7 @@
 (local registry (require :src.sdf.registry))
 (local lower (require :src.sdf.lower))
 (local bounds (require :src.render.bounds))
+(local field (require :src.render.field))
 
 (local views [:shaded :normals :glow :heat])
 
@@ -29,12 +30,14 @@
   (each [_ name (ipairs views)] (when (= name v) (set found? true)))
   found?)
 
-(fn group-objects [scene]
+(fn group-objects [scene in-field]
   (icollect [_ entry (ipairs registry.kinds)]
     {:kind entry.kind
      :entry entry
      :objects (icollect [_ o (ipairs scene.objects)]
-                (when (and (not o.tree) (= (registry.lowered-kind o) entry.kind)) o))}))
+                (when (and (not o.tree) (not (. in-field o))
+                           (= (registry.lowered-kind o) entry.kind))
+                  o))}))
 
 (fn structure-key [plan]
   (let [parts (icollect [_ k (ipairs plan.kinds)]
@@ -56,6 +59,7 @@
     (when (> plan.samples 1)
       (table.insert parts (.. "samples:" plan.samples (if plan.adaptive? " adaptive" ""))))
     (when plan.bounds (table.insert parts (.. "bounds:" plan.bounds.count)))
+    (when plan.field (table.insert parts "field"))
     (table.insert parts (.. "view:" plan.view))
     (when plan.tape
       (table.insert parts (.. "tape:" plan.tape.key))
@@ -88,12 +92,21 @@
   :samples        supersampling, N x N rays per pixel (default the scene's)
   :model          :classic draws a scene that has :lighting with the article's model
                   (the player's m key)
+  :field?         false: no field (src/render/field.fnl) however many spheres and
+                  boxes the scene has; they go into uniform arrays (the oracle's and
+                  the benchmark's before)
 Returns the plan, or nil and a message when the scene does not fit the budget."
   (let [options (or ?options {})
         view (or options.view :shaded)
         uber? (not (not options.uber?))
         reflections (or options.reflections scene.render.reflections)
-        groups (group-objects scene)
+        ;; Many spheres and boxes form a field: textures and a grid. It needs the
+        ;; bounded march (see plan-bounds below).
+        members (when (and (not uber?) (not= false options.field?) (not= false options.bounds?)
+                           scene.render.bounds)
+                  (field.members scene.objects))
+        in-field (collect [_ o (ipairs (or members []))] o true)
+        groups (group-objects scene in-field)
         trees (icollect [_ o (ipairs scene.objects)] (when o.tree o))
         (tape lower-error) (if (> (length trees) 0)
                                (lower.lower (icollect [_ o (ipairs trees)]
@@ -107,12 +120,14 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                     {:kind g.kind :entry g.entry :objects g.objects
                      :count n :capacity (if uber? (math.max n 1) n)})))
         shaded? (= view :shaded)
-        plan {: kinds : view : uber?
+        plan {: kinds : view : uber? : in-field
               :load-once? (not= false options.load-once?)
-              ;; The kind-grouped objects in shader order, then the tree objects.
+              ;; The kind-grouped objects in shader order, the field's, then the
+              ;; tree objects.
               :objects (let [out []]
                          (each [_ k (ipairs kinds)]
                            (each [_ o (ipairs k.objects)] (table.insert out o)))
+                         (each [_ o (ipairs (or members []))] (table.insert out o))
                          (each [_ o (ipairs trees)] (table.insert out o))
                          out)
               : tape
@@ -121,7 +136,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :shadows? (and shaded? (or uber? scene.render.shadows))
               :reflections? (and shaded? (or uber? (> reflections 0)))
               :glow? (and shaded? (or uber? scene.render.glow))
-              :relaxed? (or uber? (> scene.render.relaxation 1))
+              ;; A field's march takes plain steps (march-field.glsl).
+              :relaxed? (and (= nil members) (or uber? (> scene.render.relaxation 1)))
               :hit-test scene.render.hit-test
               :out-of-steps (or scene.render.out-of-steps :background)
               :samples (or options.samples scene.render.samples 1)
@@ -159,8 +175,16 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               ;; step, so it cannot skip empty space by bounds; a ray that has not
               ;; reached the light by then counts as lit.
               :shadow-steps 128})))
+    (when members
+      (set plan.field (field.build members {:reach-at-least (when (and plan.lighting plan.lighting.ao?)
+                                                               scene.lighting.ao-radius)
+                                            :wide? (and plan.lighting plan.lighting.soft?)})))
     (set plan.key (structure-key plan))
-    (if lower-error (values nil (.. scene.file ": " lower-error))
+    (if (and members (not plan.bounds))
+        ;; Some other object has no bound (an infinite repetition, a plane inside a
+        ;; tree): no field then, and the uniform budget decides.
+        (scene->plan scene (doto (collect [k v (pairs options)] k v) (tset :field? false)))
+        lower-error (values nil (.. scene.file ": " lower-error))
         (> plan.uniform-vectors limit) (values nil (budget-message scene plan limit))
         plan)))
 

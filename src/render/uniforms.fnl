@@ -5,6 +5,7 @@
 (local camera (require :src.render.camera))
 (local registry (require :src.sdf.registry))
 (local bounds (require :src.render.bounds))
+(local field (require :src.render.field))
 
 (fn hit-threshold [scene plan cam height]
   "The shader's hitThreshold on the CPU: a step under this at `dist` from the camera
@@ -88,10 +89,26 @@ object's outermost translation) are made camera-relative here, in double."
       (table.insert out {:name "uCamHeight" :type :float :values [(. cam-pos 3)]}))
     out))
 
+(fn field-uniforms [fd cam-pos]
+  "A field's uniforms: its grid, the low corner camera-relative (in double), and its
+textures (:type :texture, {:width :height :data}; the same tables every frame, so a
+backend uploads them once)."
+  (let [tex (field.textures fd)]
+    [{:name "uFieldOrigin" :type :vec3 :values (relative fd.lo cam-pos)}
+     {:name "uFieldSize" :type :vec3 :values fd.size}
+     {:name "uFieldCell" :type :vec3 :values fd.cell}
+     {:name "uFieldDims" :type :vec3 :values fd.dims}
+     {:name "uFieldReach" :type :float :values [fd.reach]}
+     {:name "uFieldCrossings" :type :int :values [fd.crossings]}
+     {:name "uFieldCells" :type :texture :texture tex.cells}
+     {:name "uFieldRecords" :type :texture :texture tex.records}
+     {:name "uFieldObjects" :type :texture :texture tex.objects}]))
+
 (fn pack [scene plan cam width height]
   "Uniforms for drawing `scene` lowered to `plan`, seen by camera state `cam`, into a
 `width` x `height` target: a list of {:name :type :values [numbers] :count n} sorted
-by name. Booleans are sent as 0 or 1 with :type :bool."
+by name. Booleans are sent as 0 or 1 with :type :bool. A field's textures come as
+{:name :type :texture :texture {:width :height :data}} (no :values)."
   (let [(f r u) (camera.basis cam)
         render scene.render
         out [{:name "uResolution" :type :vec2 :values [width height]}
@@ -114,6 +131,8 @@ by name. Booleans are sent as 0 or 1 with :type :bool."
     (append! out (kind-uniforms plan cam.pos))
     (when plan.lighting
       (append! out (lighting-uniforms scene.lighting plan cam.pos)))
+    (when plan.field
+      (append! out (field-uniforms plan.field cam.pos)))
     (when plan.tape
       (table.insert out {:name "uTape" :type :vec4 :values (tape-values plan.tape cam.pos)
                          :count (length plan.tape.rows)}))

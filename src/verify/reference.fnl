@@ -9,6 +9,7 @@
 (local registry (require :src.sdf.registry))
 (local emit-lua (require :src.sdf.emit-lua))
 (local bounds (require :src.render.bounds))
+(local field (require :src.render.field))
 (local lighting (require :src.verify.lighting))
 
 (local sqrt math.sqrt)
@@ -63,9 +64,13 @@ Positions are in world coordinates."
         reflections (if (and shaded? plan.reflections?) plan.reflections 0)
         modern? (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8)))
         objs plan.objects
-        ;; Grouped objects come first in plan.objects, then the tree objects.
-        grouped (icollect [_ o (ipairs objs)] (when (not o.tree) o))
+        ;; Grouped objects come first in plan.objects, then a field's, then the tree
+        ;; objects.
+        fd plan.field
+        in-field (or plan.in-field {})
+        grouped (icollect [_ o (ipairs objs)] (when (not (or o.tree (. in-field o))) o))
         n (length grouped)
+        nf (if fd fd.count 0)
         fns (icollect [_ o (ipairs grouped)] (. (registry.lookup o.kind) :distance))
         trees (if plan.tape (emit-lua.compile plan.tape) {:distance [] :material []})
         tree-distance trees.distance
@@ -77,6 +82,9 @@ Positions are in world coordinates."
       (for [i 1 n]
         (let [di ((. fns i) (. objs i) x y z)]
           (when (< di d) (set d di))))
+      (when fd
+        (let [df (field.distance fd x y z)]
+          (when (< df d) (set d df))))
       (for [i 1 m]
         (let [di ((. tree-distance i) x y z)]
           (when (< di d) (set d di))))
@@ -118,11 +126,18 @@ Positions are in world coordinates."
           (when (< di d) (set d di) (set best i))))
       (when best
         (let [[cr cg cb] (. objs best :color)] (set (r g b) (values cr cg cb))))
+      ;; A field's nearest (black, and no object, outside its grid).
+      (when fd
+        (let [(df fb) (field.distance fd x y z)]
+          (when (< df d)
+            (set d df)
+            (set best (when fb (+ n fb)))
+            (let [[cr cg cb] (if fb (. fd.colors fb) [0 0 0])] (set (r g b) (values cr cg cb))))))
       (for [i 1 m]
         (let [(di mr mg mb ma mk me) ((. tree-material i) x y z)]
           (when (< di d)
             (set d di)
-            (set best (+ n i))
+            (set best (+ n nf i))
             (set (r g b mirror) (values mr mg mb ma))
             (when modern? (set (rough emit) (values mk me))))))
       (values d best r g b mirror rough emit))
@@ -147,7 +162,89 @@ Positions are in world coordinates."
     (local bound-spheres (when plan.bounds
                            (bounds.spheres plan [cx cy cz] threshold true)))
 
-    (fn march [ox oy oz dx dy dz ?t-max]
+    (local tiny 0.000001)   ; kFieldTiny: a ray direction's smallest component
+
+    (fn march-field [ox oy oz dx dy dz ?t-max]
+      ;; march-field.glsl: the grid's cells in order, each cell's objects met in
+      ;; closed form and the other finite objects sphere-traced, a step never past
+      ;; the cell's far wall.
+      (let [t0 (distance-from-camera ox oy oz)
+            t-plane (planes-hit oz dz)
+            (enter exit) (bounds.span bound-spheres ox oy oz dx dy dz draw)
+            others? (> (length finite) 0)
+            [lx ly lz] fd.lo
+            [wx wy wz] fd.size
+            [sx sy sz] fd.cell
+            [nx ny nz] fd.dims
+            qx (- ox lx) qy (- oy ly) qz (- oz lz)
+            safe (fn [v] (if (< (abs v) tiny) tiny v))
+            ix (/ 1 (safe dx)) iy (/ 1 (safe dy)) iz (/ 1 (safe dz))
+            near (fn [q w i] (math.min (* (- q) i) (* (- w q) i)))
+            far (fn [q w i] (math.max (* (- q) i) (* (- w q) i)))
+            grid-in (math.max (near qx wx ix) (near qy wy iy) (near qz wz iz) 0)
+            grid-out (math.min (far qx wx ix) (far qy wy iy) (far qz wz iz))
+            grid? (< grid-in grid-out)
+            t-end (math.min t-plane (math.max exit (if grid? grid-out 0)) (or ?t-max draw))
+            t-past (math.min t-plane (or ?t-max draw))
+            max-iterations (+ max-steps fd.crossings 1)
+            step-x (if (> (safe dx) 0) 1 -1) step-y (if (> (safe dy) 0) 1 -1)
+            step-z (if (> (safe dz) 0) 1 -1)
+            delta-x (* sx (abs ix)) delta-y (* sy (abs iy)) delta-z (* sz (abs iz))]
+        (var t (math.max (math.min enter (if grid? grid-in draw)) 0))
+        (var state (if grid? 0 2))
+        (var cell-end (if grid? grid-in draw))
+        (var (cx cy cz) (values 0 0 0))
+        (var (next-x next-y next-z) (values 0 0 0))
+        (var evals 0)
+        (var result nil)
+        (when (>= t t-end) (set result t-past))
+        (for [_ 1 max-iterations &until result]
+          (when (and (= state 0) (>= t grid-in))
+            (let [(x y z) (field.cell-of fd (+ qx (* dx t)) (+ qy (* dy t)) (+ qz (* dz t)))]
+              (set (cx cy cz) (values x y z))
+              (set next-x (* (- (* (+ cx (if (> step-x 0) 1 0)) sx) qx) ix))
+              (set next-y (* (- (* (+ cy (if (> step-y 0) 1 0)) sy) qy) iy))
+              (set next-z (* (- (* (+ cz (if (> step-z 0) 1 0)) sz) qz) iz))
+              (set state 1)
+              (set cell-end (math.min next-x next-y next-z))))
+          (let [px (+ ox (* dx t)) py (+ oy (* dy t)) pz (+ oz (* dz t))]
+            (var d (map-finite px py pz))
+            (var evaluated? others?)
+            (when (= state 1)
+              (let [k (+ 1 cx (* nx (+ cy (* ny cz))))]
+                (when (> (. fd.cell-count k) 0)
+                  ;; The cell's objects in closed form (fieldListEntry): an entry in
+                  ;; the cell, before any other object can be, is the hit.
+                  (let [hit (field.list-entry fd k qx qy qz dx dy dz ix iy iz draw)]
+                    (set evaluated? true)
+                    (when (and (<= hit (math.min (+ t d) cell-end)) (< hit t-end))
+                      (set evals (+ evals 1))
+                      (set result hit))))))
+            (when (and evaluated? (not result))
+              (set evals (+ evals 1))
+              (when (< d (threshold (+ t0 t)))
+                (set result (+ t d))))
+            (when (not result)
+              (if (< (+ t d) cell-end)
+                  (set t (+ t d))
+                  (do
+                    (set t (math.max t cell-end))
+                    (when (= state 1)
+                      (if (and (<= next-x next-y) (<= next-x next-z))
+                          (do (set cx (+ cx step-x)) (set next-x (+ next-x delta-x)))
+                          (<= next-y next-z)
+                          (do (set cy (+ cy step-y)) (set next-y (+ next-y delta-y)))
+                          (do (set cz (+ cz step-z)) (set next-z (+ next-z delta-z))))
+                      (if (or (< cx 0) (< cy 0) (< cz 0) (>= cx nx) (>= cy ny) (>= cz nz))
+                          (do (set state 2) (set cell-end draw))
+                          (set cell-end (math.min next-x next-y next-z))))))
+              (if (>= t t-end) (set result t-past)
+                  (>= evals max-steps) (set result :out)))))
+        (if (and result (not= result :out)) (values result evals)
+            ;; Out of steps (see codegen's out-of-steps).
+            (values (if (= plan.out-of-steps :background) t-past t) evals))))
+
+    (fn march-plain [ox oy oz dx dy dz ?t-max]
       ;; Plain sphere tracing when relaxation is 1; over-relaxed (Keinert et al.)
       ;; with a fall back to the last safe point when two spheres stop overlapping.
       ;; With bounds: from the span's entry to its exit or the nearest plane, and
@@ -193,6 +290,10 @@ Positions are in world coordinates."
           (set t (if bound-spheres t-past draw)))
         (values t steps)))
 
+    (fn march [ox oy oz dx dy dz ?t-max]
+      (if fd (march-field ox oy oz dx dy dz ?t-max)
+          (march-plain ox oy oz dx dy dz ?t-max)))
+
     (fn safe-normalize [x y z]
       (let [len (sqrt (+ (* x x) (* y y) (* z z)))]
         (if (> len 0) (values (/ x len) (/ y len) (/ z len)) (values 0 0 1))))
@@ -200,22 +301,29 @@ Positions are in world coordinates."
     (fn object-map [i]
       ;; The distance function of plan.objects[i] alone.
       (if (<= i n) (let [f (. fns i) o (. objs i)] (fn [x y z] (f o x y z)))
-          (. tree-distance (- i n))))
+          (<= i (+ n nf)) (fn [x y z] (field.object-distance fd (- i n) x y z))
+          (. tree-distance (- i n nf))))
 
     (fn crease? [x y z]
       ;; Two objects meet within the normal's finite-difference reach of the point:
       ;; a whole-scene normal there points between their surfaces.
       (let [reach (* 2 (normal-delta x y z))]
         (var near 0)
-        (for [i 1 (+ n m)]
+        (for [i 1 (+ n nf m)]
           (when (< ((object-map i) x y z) reach) (set near (+ near 1))))
         (>= near 2)))
 
     (fn others-map [i]
       ;; The distance to every object but plan.objects[i] (mapOthers).
+      ;; A field's objects through its grid, as the shader's (skipping i's number).
       (fn [x y z]
         (var d draw)
-        (for [j 1 (+ n m)]
+        (for [j 1 n]
+          (when (not= j i)
+            (let [dj ((object-map j) x y z)] (when (< dj d) (set d dj)))))
+        (when fd
+          (let [df (field.distance fd x y z (- i n))] (when (< df d) (set d df))))
+        (for [j (+ n nf 1) (+ n nf m)]
           (when (not= j i)
             (let [dj ((object-map j) x y z)] (when (< dj d) (set d dj)))))
         d))

@@ -1,0 +1,117 @@
+// A field: many spheres and boxes in float textures, found through a uniform grid
+// (src/render/field.fnl builds both). Coordinates in the textures are field-local:
+// the grid's low corner is the origin, sent camera-relative each frame.
+uniform sampler2D uFieldCells;    // per cell: first record, record count
+uniform sampler2D uFieldRecords;  // per record: centre, radius; half extents, object
+uniform sampler2D uFieldObjects;  // per object: centre, radius; half extents; colour
+uniform vec3 uFieldOrigin;        // the grid's low corner (camera-relative)
+uniform vec3 uFieldSize;          // the grid's extents
+uniform vec3 uFieldCell;          // one cell's extents
+uniform vec3 uFieldDims;          // cells along each axis
+uniform float uFieldReach;        // a listed object's box grown by this meets the cell
+uniform int uFieldCrossings;      // cells a ray can cross, at most
+
+// Texel i of a texture 1024 texels wide, row after row.
+ivec2 fieldTexel(int i) {
+    return ivec2(i & 1023, i >> 10);
+}
+
+// The one distance of every field object, a rounded box (exact): a sphere has no
+// half extents, a box no radius.
+float sdFieldShape(vec3 q, vec4 centre, vec3 halfSize) {
+    vec3 e = abs(q - centre.xyz) - halfSize;
+    return length(max(e, 0.0)) + min(max(e.x, max(e.y, e.z)), 0.0) - centre.w;
+}
+
+int fieldCellIndex(ivec3 c) {
+    ivec3 n = ivec3(uFieldDims);
+    return c.x + n.x * (c.y + n.y * c.z);
+}
+
+// The nearest object listed in cell `cell` to the field-local point q, skipping
+// object `skip`: its distance (the draw distance when none) and number in `best`.
+// Ties go to the earlier record, as in the reference.
+float fieldCellDistance(int cell, vec3 q, int skip, out int best) {
+    vec4 list = texelFetch(uFieldCells, fieldTexel(cell), 0);
+    int start = 2 * int(list.x);
+    int count = int(list.y);
+    float d = uDrawDist;
+    best = -1;
+    for (int k = 0; k < count; k++) {
+        vec4 a = texelFetch(uFieldRecords, fieldTexel(start + 2 * k), 0);
+        vec4 b = texelFetch(uFieldRecords, fieldTexel(start + 2 * k + 1), 0);
+        float di = sdFieldShape(q, a, b.xyz);
+        int object = int(b.w);
+        if (di < d && object != skip) {
+            d = di;
+            best = object;
+        }
+    }
+    return d;
+}
+
+// Where the ray q0 + rd t (field-local, rd a unit vector, inv its reciprocal) first
+// enters a field object (centre and radius a, half extents h), at t >= 0: the draw
+// distance when it misses. In closed form: a sphere from the ray's point of closest
+// approach (no cancellation for a far ray), a box by the slab test. A ray starting
+// inside enters at 0.
+float fieldEntry(vec3 q0, vec3 rd, vec3 inv, vec4 a, vec3 h) {
+    if (a.w > 0.0) {
+        vec3 oc = q0 - a.xyz;
+        float b = dot(oc, rd);
+        vec3 c = oc - b * rd;
+        float disc = a.w * a.w - dot(c, c);
+        if (disc < 0.0) return uDrawDist;
+        float s = sqrt(disc);
+        if (s - b < 0.0) return uDrawDist;
+        return max(-b - s, 0.0);
+    }
+    vec3 t1 = (a.xyz - h - q0) * inv;
+    vec3 t2 = (a.xyz + h - q0) * inv;
+    vec3 tn = min(t1, t2);
+    vec3 tf = max(t1, t2);
+    float near = max(max(tn.x, tn.y), tn.z);
+    float far = min(min(tf.x, tf.y), tf.z);
+    if (near > far || far < 0.0) return uDrawDist;
+    return max(near, 0.0);
+}
+
+// The ray's first entry into an object of the list of `count` records from `start`.
+float fieldListEntry(int start, int count, vec3 q0, vec3 rd, vec3 inv) {
+    float t = uDrawDist;
+    for (int k = 0; k < count; k++) {
+        int r = 2 * (start + k);
+        vec4 a = texelFetch(uFieldRecords, fieldTexel(r), 0);
+        vec3 h = a.w > 0.0 ? vec3(0.0) : texelFetch(uFieldRecords, fieldTexel(r + 1), 0).xyz;
+        t = min(t, fieldEntry(q0, rd, inv, a, h));
+    }
+    return t;
+}
+
+// The field's distance at p (camera-relative): exact within the reach of p's cell, a
+// lower bound beyond it (the cell's walls plus the reach: nothing unlisted is nearer).
+float fieldMap(vec3 p, int skip, out int best) {
+    vec3 q = p - uFieldOrigin;
+    vec3 outside = max(max(-q, q - uFieldSize), 0.0);
+    best = -1;
+    if (max(outside.x, max(outside.y, outside.z)) > 0.0) {
+        return length(outside) + uFieldReach;
+    }
+    ivec3 c = clamp(ivec3(floor(q / uFieldCell)), ivec3(0), ivec3(uFieldDims) - 1);
+    vec3 low = q - vec3(c) * uFieldCell;
+    vec3 high = uFieldCell - low;
+    vec3 walls = min(low, high);
+    float wall = min(walls.x, min(walls.y, walls.z)) + uFieldReach;
+    return min(fieldCellDistance(fieldCellIndex(c), q, skip, best), wall);
+}
+
+// One object's distance, by number.
+float fieldObject(vec3 p, int object) {
+    vec4 a = texelFetch(uFieldObjects, fieldTexel(3 * object), 0);
+    vec4 b = texelFetch(uFieldObjects, fieldTexel(3 * object + 1), 0);
+    return sdFieldShape(p - uFieldOrigin, a, b.xyz);
+}
+
+vec3 fieldColor(int object) {
+    return texelFetch(uFieldObjects, fieldTexel(3 * object + 2), 0).rgb;
+}

@@ -1,0 +1,303 @@
+;; Fields: the many spheres and boxes of a large scene, kept in float textures and found
+;; through a uniform grid built here on the CPU (issue 12). A ray walks the grid's cells
+;; in order (a 3D DDA) and sphere-traces only the objects listed in the cell it is in,
+;; so an empty cell costs one lookup and a full one a few objects, whatever the scene's
+;; size. Pure: runs under plain LuaJIT. The shader (shaders/pipeline/field.glsl and
+;; march-field.glsl) and the CPU reference (src/verify/reference.fnl) walk the same
+;; grid with the same arithmetic; brute force over every object is the tests' oracle.
+;;
+;; Every object of a field is a rounded box: centre c, half extents h, radius r. A
+;; sphere is h = 0 (distance |p - c| - r, exact); a box is r = 0 (exact). One formula,
+;; no branch per object.
+;;
+;; Coordinates are field-local (the grid's low corner is the origin), so the textures
+;; do not change when the camera moves: the shader is sent the corner camera-relative,
+;; computed in double.
+
+(local registry (require :src.sdf.registry))
+
+(local sqrt math.sqrt)
+(local floor math.floor)
+(local min math.min)
+(local max math.max)
+(local abs math.abs)
+
+;; From this many spheres and boxes on, a scene's spheres and boxes form a field.
+;; Below it the uniform arrays are faster on llvmpipe (measured: see the closing note
+;; of issue 12; test/field_spec.fnl checks the switch, not the speed).
+(local min-objects 64)
+
+;; Texels per texture row. Every texture is 1024 wide and as tall as it needs;
+;; llvmpipe allows 16384 x 16384.
+(local texture-width 1024)
+
+;; Grid cells per object (the grid's resolution): more cells mean shorter lists and
+;; more cells to cross. Chosen on the scaling scenes of the benchmark at 640x360.
+(local cells-per-object 2)
+(local max-cells-per-axis 256)
+
+;; An object is listed in every cell its box comes within `reach` of. The march needs
+;; no reach (it never leaves a cell without crossing its wall), but a distance query
+;; at a point sees exactly every object within `reach` of the point's cell (normals,
+;; creases, adaptive edges, ambient occlusion) and a lower bound beyond: the walls
+;; plus the reach. Longer reach, longer lists. A twentieth of the smallest cell side;
+;; a quarter with soft shadows (their march steps by distance queries, and 128 steps
+;; of at least the reach must cross the scene); at least the ambient occlusion radius
+;; (up to one cell side).
+(local reach-fraction 0.05)
+(local wide-reach-fraction 0.25)
+
+(fn member? [o]
+  "Whether object `o` can be part of a field: a sphere (below the large-sphere
+radius, which has its own cancellation-free code) or a box."
+  (and (not o.tree)
+       (or (= o.kind :box)
+           (and (= o.kind :sphere) (< o.radius registry.large-radius)))))
+
+(fn members [objects]
+  "The objects of the list `objects` that go into a field, in order, or nil when
+there are fewer than min-objects of them."
+  (let [out (icollect [_ o (ipairs objects)] (when (member? o) o))]
+    (when (>= (length out) min-objects) out)))
+
+(fn shape [o]
+  ;; centre x y z, half extents x y z, radius
+  (let [[x y z] o.pos]
+    (if (= o.kind :sphere)
+        (values x y z 0 0 0 o.radius)
+        (let [[sx sy sz] o.size]
+          (values x y z (* 0.5 sx) (* 0.5 sy) (* 0.5 sz) 0)))))
+
+(fn rounded-box [qx qy qz cx cy cz hx hy hz r]
+  ;; The shared distance: |max(e, 0)| + min(max component of e, 0) - r, with
+  ;; e = |q - c| - h. A sphere when h = 0, a box when r = 0; both exact.
+  (let [ex (- (abs (- qx cx)) hx)
+        ey (- (abs (- qy cy)) hy)
+        ez (- (abs (- qz cz)) hz)
+        ox (max ex 0) oy (max ey 0) oz (max ez 0)]
+    (- (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz))) (min (max ex (max ey ez)) 0)) r)))
+
+(fn grid-dims [ex ey ez n]
+  ;; Cells along each axis for extents ex ey ez and n objects: about
+  ;; cells-per-object * n cubic cells, at least one along each axis.
+  (let [volume (* (max ex 1e-9) (max ey 1e-9) (max ez 1e-9))
+        side (^ (/ volume (* cells-per-object n)) (/ 1 3))
+        dim (fn [e] (max 1 (min max-cells-per-axis (math.ceil (/ e side)))))]
+    [(dim ex) (dim ey) (dim ez)]))
+
+(fn build [objects ?options]
+  "The field of `objects` (members, in order): the grid and the texture data.
+Options: :reach-at-least (a distance queries must see exactly, e.g. the ambient
+occlusion radius), :wide? (soft shadows: a quarter cell's reach). Returns {:count :objects :lo [x y z] (world) :dims [nx ny nz]
+:cell [sx sy sz] :size [x y z] :reach :crossings (cells a ray can cross, at most)
+:cell-start :cell-count (per cell, 0-based) :records (object numbers, 1-based, per
+cell in order) :shapes (per object: cx cy cz hx hy hz r, field-local) :colors
+:textures {:cells :records :objects}}; each texture {:width :height :data (flat
+RGBA floats)}."
+  (let [options (or ?options {})
+        n (length objects)
+        shapes []]
+    ;; Bounding box of every object's box.
+    (var (lx ly lz hx hy hz) (values math.huge math.huge math.huge (- math.huge) (- math.huge) (- math.huge)))
+    (each [_ o (ipairs objects)]
+      (let [(cx cy cz ax ay az r) (shape o)]
+        (set lx (min lx (- cx ax r))) (set ly (min ly (- cy ay r))) (set lz (min lz (- cz az r)))
+        (set hx (max hx (+ cx ax r))) (set hy (max hy (+ cy ay r))) (set hz (max hz (+ cz az r)))))
+    (let [[nx ny nz] (grid-dims (- hx lx) (- hy ly) (- hz lz) n)
+          smallest (min (/ (- hx lx) nx) (/ (- hy ly) ny) (/ (- hz lz) nz))
+          smallest (if (> smallest 0) smallest 1e-3)
+          fraction (if options.wide? wide-reach-fraction reach-fraction)
+          reach (min smallest (max (* fraction smallest) (or options.reach-at-least 0)))
+          ;; The grid holds every object's box grown by the reach.
+          lo [(- lx reach) (- ly reach) (- lz reach)]
+          size [(+ (- hx lx) (* 2 reach)) (+ (- hy ly) (* 2 reach)) (+ (- hz lz) (* 2 reach))]
+          cell [(/ (. size 1) nx) (/ (. size 2) ny) (/ (. size 3) nz)]
+          [ox oy oz] lo
+          [sx sy sz] cell
+          cells (* nx ny nz)
+          cell-count (fcollect [_ 1 cells] 0)
+          ranges []
+          colors []]
+      ;; Shapes in field-local coordinates, and the cells each object's grown box
+      ;; covers.
+      (each [i o (ipairs objects)]
+        (let [(cx cy cz ax ay az r) (shape o)
+              cx (- cx ox) cy (- cy oy) cz (- cz oz)
+              span (fn [c a s d]
+                     (values (max 0 (min (- d 1) (floor (/ (- c a r reach) s))))
+                             (max 0 (min (- d 1) (floor (/ (+ c a r reach) s))))))
+              (x0 x1) (span cx ax sx nx)
+              (y0 y1) (span cy ay sy ny)
+              (z0 z1) (span cz az sz nz)]
+          (tset shapes i [cx cy cz ax ay az r])
+          (tset colors i o.color)
+          (tset ranges i [x0 x1 y0 y1 z0 z1])
+          (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
+            (let [k (+ 1 x (* nx (+ y (* ny z))))]
+              (tset cell-count k (+ (. cell-count k) 1))))))))
+      ;; Lists laid out cell after cell; objects in each list in scene order.
+      (let [cell-start []
+            fill []
+            records []]
+        (var at 0)
+        (for [k 1 cells]
+          (tset cell-start k at)
+          (tset fill k at)
+          (set at (+ at (. cell-count k))))
+        (each [i [x0 x1 y0 y1 z0 z1] (ipairs ranges)]
+          (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
+            (let [k (+ 1 x (* nx (+ y (* ny z))))
+                  slot (. fill k)]
+              (tset records (+ slot 1) i)
+              (tset fill k (+ slot 1)))))))
+        {:count n : objects : lo :dims [nx ny nz] : cell : size : reach
+         :crossings (+ nx ny nz 1)
+         : cell-start : cell-count : records : shapes : colors}))))
+
+(fn texture [texels data]
+  {:width texture-width :height (max 1 (math.ceil (/ texels texture-width))) : data})
+
+(fn textures [field]
+  "The field's float textures (made once, then kept in the field):
+  :cells    one texel per cell: first record, record count
+  :records  two texels per record: centre and radius, half extents and the
+            object's number (0-based)
+  :objects  three texels per object: centre and radius, half extents, colour
+Each {:width :height :data} with data flat RGBA floats, row after row."
+  (when (not field.textures)
+    (let [cells [] records [] objects []]
+      (each [k start (ipairs field.cell-start)]
+        (let [at (* 4 (- k 1))]
+          (tset cells (+ at 1) start)
+          (tset cells (+ at 2) (. field.cell-count k))
+          (tset cells (+ at 3) 0)
+          (tset cells (+ at 4) 0)))
+      (each [j i (ipairs field.records)]
+        (let [[cx cy cz ax ay az r] (. field.shapes i)
+              at (* 8 (- j 1))]
+          (tset records (+ at 1) cx) (tset records (+ at 2) cy) (tset records (+ at 3) cz)
+          (tset records (+ at 4) r)
+          (tset records (+ at 5) ax) (tset records (+ at 6) ay) (tset records (+ at 7) az)
+          (tset records (+ at 8) (- i 1))))
+      (each [i [cx cy cz ax ay az r] (ipairs field.shapes)]
+        (let [[cr cg cb] (. field.colors i)
+              at (* 12 (- i 1))]
+          (each [j v (ipairs [cx cy cz r ax ay az 0 cr cg cb 0])]
+            (tset objects (+ at j) v))))
+      (set field.textures
+           {:cells (texture (length field.cell-start) cells)
+            :records (texture (* 2 (length field.records)) records)
+            :objects (texture (* 3 field.count) objects)})))
+  field.textures)
+
+;;; Queries (the CPU side of shaders/pipeline/field.glsl), in world coordinates.
+
+(fn object-distance [field i x y z]
+  "Distance from world point (x y z) to the field's object `i` (1-based)."
+  (let [[ox oy oz] field.lo
+        [cx cy cz ax ay az r] (. field.shapes i)]
+    (rounded-box (- x ox) (- y oy) (- z oz) cx cy cz ax ay az r)))
+
+(fn cell-distance [field k qx qy qz ?skip]
+  "Nearest listed object of cell `k` (1-based) to field-local (qx qy qz), skipping
+object `?skip`: distance (math.huge when none) and object number (or nil). Ties go
+to the earlier record."
+  (let [shapes field.shapes
+        records field.records
+        start (. field.cell-start k)]
+    (var d math.huge)
+    (var best nil)
+    (for [j (+ start 1) (+ start (. field.cell-count k))]
+      (let [i (. records j)]
+        (when (not= i ?skip)
+          (let [[cx cy cz ax ay az r] (. shapes i)
+                di (rounded-box qx qy qz cx cy cz ax ay az r)]
+            (when (< di d) (set d di) (set best i))))))
+    (values d best)))
+
+(fn entry [qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far]
+  ;; fieldEntry: where the ray q + t d first enters the object, at t >= 0, or `far`.
+  ;; (ix iy iz: the reciprocal of d, tiny components replaced as the shader does.)
+  (if (> r 0)
+      (let [ox (- qx cx) oy (- qy cy) oz (- qz cz)
+            b (+ (* ox dx) (* oy dy) (* oz dz))
+            px (- ox (* b dx)) py (- oy (* b dy)) pz (- oz (* b dz))
+            disc (- (* r r) (+ (* px px) (* py py) (* pz pz)))]
+        (if (< disc 0) far
+            (let [s (sqrt disc)]
+              (if (< (- s b) 0) far (max (- (- b) s) 0)))))
+      (let [x1 (* (- cx ax qx) ix) x2 (* (- (+ cx ax) qx) ix)
+            y1 (* (- cy ay qy) iy) y2 (* (- (+ cy ay) qy) iy)
+            z1 (* (- cz az qz) iz) z2 (* (- (+ cz az) qz) iz)
+            near (max (min x1 x2) (min y1 y2) (min z1 z2))
+            far* (min (max x1 x2) (max y1 y2) (max z1 z2))]
+        (if (or (> near far*) (< far* 0)) far (max near 0)))))
+
+(fn list-entry [field k qx qy qz dx dy dz ix iy iz far]
+  "fieldListEntry: where the ray (field-local origin q, unit direction d, reciprocal
+i) first enters an object listed in cell `k` (1-based), or `far`."
+  (let [shapes field.shapes
+        records field.records
+        start (. field.cell-start k)]
+    (var t far)
+    (for [j (+ start 1) (+ start (. field.cell-count k))]
+      (let [[cx cy cz ax ay az r] (. shapes (. records j))]
+        (set t (min t (entry qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far)))))
+    t))
+
+(fn cell-of [field qx qy qz]
+  "The cell holding field-local (qx qy qz), clamped into the grid: x y z (0-based)
+and its number k (1-based)."
+  (let [[nx ny nz] field.dims
+        [sx sy sz] field.cell
+        c (fn [q s n] (max 0 (min (- n 1) (floor (/ q s)))))
+        x (c qx sx nx) y (c qy sy ny) z (c qz sz nz)]
+    (values x y z (+ 1 x (* nx (+ y (* ny z)))))))
+
+(fn distance [field x y z ?skip]
+  "The field's distance at world (x y z) as the shader's fieldMap gives it: exact
+within the reach of the point's cell, a lower bound beyond (the cell's walls plus
+the reach). Returns the distance and the nearest listed object (1-based, or nil)."
+  (let [[ox oy oz] field.lo
+        [wx wy wz] field.size
+        qx (- x ox) qy (- y oy) qz (- z oz)
+        outx (max (- qx) (- qx wx) 0)
+        outy (max (- qy) (- qy wy) 0)
+        outz (max (- qz) (- qz wz) 0)]
+    (if (> (max outx outy outz) 0)
+        ;; Outside the grid: every object is at least the reach inside it.
+        (values (+ (sqrt (+ (* outx outx) (* outy outy) (* outz outz))) field.reach) nil)
+        (let [(cx cy cz k) (cell-of field qx qy qz)
+              [sx sy sz] field.cell
+              wall (+ field.reach
+                      (min (- qx (* cx sx)) (- (* (+ cx 1) sx) qx)
+                           (- qy (* cy sy)) (- (* (+ cy 1) sy) qy)
+                           (- qz (* cz sz)) (- (* (+ cz 1) sz) qz)))
+              (d best) (cell-distance field k qx qy qz ?skip)]
+          (values (min d wall) best)))))
+
+(fn brute-distance [field x y z ?skip]
+  "The test oracle: the exact distance over every object of the field, and the
+nearest object (ties to the earlier)."
+  (var d math.huge)
+  (var best nil)
+  (for [i 1 field.count]
+    (when (not= i ?skip)
+      (let [di (object-distance field i x y z)]
+        (when (< di d) (set d di) (set best i)))))
+  (values d best))
+
+(fn brute-entry [field ox oy oz dx dy dz far]
+  "The test oracle of the walk: where the ray from world (ox oy oz) along the unit
+vector (dx dy dz) first enters any object of the field, in closed form, or `far`."
+  (let [[lx ly lz] field.lo
+        tiny 0.000001
+        safe (fn [v] (if (< (abs v) tiny) tiny v))
+        ix (/ 1 (safe dx)) iy (/ 1 (safe dy)) iz (/ 1 (safe dz))]
+    (var t far)
+    (each [_ [cx cy cz ax ay az r] (ipairs field.shapes)]
+      (set t (min t (entry (- ox lx) (- oy ly) (- oz lz) dx dy dz ix iy iz cx cy cz ax ay az r far))))
+    t))
+
+{: member? : members : brute-entry : build : textures : object-distance : cell-distance : cell-of : list-entry
+ : distance : brute-distance : rounded-box : min-objects : texture-width}

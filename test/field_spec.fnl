@@ -1,0 +1,217 @@
+;; Fields (src/render/field.fnl): many spheres and boxes in textures, found through a
+;; grid. The grid's lists, its distance queries and the reference's march through it
+;; are checked against brute force over every object (the oracle).
+
+(local scene (require :src.scene.load))
+(local plan (require :src.render.plan))
+(local camera (require :src.render.camera))
+(local codegen (require :src.render.codegen))
+(local uniforms (require :src.render.uniforms))
+(local export (require :src.render.export))
+(local reference (require :src.verify.reference))
+(local compare (require :src.verify.compare))
+(local field (require :src.render.field))
+
+(fn scattered [n ?extra ?render]
+  ;; A scene of n spheres and boxes (alternating) scattered over a 40 x 40 x 10
+  ;; region above a floor, by the scene's own generator.
+  (assert (scene.load-string
+           (.. "(var seed 7)
+(fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))
+(local objects [{:kind :plane :height 0 :color [0.6 0.6 0.6]} " (or ?extra "") "])
+(for [i 1 " n "]
+  (let [x (+ -20 (* 40 (rnd))) y (+ -20 (* 40 (rnd))) z (+ 0.5 (* 10 (rnd)))
+        r (+ 0.2 (* 0.5 (rnd)))
+        color [(rnd) (rnd) (rnd)]]
+    (table.insert objects (if (= 0 (% i 2))
+                              {:kind :box :pos [x y z] :size [r (* 2 r) r] : color}
+                              {:kind :sphere :pos [x y z] :radius r : color}))))
+{:camera {:pos [0 -35 12] :yaw 90 :pitch 15 :fov 60}
+ :light {:pos [-20 -30 40]}
+ :render " (or ?render "{:shadows true :reflections 1 :relaxation 1}") "
+ :objects objects}")
+           "t.fnl")))
+
+(fn points [n ?seed]
+  ;; n points spread over the region and a little around it (a fixed sequence).
+  (var seed (or ?seed 3))
+  (fn rnd [] (set seed (% (+ (* seed 16807) 0) 2147483647)) (/ seed 2147483647))
+  (fcollect [_ 1 n] [(+ -24 (* 48 (rnd))) (+ -24 (* 48 (rnd))) (+ -2 (* 14 (rnd)))]))
+
+(describe "fields"
+  (fn []
+    (it "take the spheres and boxes of a scene with at least min-objects of them"
+      (fn []
+        (let [few (scattered (- field.min-objects 1))
+              many (scattered field.min-objects)]
+          (assert.is_nil (field.members few.objects))
+          (assert.is_nil (. (assert (plan.scene->plan few)) :field))
+          (let [p (assert (plan.scene->plan many))]
+            (assert.are.equal field.min-objects p.field.count)
+            (assert.is_truthy (p.key:find "field" 1 true))
+            ;; Only the floor is left to the uniform arrays.
+            (assert.are.same [:plane] (icollect [_ k (ipairs p.kinds)] k.kind))
+            ;; plan.objects: the kinds', then the field's, in scene order.
+            (assert.are.equal (. many.objects 1) (. p.objects 1))
+            (assert.are.equal (. many.objects 2) (. p.objects 2))))
+        ;; Trees and planet-sized spheres stay out of a field.
+        (assert.is_false (field.member? {:kind :sphere :pos [0 0 0] :radius 5000}))
+        (assert.is_false (field.member? {:kind :sphere :tree {} :pos [0 0 0] :radius 1}))
+        (assert.is_false (field.member? {:kind :plane :height 0}))))
+
+    (it "are left out when asked, without bounds, or beside an object that has no bound"
+      (fn []
+        (let [s (scattered 100)]
+          (assert.is_nil (. (assert (plan.scene->plan s {:field? false :uniform-limit 1e6})) :field))
+          (assert.is_nil (. (assert (plan.scene->plan s {:bounds? false :uniform-limit 1e6})) :field)))
+        ;; An endless repetition has no bound: the plan falls back to uniform arrays.
+        (let [s (scattered 100 "{:kind :repeat :period [4 4 0] :children [{:kind :sphere :radius 0.5}] :pos [0 0 30]}")
+              p (assert (plan.scene->plan s))]
+          (assert.is_nil p.field)
+          (assert.is_nil p.bounds))))
+
+    (it "list every object in every cell its box meets"
+      (fn []
+        (let [s (scattered 300)
+              fd (. (assert (plan.scene->plan s)) :field)
+              [lx ly lz] fd.lo]
+          (var checked 0)
+          (each [i [cx cy cz ax ay az r] (ipairs fd.shapes)]
+            ;; The box's corners and centre, field-local.
+            (each [_ [sx sy sz] (ipairs [[0 0 0] [-1 -1 -1] [1 1 1] [-1 1 -1] [1 -1 1]])]
+              (let [(_ _ _ k) (field.cell-of fd (+ cx (* sx (+ ax r))) (+ cy (* sy (+ ay r)))
+                                             (+ cz (* sz (+ az r))))
+                    start (. fd.cell-start k)
+                    listed? (accumulate [found? false j (ipairs fd.records) &until found?]
+                              (and (> j start) (<= j (+ start (. fd.cell-count k)))
+                                   (= i (. fd.records j))))]
+                (set checked (+ checked 1))
+                (assert.is_true listed? (.. "object " i " is not listed in cell " k)))))
+          (assert.are.equal (* 5 300) checked))))
+
+    (it "give the exact distance within reach and a lower bound beyond (brute force the oracle)"
+      (fn []
+        (let [fd (. (assert (plan.scene->plan (scattered 500))) :field)]
+          (var near 0)
+          (each [_ [x y z] (ipairs (points 3000))]
+            (let [(d best) (field.distance fd x y z)
+                  (exact nearest) (field.brute-distance fd x y z)]
+              (assert.is_true (<= d (+ exact 1e-9))
+                              (string.format "(%g %g %g): %g above the exact %g" x y z d exact))
+              (when (<= exact fd.reach)
+                (set near (+ near 1))
+                (assert.is_true (< (math.abs (- d exact)) 1e-9))
+                (assert.are.equal nearest best))))
+          ;; The sample reaches objects, not only empty space.
+          (assert.is_true (> near 20) (.. near " points within reach")))))
+
+    (it "skip one object when asked, as mapOthers does"
+      (fn []
+        (let [fd (. (assert (plan.scene->plan (scattered 200))) :field)
+              [cx cy cz] (. fd.shapes 5)
+              [lx ly lz] fd.lo
+              (x y z) (values (+ lx cx) (+ ly cy) (+ lz cz))]
+          (assert.are.equal 5 (select 2 (field.distance fd x y z)))
+          (assert.are_not.equal 5 (select 2 (field.distance fd x y z 5)))
+          (assert.is_true (> (field.distance fd x y z 5) (field.distance fd x y z))))))
+
+    (it "pack their textures: cells, records with 0-based object numbers, objects"
+      (fn []
+        (let [fd (. (assert (plan.scene->plan (scattered 100))) :field)
+              tex (field.textures fd)]
+          (assert.are.equal tex (field.textures fd))   ; made once
+          (each [_ t (ipairs [tex.cells tex.records tex.objects])]
+            (assert.are.equal field.texture-width t.width)
+            (assert.is_true (<= (length t.data) (* 4 t.width t.height))))
+          (assert.are.equal (* 4 (length fd.cell-start)) (length tex.cells.data))
+          (assert.are.equal (* 8 (length fd.records)) (length tex.records.data))
+          (assert.are.equal (* 12 fd.count) (length tex.objects.data))
+          ;; Record 1 is object (. fd.records 1), stored 0-based.
+          (assert.are.equal (- (. fd.records 1) 1) (. tex.records.data 8))
+          ;; Object 2 is a box: no radius, half extents; its colour.
+          (let [o (. fd.objects 2)]
+            (assert.are.equal :box o.kind)
+            (assert.are.equal 0 (. tex.objects.data (+ 12 4)))
+            (assert.are.equal (* 0.5 (. o.size 2)) (. tex.objects.data (+ 12 6)))
+            (assert.are.same o.color [(. tex.objects.data (+ 12 9)) (. tex.objects.data (+ 12 10))
+                                      (. tex.objects.data (+ 12 11))])))))
+
+    (it "send the grid's corner camera-relative and its textures as texture uniforms"
+      (fn []
+        (let [s (scattered 100)
+              p (assert (plan.scene->plan s))
+              cam (camera.from-scene s)
+              us (collect [_ u (ipairs (uniforms.pack s p cam 64 36))] u.name u)
+              [lx ly lz] p.field.lo
+              [cx cy cz] cam.pos]
+          (assert.are.same [(- lx cx) (- ly cy) (- lz cz)] (. us :uFieldOrigin :values))
+          (assert.are.equal :texture (. us :uFieldRecords :type))
+          (assert.are.equal (. (field.textures p.field) :cells) (. us :uFieldCells :texture))
+          (assert.are.same [p.field.crossings] (. us :uFieldCrossings :values)))))
+
+    (it "generate the grid march and the field's terms, and no Shadertoy export"
+      (fn []
+        (let [s (scattered 100)
+              p (assert (plan.scene->plan s))
+              text (assert (codegen.shader p :core))]
+          (assert.is_truthy (text:find "float fieldMap(vec3 p, int skip, out int best)" 1 true))
+          (assert.is_truthy (text:find "cell.x += stepDir.x;" 1 true))
+          (assert.is_truthy (text:find "return fieldObject(p, gObject - 1);" 1 true))
+          (assert.is_truthy (text:find "const bool kFieldOthers = false;" 1 true))
+          (let [(out err) (export.shadertoy s p)]
+            (assert.is_nil out)
+            (assert.is_truthy (err:find "100 spheres and boxes in float textures" 1 true))))))
+
+    (it "walk the grid to the first object a ray meets, as brute force over every object finds it"
+      (fn []
+        ;; Rays from around and inside the region in many directions; the walk (the
+        ;; reference's march, as the shader's) against the closed-form entry into
+        ;; every object and the floor.
+        (let [s (scattered 600)
+              p (assert (plan.scene->plan s))
+              T (reference.tracer s p {:cam-pos [0 -35 12]})
+              draw s.render.draw-distance
+              origins (points 300)
+              targets (points 300 11)]
+          (var hits 0)
+          (each [i [ox oy oz] (ipairs origins)]
+            ;; Toward another point of the region: most rays cross it.
+            (let [oz (math.max oz 0.01)
+                  [tx ty tz] (. targets i)
+                  (a b c) (values (- tx ox) (- ty oy) (- tz oz))
+                  len (math.sqrt (+ (* a a) (* b b) (* c c)))
+                  (dx dy dz) (values (/ a len) (/ b len) (/ c len))
+                  plane (if (< dz 0) (/ (- oz) dz) draw)
+                  expected (math.min (field.brute-entry p.field ox oy oz dx dy dz draw) plane draw)
+                  t (T.march ox oy oz dx dy dz)]
+              (when (< expected plane) (set hits (+ hits 1)))
+              (assert.is_true (< (math.abs (- t expected)) 1e-9)
+                              (string.format "ray %d: walked to %.12g, the first object is at %.12g" i t expected))))
+          (assert.is_true (> hits 30) (.. hits " rays meet an object")))))
+
+    (it "show what marching every object shows, but for the hit threshold's band"
+      (fn []
+        ;; Brute force: the same scene without a field, every object marched at every
+        ;; step. The field meets its objects exactly; the march counts a ray passing
+        ;; within the hit threshold (epsilon times the distance) as a hit, so
+        ;; silhouettes and shadow edges move by that much. Measured at 160x90 on 400
+        ;; pixels: the same object under 399, colours within 2/255 at 389.
+        (let [s (scattered 600)
+              cam (camera.from-scene s)
+              pf (assert (plan.scene->plan s))
+              pb (assert (plan.scene->plan s {:field? false :uniform-limit 1e6}))
+              pixels (fcollect [i 0 399] [(% (* i 37) 160) (% (* i 53) 90)])
+              a (reference.render-pixels s pf cam 160 90 pixels)
+              b (reference.render-pixels s pb cam 160 90 pixels)]
+          (assert.is_truthy pf.field)
+          (var same 0)
+          (var close 0)
+          (each [i ra (ipairs a)]
+            (let [rb (. b i)]
+              (when (= ra.object rb.object) (set same (+ same 1)))
+              (when (<= (compare.pixel-diff (icollect [_ c (ipairs ra.color)] (* 255 c))
+                                            (icollect [_ c (ipairs rb.color)] (* 255 c)))
+                        2)
+                (set close (+ close 1)))))
+          (assert.is_true (>= same 396) (.. same " of 400 pixels show the same object"))
+          (assert.is_true (>= close 380) (.. close " of 400 pixels within 2/255")))))))
