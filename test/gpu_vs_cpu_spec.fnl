@@ -221,4 +221,19 @@
                         _ (assert.are.equal 1 n)
                         st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "light below a box, shadow past the light" st))
+                    (assert.is_false (passes? st budget))))))
+
+            (it "walks a field's grid as the reference does, and catches a walk that skips cells"
+              (fn []
+                ;; scenes/city.fnl: 10,000 towers and domes in a field (see field_spec).
+                ;; A walk that never moves on along x keeps testing the cell it entered
+                ;; and misses the towers beyond it.
+                (let [prepared (prepared-for "scenes/city.fnl" :shaded)
+                      budget (budget-for "city" :shaded)
+                      (source n) (: (codegen.shader prepared.plan :core) :gsub
+                                    "cell%.x %+= stepDir%.x;" "")]
+                  (assert.truthy prepared.plan.field)
+                  (assert.are.equal 1 n)
+                  (let [st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
+                    (print (report-line "city, walk without x steps" st))
                     (assert.is_false (passes? st budget)))))))))))
