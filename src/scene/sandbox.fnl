@@ -238,6 +238,11 @@ the file system, the process, the loader or the compiler."
 
 ;;; Running, within limits
 
+;; Read once: the step hook calls them, and a module loaded with an :env (the tests,
+;; tools/fnl.lua) reaches every global through a function.
+(local gc collectgarbage)
+(local cpu-clock os.clock)
+
 (fn steps-text [n]
   (if (>= n 1e6) (.. (math.floor (/ n 1e6)) " million") (tostring (math.floor n))))
 
@@ -247,31 +252,33 @@ message past the step or memory limit. Returns true and the value, or false and 
 error (a string from the scene's code, or a sandbox error). `?options`: :steps (a
 smaller step limit, for the functions of time called every frame) and :collect?
 (false: no full garbage collection afterwards, also for those calls)."
+  (var hooks 0)
+  (var stopped nil)
   (let [options (or ?options {})
         steps (or options.steps limits.steps)
-        memory-start (collectgarbage :count)
-        memory-limit (* 1024 limits.memory-mb)
+        memory-ceiling (+ (gc :count) (* 1024 limits.memory-mb))
         max-hooks (/ steps limits.hook-every)
-        cpu-start (os.clock)
-        state {:hooks 0 :stopped nil}
+        cpu-start (cpu-clock)
         stop! (fn [message]
                 ;; Raise once: a hook firing again on the way out of pcall (before the
                 ;; hook is removed) must not raise outside it.
-                (set state.stopped message)
+                (set stopped message)
                 (stop message))
+        ;; The hook runs every few instructions, most of a generated scene's load:
+        ;; upvalues and locals only, and the rare tests last.
         hook (fn []
-               (when (not state.stopped)
-                 (set state.hooks (+ state.hooks 1))
-                 (when (> state.hooks max-hooks)
-                   (stop! (.. file ": the scene ran for more than " (steps-text steps)
-                              " steps and was stopped (an endless loop?)")))
-                 (when (> (- (collectgarbage :count) memory-start) memory-limit)
-                   (stop! (.. file ": the scene built more than " limits.memory-mb
-                              " MB of data and was stopped")))
-                 (when (and (= 0 (% state.hooks 65536))
-                            (> (- (os.clock) cpu-start) limits.cpu-seconds))
-                   (stop! (.. file ": the scene ran for more than " limits.cpu-seconds
-                              " s and was stopped")))))
+               (when (not stopped)
+                 (set hooks (+ hooks 1))
+                 (if (> hooks max-hooks)
+                     (stop! (.. file ": the scene ran for more than " (steps-text steps)
+                                " steps and was stopped (an endless loop?)"))
+                     (> (gc :count) memory-ceiling)
+                     (stop! (.. file ": the scene built more than " limits.memory-mb
+                                " MB of data and was stopped"))
+                     (and (= 0 (% hooks 65536))
+                          (> (- (cpu-clock) cpu-start) limits.cpu-seconds))
+                     (stop! (.. file ": the scene ran for more than " limits.cpu-seconds
+                                " s and was stopped")))))
         string-meta (getmetatable "")
         real-index string-meta.__index]
     (when jit (jit.off chunk true))
@@ -289,7 +296,7 @@ smaller step limit, for the functions of time called every frame) and :collect?
       (set string-meta.__index real-index)
       (tset capped-files 1 nil)
       (when (not= false options.collect?) (collectgarbage))
-      (if state.stopped (values false {:sandbox marker :message state.stopped})
+      (if stopped (values false {:sandbox marker :message stopped})
           (not outer-ok?) (values false ok?)
           (values ok? value)))))
 
