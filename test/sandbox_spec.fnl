@@ -84,14 +84,16 @@
           (let [(s err) (scene.load-file path)]
             (os.remove path)
             (assert.is_nil s)
-            (assert.are.equal (.. path ": the file is over 524288 bytes (512 KB), the most a scene file may have")
+            (assert.are.equal (.. path ": the file is over 524288 bytes (512 KB), the most a scene file may have"
+                                  "; make many objects with a loop, like (fcollect [i 1 n] {:kind :sphere ...})")
                               err)))))
 
     (it "refuses /dev/zero without reading it"
       (fn []
         (let [(s err) (scene.load-file "/dev/zero")]
           (assert.is_nil s)
-          (assert.are.equal "/dev/zero: the file is over 524288 bytes (512 KB), the most a scene file may have"
+          (assert.are.equal (.. "/dev/zero: the file is over 524288 bytes (512 KB), the most a scene file may have"
+                                "; make many objects with a loop, like (fcollect [i 1 n] {:kind :sphere ...})")
                             err))))
 
     (it "says a directory is a directory"
@@ -118,13 +120,13 @@
     (it "stops an endless loop by counting steps, so the verdict does not depend on the clock"
       (fn []
         (let [(_ err) (scene.load-string "(while true) {:objects []}" "t.fnl")]
-          (assert.are.equal "t.fnl: the scene ran for more than 10 million steps and was stopped (an endless loop?)"
+          (assert.are.equal "t.fnl: the scene ran for more than 20 million steps and was stopped (an endless loop?)"
                             err))))
 
     (it "stops a scene that builds too much data before it runs out of steps"
       (fn []
         (let [(_ err) (scene.load-string "{:objects (fcollect [i 1 1e8] {:kind :sphere})}" "t.fnl")]
-          (assert.are.equal "t.fnl: the scene built more than 64 MB of data and was stopped" err))))
+          (assert.are.equal "t.fnl: the scene built more than 96 MB of data and was stopped" err))))
 
     (it "caps what one library call may build, and names the call and line"
       (fn []

@@ -7,11 +7,17 @@
 (local text (require :src.util.text))
 
 (local limits
-  {:file-bytes (* 512 1024)       ; a scene file; 5000 objects written out fit in 400 KB,
-                                  ; and parsing and compiling 512 KB takes about 1 s
+  {:file-bytes (* 512 1024)       ; a scene file: about 6500 spheres written out, 2 s
+                                  ; to parse and compile (10,000 take 780 KB and 3 s,
+                                  ; so it stays); larger scenes come from a loop, and
+                                  ; 100,000 spheres made by one load in 0.6 s
    :nesting 100                   ; brackets inside brackets (a tree 32 nodes deep takes 66)
-   :steps 10000000                ; Lua VM instructions (about half a second here)
-   :memory-mb 64                  ; Lua memory the scene may build
+   :steps 20000000                ; Lua VM instructions (about a second here): 100,000
+                                  ; generated objects at 200 steps each; generators
+                                  ; tried take 74 to 127 steps per object
+   :memory-mb 96                  ; Lua memory the scene may build: 100,000 boxes
+                                  ; take 44 MB, 67 MB at the peak when built with
+                                  ; vector helpers that leave garbage
    :string-bytes (* 1024 1024)    ; one string made by a library call
    :cpu-seconds 5                 ; a backstop: the step limit trips long before
    :hook-every 4})                ; instructions between limit checks
@@ -76,7 +82,7 @@ parser would recurse on until the stack overflows."
 message when it is too large, not UTF-8 text or nested too deeply."
   (let [source (if (= (source:sub 1 3) "\239\187\191") (source:sub 4) source)]
     (if (> (length source) limits.file-bytes)
-        (values nil (string.format "%s: the file is over %d bytes (512 KB), the most a scene file may have"
+        (values nil (string.format "%s: the file is over %d bytes (512 KB), the most a scene file may have; make many objects with a loop, like (fcollect [i 1 n] {:kind :sphere ...})"
                                    file limits.file-bytes))
         (case (check-encoding source file)
           msg (values nil msg)
