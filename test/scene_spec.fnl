@@ -280,6 +280,18 @@
                                                     "t.fnl"))
                                             :objects)))))
 
+    (it "names the first of several bad keys in a stable order, not pairs order"
+      (fn []
+        (assert.are.equal
+          "t.fnl:1: alpha: unknown field; known fields: :camera :environment :light :lighting :name :objects :render"
+          (load-error "{:objects [] :zeta 1 :alpha 2 :mid 3}"))
+        (assert.are.equal
+          "t.fnl:1: unexpected entry 2; fields are named, like :name"
+          (load-error "{:objects [] :zeta 1 3 :x 2 :y}"))
+        (assert.are.equal
+          "t.fnl:1: objects[1].aa: unknown field; known fields: :color :emission :kind :mirror :pos :radius :rotate :roughness :scale"
+          (load-error "{:objects [{:kind :sphere :zz 1 :aa 2 :mm 3}]}"))))
+
     (it "keeps tree objects to the tree node limit, however many flat objects are allowed"
       (fn []
         (assert.are.equal
@@ -506,6 +518,8 @@
       (fn []
         (each [source expected
                (pairs {"{:objects [{:kind :sphere :pos {1 1 2 2 3 3 :w 4}}]}"
+                       "t.fnl:1: objects[1].pos: must be a list of three numbers like [1 2 3] with exactly three numbers"
+                       "{:objects [{:kind :sphere :pos {1 1 2 2 3 3 1.5 0}}]}"
                        "t.fnl:1: objects[1].pos: must be a list of three numbers like [1 2 3] with exactly three numbers"
                        "{:objects [{:kind :box :size [1 1 (fn [t] 1)]}]}"
                        "t.fnl:1: objects[1].size[3]: must be a positive number from 1e-6 to 1e7, got a function"

@@ -249,7 +249,7 @@ Long words get none: no name is that long, and the distance would cost time."
   (when (or (not= (type v) :table) (not= (length v) 3))
     (fail ctx path (.. "must be " what ", got " (describe-value v))))
   (each [k _ (pairs v)]
-    (when (or (not= (type k) :number) (< k 1) (> k 3))
+    (when (or (not= (type k) :number) (not= k (floor k)) (< k 1) (> k 3))
       (fail ctx path (.. "must be " what " with exactly three numbers"))))
   ;; Not ipairs: [nil nil 5] has length 3 and no first element.
   (fcollect [i 1 3]
@@ -396,18 +396,30 @@ verdict. Large scenes are mostly such values."
     :choice (check-choice ctx path v spec.choices)
     other (check ctx path v other)))
 
+(fn key-before? [a b]
+  "The order in which a message picks the first bad key: entries that are not names
+(numbers ascending), then names alphabetically. pairs order changes from run to run;
+a message must not."
+  (let [ta (type a) tb (type b)]
+    (if (not= ta tb) (if (= ta :string) false (= tb :string) true (< ta tb))
+        (or (= ta :string) (= ta :number)) (< a b)
+        (< (describe-value a) (describe-value b)))))
+
 (fn check-keys [ctx path tbl allowed]
-  (each [k _ (pairs tbl)]
-    (when (not= (type k) :string)
-      (fail ctx path (.. "unexpected entry " (describe-value k) "; fields are named, like :"
-                         (. allowed 1))))
-    (var known? false)
-    (each [_ a (ipairs allowed)] (when (= a k) (set known? true)))
-    (when (not known?)
-      (let [sorted (doto (icollect [_ a (ipairs allowed)] a) table.sort)]
-        (fail ctx (sub-path path k)
-              (.. "unknown field" (suggestion k allowed)
-                  "; known fields: :" (table.concat sorted " :")))))))
+  (let [bad (icollect [k _ (pairs tbl)]
+              (when (or (not= (type k) :string)
+                        (not (accumulate [known? false _ a (ipairs allowed) &until known?]
+                               (= a k))))
+                k))]
+    (when (> (length bad) 0)
+      (let [k (. (doto bad (table.sort key-before?)) 1)]
+        (if (not= (type k) :string)
+            (fail ctx path (.. "unexpected entry " (describe-value k) "; fields are named, like :"
+                               (. allowed 1)))
+            (let [sorted (doto (icollect [_ a (ipairs allowed)] a) table.sort)]
+              (fail ctx (sub-path path k)
+                    (.. "unknown field" (suggestion k allowed)
+                        "; known fields: :" (table.concat sorted " :")))))))))
 
 (fn check-fields [ctx path given spec]
   (let [fields (doto (icollect [k (pairs spec)] k) table.sort)
