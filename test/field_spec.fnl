@@ -155,7 +155,9 @@
               p (assert (plan.scene->plan s))
               text (assert (codegen.shader p :core))]
           (assert.is_truthy (text:find "float fieldMap(vec3 p, int skip, out int best)" 1 true))
-          (assert.is_truthy (text:find "cell.x += stepDir.x;" 1 true))
+          (assert.is_truthy (text:find "cell += ivec3(m) * stepDir;" 1 true))
+          ;; Nothing but the field and the floor: the lean walk.
+          (assert.is_truthy (text:find "nothing is sphere-traced" 1 true))
           (assert.is_truthy (text:find "return fieldObject(p, gObject - 1);" 1 true))
           (assert.is_truthy (text:find "const bool kFieldOthers = false;" 1 true))
           (let [(out err) (export.shadertoy s p)]
@@ -188,6 +190,27 @@
               (assert.is_true (< (math.abs (- t expected)) 1e-9)
                               (string.format "ray %d: walked to %.12g, the first object is at %.12g" i t expected))))
           (assert.is_true (> hits 30) (.. hits " rays meet an object")))))
+
+    (it "walk beside other objects as brute force marches them"
+      (fn []
+        ;; A torus (a tree) and the floor beside 300 field objects: the general walk
+        ;; sphere-traces the torus alongside the cells (the bug this caught: a tree
+        ;; beside the field was never tested for a hit, so mirror rays went through
+        ;; it).
+        (let [s (scattered 300 "{:kind :torus :radius 3 :thickness 0.8 :pos [0 0 4] :color [0.9 0.6 0.2]}")
+              cam (camera.from-scene s)
+              pf (assert (plan.scene->plan s))
+              pb (assert (plan.scene->plan s {:field? false :uniform-limit 1e6}))
+              pixels (fcollect [i 0 299] [(% (* i 37) 160) (% (* i 53) 90)])
+              a (reference.render-pixels s pf cam 160 90 pixels)
+              b (reference.render-pixels s pb cam 160 90 pixels)]
+          (assert.are.equal 1 pf.bounds.count)
+          (var same 0)
+          (each [i ra (ipairs a)]
+            (when (= (table.concat ra.path ",") (table.concat (. b i :path) ","))
+              (set same (+ same 1))))
+          ;; Every bounce hits the same objects but at the threshold's band.
+          (assert.is_true (>= same 294) (.. same " of 300 pixels see the same objects")))))
 
     (it "show what marching every object shows, but for the hit threshold's band"
       (fn []

@@ -55,35 +55,34 @@ float fieldCellDistance(int cell, vec3 q, int skip, out int best) {
 // distance when it misses. In closed form: a sphere from the ray's point of closest
 // approach (no cancellation for a far ray), a box by the slab test. A ray starting
 // inside enters at 0.
-float fieldEntry(vec3 q0, vec3 rd, vec3 inv, vec4 a, vec3 h) {
-    if (a.w > 0.0) {
-        vec3 oc = q0 - a.xyz;
-        float b = dot(oc, rd);
-        vec3 c = oc - b * rd;
-        float disc = a.w * a.w - dot(c, c);
-        if (disc < 0.0) return uDrawDist;
-        float s = sqrt(disc);
-        if (s - b < 0.0) return uDrawDist;
-        return max(-b - s, 0.0);
-    }
+float fieldSphereEntry(vec3 q0, vec3 rd, vec4 a) {
+    vec3 oc = q0 - a.xyz;
+    float b = dot(oc, rd);
+    vec3 c = oc - b * rd;
+    float disc = a.w * a.w - dot(c, c);
+    float s = sqrt(max(disc, 0.0));
+    return (disc < 0.0 || s - b < 0.0) ? uDrawDist : max(-b - s, 0.0);
+}
+
+float fieldBoxEntry(vec3 q0, vec3 inv, vec4 a, vec3 h) {
     vec3 t1 = (a.xyz - h - q0) * inv;
     vec3 t2 = (a.xyz + h - q0) * inv;
     vec3 tn = min(t1, t2);
     vec3 tf = max(t1, t2);
     float near = max(max(tn.x, tn.y), tn.z);
     float far = min(min(tf.x, tf.y), tf.z);
-    if (near > far || far < 0.0) return uDrawDist;
-    return max(near, 0.0);
+    return (near > far || far < 0.0) ? uDrawDist : max(near, 0.0);
 }
 
 // The ray's first entry into an object of the list of `count` records from `start`.
+// (Only the kinds the field holds are compiled in: on llvmpipe code behind a branch
+// runs for every pixel.)
 float fieldListEntry(int start, int count, vec3 q0, vec3 rd, vec3 inv) {
     float t = uDrawDist;
     for (int k = 0; k < count; k++) {
         int r = 2 * (start + k);
         vec4 a = texelFetch(uFieldRecords, fieldTexel(r), 0);
-        vec3 h = a.w > 0.0 ? vec3(0.0) : texelFetch(uFieldRecords, fieldTexel(r + 1), 0).xyz;
-        t = min(t, fieldEntry(q0, rd, inv, a, h));
+        // @slot entry
     }
     return t;
 }
@@ -114,4 +113,23 @@ float fieldObject(vec3 p, int object) {
 
 vec3 fieldColor(int object) {
     return texelFetch(uFieldObjects, fieldTexel(3 * object + 2), 0).rgb;
+}
+
+// The exact normal of a field object at p: its distance's gradient. Outside, along
+// the part of the offset beyond the half extents (a sphere: from its centre); inside,
+// the axis of the nearest face.
+vec3 fieldNormal(vec3 p, int object) {
+    vec4 a = texelFetch(uFieldObjects, fieldTexel(3 * object), 0);
+    vec3 h = texelFetch(uFieldObjects, fieldTexel(3 * object + 1), 0).xyz;
+    vec3 d = p - uFieldOrigin - a.xyz;
+    vec3 e = abs(d) - h;
+    vec3 s = vec3(d.x < 0.0 ? -1.0 : 1.0, d.y < 0.0 ? -1.0 : 1.0, d.z < 0.0 ? -1.0 : 1.0);
+    if (max(e.x, max(e.y, e.z)) > 0.0) {
+        vec3 g = max(e, 0.0) * s;
+        float len = length(g);
+        return len > 0.0 ? g / len : vec3(0.0, 0.0, 1.0);
+    }
+    if (e.x >= e.y && e.x >= e.z) return vec3(s.x, 0.0, 0.0);
+    if (e.y >= e.z) return vec3(0.0, s.y, 0.0);
+    return vec3(0.0, 0.0, s.z);
 }

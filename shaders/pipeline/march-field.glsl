@@ -76,16 +76,10 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             if (state == 0) {
                 // (the grid's entry: the cell is found at the top of the loop)
             } else if (state == 1) {
-                if (tNext.x <= tNext.y && tNext.x <= tNext.z) {
-                    cell.x += stepDir.x;
-                    tNext.x += tDelta.x;
-                } else if (tNext.y <= tNext.z) {
-                    cell.y += stepDir.y;
-                    tNext.y += tDelta.y;
-                } else {
-                    cell.z += stepDir.z;
-                    tNext.z += tDelta.z;
-                }
+                // On along the axis (or axes, at a tie) whose wall comes first.
+                vec3 m = step(tNext, min(tNext.yzx, tNext.zxy));
+                tNext += m * tDelta;
+                cell += ivec3(m) * stepDir;
                 if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, dims))) {
                     state = 2;
                     cellEnd = uDrawDist;

@@ -4,6 +4,7 @@
 // floor, or on another, then gets its side face's normal, not a blend with its own
 // bottom edge, which lies in the crease.
 vec3 calcNormal(vec3 p) {
+    // @slot exact
     float h = normalDelta(p);
     float other = mapOthers(p);
     if (other < 2.0 * h) {

@@ -376,7 +376,13 @@ only when the plan has it."
                     [(.. "const bool kFieldOthers = " (tostring (> plan.bounds.count 0))
                          ";  // finite objects beside the field (mapFinite)")
                      "const float kFieldTiny = 0.000001;  // a ray direction's smallest component"
-                     (fill "shaders/pipeline/field.glsl" {})]))
+                     (fill "shaders/pipeline/field.glsl"
+                           {:entry (let [{: spheres? : boxes?} plan.field.kinds
+                                         box "fieldBoxEntry(q0, inv, a, texelFetch(uFieldRecords, fieldTexel(r + 1), 0).xyz)"]
+                                     (if (and spheres? boxes?)
+                                         [(.. "t = min(t, a.w > 0.0 ? fieldSphereEntry(q0, rd, a) : " box ");")]
+                                         spheres? ["t = min(t, fieldSphereEntry(q0, rd, a));"]
+                                         [(.. "t = min(t, " box ");")]))})]))
     (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms plan)
                                                      :color-terms (color-terms plan)}))
     (when (not colors?)
@@ -397,7 +403,9 @@ only when the plan has it."
     ;; elsewhere it is not kept.
     (let [count-step (if (or plan.glow? plan.adaptive? (= view :glow) (= view :heat))
                          ["steps = i + 1;"] [])]
-      (table.insert sections (fill (if plan.field "shaders/pipeline/march-field.glsl"
+      (table.insert sections (fill (if (and plan.field (= 0 plan.bounds.count))
+                                       "shaders/pipeline/march-field-alone.glsl"
+                                       plan.field "shaders/pipeline/march-field.glsl"
                                        (.. "shaders/pipeline/march" (if plan.relaxed? "-relaxed" "")
                                            (if plan.bounds "-bounded" "") ".glsl"))
                                    {:count-step count-step
@@ -411,8 +419,27 @@ only when the plan has it."
                                                                        (: :gsub "%f[%w_]map%(" "mapObject(")
                                                                        (: :gsub "^vec3 calcNormal%(" "vec3 objectNormal("))))
                                                   lines))}))
-      (when (object-normals? plan)
-        (table.insert sections (fill "shaders/pipeline/normal-crease.glsl" {}))))
+      (when (and (object-normals? plan) plan.exact-normals?)
+        ;; A field and ground planes only: each object's normal in closed form. (On
+        ;; llvmpipe code behind a branch runs for every pixel, so the differences are
+        ;; left out, not branched around.)
+        (let [(_ tree-base field-base) (object-bases plan)]
+          (table.insert sections
+                        ["// Every object's exact normal: a field object's gradient, a ground plane's up."
+                         "vec3 calcNormal(vec3 p) {"
+                         (.. "    return gObject >= " field-base " ? fieldNormal(p, max(gObject"
+                             (if (= field-base 0) "" (.. " - " field-base)) ", 0)) : vec3(0.0, 0.0, 1.0);")
+                         "}"])))
+      (when (and (object-normals? plan) (not plan.exact-normals?))
+        (table.insert sections
+                      (fill "shaders/pipeline/normal-crease.glsl"
+                            ;; A field's objects have their exact gradient (field.glsl).
+                            {:exact (if plan.field
+                                        (let [(_ tree-base field-base) (object-bases plan)]
+                                          [(.. "if (gObject >= " field-base " && gObject < " tree-base
+                                               ") return fieldNormal(p, gObject"
+                                               (if (= field-base 0) "" (.. " - " field-base)) ");")])
+                                        [])}))))
     (when (and (= view :shaded) (not plan.lighting))
       (table.insert sections
                     (fill "shaders/shading/light.glsl"

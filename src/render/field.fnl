@@ -151,6 +151,9 @@ RGBA floats)}."
               (tset records (+ slot 1) i)
               (tset fill k (+ slot 1)))))))
         {:count n : objects : lo :dims [nx ny nz] : cell : size : reach
+         ;; Which kinds it holds: only their code is compiled in.
+         :kinds {:spheres? (accumulate [any? false _ o (ipairs objects)] (or any? (= o.kind :sphere)))
+                 :boxes? (accumulate [any? false _ o (ipairs objects)] (or any? (= o.kind :box)))}
          :crossings (+ nx ny nz 1)
          : cell-start : cell-count : records : shapes : colors}))))
 
@@ -254,6 +257,22 @@ and its number k (1-based)."
         x (c qx sx nx) y (c qy sy ny) z (c qz sz nz)]
     (values x y z (+ 1 x (* nx (+ y (* ny z)))))))
 
+(fn normal [field i x y z]
+  "fieldNormal: the exact normal of object `i` (1-based) at world (x y z), its
+distance's gradient: nx ny nz."
+  (let [[ox oy oz] field.lo
+        [cx cy cz ax ay az] (. field.shapes i)
+        dx (- x ox cx) dy (- y oy cy) dz (- z oz cz)
+        ex (- (abs dx) ax) ey (- (abs dy) ay) ez (- (abs dz) az)
+        sx (if (< dx 0) -1 1) sy (if (< dy 0) -1 1) sz (if (< dz 0) -1 1)]
+    (if (> (max ex ey ez) 0)
+        (let [gx (* (max ex 0) sx) gy (* (max ey 0) sy) gz (* (max ez 0) sz)
+              len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))]
+          (if (> len 0) (values (/ gx len) (/ gy len) (/ gz len)) (values 0 0 1)))
+        (and (>= ex ey) (>= ex ez)) (values sx 0 0)
+        (>= ey ez) (values 0 sy 0)
+        (values 0 0 sz))))
+
 (fn distance [field x y z ?skip]
   "The field's distance at world (x y z) as the shader's fieldMap gives it: exact
 within the reach of the point's cell, a lower bound beyond (the cell's walls plus
@@ -299,5 +318,5 @@ vector (dx dy dz) first enters any object of the field, in closed form, or `far`
       (set t (min t (entry (- ox lx) (- oy ly) (- oz lz) dx dy dz ix iy iz cx cy cz ax ay az r far))))
     t))
 
-{: member? : members : brute-entry : build : textures : object-distance : cell-distance : cell-of : list-entry
+{: member? : members : brute-entry : normal : build : textures : object-distance : cell-distance : cell-of : list-entry
  : distance : brute-distance : rounded-box : min-objects : texture-width}

@@ -59,7 +59,10 @@
     (when (> plan.samples 1)
       (table.insert parts (.. "samples:" plan.samples (if plan.adaptive? " adaptive" ""))))
     (when plan.bounds (table.insert parts (.. "bounds:" plan.bounds.count)))
-    (when plan.field (table.insert parts "field"))
+    (when plan.field
+      (table.insert parts (.. "field:" (if plan.field.kinds.spheres? "spheres" "")
+                              (if (and plan.field.kinds.spheres? plan.field.kinds.boxes?) "+" "")
+                              (if plan.field.kinds.boxes? "boxes" ""))))
     (table.insert parts (.. "view:" plan.view))
     (when plan.tape
       (table.insert parts (.. "tape:" plan.tape.key))
@@ -179,6 +182,11 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
       (set plan.field (field.build members {:reach-at-least (when (and plan.lighting plan.lighting.ao?)
                                                                scene.lighting.ao-radius)
                                             :wide? (and plan.lighting plan.lighting.soft?)})))
+    ;; When every object has its exact normal in closed form (a field's, and ground
+    ;; planes beside it), normals need no differences (codegen's exact-normal lines).
+    (set plan.exact-normals? (and plan.field (= nil tape) (= plan.normals-of :object)
+                                  (accumulate [only-planes? true _ k (ipairs kinds)]
+                                    (and only-planes? (= k.kind :plane)))))
     (set plan.key (structure-key plan))
     (if (and members (not plan.bounds))
         ;; Some other object has no bound (an infinite repetition, a plane inside a

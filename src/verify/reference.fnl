@@ -171,7 +171,8 @@ Positions are in world coordinates."
       (let [t0 (distance-from-camera ox oy oz)
             t-plane (planes-hit oz dz)
             (enter exit) (bounds.span bound-spheres ox oy oz dx dy dz draw)
-            others? (> (length finite) 0)
+            ;; kFieldOthers: finite objects beside the field (grouped or trees).
+            others? (> plan.bounds.count 0)
             [lx ly lz] fd.lo
             [wx wy wz] fd.size
             [sx sy sz] fd.cell
@@ -230,11 +231,13 @@ Positions are in world coordinates."
                   (do
                     (set t (math.max t cell-end))
                     (when (= state 1)
-                      (if (and (<= next-x next-y) (<= next-x next-z))
-                          (do (set cx (+ cx step-x)) (set next-x (+ next-x delta-x)))
-                          (<= next-y next-z)
-                          (do (set cy (+ cy step-y)) (set next-y (+ next-y delta-y)))
-                          (do (set cz (+ cz step-z)) (set next-z (+ next-z delta-z))))
+                      ;; On along the axis (or axes, at a tie) whose wall comes first.
+                      (let [mx (<= next-x (math.min next-y next-z))
+                            my (<= next-y (math.min next-z next-x))
+                            mz (<= next-z (math.min next-x next-y))]
+                        (when mx (set cx (+ cx step-x)) (set next-x (+ next-x delta-x)))
+                        (when my (set cy (+ cy step-y)) (set next-y (+ next-y delta-y)))
+                        (when mz (set cz (+ cz step-z)) (set next-z (+ next-z delta-z))))
                       (if (or (< cx 0) (< cy 0) (< cz 0) (>= cx nx) (>= cy ny) (>= cz nz))
                           (do (set state 2) (set cell-end draw))
                           (set cell-end (math.min next-x next-y next-z))))))
@@ -351,8 +354,13 @@ Positions are in world coordinates."
       ;; comes within 2h at the point pushed out of its reach (normal-crease.glsl).
       (let [h (normal-delta x y z)
             (_ i) (map-color x y z)]
-        (if (or (= plan.normals-of :scene) (not i))
+        (if plan.exact-normals?
+            (if (and i (> i n)) (field.normal fd (- i n) x y z) (values 0 0 1))
+            (or (= plan.normals-of :scene) (not i))
             (differences map x y z h)
+            ;; A field's objects: the exact gradient (fieldNormal).
+            (and fd (> i n) (<= i (+ n nf)))
+            (field.normal fd (- i n) x y z)
             (let [others (others-map i)
                   other (others x y z)]
               (if (< other (* 2 h))

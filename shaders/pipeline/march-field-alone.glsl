@@ -1,0 +1,55 @@
+// The grid walk of march-field.glsl when the field is the only finite thing in the
+// scene (beside ground planes): nothing is sphere-traced, so the walk is lean, one
+// cell per turn of the loop. The same cells, tests and results as march-field.glsl.
+float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
+    float tPlane = planesHit(ro, rd);
+    float tPast = min(tPlane, tMax);
+    vec3 q0 = ro - uFieldOrigin;
+    vec3 safe = mix(rd, vec3(kFieldTiny), lessThan(abs(rd), vec3(kFieldTiny)));
+    vec3 inv = 1.0 / safe;
+    vec3 ta = -q0 * inv;
+    vec3 tb = (uFieldSize - q0) * inv;
+    vec3 tNear = min(ta, tb);
+    vec3 tFar = max(ta, tb);
+    float gridIn = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
+    float tEnd = min(min(tFar.x, min(tFar.y, tFar.z)), tPast);
+    steps = 0;
+    if (gridIn >= tEnd) {
+        return tPast;
+    }
+    ivec3 cell = clamp(ivec3(floor((q0 + rd * gridIn) / uFieldCell)), ivec3(0),
+                       ivec3(uFieldDims) - 1);
+    ivec3 stepDir = ivec3(sign(safe));
+    vec3 tDelta = uFieldCell * abs(inv);
+    vec3 tNext = ((vec3(cell) + step(vec3(0.0), safe)) * uFieldCell - q0) * inv;
+    float t = gridIn;
+    for (int i = 0; i <= uFieldCrossings; i++) {
+        float cellEnd = min(tNext.x, min(tNext.y, tNext.z));
+        vec4 list = texelFetch(uFieldCells, fieldTexel(fieldCellIndex(cell)), 0);
+        if (list.y > 0.0) {
+            steps++;
+            float hit = fieldListEntry(int(list.x), int(list.y), q0, rd, inv);
+            if (hit <= cellEnd && hit < tEnd) {
+                return hit;
+            }
+        }
+        t = max(t, cellEnd);
+        if (t >= tEnd) {
+            return tPast;
+        }
+        if (steps >= uMaxSteps) {
+            break;
+        }
+        // On along the axis (or axes, at a tie) whose wall comes first.
+        vec3 m = step(tNext, min(tNext.yzx, tNext.zxy));
+        tNext += m * tDelta;
+        cell += ivec3(m) * stepDir;
+    }
+    // @slot out-of-steps
+    return t;
+}
+
+// Up to the draw distance: primary and mirror rays.
+float raymarch(vec3 ro, vec3 rd, out int steps) {
+    return raymarchTo(ro, rd, uDrawDist, steps);
+}
