@@ -115,6 +115,18 @@
           (assert.are_not.equal 5 (select 2 (field.distance fd x y z 5)))
           (assert.is_true (> (field.distance fd x y z 5) (field.distance fd x y z))))))
 
+    (it "refuse a grid whose lists would not fit in a texture, saying what to remove"
+      (fn []
+        ;; 3000 boxes on top of each other: each is listed in every one of the grid's
+        ;; 6000-odd cells, about 18 million records for a texture of 8.4 million.
+        (let [s (assert (scene.load-string
+                         "{:objects (fcollect [i 1 3000] {:kind :box :pos [(* i 0.001) 0 0] :size [100 100 100]})}"
+                         "big.fnl"))
+              (p err) (plan.scene->plan s)]
+          (assert.is_nil p)
+          (assert.is_truthy (err:find "^big%.fnl: objects: the field's grid lists its 3000 spheres and boxes %d+ times"))
+          (assert.is_truthy (err:find "more than the 8388608 a texture holds; remove or shrink the largest ones" 1 true)))))
+
     (it "pack their textures: cells, records with 0-based object numbers, objects"
       (fn []
         (let [fd (. (assert (plan.scene->plan (scattered 100))) :field)

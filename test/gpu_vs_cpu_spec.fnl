@@ -251,6 +251,18 @@
                   (assert.is_true (passes? st {:over 2 :max 40})
                                   (describe-failures "field beside a torus" st {:over 2 :max 40})))))
 
+            (it "renders 100,000 spheres as the reference does"
+              (fn []
+                ;; test/fixtures/spheres-100000.fnl: a field of 100,000 (grid 256 x 256 x 3,
+                ;; 355,083 records). Measured: 0 pixels over, max 0.5/255; the budget
+                ;; allows a flipped silhouette pixel or two.
+                (let [prepared (prepare "test/fixtures/spheres-100000.fnl" {:view :shaded :size [160 90]})
+                      st (compare-image prepared (gpu-render ctx prepared))]
+                  (assert.are.equal 100000 prepared.plan.field.count)
+                  (print (report-line "100,000 spheres" st))
+                  (assert.is_true (passes? st {:over 2 :max 40})
+                                  (describe-failures "100,000 spheres" st {:over 2 :max 40})))))
+
             (it "walks a field's grid as the reference does, and catches a walk that skips cells"
               (fn []
                 ;; scenes/city.fnl: 10,000 towers and domes in a field (see field_spec).

@@ -28,8 +28,10 @@
 (local min-objects 64)
 
 ;; Texels per texture row. Every texture is 1024 wide and as tall as it needs;
-;; llvmpipe allows 16384 x 16384.
+;; llvmpipe allows 16384 x 16384, so the records texture (two texels a record) holds
+;; at most this many records.
 (local texture-width 1024)
+(local max-records (/ (* 16384 texture-width) 2))
 
 ;; Grid cells per object (the grid's resolution): more cells mean shorter lists and
 ;; more cells to cross. Chosen on the scaling scenes of the benchmark at 640x360.
@@ -85,6 +87,35 @@ there are fewer than min-objects of them."
         dim (fn [e] (max 1 (min max-cells-per-axis (math.ceil (/ e side)))))]
     [(dim ex) (dim ey) (dim ez)]))
 
+(fn lists [field ranges]
+  ;; The cells' lists, laid out cell after cell, objects in each in scene order:
+  ;; `ranges` gives each object's cells (x0 x1 y0 y1 z0 z1, 0-based).
+  (let [[nx ny nz] field.dims
+        cells (* nx ny nz)
+        cell-count (fcollect [_ 1 cells] 0)
+        cell-start []
+        fill []
+        records []]
+    (each [_ [x0 x1 y0 y1 z0 z1] (ipairs ranges)]
+      (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
+        (let [k (+ 1 x (* nx (+ y (* ny z))))]
+          (tset cell-count k (+ (. cell-count k) 1)))))))
+    (var at 0)
+    (for [k 1 cells]
+      (tset cell-start k at)
+      (tset fill k at)
+      (set at (+ at (. cell-count k))))
+    (each [i [x0 x1 y0 y1 z0 z1] (ipairs ranges)]
+      (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
+        (let [k (+ 1 x (* nx (+ y (* ny z))))
+              slot (. fill k)]
+          (tset records (+ slot 1) i)
+          (tset fill k (+ slot 1)))))))
+    (doto field
+      (tset :cell-start cell-start)
+      (tset :cell-count cell-count)
+      (tset :records records))))
+
 (fn build [objects ?options]
   "The field of `objects` (members, in order): the grid and the texture data.
 Options: :reach-at-least (a distance queries must see exactly, e.g. the ambient
@@ -93,7 +124,8 @@ occlusion radius), :wide? (soft shadows: a quarter cell's reach). Returns {:coun
 :cell-start :cell-count (per cell, 0-based) :records (object numbers, 1-based, per
 cell in order) :shapes (per object: cx cy cz hx hy hz r, field-local) :colors
 :textures {:cells :records :objects}}; each texture {:width :height :data (flat
-RGBA floats)}."
+RGBA floats)}; or nil and a message when the grid's lists would not fit in a
+texture."
   (let [options (or ?options {})
         n (length objects)
         shapes []]
@@ -114,8 +146,6 @@ RGBA floats)}."
           cell [(/ (. size 1) nx) (/ (. size 2) ny) (/ (. size 3) nz)]
           [ox oy oz] lo
           [sx sy sz] cell
-          cells (* nx ny nz)
-          cell-count (fcollect [_ 1 cells] 0)
           ranges []
           colors []]
       ;; Shapes in field-local coordinates, and the cells each object's grown box
@@ -131,31 +161,25 @@ RGBA floats)}."
               (z0 z1) (span cz az sz nz)]
           (tset shapes i [cx cy cz ax ay az r])
           (tset colors i o.color)
-          (tset ranges i [x0 x1 y0 y1 z0 z1])
-          (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
-            (let [k (+ 1 x (* nx (+ y (* ny z))))]
-              (tset cell-count k (+ (. cell-count k) 1))))))))
-      ;; Lists laid out cell after cell; objects in each list in scene order.
-      (let [cell-start []
-            fill []
-            records []]
-        (var at 0)
-        (for [k 1 cells]
-          (tset cell-start k at)
-          (tset fill k at)
-          (set at (+ at (. cell-count k))))
-        (each [i [x0 x1 y0 y1 z0 z1] (ipairs ranges)]
-          (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
-            (let [k (+ 1 x (* nx (+ y (* ny z))))
-                  slot (. fill k)]
-              (tset records (+ slot 1) i)
-              (tset fill k (+ slot 1)))))))
-        {:count n : objects : lo :dims [nx ny nz] : cell : size : reach
-         ;; Which kinds it holds: only their code is compiled in.
-         :kinds {:spheres? (accumulate [any? false _ o (ipairs objects)] (or any? (= o.kind :sphere)))
-                 :boxes? (accumulate [any? false _ o (ipairs objects)] (or any? (= o.kind :box)))}
-         :crossings (+ nx ny nz 1)
-         : cell-start : cell-count : records : shapes : colors}))))
+          (tset ranges i [x0 x1 y0 y1 z0 z1])))
+      ;; Every object is listed in each cell it covers: a texture holds at most
+      ;; max-records of those (two texels each).
+      (let [total (accumulate [sum 0 _ [x0 x1 y0 y1 z0 z1] (ipairs ranges)]
+                    (+ sum (* (+ 1 (- x1 x0)) (+ 1 (- y1 y0)) (+ 1 (- z1 z0)))))]
+        (if (> total max-records)
+            (values nil (string.format (.. "objects: the field's grid lists its %d spheres and boxes %d times"
+                                           " (each in every cell it covers), more than the %d a texture"
+                                           " holds; remove or shrink the largest ones")
+                                       n total max-records))
+            (lists {:count n : objects : lo :dims [nx ny nz] : cell : size : reach
+                    ;; Which kinds it holds: only their code is compiled in.
+                    :kinds {:spheres? (accumulate [any? false _ o (ipairs objects)]
+                                        (or any? (= o.kind :sphere)))
+                            :boxes? (accumulate [any? false _ o (ipairs objects)]
+                                      (or any? (= o.kind :box)))}
+                    :crossings (+ nx ny nz 1)
+                    : shapes : colors}
+                   ranges))))))
 
 (fn texture [texels data]
   {:width texture-width :height (max 1 (math.ceil (/ texels texture-width))) : data})

@@ -178,17 +178,21 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               ;; step, so it cannot skip empty space by bounds; a ray that has not
               ;; reached the light by then counts as lit.
               :shadow-steps 128})))
+    (var field-error nil)
     (when members
-      (set plan.field (field.build members {:reach-at-least (when (and plan.lighting plan.lighting.ao?)
-                                                               scene.lighting.ao-radius)
-                                            :wide? (and plan.lighting plan.lighting.soft?)})))
+      (case (field.build members {:reach-at-least (when (and plan.lighting plan.lighting.ao?)
+                                                    scene.lighting.ao-radius)
+                                  :wide? (and plan.lighting plan.lighting.soft?)})
+        fd (set plan.field fd)
+        (nil err) (set field-error (.. scene.file ": " err))))
     ;; When every object has its exact normal in closed form (a field's, and ground
     ;; planes beside it), normals need no differences (codegen's exact-normal lines).
     (set plan.exact-normals? (and plan.field (= nil tape) (= plan.normals-of :object)
                                   (accumulate [only-planes? true _ k (ipairs kinds)]
                                     (and only-planes? (= k.kind :plane)))))
     (set plan.key (structure-key plan))
-    (if (and members (not plan.bounds))
+    (if field-error (values nil field-error)
+        (and members (not plan.bounds))
         ;; Some other object has no bound (an infinite repetition, a plane inside a
         ;; tree): no field then, and the uniform budget decides.
         (scene->plan scene (doto (collect [k v (pairs options)] k v) (tset :field? false)))
