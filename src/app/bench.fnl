@@ -24,10 +24,13 @@
     (gpu.finish! canvas)
     (* 1000 (- (love.timer.getTime) start))))
 
-(fn make-variant [{: label : scene-path : size : plan-options : source-path : render}]
+(fn make-variant [{: label : scene-path : scene-source : size : plan-options : source-path : render}]
   "A benchmark variant: a compiled shader, its uniforms and a canvas, or nil and a
-message. `render` overrides some of the scene's render settings."
-  (case (frame.load-scene scene-path)
+message. The scene is the file `scene-path`, or the text `scene-source`; `render`
+overrides some of its render settings."
+  (case (if scene-source
+            ((. (require :src.scene.load) :load-string) scene-source label)
+            (frame.load-scene scene-path))
     (nil err) (values nil err)
     scene (case (do (each [k v (pairs (or render {}))] (tset scene.render k v))
                     (frame.plan-for scene plan-options))
@@ -100,6 +103,30 @@ and `b`, and the share of pixels that differ by more than 8/255 in some channel.
     {:hit-test d.hit-test :normals d.normals :relaxation d.relaxation :epsilon d.epsilon
      :max-steps d.max-steps :bounds d.bounds}))
 
+;; The scaling row (issue 12): the same 40 x 40 x 10 region over a floor filled with
+;; n spheres, their radius shrinking as 1 / sqrt(n) so that together they cover about
+;; the same share of the picture; hard shadows and one mirror bounce, the article's
+;; model. From field.min-objects spheres on they form a field (textures and a grid).
+(local scaling-counts [10 100 1000 10000])
+
+(fn scaling-scene [n]
+  "The source text of the scaling scene with `n` spheres."
+  (.. "(var seed 12345)
+(fn rnd []
+  (set seed (% (+ (* seed 1103515245) 12345) 2147483648))
+  (/ seed 2147483648))
+(local r (* 1.2 (math.sqrt (/ 10 " n "))))
+(local objects [{:kind :plane :height 0 :color [0.6 0.6 0.6]}])
+(for [i 1 " n "]
+  (let [x (+ -20 (* 40 (rnd))) y (+ -20 (* 40 (rnd))) z (+ 0.5 (* 10 (rnd)))]
+    (table.insert objects {:kind :sphere :pos [x y z] :radius r
+                           :color [(+ 0.3 (* 0.7 (rnd))) (+ 0.3 (* 0.7 (rnd))) (+ 0.3 (* 0.7 (rnd)))]})))
+{:name \"scaling " n "\"
+ :camera {:pos [0 -35 12] :yaw 90 :pitch 15 :fov 60}
+ :light {:pos [-20 -30 40]}
+ :render {:shadows true :reflections 1}
+ :objects objects}"))
+
 (fn report [o]
   "`make bench`: the seed scene with the article's settings and with the defaults next
 to an analytic ray tracer of it (the floor), each lever's gain before and after, the
@@ -129,7 +156,17 @@ showcase scenes, and our pixel rate next to the article's CPU program."
                {:id :organic-none :label "organic 1280x720, no levers"
                 :scene-path "scenes/organic.fnl" :size hd :plan-options direct :render no-bounds}
                {:id :organic :label "organic 1280x720" :scene-path "scenes/organic.fnl" :size hd}
-               {:id :small :label "seed, article's, 256x224" :scene-path seed :size small}]
+               {:id :small :label "seed, article's, 256x224" :scene-path seed :size small}
+               {:id :city :label "city (10,000 objects) 1280x720" :scene-path "scenes/city.fnl"
+                :size hd}]
+        scaling (icollect [_ n (ipairs scaling-counts)]
+                  {:id (.. "scaling-" n) :label (string.format "%d spheres, 640x360" n)
+                   :scene-source (scaling-scene n) :size [640 360]})
+        ;; The best simple alternative at 100: the uniform arrays, every sphere every step.
+        _ (table.insert scaling {:id :scaling-100-uniforms :label "100 spheres without a field, 640x360"
+                                 :scene-source (scaling-scene 100) :size [640 360]
+                                 :plan-options {:field? false}})
+        _ (each [_ spec (ipairs scaling)] (table.insert specs spec))
         v {}
         variants []]
     (var err nil)
@@ -160,6 +197,13 @@ showcase scenes, and our pixel rate next to the article's CPU program."
             (let [(mean worst share) (image-difference (. v id) v.floor)]
               (print (string.format "image, %s vs the analytic tracer: mean %.2f/255, max %.0f/255, %.1f%% of pixels over 8/255 (one pixel in 16 compared)"
                                     id mean worst (* 100 share)))))
+          (print (.. "scaling (the same region, n spheres of radius 1.2 sqrt(10 / n), fields from "
+                     (. (require :src.render.field) :min-objects) " on):"))
+          (each [_ n (ipairs scaling-counts)]
+            (print (string.format "  %6d spheres: median %8.1f ms, %.2fx the time of 10"
+                                  n (. v (.. "scaling-" n) :median) (ratio (.. "scaling-" n) :scaling-10))))
+          (print (string.format "  100 spheres as a field %.2fx faster than in uniform arrays"
+                                (ratio :scaling-100-uniforms :scaling-100)))
           (print (string.format "article's CPU program, seed 256x224: %d ms; ours %.1f ms (%.0fx faster)"
                                 article-ms-256x224 v.small.median
                                 (/ article-ms-256x224 v.small.median)))
