@@ -167,7 +167,7 @@
               p (assert (plan.scene->plan s))
               text (assert (codegen.shader p :core))]
           (assert.is_truthy (text:find "float fieldMap(vec3 p, int skip, out int best)" 1 true))
-          (assert.is_truthy (text:find "cell += ivec3(m) * stepDir;" 1 true))
+          (assert.is_truthy (text:find "index += int(dot(m, stride));" 1 true))
           ;; Nothing but the field and the floor: the lean walk.
           (assert.is_truthy (text:find "nothing is sphere-traced" 1 true))
           (assert.is_truthy (text:find "return fieldObject(p, gObject - 1);" 1 true))

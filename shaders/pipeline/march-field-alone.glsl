@@ -19,19 +19,20 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     }
     ivec3 cell = clamp(ivec3(floor((q0 + rd * gridIn) / uFieldCell)), ivec3(0),
                        ivec3(uFieldDims) - 1);
-    ivec3 stepDir = ivec3(sign(safe));
     vec3 tDelta = uFieldCell * abs(inv);
     vec3 tNext = ((vec3(cell) + step(vec3(0.0), safe)) * uFieldCell - q0) * inv;
+    // The cell's number, and what a step along each axis adds to it.
+    int index = fieldCellIndex(cell);
+    vec3 stride = sign(safe) * vec3(1.0, uFieldDims.x, uFieldDims.x * uFieldDims.y);
     float t = gridIn;
     for (int i = 0; i <= uFieldCrossings; i++) {
         float cellEnd = min(tNext.x, min(tNext.y, tNext.z));
-        vec4 list = texelFetch(uFieldCells, fieldTexel(fieldCellIndex(cell)), 0);
-        if (list.y > 0.0) {
-            steps++;
-            float hit = fieldListEntry(int(list.x), int(list.y), q0, rd, inv);
-            if (hit <= cellEnd && hit < tEnd) {
-                return hit;
-            }
+        vec4 list = texelFetch(uFieldCells, fieldTexel(index), 0);
+        // (No branch around an empty cell's test: its loop has nothing to do.)
+        steps += list.y > 0.0 ? 1 : 0;
+        float hit = fieldListEntry(int(list.x), int(list.y), q0, rd, inv);
+        if (hit <= cellEnd && hit < tEnd) {
+            return hit;
         }
         t = max(t, cellEnd);
         if (t >= tEnd) {
@@ -43,7 +44,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
         // On along the axis (or axes, at a tie) whose wall comes first.
         vec3 m = step(tNext, min(tNext.yzx, tNext.zxy));
         tNext += m * tDelta;
-        cell += ivec3(m) * stepDir;
+        index += int(dot(m, stride));
     }
     // @slot out-of-steps
     return t;

@@ -79,11 +79,11 @@ there are fewer than min-objects of them."
         ox (max ex 0) oy (max ey 0) oz (max ez 0)]
     (- (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz))) (min (max ex (max ey ez)) 0)) r)))
 
-(fn grid-dims [ex ey ez n]
+(fn grid-dims [ex ey ez n per-object]
   ;; Cells along each axis for extents ex ey ez and n objects: about
-  ;; cells-per-object * n cubic cells, at least one along each axis.
+  ;; per-object * n cubic cells, at least one along each axis.
   (let [volume (* (max ex 1e-9) (max ey 1e-9) (max ez 1e-9))
-        side (^ (/ volume (* cells-per-object n)) (/ 1 3))
+        side (^ (/ volume (* per-object n)) (/ 1 3))
         dim (fn [e] (max 1 (min max-cells-per-axis (math.ceil (/ e side)))))]
     [(dim ex) (dim ey) (dim ez)]))
 
@@ -119,7 +119,8 @@ there are fewer than min-objects of them."
 (fn build [objects ?options]
   "The field of `objects` (members, in order): the grid and the texture data.
 Options: :reach-at-least (a distance queries must see exactly, e.g. the ambient
-occlusion radius), :wide? (soft shadows: a quarter cell's reach). Returns {:count :objects :lo [x y z] (world) :dims [nx ny nz]
+occlusion radius), :wide? (soft shadows: a quarter cell's reach), :cells-per-object
+(the grid's resolution; the benchmark's). Returns {:count :objects :lo [x y z] (world) :dims [nx ny nz]
 :cell [sx sy sz] :size [x y z] :reach :crossings (cells a ray can cross, at most)
 :cell-start :cell-count (per cell, 0-based) :records (object numbers, 1-based, per
 cell in order) :shapes (per object: cx cy cz hx hy hz r, field-local) :colors
@@ -135,7 +136,8 @@ texture."
       (let [(cx cy cz ax ay az r) (shape o)]
         (set lx (min lx (- cx ax r))) (set ly (min ly (- cy ay r))) (set lz (min lz (- cz az r)))
         (set hx (max hx (+ cx ax r))) (set hy (max hy (+ cy ay r))) (set hz (max hz (+ cz az r)))))
-    (let [[nx ny nz] (grid-dims (- hx lx) (- hy ly) (- hz lz) n)
+    (let [[nx ny nz] (grid-dims (- hx lx) (- hy ly) (- hz lz) n
+                                (or options.cells-per-object cells-per-object))
           smallest (min (/ (- hx lx) nx) (/ (- hy ly) ny) (/ (- hz lz) nz))
           smallest (if (> smallest 0) smallest 1e-3)
           fraction (if options.wide? wide-reach-fraction reach-fraction)

@@ -95,6 +95,7 @@
   :samples        supersampling, N x N rays per pixel (default the scene's)
   :model          :classic draws a scene that has :lighting with the article's model
                   (the player's m key)
+  :field-cells    grid cells per field object (default src/render/field.fnl's)
   :field?         false: no field (src/render/field.fnl) however many spheres and
                   boxes the scene has; they go into uniform arrays (the oracle's and
                   the benchmark's before)
@@ -182,7 +183,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
     (when members
       (case (field.build members {:reach-at-least (when (and plan.lighting plan.lighting.ao?)
                                                     scene.lighting.ao-radius)
-                                  :wide? (and plan.lighting plan.lighting.soft?)})
+                                  :wide? (and plan.lighting plan.lighting.soft?)
+                                  :cells-per-object options.field-cells})
         fd (set plan.field fd)
         (nil err) (set field-error (.. scene.file ": " err))))
     ;; When every object has its exact normal in closed form (a field's, and ground
