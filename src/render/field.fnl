@@ -23,9 +23,11 @@
 (local abs math.abs)
 
 ;; From this many spheres and boxes on, a scene's spheres and boxes form a field.
-;; Below it the uniform arrays are faster on llvmpipe (measured: see the closing note
-;; of issue 12; test/field_spec.fnl checks the switch, not the speed).
-(local min-objects 64)
+;; Measured on llvmpipe at 640x360 (make bench's scaling scene, one interleaved run):
+;; 10 spheres as a field 58 ms, in uniform arrays 57; 16: 70 against 86; 32: 72
+;; against 201; 64: 82 against 358. (test/field_spec.fnl checks the switch, not the
+;; speed.)
+(local min-objects 16)
 
 ;; Texels per texture row. Every texture is 1024 wide and as tall as it needs;
 ;; llvmpipe allows 16384 x 16384, so the records texture (two texels a record) holds
