@@ -3,6 +3,7 @@
 
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
+(local field (require :src.render.field))
 
 (local max-cached-shaders 8)
 
@@ -60,21 +61,52 @@ whether it was compiled now, or nil and a message."
 
 ;; A field's textures as LÖVE images, by the texture table they were made from: the
 ;; tables live as long as their plan, so a texture is uploaded once, not every frame.
+;; A value edit makes a new plan whose textures differ from the last ones only where
+;; the edit reached: the last image of that uniform is kept, and only the texels that
+;; changed are uploaded into it (field.changed-spans). `texture-uploads` counts whole
+;; textures and texels uploaded.
 (local images (setmetatable {} {:__mode :k}))
+(local last-images {})
+(local texture-uploads {:textures 0 :texels 0})
 
-(fn float-image [tex]
-  "The rgba32f image of texture `tex` ({:width :height :data}), made on first use."
+(fn fill-floats! [data vs offset count]
+  ;; `count` floats of `vs` from `offset` (0-based; missing ones 0) into `data`.
+  (let [ffi (require :ffi)
+        ptr (ffi.cast "float *" (data:getFFIPointer))]
+    (for [i 0 (- count 1)] (tset ptr i (or (. vs (+ offset i 1)) 0)))))
+
+(fn new-float-image [tex]
+  (let [data (love.image.newImageData tex.width tex.height :rgba32f)]
+    (fill-floats! data tex.data 0 (* 4 tex.width tex.height))
+    (let [image (love.graphics.newImage data)]
+      (image:setFilter :nearest :nearest)
+      (data:release)
+      (set texture-uploads.textures (+ texture-uploads.textures 1))
+      image)))
+
+(fn float-image [name tex]
+  "The rgba32f image of texture `tex` ({:width :height :data}) for uniform `name`:
+cached; else the last image of `name` with the changed texels replaced when the
+sizes match; else a new one."
   (or (. images tex)
-      (let [ffi (require :ffi)
-            data (love.image.newImageData tex.width tex.height :rgba32f)
-            ptr (ffi.cast "float *" (data:getFFIPointer))
-            vs tex.data]
-        (for [i 1 (length vs)] (tset ptr (- i 1) (. vs i)))
-        (let [image (love.graphics.newImage data)]
-          (image:setFilter :nearest :nearest)
-          (data:release)
-          (tset images tex image)
-          image))))
+      (let [last (. last-images name)
+            spans (when (and last (= last.texture.width tex.width) (= last.texture.height tex.height))
+                    (field.changed-spans last.texture.data tex.data tex.width))
+            image (if spans
+                      (do (each [_ [row first final] (ipairs spans)]
+                            (let [n (+ 1 (- final first))
+                                  data (love.image.newImageData n 1 :rgba32f)]
+                              (fill-floats! data tex.data (* 4 (+ first (* row tex.width))) (* 4 n))
+                              (last.image:replacePixels data nil nil first row)
+                              (data:release)
+                              (set texture-uploads.texels (+ texture-uploads.texels n))))
+                          ;; The old table no longer describes the image.
+                          (tset images last.texture nil)
+                          last.image)
+                      (new-float-image tex))]
+        (tset images tex image)
+        (tset last-images name {:texture tex : image})
+        image)))
 
 (fn send! [shader us]
   "Send the uniform list `us` (from uniforms.pack) to `shader`, skipping any the driver
@@ -82,7 +114,7 @@ dropped."
   (each [_ u (ipairs us)]
     (when (shader:hasUniform u.name)
       (if (= u.type :texture)
-          (shader:send u.name (float-image u.texture))
+          (shader:send u.name (float-image u.name u.texture))
           (shader:send u.name ((or table.unpack unpack) (love-values u)))))))
 
 (fn draw! [shader us width height]
@@ -98,4 +130,4 @@ dropped."
   "Wait until the GPU has finished drawing into `canvas` (reads back one pixel)."
   (: (canvas:newImageData 1 1 0 0 1 1) :release))
 
-{: new-cache : shader-for : compile-source : send! : draw! : finish!}
+{: new-cache : shader-for : compile-source : send! : draw! : finish! : texture-uploads}

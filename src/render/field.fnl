@@ -334,6 +334,25 @@ nearest object (ties to the earlier)."
         (when (< di d) (set d di) (set best i)))))
   (values d best))
 
+(fn changed-spans [old new width]
+  "Where two flat RGBA lists of a texture `width` texels wide differ: a list of
+[row first-texel last-texel] (0-based), one per row that changed, from its first
+changed texel to its last; nil when their lengths differ (the texture is new).
+A value edit then uploads only the texels it touched."
+  (when (= (length old) (length new))
+    (let [out []
+          per-row (* 4 width)]
+      (for [row 0 (- (math.ceil (/ (length new) per-row)) 1)]
+        (var first nil)
+        (var last nil)
+        (let [base (* row per-row)]
+          (for [i (+ base 1) (math.min (length new) (+ base per-row))]
+            (when (not= (. old i) (. new i))
+              (let [texel (math.floor (/ (- i base 1) 4))]
+                (when (not first) (set first texel))
+                (set last texel)))))
+        (when first (table.insert out [row first last])))
+      out)))
 (fn brute-entry [field ox oy oz dx dy dz far]
   "The test oracle of the walk: where the ray from world (ox oy oz) along the unit
 vector (dx dy dz) first enters any object of the field, in closed form, or `far`."
@@ -346,5 +365,5 @@ vector (dx dy dz) first enters any object of the field, in closed form, or `far`
       (set t (min t (entry (- ox lx) (- oy ly) (- oz lz) dx dy dz ix iy iz cx cy cz ax ay az r far))))
     t))
 
-{: member? : members : brute-entry : normal : build : textures : object-distance : cell-distance : cell-of : list-entry
+{: member? : members : brute-entry : normal : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
  : distance : brute-distance : rounded-box : min-objects : texture-width}
