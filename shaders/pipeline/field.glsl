@@ -23,6 +23,22 @@ float sdFieldShape(vec3 q, vec4 centre, vec3 halfSize) {
     return length(max(e, 0.0)) + min(max(e.x, max(e.y, e.z)), 0.0) - centre.w;
 }
 
+// A ray direction whose tiny components are replaced by kFieldTiny: its reciprocal
+// along an axis the ray does not move along is huge, not an infinity.
+vec3 fieldSafeDirection(vec3 rd) {
+    return mix(rd, vec3(kFieldTiny), lessThan(abs(rd), vec3(kFieldTiny)));
+}
+
+// Where the ray q0 + rd t (field-local; inv the reciprocal of its safe direction) is
+// inside the grid's box: entry (at least 0) and exit, by the slab test.
+vec2 fieldBoxSpan(vec3 q0, vec3 inv) {
+    vec3 ta = -q0 * inv;
+    vec3 tb = (uFieldSize - q0) * inv;
+    vec3 tNear = min(ta, tb);
+    vec3 tFar = max(ta, tb);
+    return vec2(max(max(tNear.x, tNear.y), max(tNear.z, 0.0)), min(tFar.x, min(tFar.y, tFar.z)));
+}
+
 int fieldCellIndex(ivec3 c) {
     ivec3 n = ivec3(uFieldDims);
     return c.x + n.x * (c.y + n.y * c.z);

@@ -5,14 +5,11 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float tPlane = planesHit(ro, rd);
     float tPast = min(tPlane, tMax);
     vec3 q0 = ro - uFieldOrigin;
-    vec3 safe = mix(rd, vec3(kFieldTiny), lessThan(abs(rd), vec3(kFieldTiny)));
+    vec3 safe = fieldSafeDirection(rd);
     vec3 inv = 1.0 / safe;
-    vec3 ta = -q0 * inv;
-    vec3 tb = (uFieldSize - q0) * inv;
-    vec3 tNear = min(ta, tb);
-    vec3 tFar = max(ta, tb);
-    float gridIn = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
-    float tEnd = min(min(tFar.x, min(tFar.y, tFar.z)), tPast);
+    vec2 box = fieldBoxSpan(q0, inv);
+    float gridIn = box.x;
+    float tEnd = min(box.y, tPast);
     steps = 0;
     if (gridIn >= tEnd) {
         return tPast;

@@ -10,17 +10,12 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float t0 = length(ro);   // the camera is at the origin: distance already travelled
     float tPlane = planesHit(ro, rd);
     vec2 span = boundsSpan(ro, rd);
-    // Where the ray is inside the grid's box (slab test; an axis the ray does not move
-    // along gets a huge reciprocal, not an infinity).
     vec3 q0 = ro - uFieldOrigin;
-    vec3 safe = mix(rd, vec3(kFieldTiny), lessThan(abs(rd), vec3(kFieldTiny)));
+    vec3 safe = fieldSafeDirection(rd);
     vec3 inv = 1.0 / safe;
-    vec3 ta = -q0 * inv;
-    vec3 tb = (uFieldSize - q0) * inv;
-    vec3 tNear = min(ta, tb);
-    vec3 tFar = max(ta, tb);
-    float gridIn = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
-    float gridOut = min(tFar.x, min(tFar.y, tFar.z));
+    vec2 box = fieldBoxSpan(q0, inv);
+    float gridIn = box.x;
+    float gridOut = box.y;
     bool grid = gridIn < gridOut;
     float tEnd = min(min(tPlane, max(span.y, grid ? gridOut : 0.0)), tMax);
     float t = max(min(span.x, grid ? gridIn : uDrawDist), 0.0);
