@@ -67,6 +67,14 @@
             (assert.are.equal (. many.objects 2) (. p.objects 2))))
         ;; Trees and planet-sized spheres stay out of a field.
         (assert.is_false (field.member? {:kind :sphere :pos [0 0 0] :radius 5000}))
+        ;; A giant box (a floor made of a box) stays in the uniform arrays: in the
+        ;; field it would stretch the grid over a million units.
+        (assert.is_false (field.member? {:kind :box :pos [0 0 0] :size [1e6 1e6 1]}))
+        (assert.is_true (field.member? {:kind :box :pos [0 0 0] :size [999 1 1]}))
+        (let [s (scattered 100 "{:kind :box :pos [0 0 -0.5] :size [1e6 1e6 1] :color [0.5 0.5 0.5]}")
+              p (assert (plan.scene->plan s))]
+          (assert.are.equal 100 p.field.count)
+          (assert.is_true (< (. p.field.size 1) 100)))
         (assert.is_false (field.member? {:kind :sphere :tree {} :pos [0 0 0] :radius 1}))
         (assert.is_false (field.member? {:kind :plane :height 0}))))
 

@@ -52,10 +52,13 @@
 (local wide-reach-fraction 0.25)
 
 (fn member? [o]
-  "Whether object `o` can be part of a field: a sphere (below the large-sphere
-radius, which has its own cancellation-free code) or a box."
+  "Whether object `o` can be part of a field: a sphere or a box smaller than the
+large-sphere radius. (A planet-sized sphere has its own cancellation-free code; and
+the field's coordinates are relative to its grid's corner, not to the camera, so a
+giant box would stretch the grid and cost small objects their float precision.)"
   (and (not o.tree)
-       (or (= o.kind :box)
+       (or (and (= o.kind :box)
+                (let [[sx sy sz] o.size] (< (math.max sx sy sz) registry.large-radius)))
            (and (= o.kind :sphere) (< o.radius registry.large-radius)))))
 
 (fn members [objects]
