@@ -6,6 +6,7 @@
 (local files (require :src.util.files))
 (local emit-glsl (require :src.sdf.emit-glsl))
 (local primitives (require :src.sdf.primitives))
+(local field (require :src.render.field))
 
 ;; Chunks are read through the program's one file reader (project files, from any
 ;; working directory); tests may swap the reader. Chunks are cached by path. A chunk
@@ -375,7 +376,8 @@ only when the plan has it."
       (table.insert sections
                     [(.. "const bool kFieldOthers = " (tostring (> plan.bounds.count 0))
                          ";  // finite objects beside the field (mapFinite)")
-                     "const float kFieldTiny = 0.000001;  // a ray direction's smallest component"
+                     (string.format "const float kFieldTiny = %.6f;  // a ray direction's smallest component"
+                                    field.tiny)
                      (fill "shaders/pipeline/field.glsl"
                            {:entry (let [{: spheres? : boxes?} plan.field.kinds
                                          box "fieldBoxEntry(q0, inv, a, texelFetch(uFieldRecords, fieldTexel(r + 1), 0).xyz)"]

@@ -249,6 +249,16 @@ to the earlier record."
             (when (< di d) (set d di) (set best i))))))
     (values d best)))
 
+;; A ray direction's components smaller than this are replaced by it (kFieldTiny),
+;; so a reciprocal is huge, not an infinity, along an axis the ray does not move on.
+(local tiny 0.000001)
+
+(fn reciprocal [dx dy dz]
+  "The reciprocal of the ray direction (dx dy dz) with tiny components replaced, as
+the shader's fieldSafeDirection: ix iy iz (their signs are the walk's steps)."
+  (let [safe (fn [v] (if (< (abs v) tiny) tiny v))]
+    (values (/ 1 (safe dx)) (/ 1 (safe dy)) (/ 1 (safe dz)))))
+
 (fn entry [qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far]
   ;; fieldEntry: where the ray q + t d first enters the object, at t >= 0, or `far`.
   ;; (ix iy iz: the reciprocal of d, tiny components replaced as the shader does.)
@@ -360,13 +370,11 @@ A value edit then uploads only the texels it touched."
   "The test oracle of the walk: where the ray from world (ox oy oz) along the unit
 vector (dx dy dz) first enters any object of the field, in closed form, or `far`."
   (let [[lx ly lz] field.lo
-        tiny 0.000001
-        safe (fn [v] (if (< (abs v) tiny) tiny v))
-        ix (/ 1 (safe dx)) iy (/ 1 (safe dy)) iz (/ 1 (safe dz))]
+        (ix iy iz) (reciprocal dx dy dz)]
     (var t far)
     (each [_ [cx cy cz ax ay az r] (ipairs field.shapes)]
       (set t (min t (entry (- ox lx) (- oy ly) (- oz lz) dx dy dz ix iy iz cx cy cz ax ay az r far))))
     t))
 
-{: member? : members : brute-entry : normal : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
+{: member? : members : brute-entry : reciprocal : tiny : normal : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
  : distance : brute-distance : rounded-box : min-objects : texture-width}

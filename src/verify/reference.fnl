@@ -162,8 +162,6 @@ Positions are in world coordinates."
     (local bound-spheres (when plan.bounds
                            (bounds.spheres plan [cx cy cz] threshold true)))
 
-    (local tiny 0.000001)   ; kFieldTiny: a ray direction's smallest component
-
     (fn march-field [ox oy oz dx dy dz ?t-max]
       ;; march-field.glsl: the grid's cells in order, each cell's objects met in
       ;; closed form and the other finite objects sphere-traced, a step never past
@@ -178,8 +176,7 @@ Positions are in world coordinates."
             [sx sy sz] fd.cell
             [nx ny nz] fd.dims
             qx (- ox lx) qy (- oy ly) qz (- oz lz)
-            safe (fn [v] (if (< (abs v) tiny) tiny v))
-            ix (/ 1 (safe dx)) iy (/ 1 (safe dy)) iz (/ 1 (safe dz))
+            (ix iy iz) (field.reciprocal dx dy dz)
             near (fn [q w i] (math.min (* (- q) i) (* (- w q) i)))
             far (fn [q w i] (math.max (* (- q) i) (* (- w q) i)))
             grid-in (math.max (near qx wx ix) (near qy wy iy) (near qz wz iz) 0)
@@ -188,8 +185,7 @@ Positions are in world coordinates."
             t-end (math.min t-plane (math.max exit (if grid? grid-out 0)) (or ?t-max draw))
             t-past (math.min t-plane (or ?t-max draw))
             max-iterations (+ max-steps fd.crossings 1)
-            step-x (if (> (safe dx) 0) 1 -1) step-y (if (> (safe dy) 0) 1 -1)
-            step-z (if (> (safe dz) 0) 1 -1)
+            step-x (if (> ix 0) 1 -1) step-y (if (> iy 0) 1 -1) step-z (if (> iz 0) 1 -1)
             delta-x (* sx (abs ix)) delta-y (* sy (abs iy)) delta-z (* sz (abs iz))]
         (var t (math.max (math.min enter (if grid? grid-in draw)) 0))
         (var state (if grid? 0 2))
