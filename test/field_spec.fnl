@@ -12,9 +12,10 @@
 (local compare (require :src.verify.compare))
 (local field (require :src.render.field))
 
-(fn scattered [n ?extra ?render]
-  ;; A scene of n spheres and boxes (alternating) scattered over a 40 x 40 x 10
-  ;; region above a floor, by the scene's own generator.
+(fn scattered [n ?extra ?render ?spheres-only?]
+  ;; A scene of n spheres and boxes (alternating; only spheres when asked)
+  ;; scattered over a 40 x 40 x 10 region above a floor, by the scene's own
+  ;; generator.
   (assert (scene.load-string
            (.. "(var seed 7)
 (fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))
@@ -23,7 +24,7 @@
   (let [x (+ -20 (* 40 (rnd))) y (+ -20 (* 40 (rnd))) z (+ 0.5 (* 10 (rnd)))
         r (+ 0.2 (* 0.5 (rnd)))
         color [(rnd) (rnd) (rnd)]]
-    (table.insert objects (if (= 0 (% i 2))
+    (table.insert objects (if (and (= 0 (% i 2)) " (if ?spheres-only? "false" "true") ")
                               {:kind :box :pos [x y z] :size [r (* 2 r) r] : color}
                               {:kind :sphere :pos [x y z] :radius r : color}))))
 {:camera {:pos [0 -35 12] :yaw 90 :pitch 15 :fov 60}
@@ -48,6 +49,32 @@
   (var seed (or ?seed 3))
   (fn rnd [] (set seed (% (+ (* seed 16807) 0) 2147483647)) (/ seed 2147483647))
   (fcollect [_ 1 n] [(+ -24 (* 48 (rnd))) (+ -24 (* 48 (rnd))) (+ -2 (* 14 (rnd)))]))
+
+(fn walks-as-brute-force [s]
+  ;; Rays from around and inside the region in many directions: the walk (the
+  ;; reference's march, as the shader's) against the closed-form entry into every
+  ;; object and the floor. Returns the plan.
+  (let [p (assert (plan.scene->plan s))
+        T (reference.tracer s p {:cam-pos [0 -35 12]})
+        draw s.render.draw-distance
+        origins (points 300)
+        targets (points 300 11)]
+    (var hits 0)
+    (each [i [ox oy oz] (ipairs origins)]
+      ;; Toward another point of the region: most rays cross it.
+      (let [oz (math.max oz 0.01)
+            [tx ty tz] (. targets i)
+            (a b c) (values (- tx ox) (- ty oy) (- tz oz))
+            len (math.sqrt (+ (* a a) (* b b) (* c c)))
+            (dx dy dz) (values (/ a len) (/ b len) (/ c len))
+            plane (if (< dz 0) (/ (- oz) dz) draw)
+            expected (math.min (field.brute-entry p.field ox oy oz dx dy dz draw) plane draw)
+            t (T.march ox oy oz dx dy dz)]
+        (when (< expected plane) (set hits (+ hits 1)))
+        (assert.is_true (< (math.abs (- t expected)) 1e-9)
+                        (string.format "ray %d: walked to %.12g, the first object is at %.12g" i t expected))))
+    (assert.is_true (> hits 30) (.. hits " rays meet an object"))
+    p))
 
 (describe "fields"
   (fn []
@@ -167,6 +194,52 @@
             (assert.are.same o.color [(. tex.objects.data (+ 12 9)) (. tex.objects.data (+ 12 10))
                                       (. tex.objects.data (+ 12 11))])))))
 
+    (it "give a field of spheres a walk texture: a cell's one sphere, or where its list starts"
+      (fn []
+        (let [fd (. (assert (plan.scene->plan (scattered 400 nil nil true))) :field)
+              walk fd.walk
+              cells (length walk.start)
+              data (. (field.textures fd) :walk :data)
+              texel (fn [i] [(. data (+ (* 4 i) 1)) (. data (+ (* 4 i) 2))
+                             (. data (+ (* 4 i) 3)) (. data (+ (* 4 i) 4))])
+              sphere (fn [i] (let [[cx cy cz _ _ _ r] (. fd.shapes i)] [cx cy cz r]))
+              seen {:empty 0 :one 0 :several 0}]
+          (assert.is_true fd.walk?)
+          (assert.is_true (>= fd.turns fd.crossings))
+          (assert.are.equal (* 4 (+ cells (length walk.records))) (length data))
+          (for [k 1 cells]
+            (let [first (. walk.start k)
+                  n (. walk.count k)]
+              (case n
+                0 (do (tset seen :empty (+ seen.empty 1))
+                      (assert.are.same [0 0 0 0] (texel (- k 1))))
+                1 (do (tset seen :one (+ seen.one 1))
+                      (assert.are.same (sphere (. walk.records (+ first 1))) (texel (- k 1))))
+                _ (do (tset seen :several (+ seen.several 1))
+                      (assert.are.same [(+ cells first) n 0 -1] (texel (- k 1)))
+                      (for [j 1 n]
+                        (assert.are.same (sphere (. walk.records (+ first j)))
+                                         (texel (+ cells first j -1))))))))
+          (assert.is_true (and (> seen.empty 0) (> seen.one 0) (> seen.several 0)))
+          ;; Its lists are the field's, but grown by less: never longer, and every
+          ;; sphere still in each cell its box meets.
+          (for [k 1 cells]
+            (assert.is_true (<= (. walk.count k) (. fd.cell-count k))))
+          (each [i [cx cy cz _ _ _ r] (ipairs fd.shapes)]
+            (each [_ [sx sy sz] (ipairs [[0 0 0] [-1 -1 -1] [1 1 1] [-1 1 -1] [1 -1 1]])]
+              (let [(_ _ _ k) (field.cell-of fd (+ cx (* sx r)) (+ cy (* sy r)) (+ cz (* sz r)))
+                    first (. walk.start k)]
+                (assert.is_true (accumulate [found? false j (ipairs walk.records) &until found?]
+                                  (and (> j first) (<= j (+ first (. walk.count k)))
+                                       (= i (. walk.records j))))
+                                (.. "sphere " i " is not in the walk's list of cell " k))))))))
+
+    (it "walk a field with boxes through the field's lists, with no walk texture"
+      (fn []
+        (let [fd (. (assert (plan.scene->plan (scattered 100))) :field)]
+          (assert.is_nil fd.walk?)
+          (assert.is_nil (. (field.textures fd) :walk)))))
+
     (it "find the texels a value edit changed, so only those are uploaded"
       (fn []
         (let [s (scattered 100)
@@ -217,30 +290,25 @@
 
     (it "walk the grid to the first object a ray meets, as brute force over every object finds it"
       (fn []
-        ;; Rays from around and inside the region in many directions; the walk (the
-        ;; reference's march, as the shader's) against the closed-form entry into
-        ;; every object and the floor.
-        (let [s (scattered 600)
-              p (assert (plan.scene->plan s))
-              T (reference.tracer s p {:cam-pos [0 -35 12]})
-              draw s.render.draw-distance
-              origins (points 300)
-              targets (points 300 11)]
-          (var hits 0)
-          (each [i [ox oy oz] (ipairs origins)]
-            ;; Toward another point of the region: most rays cross it.
-            (let [oz (math.max oz 0.01)
-                  [tx ty tz] (. targets i)
-                  (a b c) (values (- tx ox) (- ty oy) (- tz oz))
-                  len (math.sqrt (+ (* a a) (* b b) (* c c)))
-                  (dx dy dz) (values (/ a len) (/ b len) (/ c len))
-                  plane (if (< dz 0) (/ (- oz) dz) draw)
-                  expected (math.min (field.brute-entry p.field ox oy oz dx dy dz draw) plane draw)
-                  t (T.march ox oy oz dx dy dz)]
-              (when (< expected plane) (set hits (+ hits 1)))
-              (assert.is_true (< (math.abs (- t expected)) 1e-9)
-                              (string.format "ray %d: walked to %.12g, the first object is at %.12g" i t expected))))
-          (assert.is_true (> hits 30) (.. hits " rays meet an object")))))
+        ;; Spheres and boxes: the lean walk, the field's lists.
+        (let [p (walks-as-brute-force (scattered 600))]
+          (assert.is_nil p.field.walk))))
+
+    (it "walk a field of spheres through lists of its own, as brute force finds the first sphere"
+      (fn []
+        ;; Spheres alone: march-field-spheres.glsl and its lists (the reference walks
+        ;; them too). 2000 spheres of radius 0.2 to 0.7 leave many cells listing
+        ;; several, so the list turns are walked.
+        (let [p (walks-as-brute-force (scattered 2000 nil nil true))
+              several (accumulate [n 0 _ c (ipairs p.field.walk.count)] (if (> c 1) (+ n 1) n))]
+          (assert.is_true p.field.walk?)
+          (assert.is_true (> several 500) (.. several " cells list several spheres"))
+          ;; The shader walks it, sent as a texture with its bound on turns.
+          (assert.is_truthy (: (codegen.shader p :core) :find "uniform sampler2D uFieldWalk;" 1 true))
+          (let [s (scattered 2000 nil nil true)
+                us (collect [_ u (ipairs (uniforms.pack s p (camera.from-scene s) 160 90))] u.name u)]
+            (assert.are.equal (. (field.textures p.field) :walk) (. us :uFieldWalk :texture))
+            (assert.are.same [p.field.turns] (. us :uFieldTurns :values))))))
 
     (it "walk beside other objects as brute force marches them"
       (fn []

@@ -251,6 +251,37 @@
                   (assert.is_true (passes? st {:over 2 :max 40})
                                   (describe-failures "field beside a torus" st {:over 2 :max 40})))))
 
+            (it "walks a field of spheres as the reference does, and catches a walk that skips lists"
+              (fn []
+                ;; march-field-spheres.glsl: 2000 spheres of radius 0.2 to 0.7, so that
+                ;; many cells list several (a turn per sphere). A walk that never
+                ;; starts a cell's list misses the spheres of those cells.
+                (with-open [f (assert (io.open "test/out/field-of-spheres.fnl" :wb))]
+                  (f:write "(var seed 7)
+(fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))
+(local objects [{:kind :plane :height 0 :color [0.6 0.6 0.6]}])
+(for [i 1 2000]
+  (let [x (+ -20 (* 40 (rnd))) y (+ -20 (* 40 (rnd))) z (+ 0.5 (* 10 (rnd)))]
+    (table.insert objects {:kind :sphere :pos [x y z] :radius (+ 0.2 (* 0.5 (rnd)))
+                           :color [(rnd) (rnd) (rnd)]})))
+{:camera {:pos [0 -35 12] :yaw 90 :pitch 15 :fov 60}
+ :light {:pos [-20 -30 40]}
+ :render {:shadows true :reflections 1}
+ :objects objects}"))
+                (let [prepared (prepare "test/out/field-of-spheres.fnl" {:view :shaded})
+                      budget {:over 2 :max 40}
+                      st (compare-image prepared (gpu-render ctx prepared))]
+                  (assert.is_true prepared.plan.field.walk?)
+                  (print (report-line "field of spheres" st))
+                  (assert.is_true (passes? st budget) (describe-failures "field of spheres" st budget))
+                  (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
+                                      "bool starts = !inList && texel%.w < 0%.0;"
+                                      "bool starts = false;")
+                        _ (assert.are.equal 1 n)
+                        broken (compare-image prepared (gpu-render ctx prepared {:source #source}))]
+                    (print (report-line "field of spheres, lists never started" broken))
+                    (assert.is_false (passes? broken budget))))))
+
             (it "renders 100,000 spheres as the reference does"
               (fn []
                 ;; test/fixtures/spheres-100000.fnl: a field of 100,000 (grid 256 x 256 x 3,

@@ -380,7 +380,7 @@ only when the plan has it."
                                     field.tiny)
                      (fill "shaders/pipeline/field.glsl"
                            {:entry (let [{: spheres? : boxes?} plan.field.kinds
-                                         box "fieldBoxEntry(q0, inv, a, texelFetch(uFieldRecords, fieldTexel(r + 1), 0).xyz)"]
+                                         box "fieldBoxEntry(q0, inv, a, fieldRead(uFieldRecords, r + 1).xyz)"]
                                      (if (and spheres? boxes?)
                                          [(.. "t = min(t, a.w > 0.0 ? fieldSphereEntry(q0, rd, a) : " box ");")]
                                          spheres? ["t = min(t, fieldSphereEntry(q0, rd, a));"]
@@ -405,7 +405,9 @@ only when the plan has it."
     ;; elsewhere it is not kept.
     (let [count-step (if (or plan.glow? plan.adaptive? (= view :glow) (= view :heat))
                          ["steps = i + 1;"] [])]
-      (table.insert sections (fill (if (and plan.field (= 0 plan.bounds.count))
+      (table.insert sections (fill (if (and plan.field (= 0 plan.bounds.count) plan.field.walk?)
+                                       "shaders/pipeline/march-field-spheres.glsl"
+                                       (and plan.field (= 0 plan.bounds.count))
                                        "shaders/pipeline/march-field-alone.glsl"
                                        plan.field "shaders/pipeline/march-field.glsl"
                                        (.. "shaders/pipeline/march" (if plan.relaxed? "-relaxed" "")

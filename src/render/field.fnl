@@ -33,7 +33,8 @@
 ;; llvmpipe allows 16384 x 16384, so the records texture (two texels a record) holds
 ;; at most this many records.
 (local texture-width 1024)
-(local max-records (/ (* 16384 texture-width) 2))
+(local max-texels (* 16384 texture-width))
+(local max-records (/ max-texels 2))
 
 ;; Grid cells per object (the grid's resolution): more cells mean shorter lists and
 ;; more cells to cross. Chosen on the scaling scenes of the benchmark at 640x360.
@@ -50,6 +51,13 @@
 ;; (up to one cell side).
 (local reach-fraction 0.05)
 (local wide-reach-fraction 0.25)
+;; The walk of a field of spheres only (march-field-spheres.glsl) reads lists of its
+;; own, grown by a hundredth of the smallest cell side: the walk meets an object in a
+;; cell its surface is in, so it needs no reach but a margin for float rounding at
+;; the walls (an entry computed just past a wall is still met). Shorter lists than
+;; the distance queries' (a sphere of the benchmark's 10,000 in about 1.3 cells
+;; instead of 1.6), and a list costs the walk a turn per sphere.
+(local walk-reach-fraction 0.01)
 
 (fn member? [o]
   "Whether object `o` can be part of a field: a sphere or a box smaller than the
@@ -92,11 +100,11 @@ there are fewer than min-objects of them."
         dim (fn [e] (max 1 (min max-cells-per-axis (math.ceil (/ e side)))))]
     [(dim ex) (dim ey) (dim ez)]))
 
-(fn lists [field ranges]
+(fn list-cells [[nx ny nz] ranges]
   ;; The cells' lists, laid out cell after cell, objects in each in scene order:
-  ;; `ranges` gives each object's cells (x0 x1 y0 y1 z0 z1, 0-based).
-  (let [[nx ny nz] field.dims
-        cells (* nx ny nz)
+  ;; `ranges` gives each object's cells (x0 x1 y0 y1 z0 z1, 0-based). Returns
+  ;; {:start :count (per cell 1-based; a list's first slot is 0-based) :records}.
+  (let [cells (* nx ny nz)
         cell-count (fcollect [_ 1 cells] 0)
         cell-start []
         fill []
@@ -116,10 +124,33 @@ there are fewer than min-objects of them."
               slot (. fill k)]
           (tset records (+ slot 1) i)
           (tset fill k (+ slot 1)))))))
+    {:start cell-start :count cell-count : records}))
+
+(fn lists [field ranges]
+  ;; The field with its cells' lists (list-cells) as :cell-start :cell-count :records.
+  (let [{: start : count : records} (list-cells field.dims ranges)]
     (doto field
-      (tset :cell-start cell-start)
-      (tset :cell-count cell-count)
+      (tset :cell-start start)
+      (tset :cell-count count)
       (tset :records records))))
+
+(fn with-walk [field walk-ranges]
+  ;; A field of spheres only walks one texture of cells and lists (walk-texture)
+  ;; when they fit in one: :walk (its lists, from `walk-ranges`), :walk? and :turns,
+  ;; the walk's turns at most (a turn crosses a cell or meets a sphere of a list).
+  (when (not field.kinds.boxes?)
+    (let [walk (list-cells field.dims walk-ranges)
+          cells (length walk.start)
+          listed (length walk.records)
+          longest (accumulate [m 0 _ n (ipairs walk.count)] (max m n))]
+      (when (<= (+ cells listed) max-texels)
+        (set field.walk walk)
+        (set field.walk? true)
+        (set field.turns (+ field.crossings (min listed (* field.crossings longest)))))))
+  field)
+
+(fn texture [texels data]
+  {:width texture-width :height (max 1 (math.ceil (/ texels texture-width))) : data})
 
 (fn build [objects ?options]
   "The field of `objects` (members, in order): the grid and the texture data.
@@ -153,22 +184,27 @@ texture."
           cell [(/ (. size 1) nx) (/ (. size 2) ny) (/ (. size 3) nz)]
           [ox oy oz] lo
           [sx sy sz] cell
+          walk-reach (min reach (* walk-reach-fraction smallest))
           ranges []
+          walk-ranges []
           colors []]
       ;; Shapes in field-local coordinates, and the cells each object's grown box
       ;; covers.
       (each [i o (ipairs objects)]
         (let [(cx cy cz ax ay az r) (shape o)
               cx (- cx ox) cy (- cy oy) cz (- cz oz)
-              span (fn [c a s d]
-                     (values (max 0 (min (- d 1) (floor (/ (- c a r reach) s))))
-                             (max 0 (min (- d 1) (floor (/ (+ c a r reach) s))))))
-              (x0 x1) (span cx ax sx nx)
-              (y0 y1) (span cy ay sy ny)
-              (z0 z1) (span cz az sz nz)]
+              span (fn [c a s d grow]
+                     (values (max 0 (min (- d 1) (floor (/ (- c a r grow) s))))
+                             (max 0 (min (- d 1) (floor (/ (+ c a r grow) s))))))
+              cover (fn [grow]
+                      (let [(x0 x1) (span cx ax sx nx grow)
+                            (y0 y1) (span cy ay sy ny grow)
+                            (z0 z1) (span cz az sz nz grow)]
+                        [x0 x1 y0 y1 z0 z1]))]
           (tset shapes i [cx cy cz ax ay az r])
           (tset colors i o.color)
-          (tset ranges i [x0 x1 y0 y1 z0 z1])))
+          (tset ranges i (cover reach))
+          (tset walk-ranges i (cover walk-reach))))
       ;; Every object is listed in each cell it covers: a texture holds at most
       ;; max-records of those (two texels each).
       (let [total (accumulate [sum 0 _ [x0 x1 y0 y1 z0 z1] (ipairs ranges)]
@@ -178,7 +214,7 @@ texture."
                                            " (each in every cell it covers), more than the %d a texture"
                                            " holds; remove or shrink the largest ones")
                                        n total max-records))
-            (lists {:count n : objects : lo :dims [nx ny nz] : cell : size : reach
+            (with-walk (lists {:count n : objects : lo :dims [nx ny nz] : cell : size : reach
                     ;; Which kinds it holds: only their code is compiled in.
                     :kinds {:spheres? (accumulate [any? false _ o (ipairs objects)]
                                         (or any? (= o.kind :sphere)))
@@ -186,14 +222,44 @@ texture."
                                       (or any? (= o.kind :box)))}
                     :crossings (+ nx ny nz 1)
                     : shapes : colors}
-                   ranges))))))
+                   ranges)
+                       walk-ranges))))))
 
-(fn texture [texels data]
-  {:width texture-width :height (max 1 (math.ceil (/ texels texture-width))) : data})
+(local tiny-radius 1e-30)
+
+(fn walk-texture [field]
+  ;; A field of spheres only: the texture its walk reads (march-field-spheres.glsl),
+  ;; the cells then every list, a texel each. A cell listing one sphere holds it
+  ;; (centre, radius; when the radius is over tiny-radius, so that it stays above 0
+  ;; in float); a cell listing more holds where its list starts in this
+  ;; texture, its length, 0 and -1; an empty cell 0. A record is its sphere's centre
+  ;; and radius. The walk then reads one texel per cell it crosses, plus one per
+  ;; sphere in a cell that lists several.
+  (let [walk []
+        {: start : count : records} field.walk
+        cells (length start)
+        put (fn [texel a b c d]
+              (let [at (* 4 texel)]
+                (tset walk (+ at 1) a) (tset walk (+ at 2) b)
+                (tset walk (+ at 3) c) (tset walk (+ at 4) d)))]
+    (for [k 1 cells]
+      (let [first (. start k)
+            n (. count k)]
+        (if (= n 0) (put (- k 1) 0 0 0 0)
+            (and (= n 1) (> (. field.shapes (. records (+ first 1)) 7) tiny-radius))
+            (let [[cx cy cz _ _ _ r] (. field.shapes (. records (+ first 1)))]
+              (put (- k 1) cx cy cz r))
+            (put (- k 1) (+ cells first) n 0 -1))))
+    (each [j i (ipairs records)]
+      (let [[cx cy cz _ _ _ r] (. field.shapes i)]
+        (put (+ cells j -1) cx cy cz r)))
+    (texture (+ cells (length records)) walk)))
 
 (fn textures [field]
   "The field's float textures (made once, then kept in the field):
   :cells    one texel per cell: first record, record count
+  :walk     a field of spheres only: the cells and lists as its walk reads
+            them, a texel each (see walk-texture); nil for other fields
   :records  two texels per record: centre and radius, half extents and the
             object's number (0-based)
   :objects  three texels per object: centre and radius, half extents, colour
@@ -221,7 +287,9 @@ Each {:width :height :data} with data flat RGBA floats, row after row."
       (set field.textures
            {:cells (texture (length field.cell-start) cells)
             :records (texture (* 2 (length field.records)) records)
-            :objects (texture (* 3 field.count) objects)})))
+            :objects (texture (* 3 field.count) objects)})
+      (when field.walk?
+        (set field.textures.walk (walk-texture field)))))
   field.textures)
 
 ;;; Queries (the CPU side of shaders/pipeline/field.glsl), in world coordinates.
@@ -277,14 +345,16 @@ the shader's fieldSafeDirection: ix iy iz (their signs are the walk's steps)."
             far* (min (max x1 x2) (max y1 y2) (max z1 z2))]
         (if (or (> near far*) (< far* 0)) far (max near 0)))))
 
-(fn list-entry [field k qx qy qz dx dy dz ix iy iz far]
+(fn list-entry [field k qx qy qz dx dy dz ix iy iz far ?lists]
   "fieldListEntry: where the ray (field-local origin q, unit direction d, reciprocal
-i) first enters an object listed in cell `k` (1-based), or `far`."
+i) first enters an object listed in cell `k` (1-based), or `far`. The lists are
+the field's, or `?lists` ({:start :count :records}, the walk's)."
   (let [shapes field.shapes
-        records field.records
-        start (. field.cell-start k)]
+        records (if ?lists ?lists.records field.records)
+        start (. (if ?lists ?lists.start field.cell-start) k)
+        count (. (if ?lists ?lists.count field.cell-count) k)]
     (var t far)
-    (for [j (+ start 1) (+ start (. field.cell-count k))]
+    (for [j (+ start 1) (+ start count)]
       (let [[cx cy cz ax ay az r] (. shapes (. records j))]
         (set t (min t (entry qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far)))))
     t))

@@ -62,7 +62,8 @@
     (when plan.field
       (table.insert parts (.. "field:" (if plan.field.kinds.spheres? "spheres" "")
                               (if (and plan.field.kinds.spheres? plan.field.kinds.boxes?) "+" "")
-                              (if plan.field.kinds.boxes? "boxes" ""))))
+                              (if plan.field.kinds.boxes? "boxes" "")
+                              (if plan.field.walk? " walk" ""))))
     (table.insert parts (.. "view:" plan.view))
     (when plan.tape
       (table.insert parts (.. "tape:" plan.tape.key))

@@ -92,17 +92,21 @@ object's outermost translation) are made camera-relative here, in double."
 (fn field-uniforms [fd cam-pos]
   "A field's uniforms: its grid, the low corner camera-relative (in double), and its
 textures (:type :texture, {:width :height :data}; the same tables every frame, so a
-backend uploads them once)."
+backend uploads them once). A field of spheres walks one more texture (:walk?)."
   (let [tex (field.textures fd)]
-    [{:name "uFieldOrigin" :type :vec3 :values (relative fd.lo cam-pos)}
-     {:name "uFieldSize" :type :vec3 :values fd.size}
-     {:name "uFieldCell" :type :vec3 :values fd.cell}
-     {:name "uFieldDims" :type :vec3 :values fd.dims}
-     {:name "uFieldReach" :type :float :values [fd.reach]}
-     {:name "uFieldCrossings" :type :int :values [fd.crossings]}
-     {:name "uFieldCells" :type :texture :texture tex.cells}
-     {:name "uFieldRecords" :type :texture :texture tex.records}
-     {:name "uFieldObjects" :type :texture :texture tex.objects}]))
+    (doto [{:name "uFieldOrigin" :type :vec3 :values (relative fd.lo cam-pos)}
+           {:name "uFieldSize" :type :vec3 :values fd.size}
+           {:name "uFieldCell" :type :vec3 :values fd.cell}
+           {:name "uFieldDims" :type :vec3 :values fd.dims}
+           {:name "uFieldReach" :type :float :values [fd.reach]}
+           {:name "uFieldCrossings" :type :int :values [fd.crossings]}
+           {:name "uFieldCells" :type :texture :texture tex.cells}
+           {:name "uFieldRecords" :type :texture :texture tex.records}
+           {:name "uFieldObjects" :type :texture :texture tex.objects}]
+      (append! (if fd.walk?
+                   [{:name "uFieldTurns" :type :int :values [fd.turns]}
+                    {:name "uFieldWalk" :type :texture :texture tex.walk}]
+                   [])))))
 
 (fn pack [scene plan cam width height]
   "Uniforms for drawing `scene` lowered to `plan`, seen by camera state `cam`, into a

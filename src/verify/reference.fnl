@@ -171,6 +171,9 @@ Positions are in world coordinates."
             (enter exit) (bounds.span bound-spheres ox oy oz dx dy dz draw)
             ;; kFieldOthers: finite objects beside the field (grouped or trees).
             others? (> plan.bounds.count 0)
+            ;; A field of spheres alone walks lists of its own (march-field-spheres.glsl).
+            walk (when (and fd.walk? (not others?)) fd.walk)
+            cell-count (if walk walk.count fd.cell-count)
             [lx ly lz] fd.lo
             [wx wy wz] fd.size
             [sx sy sz] fd.cell
@@ -209,10 +212,10 @@ Positions are in world coordinates."
             (var evaluated? others?)
             (when (= state 1)
               (let [k (+ 1 cx (* nx (+ cy (* ny cz))))]
-                (when (> (. fd.cell-count k) 0)
+                (when (> (. cell-count k) 0)
                   ;; The cell's objects in closed form (fieldListEntry): an entry in
                   ;; the cell, before any other object can be, is the hit.
-                  (let [hit (field.list-entry fd k qx qy qz dx dy dz ix iy iz draw)]
+                  (let [hit (field.list-entry fd k qx qy qz dx dy dz ix iy iz draw walk)]
                     (set evaluated? true)
                     (when (and (<= hit (math.min (+ t d) cell-end)) (< hit t-end))
                       (set evals (+ evals 1))

@@ -1,0 +1,75 @@
+// The lean grid walk of march-field-alone.glsl for a field of spheres only: the same
+// cells in the same order, the same tests and results, in one loop whose every turn
+// reads one texel of uFieldWalk (src/render/field.fnl's walk-texture). A turn either
+// crosses a cell (its texel: the one sphere it lists, or where its list starts, or
+// nothing) or meets the next sphere of the list of the cell it is in. On llvmpipe
+// every turn runs all of its code, branches included, and a loop nested in the walk
+// runs its body at least once per cell: one texel and one sphere test per turn is
+// the least a cell can cost.
+uniform sampler2D uFieldWalk;  // cells, then their lists: a texel each
+uniform int uFieldTurns;       // turns a walk can take, at most
+
+float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
+    float tPlane = planesHit(ro, rd);
+    float tPast = min(tPlane, tMax);
+    vec3 q0 = ro - uFieldOrigin;
+    vec3 safe = fieldSafeDirection(rd);
+    vec3 inv = 1.0 / safe;
+    vec2 box = fieldBoxSpan(q0, inv);
+    float gridIn = box.x;
+    float tEnd = min(box.y, tPast);
+    steps = 0;
+    if (gridIn >= tEnd) {
+        return tPast;
+    }
+    ivec3 cell = clamp(ivec3(floor((q0 + rd * gridIn) / uFieldCell)), ivec3(0),
+                       ivec3(uFieldDims) - 1);
+    vec3 tDelta = uFieldCell * abs(inv);
+    vec3 tNext = ((vec3(cell) + step(vec3(0.0), safe)) * uFieldCell - q0) * inv;
+    int index = fieldCellIndex(cell);
+    vec3 stride = sign(safe) * vec3(1.0, uFieldDims.x, uFieldDims.x * uFieldDims.y);
+    float t = gridIn;
+    // The list being met: the texel of its next sphere, and how many are left. The
+    // nearest entry into the cell's spheres so far.
+    int next = 0;
+    int left = 0;
+    float hit = uDrawDist;
+    for (int i = 0; i <= uFieldTurns; i++) {
+        bool inList = left > 0;
+        vec4 texel = fieldRead(uFieldWalk, inList ? next : index);
+        // A sphere: the next of the list, or the cell's one (radius > 0).
+        bool sphere = inList || texel.w > 0.0;
+        hit = min(hit, sphere ? fieldSphereEntry(q0, rd, texel) : uDrawDist);
+        // A cell's list to meet: from the next turn on.
+        bool starts = !inList && texel.w < 0.0;
+        next = starts ? int(texel.x) : next + 1;
+        left = starts ? int(texel.y) : max(left - 1, 0);
+        steps += (!inList && texel.w != 0.0) ? 1 : 0;
+        if (left == 0) {
+            // The cell is done: an entry inside it is the hit; else on to the next.
+            float cellEnd = min(tNext.x, min(tNext.y, tNext.z));
+            if (hit <= cellEnd && hit < tEnd) {
+                return hit;
+            }
+            t = max(t, cellEnd);
+            if (t >= tEnd) {
+                return tPast;
+            }
+            if (steps >= uMaxSteps) {
+                break;
+            }
+            // On along the axis (or axes, at a tie) whose wall comes first.
+            vec3 m = step(tNext, min(tNext.yzx, tNext.zxy));
+            tNext += m * tDelta;
+            index += int(dot(m, stride));
+            hit = uDrawDist;
+        }
+    }
+    // @slot out-of-steps
+    return t;
+}
+
+// Up to the draw distance: primary and mirror rays.
+float raymarch(vec3 ro, vec3 rd, out int steps) {
+    return raymarchTo(ro, rd, uDrawDist, steps);
+}
