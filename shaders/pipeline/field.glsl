@@ -10,13 +10,15 @@ uniform vec3 uFieldCell;          // one cell's extents
 uniform vec3 uFieldDims;          // cells along each axis
 uniform float uFieldReach;        // a listed object's box grown by this meets the cell
 uniform int uFieldCrossings;      // cells a ray can cross, at most
+uniform vec4 uFieldRows;          // 1 / rows of the cells, records, objects, walk textures
 
-// Texel i of a field texture (1024 texels wide, row after row), read at its centre.
-// Every field texture has one level and nearest filtering, so texture() returns the
-// texel exactly, derivatives or not; on llvmpipe it is cheaper than texelFetch, whose
-// explicit level makes it work out a level, and a size, per pixel.
-vec4 fieldRead(sampler2D s, int i) {
-    return texture(s, (vec2(float(i & 1023), float(i >> 10)) + 0.5) / vec2(textureSize(s, 0)));
+// Texel i of a field texture (1024 texels wide, row after row; `rows` is 1 over its
+// row count), read at its centre. Every field texture has one level and nearest
+// filtering, so texture() returns the texel exactly, derivatives or not; on llvmpipe
+// it is cheaper than texelFetch, whose explicit level makes it work out a level and a
+// size per pixel, and a uniform's reciprocal cheaper than dividing by textureSize.
+vec4 fieldRead(sampler2D s, float rows, int i) {
+    return texture(s, (vec2(float(i & 1023), float(i >> 10)) + 0.5) * vec2(1.0 / 1024.0, rows));
 }
 
 // The one distance of every field object, a rounded box (exact): a sphere has no
@@ -51,14 +53,14 @@ int fieldCellIndex(ivec3 c) {
 // object `skip`: its distance (the draw distance when none) and number in `best`.
 // Ties go to the earlier record, as in the reference.
 float fieldCellDistance(int cell, vec3 q, int skip, out int best) {
-    vec4 list = fieldRead(uFieldCells, cell);
+    vec4 list = fieldRead(uFieldCells, uFieldRows.x, cell);
     int start = 2 * int(list.x);
     int count = int(list.y);
     float d = uDrawDist;
     best = -1;
     for (int k = 0; k < count; k++) {
-        vec4 a = fieldRead(uFieldRecords, start + 2 * k);
-        vec4 b = fieldRead(uFieldRecords, start + 2 * k + 1);
+        vec4 a = fieldRead(uFieldRecords, uFieldRows.y, start + 2 * k);
+        vec4 b = fieldRead(uFieldRecords, uFieldRows.y, start + 2 * k + 1);
         float di = sdFieldShape(q, a, b.xyz);
         int object = int(b.w);
         if (di < d && object != skip) {
@@ -100,7 +102,7 @@ float fieldListEntry(int start, int count, vec3 q0, vec3 rd, vec3 inv) {
     float t = uDrawDist;
     for (int k = 0; k < count; k++) {
         int r = 2 * (start + k);
-        vec4 a = fieldRead(uFieldRecords, r);
+        vec4 a = fieldRead(uFieldRecords, uFieldRows.y, r);
         // @slot entry
     }
     return t;
@@ -125,21 +127,21 @@ float fieldMap(vec3 p, int skip, out int best) {
 
 // One object's distance, by number.
 float fieldObject(vec3 p, int object) {
-    vec4 a = fieldRead(uFieldObjects, 3 * object);
-    vec4 b = fieldRead(uFieldObjects, 3 * object + 1);
+    vec4 a = fieldRead(uFieldObjects, uFieldRows.z, 3 * object);
+    vec4 b = fieldRead(uFieldObjects, uFieldRows.z, 3 * object + 1);
     return sdFieldShape(p - uFieldOrigin, a, b.xyz);
 }
 
 vec3 fieldColor(int object) {
-    return fieldRead(uFieldObjects, 3 * object + 2).rgb;
+    return fieldRead(uFieldObjects, uFieldRows.z, 3 * object + 2).rgb;
 }
 
 // The exact normal of a field object at p: its distance's gradient. Outside, along
 // the part of the offset beyond the half extents (a sphere: from its centre); inside,
 // the axis of the nearest face.
 vec3 fieldNormal(vec3 p, int object) {
-    vec4 a = fieldRead(uFieldObjects, 3 * object);
-    vec3 h = fieldRead(uFieldObjects, 3 * object + 1).xyz;
+    vec4 a = fieldRead(uFieldObjects, uFieldRows.z, 3 * object);
+    vec3 h = fieldRead(uFieldObjects, uFieldRows.z, 3 * object + 1).xyz;
     vec3 d = p - uFieldOrigin - a.xyz;
     vec3 e = abs(d) - h;
     vec3 s = vec3(d.x < 0.0 ? -1.0 : 1.0, d.y < 0.0 ? -1.0 : 1.0, d.z < 0.0 ? -1.0 : 1.0);

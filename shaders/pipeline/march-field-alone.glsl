@@ -24,7 +24,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float t = gridIn;
     for (int i = 0; i <= uFieldCrossings; i++) {
         float cellEnd = min(tNext.x, min(tNext.y, tNext.z));
-        vec4 list = fieldRead(uFieldCells, index);
+        vec4 list = fieldRead(uFieldCells, uFieldRows.x, index);
         // (No branch around an empty cell's test: its loop has nothing to do.)
         steps += list.y > 0.0 ? 1 : 0;
         float hit = fieldListEntry(int(list.x), int(list.y), q0, rd, inv);

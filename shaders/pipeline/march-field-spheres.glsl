@@ -36,7 +36,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float hit = uDrawDist;
     for (int i = 0; i <= uFieldTurns; i++) {
         bool inList = left > 0;
-        vec4 texel = fieldRead(uFieldWalk, inList ? next : index);
+        vec4 texel = fieldRead(uFieldWalk, uFieldRows.w, inList ? next : index);
         // A sphere: the next of the list, or the cell's one (radius > 0).
         bool sphere = inList || texel.w > 0.0;
         hit = min(hit, sphere ? fieldSphereEntry(q0, rd, texel) : uDrawDist);

@@ -46,7 +46,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
         float d = mapFinite(p);
         bool evaluated = kFieldOthers;
         if (state == 1) {
-            vec4 list = fieldRead(uFieldCells, fieldCellIndex(cell));
+            vec4 list = fieldRead(uFieldCells, uFieldRows.x, fieldCellIndex(cell));
             if (list.y > 0.0) {
                 float hit = fieldListEntry(int(list.x), int(list.y), q0, rd, inv);
                 evaluated = true;

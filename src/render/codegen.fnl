@@ -380,7 +380,7 @@ only when the plan has it."
                                     field.tiny)
                      (fill "shaders/pipeline/field.glsl"
                            {:entry (let [{: spheres? : boxes?} plan.field.kinds
-                                         box "fieldBoxEntry(q0, inv, a, fieldRead(uFieldRecords, r + 1).xyz)"]
+                                         box "fieldBoxEntry(q0, inv, a, fieldRead(uFieldRecords, uFieldRows.y, r + 1).xyz)"]
                                      (if (and spheres? boxes?)
                                          [(.. "t = min(t, a.w > 0.0 ? fieldSphereEntry(q0, rd, a) : " box ");")]
                                          spheres? ["t = min(t, fieldSphereEntry(q0, rd, a));"]

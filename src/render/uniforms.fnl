@@ -100,6 +100,10 @@ backend uploads them once). A field of spheres walks one more texture (:walk?)."
            {:name "uFieldDims" :type :vec3 :values fd.dims}
            {:name "uFieldReach" :type :float :values [fd.reach]}
            {:name "uFieldCrossings" :type :int :values [fd.crossings]}
+           ;; fieldRead's reciprocal row counts (texture widths are field.texture-width).
+           {:name "uFieldRows" :type :vec4
+            :values (icollect [_ k (ipairs [:cells :records :objects :walk])]
+                      (let [t (. tex k)] (if t (/ 1 t.height) 0)))}
            {:name "uFieldCells" :type :texture :texture tex.cells}
            {:name "uFieldRecords" :type :texture :texture tex.records}
            {:name "uFieldObjects" :type :texture :texture tex.objects}]
