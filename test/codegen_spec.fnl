@@ -160,8 +160,10 @@
         (let [text (shader-of "{:objects [{:kind :sphere} {:kind :sphere :pos [1 0 0]} {:kind :box}]}" nil :core)
               many (shader-of (.. "{:objects [" (string.rep "{:kind :sphere} " 9) "]}") nil :core)]
           (each [_ line (ipairs ["vec4 gSphere[2];" "float gDrawDist;" "void loadUniforms() {"
-                                 "    gSphere[0] = uSphere[0];" "    gSphere[1] = uSphere[1];"
-                                 "    gDrawDist = uDrawDist;" "void main() {\n    loadUniforms();"])]
+                                 "    gSphere[0] = (uSphere[0] + nothing);" "    gSphere[1] = (uSphere[1] + nothing);"
+                                 "    gDrawDist = (uDrawDist + nothing);" "    gMaxSteps = min(uMaxSteps, opaque);"
+                                 "    float nothing = 0.0 * gl_FragCoord.x;"
+                                 "void main() {\n    loadUniforms();"])]
             (assert-has text line))
           ;; Outside the declarations and loadUniforms, no uniform is read but the
           ;; resolution.
@@ -295,7 +297,10 @@
                          ;; compile-time counts: lights, samples, shadow steps
                          "^const int k%w+ = %d+;"
                          "^%s*for %(int %w+ = %d+; %w+ <=? %w+; %w+%+%+%) {$"
-                         "^%s*if %(bounce > 0%) {$"]]
+                         "^%s*if %(bounce > 0%) {$"
+                         ;; load-once's integer that the compiler cannot fold
+                         "^%s*int opaque = 2147483647 %- int%(gl_FragCoord%.x < 0%.0%);$"
+                         "^%s*g%w+ = %(u%w+ && opaque > 0%);$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]
               (let [masked (-> line (: :gsub "%d+%.%d+" "F") (: :gsub "%[%d+%]" "[N]"))]

@@ -509,6 +509,17 @@ only when the plan has it."
 ;; resolution is read once per pixel anyway.
 (local read-directly {:uResolution true})
 
+;; Each copy is made through a value the compiler cannot fold away (0 times the
+;; pixel's x; its maximum, for integers): copied plainly, llvmpipe's compiler
+;; propagates the uniform into the loops that use the copy, and reads it there again
+;; on every turn, an eight-lane gather (found in the disassembly of a field's walk:
+;; the draw distance, the step budget and the turn bound were read so, three gathers
+;; in a loop of 296 instructions; through these values the loop is 206).
+(local opaque-types {:int "min(%s, opaque)" :ivec2 "min(%s, opaque)" :ivec3 "min(%s, opaque)"
+                     :ivec4 "min(%s, opaque)" :bool "(%s && opaque > 0)"
+                     :float "(%s + nothing)" :vec2 "(%s + nothing)" :vec3 "(%s + nothing)"
+                     :vec4 "(%s + nothing)"})
+
 (fn indexed-by-variable? [lines name]
   (accumulate [found? false _ line (ipairs lines) &until found?]
     (not= nil (line:find (.. "%f[%w_]" name "%[[^%d]")))))
@@ -520,19 +531,26 @@ entry point."
   (let [names []
         copies []
         out []]
+    (var opaque? false)
+    (var nothing? false)
     (each [_ line (ipairs lines)]
       (let [(ty name count) (line:match "^uniform (%w+) (u[%w_]+)%[?(%d*)%]?;")]
         (if (and name (not (. read-directly name)) (not (ty:find "sampler"))
                  (not (indexed-by-variable? lines name)))
             (let [copy (.. "g" (name:sub 2))
-                  n (tonumber count)]
+                  n (tonumber count)
+                  wrap (. opaque-types ty)
+                  value (fn [v] (if wrap (string.format wrap v) v))]
+              (when (and wrap (wrap:find "opaque")) (set opaque? true))
+              (when (and wrap (wrap:find "nothing")) (set nothing? true))
               (table.insert names [name copy])
               (table.insert out line)
               (table.insert out (.. ty " " copy (if n (.. "[" n "]") "") ";"))
               (if n
                   (for [i 0 (- n 1)]
-                    (table.insert copies (string.format "    %s[%d] = %s[%d];" copy i name i)))
-                  (table.insert copies (string.format "    %s = %s;" copy name))))
+                    (table.insert copies (string.format "    %s[%d] = %s;" copy i
+                                                        (value (string.format "%s[%d]" name i)))))
+                  (table.insert copies (string.format "    %s = %s;" copy (value name)))))
             (table.insert out line))))
     (for [i 1 (length out)]
       (let [line (. out i)]
@@ -544,6 +562,10 @@ entry point."
     (table.insert out "")
     (table.insert out "// Every uniform copied once per pixel (see load-once in src/render/codegen.fnl).")
     (table.insert out "void loadUniforms() {")
+    (when (or opaque? nothing?)
+      (table.insert out "    // Through values the compiler cannot fold (see load-once in codegen.fnl)."))
+    (when nothing? (table.insert out "    float nothing = 0.0 * gl_FragCoord.x;"))
+    (when opaque? (table.insert out "    int opaque = 2147483647 - int(gl_FragCoord.x < 0.0);"))
     (each [_ c (ipairs copies)] (table.insert out c))
     (table.insert out "}")
     out))
