@@ -162,7 +162,7 @@
           (each [_ line (ipairs ["vec4 gSphere[2];" "float gDrawDist;" "void loadUniforms() {"
                                  "    gSphere[0] = (uSphere[0] + nothing);" "    gSphere[1] = (uSphere[1] + nothing);"
                                  "    gDrawDist = (uDrawDist + nothing);" "    gMaxSteps = min(uMaxSteps, opaque);"
-                                 "    float nothing = 0.0 * gl_FragCoord.x;"
+                                 "    float nothing = 0.0 / gl_FragCoord.x;"
                                  "void main() {\n    loadUniforms();"])]
             (assert-has text line))
           ;; Outside the declarations and loadUniforms, no uniform is read but the
@@ -299,7 +299,7 @@
                          "^%s*for %(int %w+ = %d+; %w+ <=? %w+; %w+%+%+%) {$"
                          "^%s*if %(bounce > 0%) {$"
                          ;; load-once's integer that the compiler cannot fold
-                         "^%s*int opaque = 2147483647 %- int%(gl_FragCoord%.x < 0%.0%);$"
+                         "^%s*int opaque = 2147483647 %- int%(nothing%);$"
                          "^%s*g%w+ = %(u%w+ && opaque > 0%);$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]

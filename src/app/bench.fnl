@@ -166,24 +166,31 @@ showcase scenes, and our pixel rate next to the article's CPU program."
         _ (table.insert scaling {:id :scaling-100-uniforms :label "100 spheres without a field, 640x360"
                                  :scene-source (scaling-scene 100) :size [640 360]
                                  :plan-options {:field? false}})
-        _ (each [_ spec (ipairs scaling)] (table.insert specs spec))
+        _ (each [_ spec (ipairs scaling)] (set spec.scaling? true) (table.insert specs spec))
         v {}
-        variants []]
+        variants []
+        scaling-variants []]
     (var err nil)
     (each [_ spec (ipairs specs) &until err]
       (case (make-variant spec)
         (nil e) (set err e)
-        made (do (tset v spec.id made) (table.insert variants made))))
+        made (do (tset v spec.id made)
+                 (table.insert (if spec.scaling? scaling-variants variants) made))))
     (if err
         (values nil err)
         (let [(_ version _ device) (love.graphics.getRendererInfo)
               ratio (fn [a b] (/ (. v a :median) (. v b :median)))]
           (print (.. "renderer: " device " (OpenGL " version ")"))
-          (print (.. "frames per variant: " o.frames ", interleaved, after one warm-up round"))
+          (print (.. "frames per variant: " o.frames " (the scaling row " (* 3 o.frames)
+                     "), interleaved, after one warm-up round"))
           (run-rounds! variants o.frames)
+          ;; The scaling row's frames are short and its ratios noisy: three times the
+          ;; rounds, interleaved among themselves.
+          (run-rounds! scaling-variants (* 3 o.frames))
           (print "seed at 1920x1080 unless said:")
-          (each [_ x (ipairs variants)]
-            (print (string.format "  %-48s median %8.1f ms" x.label x.median)))
+          (each [_ group (ipairs [variants scaling-variants])]
+            (each [_ x (ipairs group)]
+              (print (string.format "  %-48s median %8.1f ms" x.label x.median))))
           (print (string.format "seed / analytic floor (1920x1080): article's settings %.2fx, defaults %.2fx (goal <= 1.5x)"
                                 (ratio :article :floor) (ratio :defaults :floor)))
           (print (string.format "lever, uniforms read once per pixel: seed article's %.2fx, seed defaults without bounds %.2fx faster"

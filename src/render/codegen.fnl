@@ -509,12 +509,14 @@ only when the plan has it."
 ;; resolution is read once per pixel anyway.
 (local read-directly {:uResolution true})
 
-;; Each copy is made through a value the compiler cannot fold away (0 times the
-;; pixel's x; its maximum, for integers): copied plainly, llvmpipe's compiler
-;; propagates the uniform into the loops that use the copy, and reads it there again
-;; on every turn, an eight-lane gather (found in the disassembly of a field's walk:
-;; the draw distance, the step budget and the turn bound were read so, three gathers
-;; in a loop of 296 instructions; through these values the loop is 206).
+;; Each copy is made through a value the compiler cannot fold away: a float plus
+;; `nothing`, 0 divided by the pixel's x (x is at least a half, but for all the
+;; compiler knows it could be 0; it does fold 0 times x), an integer through a min
+;; with `opaque`, the largest int less int(nothing). Copied plainly, Mesa's compiler puts the uniform back into the loops
+;; that use the copy, and llvmpipe reads it there on every turn, an eight-lane gather
+;; (found in the disassembly of a field's walk: the draw distance, the step budget and
+;; the turn bound were read so, three gathers in a loop of 296 instructions; through
+;; these values the loop is 205).
 (local opaque-types {:int "min(%s, opaque)" :ivec2 "min(%s, opaque)" :ivec3 "min(%s, opaque)"
                      :ivec4 "min(%s, opaque)" :bool "(%s && opaque > 0)"
                      :float "(%s + nothing)" :vec2 "(%s + nothing)" :vec3 "(%s + nothing)"
@@ -563,9 +565,9 @@ entry point."
     (table.insert out "// Every uniform copied once per pixel (see load-once in src/render/codegen.fnl).")
     (table.insert out "void loadUniforms() {")
     (when (or opaque? nothing?)
-      (table.insert out "    // Through values the compiler cannot fold (see load-once in codegen.fnl)."))
-    (when nothing? (table.insert out "    float nothing = 0.0 * gl_FragCoord.x;"))
-    (when opaque? (table.insert out "    int opaque = 2147483647 - int(gl_FragCoord.x < 0.0);"))
+      (table.insert out "    // Through values the compiler cannot fold (see load-once in codegen.fnl).")
+      (table.insert out "    float nothing = 0.0 / gl_FragCoord.x;"))
+    (when opaque? (table.insert out "    int opaque = 2147483647 - int(nothing);"))
     (each [_ c (ipairs copies)] (table.insert out c))
     (table.insert out "}")
     out))
