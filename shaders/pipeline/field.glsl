@@ -49,6 +49,30 @@ int fieldCellIndex(ivec3 c) {
     return c.x + n.x * (c.y + n.y * c.z);
 }
 
+// The start of a lean walk (march-field-alone.glsl, march-field-spheres.glsl): the ray
+// ro + rd t, field-local q0 + rd t with `inv` the reciprocal of its safe direction,
+// is in the grid from gridIn to tEnd (its exit, or tPast if sooner); false when that
+// span is empty. The cell it enters, by number (`index`); where it next crosses a wall
+// along each axis (tNext), how far apart the crossings are (tDelta), and what a step
+// along each axis adds to the cell's number (stride).
+bool fieldWalkStart(vec3 ro, vec3 rd, float tPast, out vec3 q0, out vec3 inv, out float gridIn,
+                    out float tEnd, out int index, out vec3 tNext, out vec3 tDelta,
+                    out vec3 stride) {
+    q0 = ro - uFieldOrigin;
+    vec3 safe = fieldSafeDirection(rd);
+    inv = 1.0 / safe;
+    vec2 box = fieldBoxSpan(q0, inv);
+    gridIn = box.x;
+    tEnd = min(box.y, tPast);
+    ivec3 cell = clamp(ivec3(floor((q0 + rd * gridIn) / uFieldCell)), ivec3(0),
+                       ivec3(uFieldDims) - 1);
+    tDelta = uFieldCell * abs(inv);
+    tNext = ((vec3(cell) + step(vec3(0.0), safe)) * uFieldCell - q0) * inv;
+    index = fieldCellIndex(cell);
+    stride = sign(safe) * vec3(1.0, uFieldDims.x, uFieldDims.x * uFieldDims.y);
+    return gridIn < tEnd;
+}
+
 // The nearest object listed in cell `cell` to the field-local point q, skipping
 // object `skip`: its distance (the draw distance when none) and number in `best`.
 // Ties go to the earlier record, as in the reference.

@@ -4,23 +4,13 @@
 float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float tPlane = planesHit(ro, rd);
     float tPast = min(tPlane, tMax);
-    vec3 q0 = ro - uFieldOrigin;
-    vec3 safe = fieldSafeDirection(rd);
-    vec3 inv = 1.0 / safe;
-    vec2 box = fieldBoxSpan(q0, inv);
-    float gridIn = box.x;
-    float tEnd = min(box.y, tPast);
+    vec3 q0, inv, tNext, tDelta, stride;
+    float gridIn, tEnd;
+    int index;
     steps = 0;
-    if (gridIn >= tEnd) {
+    if (!fieldWalkStart(ro, rd, tPast, q0, inv, gridIn, tEnd, index, tNext, tDelta, stride)) {
         return tPast;
     }
-    ivec3 cell = clamp(ivec3(floor((q0 + rd * gridIn) / uFieldCell)), ivec3(0),
-                       ivec3(uFieldDims) - 1);
-    vec3 tDelta = uFieldCell * abs(inv);
-    vec3 tNext = ((vec3(cell) + step(vec3(0.0), safe)) * uFieldCell - q0) * inv;
-    // The cell's number, and what a step along each axis adds to it.
-    int index = fieldCellIndex(cell);
-    vec3 stride = sign(safe) * vec3(1.0, uFieldDims.x, uFieldDims.x * uFieldDims.y);
     float t = gridIn;
     for (int i = 0; i <= uFieldCrossings; i++) {
         float cellEnd = min(tNext.x, min(tNext.y, tNext.z));
