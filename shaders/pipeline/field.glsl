@@ -73,6 +73,14 @@ bool fieldWalkStart(vec3 ro, vec3 rd, float tPast, out vec3 q0, out vec3 inv, ou
     return gridIn < tEnd;
 }
 
+// A lean walk's step into the next cell: along the axis (or axes, at a tie) whose
+// wall comes first.
+void fieldNextCell(inout vec3 tNext, inout int index, vec3 tDelta, vec3 stride) {
+    vec3 m = step(tNext, min(tNext.yzx, tNext.zxy));
+    tNext += m * tDelta;
+    index += int(dot(m, stride));
+}
+
 // The nearest object listed in cell `cell` to the field-local point q, skipping
 // object `skip`: its distance (the draw distance when none) and number in `best`.
 // Ties go to the earlier record, as in the reference.

@@ -49,10 +49,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             if (steps >= uMaxSteps) {
                 break;
             }
-            // On along the axis (or axes, at a tie) whose wall comes first.
-            vec3 m = step(tNext, min(tNext.yzx, tNext.zxy));
-            tNext += m * tDelta;
-            index += int(dot(m, stride));
+            fieldNextCell(tNext, index, tDelta, stride);
             hit = uDrawDist;
         }
     }
