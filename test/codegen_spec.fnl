@@ -175,6 +175,50 @@
           (assert-has many "        d = min(d, sdSphere(p - uSphere[i].xyz, uSphere[i].w));")
           (assert-lacks many "gSphere"))))
 
+    (it "hands LÖVE's pixels the copies in flat varyings a vertex stage fills, as many as fit"
+      (fn []
+        (let [text (codegen.shader seed-plan :love)
+              plain (codegen.shader seed-plan :love-uniforms)
+              many (assert (plan.scene->plan
+                            (load (.. "{:objects [" (string.rep "{:kind :box} " 8) "]}"))))
+              many-text (codegen.shader many :love)]
+          ;; The seed: every copy fits (20 vec4s), each read from its varying.
+          (assert-has text "#ifdef VERTEX")
+          (assert-has text "vec4 position(mat4 transform_projection, vec4 vertex_position) {")
+          (assert-has text "    vLoad0 = vec4(uCamForward, 0.0);")
+          (assert-has text "    vLoad4 = vec4(uEnvColor, float(uMaxSteps));")
+          (assert-has text "#else\nflat in vec4 vLoad0;")
+          (assert-has text "    gCamForward = (vLoad0.xyz + nothing);")
+          (assert-has text "    gMaxSteps = min(int(vLoad4.w), opaque);")
+          (assert.are.equal "#endif\n" (text:sub -7))
+          (let [body (text:match "void loadUniforms%(%) {(.-)\n}")]
+            (assert.is_nil (body:find "%f[%w_]u%u")))
+          ;; Too many for the varyings: the first 28 vec4s, the rest from uniforms.
+          (assert-has many-text "flat out vec4 vLoad27;")
+          (assert-lacks many-text "vLoad28")
+          (assert-has many-text "(uBoxColor[7] + nothing)")
+          ;; :love-uniforms reads the uniforms, with no vertex stage.
+          (assert-lacks plain "vLoad")
+          (assert-lacks plain "#ifdef VERTEX")
+          (assert-has plain "    gCamForward = (uCamForward + nothing);"))))
+
+    (it "gives every grouped object its exact normal when no tree needs differences"
+      (fn []
+        (let [text (shader-of "{:objects [{:kind :sphere} {:kind :box :pos [3 0 0]} {:kind :plane}]}" nil :core)
+              trees (shader-of "{:objects [{:kind :sphere} {:kind :plane} {:kind :torus :radius 1 :thickness 0.2 :pos [4 0 0]}]}" nil :core)
+              scene-normals (shader-of "{:render {:normals-of :scene} :objects [{:kind :sphere} {:kind :box}]}" nil :core)]
+          (assert-has text "vec3 gradBox(vec3 p, vec3 h) {")
+          (assert-has text "    if (gObject == 0) n = gradSphere(p - gSphere[0].xyz, gSphere[0].w);")
+          (assert-has text "    if (gObject == 1) n = gradBox(p - gBoxCenter[0], gBoxHalfSize[0]);")
+          (assert-has text "    if (gObject == 2) n = gradPlane(p, vec3(0.0, 0.0, 1.0), gPlaneHeight[0]);")
+          (assert-lacks text "mapObject")
+          (assert-lacks text "mapOthers")
+          ;; A tree takes differences and the crease; the grouped objects return first.
+          (assert-has trees "    if (gObject == 0) return gradSphere(p - gSphere[0].xyz, gSphere[0].w);")
+          (assert-has trees "float other = mapOthers(p);")
+          ;; The whole scene's normal is differences of map, as the article's.
+          (assert-lacks scene-normals "gradBox"))))
+
     (it "generates a scene with no objects"
       (fn []
         (let [text (shader-of "{:objects []}" nil :core)]

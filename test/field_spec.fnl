@@ -282,7 +282,10 @@
           (assert.is_truthy (text:find "index += int(dot(m, stride));" 1 true))
           ;; Nothing but the field and the floor: the lean walk.
           (assert.is_truthy (text:find "nothing is sphere-traced" 1 true))
-          (assert.is_truthy (text:find "return fieldObject(p, gObject - 1);" 1 true))
+          ;; Every object's normal in closed form: the plane's, the field's.
+          (assert.is_truthy (text:find "if (gObject == 0) n = gradPlane(" 1 true))
+          (assert.is_truthy (text:find "if (gObject >= 1 && gObject < 101) n = fieldNormal(p, gObject - 1);" 1 true))
+          (assert.is_nil (text:find "mapObject" 1 true))
           (assert.is_truthy (text:find "const bool kFieldOthers = false;" 1 true))
           (let [(out err) (export.shadertoy s p)]
             (assert.is_nil out)

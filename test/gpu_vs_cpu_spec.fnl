@@ -154,6 +154,25 @@
                     (print (report-line "seed, broken p+c" st))
                     (assert.is_false (passes? st budget))))))
 
+            (it "fails a scene of exact normals when the shader's box or sphere gradient is broken"
+              (fn []
+                ;; flat: boxes, spheres and a floor under the default normals, each
+                ;; object's own gradient in closed form (normal-exact.glsl).
+                (let [prepared (prepared-for "scenes/flat.fnl" :shaded)
+                      budget (budget-for :flat :shaded)
+                      shader (codegen.shader prepared.plan :core)]
+                  (assert.is_truthy (shader:find "n = gradBox(p - gBoxCenter[0]" 1 true))
+                  (each [_ [label pattern replacement]
+                         (ipairs [;; A face's normal along the wrong axis's sign.
+                                  ["box faces" "return vec3%(s%.x, 0%.0, 0%.0%);" "return vec3(-s.x, 0.0, 0.0);"]
+                                  ;; A sphere's normal from the wrong point.
+                                  ["sphere" "return len > 0%.0 %? p / len" "return len > 0.0 ? -p / len"]])]
+                    (let [(source n) (shader:gsub pattern replacement)
+                          _ (assert.are.equal 1 n)
+                          st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
+                      (print (report-line (.. "flat, broken " label " gradient") st))
+                      (assert.is_false (passes? st budget)))))))
+
             (it "fails the seed scene when a uniform array is sent in the wrong order"
               (fn []
                 (let [prepared (prepared-for "scenes/seed.fnl" :shaded)

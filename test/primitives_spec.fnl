@@ -72,6 +72,35 @@
               (assert.is_true (> checked (* 0.8 (length pts)))
                               (.. d.kind ": only " checked " of " (length pts) " points checked")))))))))
 
+(describe "exact normals in closed form"
+  (fn []
+    (it "come with sphere, box and plane"
+      (fn []
+        (each [_ kind (ipairs [:sphere :box :plane])]
+          (assert.is_function (. (primitives.lookup kind) :gradient) kind))))
+    (each [_ d (ipairs primitives.all)]
+      (when d.gradient
+        (it (.. d.kind ": the closed-form normal is the distance's gradient, inside and out")
+          (fn []
+            (let [f (field d)
+                  args (d.pack (defaults-of d))
+                  [ex ey ez] (extent d)]
+              (var seed 11)
+              (fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))
+              (var checked 0)
+              (for [_ 1 400]
+                (let [x (* 2 ex (- (* 2 (rnd)) 1)) y (* 2 ey (- (* 2 (rnd)) 1)) z (* 2 ez (- (* 2 (rnd)) 1))
+                      (gx gy gz) (gradient f x y z 1e-5)
+                      (ax ay az) (gradient f x y z 4e-5)]
+                  ;; Away from kinks (as above), the differences are the gradient.
+                  (when (< (+ (math.abs (- gx ax)) (math.abs (- gy ay)) (math.abs (- gz az))) 1e-4)
+                    (set checked (+ checked 1))
+                    (let [(nx ny nz) (d.gradient x y z (unpack args))]
+                      (assert.is_true (< (+ (math.abs (- nx gx)) (math.abs (- ny gy)) (math.abs (- nz gz))) 1e-4)
+                                      (string.format "%s at (%g %g %g): closed form (%g %g %g), differences (%g %g %g)"
+                                                     d.kind x y z nx ny nz gx gy gz))))))
+              (assert.is_true (> checked 300) (.. d.kind ": only " checked " points checked")))))))))
+
 (describe "distance against a dense sample of the surface"
   (fn []
     (each [_ d (ipairs primitives.all)]

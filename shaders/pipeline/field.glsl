@@ -168,21 +168,10 @@ vec3 fieldColor(int object) {
     return fieldRead(uFieldObjects, uFieldRows.z, 3 * object + 2).rgb;
 }
 
-// The exact normal of a field object at p: its distance's gradient. Outside, along
-// the part of the offset beyond the half extents (a sphere: from its centre); inside,
-// the axis of the nearest face.
+// The exact normal of a field object at p: its distance's gradient, which is its
+// inner box's (gradBox, the box descriptor's; a sphere is a box of no extent).
 vec3 fieldNormal(vec3 p, int object) {
     vec4 a = fieldRead(uFieldObjects, uFieldRows.z, 3 * object);
     vec3 h = fieldRead(uFieldObjects, uFieldRows.z, 3 * object + 1).xyz;
-    vec3 d = p - uFieldOrigin - a.xyz;
-    vec3 e = abs(d) - h;
-    vec3 s = vec3(d.x < 0.0 ? -1.0 : 1.0, d.y < 0.0 ? -1.0 : 1.0, d.z < 0.0 ? -1.0 : 1.0);
-    if (max(e.x, max(e.y, e.z)) > 0.0) {
-        vec3 g = max(e, 0.0) * s;
-        float len = length(g);
-        return len > 0.0 ? g / len : vec3(0.0, 0.0, 1.0);
-    }
-    if (e.x >= e.y && e.x >= e.z) return vec3(s.x, 0.0, 0.0);
-    if (e.y >= e.z) return vec3(0.0, s.y, 0.0);
-    return vec3(0.0, 0.0, s.z);
+    return gradBox(p - uFieldOrigin - a.xyz, h);
 }

@@ -36,11 +36,10 @@ overrides some of its render settings."
                     (frame.plan-for scene plan-options))
             (nil err) (values nil err)
             plan (let [[w h] size
-                       source (if source-path
-                                  (love.filesystem.read source-path)
-                                  ((. (require :src.render.codegen) :shader) plan :love))]
+                       source (when source-path (love.filesystem.read source-path))]
                    (case (let [start (love.timer.getTime)
-                               (shader err) (gpu.compile-source source label)]
+                               (shader err) (if source (gpu.compile-source source label)
+                                                (gpu.compile-plan plan label))]
                            (values shader err (* 1000 (- (love.timer.getTime) start))))
                      (nil err) (values nil err)
                      (shader _ compile-ms) {: label : shader : plan : compile-ms

@@ -33,14 +33,25 @@
         (values nil (.. (or ?label "shader") ": the generated shader did not compile:\n"
                         (tostring shader))))))
 
+(fn compile-plan [plan ?label]
+  "Compile `plan`'s LÖVE shader, or nil and a message. A driver that refuses its flat
+varyings (codegen's pack-varyings) gets the shader that reads uniforms instead."
+  (let [label (or ?label plan.key)
+        (source serr) (codegen.shader plan :love)
+        (shader err) (if source (compile-source source label) (values nil serr))]
+    (if shader shader
+        (not source) (values nil err)
+        (let [(plain perr) (codegen.shader plan :love-uniforms)
+              fallback (when plain (compile-source plain label))]
+          (if fallback fallback (values nil (or perr err)))))))
+
 (fn shader-for [cache plan]
   "The compiled shader for `plan`, compiling it on a cache miss. Returns the shader and
 whether it was compiled now, or nil and a message."
   (let [cached (. cache.shaders plan.key)]
     (if cached
         (do (touch! cache plan.key) (values cached false))
-        (let [(source serr) (codegen.shader plan :love)
-              (shader err) (if source (compile-source source plan.key) (values nil serr))]
+        (let [(shader err) (compile-plan plan)]
           (if shader
               (do (tset cache.shaders plan.key shader)
                   (set cache.compiles (+ cache.compiles 1))
@@ -130,4 +141,5 @@ dropped."
   "Wait until the GPU has finished drawing into `canvas` (reads back one pixel)."
   (: (canvas:newImageData 1 1 0 0 1 1) :release))
 
-{: new-cache : shader-for : compile-source : send! : draw! : finish! : texture-uploads}
+{: new-cache : shader-for : compile-source : compile-plan : send! : draw! : finish!
+ : texture-uploads}

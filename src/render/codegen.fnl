@@ -248,6 +248,41 @@ src/render/bounds.fnl)."
      (field-term plan (if (= field-base 0) "gObject" (.. "gObject - " field-base)))
      (if plan.tape (emit-glsl.distance-terms plan.tape tree-base) [])]))
 
+(fn gradient-terms [plan action]
+  ;; Each grouped object's exact normal in closed form (its kind's :gradient-glsl), for
+  ;; calcNormal: `action` is "n = " (normal-exact.glsl) or "return " (the exact slot of
+  ;; normal-crease.glsl). A written-out slot by its number, a loop's slots by range.
+  (let [bases (object-bases plan)]
+    (icollect [_ k (ipairs plan.kinds)]
+      (if (and (not plan.uber?) (<= k.capacity max-unrolled))
+          (kind-loop k plan [(object-id k plan (.. "    if (gObject == @id) " action
+                                                   k.entry.gradient-glsl ";"))])
+          (let [base (. bases k.kind)]
+            [(.. "if (gObject >= " base " && gObject < " (+ base k.capacity) ") {")
+             (.. "    int i = gObject" (if (= base 0) "" (.. " - " base)) ";")
+             (.. "    " action k.entry.gradient-glsl ";")
+             "}"])))))
+
+(fn field-gradient-term [plan action]
+  ;; A field object's exact normal (fieldNormal), by its number.
+  (if plan.field
+      (let [(_ tree-base field-base) (object-bases plan)]
+        [(.. "if (gObject >= " field-base " && gObject < " tree-base ") " action
+             "fieldNormal(p, gObject" (if (= field-base 0) "" (.. " - " field-base)) ");")])
+      []))
+
+(fn gradient-functions [plan defined]
+  ;; The descriptors' gradient functions the exact normals call, each once: every
+  ;; grouped kind's, and the box's for a field (fieldNormal).
+  (let [names (icollect [_ k (ipairs plan.kinds)] (or k.entry.gradient-of k.entry.primitive))]
+    (when plan.field (table.insert names :box))
+    (icollect [_ name (ipairs names)]
+      (let [d (primitives.lookup name)
+            fn-name (pick-values 1 (d.glsl-name:gsub "^sd" "grad"))]
+        (when (and d.gradient-glsl (not (. defined fn-name)))
+          (tset defined fn-name true)
+          (emit-glsl.text-lines d.gradient-glsl))))))
+
 (fn object-terms [plan]
   ;; mapObject's cases: a written-out slot by its number, a loop's slots by range
   ;; (earlier numbers have returned already), each tree object by its number.
@@ -370,6 +405,8 @@ only when the plan has it."
             (let [d (primitives.lookup k.entry.primitive)]
               (tset defined d.glsl-name true)
               (table.insert sections (emit-glsl.text-lines d.glsl)))))
+      (when (or plan.field (and normals? (object-normals? plan)))
+        (table.insert sections (gradient-functions plan defined)))
       (when plan.tape
         (table.insert sections (emit-glsl.functions plan.tape defined))))
     (when plan.field
@@ -394,7 +431,7 @@ only when the plan has it."
             cut (accumulate [at nil i line (ipairs lines) &until at]
                   (when (line:find "^// The same minimum") i))]
         (for [i (length lines) (- cut 1) -1] (table.remove lines i))))
-    (when (object-normals? plan)
+    (when (and (object-normals? plan) (not plan.exact-normals?))
       (table.insert sections (fill "shaders/pipeline/map-object.glsl"
                                    {:object-terms (object-terms plan)
                                     :others-terms (others-terms plan)})))
@@ -416,7 +453,8 @@ only when the plan has it."
                                     :out-of-steps (out-of-steps-lines plan)})))
     (when normals?
       (table.insert sections (fill "shaders/pipeline/normal.glsl"
-                                   {:method (let [lines (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl") {})]
+                                   {:method (let [lines (if plan.exact-normals? []
+                                                            (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl") {}))]
                                               (if (object-normals? plan)
                                                   (icollect [_ l (ipairs lines)]
                                                     (pick-values 1 (-> l
@@ -424,26 +462,16 @@ only when the plan has it."
                                                                        (: :gsub "^vec3 calcNormal%(" "vec3 objectNormal("))))
                                                   lines))}))
       (when (and (object-normals? plan) plan.exact-normals?)
-        ;; A field and ground planes only: each object's normal in closed form. (On
-        ;; llvmpipe code behind a branch runs for every pixel, so the differences are
-        ;; left out, not branched around.)
-        (let [(_ tree-base field-base) (object-bases plan)]
-          (table.insert sections
-                        ["// Every object's exact normal: a field object's gradient, a ground plane's up."
-                         "vec3 calcNormal(vec3 p) {"
-                         (.. "    return gObject >= " field-base " ? fieldNormal(p, max(gObject"
-                             (if (= field-base 0) "" (.. " - " field-base)) ", 0)) : vec3(0.0, 0.0, 1.0);")
-                         "}"])))
+        (table.insert sections (fill "shaders/pipeline/normal-exact.glsl"
+                                     {:gradients [(gradient-terms plan "n = ")
+                                                  (field-gradient-term plan "n = ")]})))
       (when (and (object-normals? plan) (not plan.exact-normals?))
+        ;; The grouped and field objects have their exact gradient; the trees' take
+        ;; differences.
         (table.insert sections
                       (fill "shaders/pipeline/normal-crease.glsl"
-                            ;; A field's objects have their exact gradient (field.glsl).
-                            {:exact (if plan.field
-                                        (let [(_ tree-base field-base) (object-bases plan)]
-                                          [(.. "if (gObject >= " field-base " && gObject < " tree-base
-                                               ") return fieldNormal(p, gObject"
-                                               (if (= field-base 0) "" (.. " - " field-base)) ");")])
-                                        [])}))))
+                            {:exact [(gradient-terms plan "return ")
+                                     (field-gradient-term plan "return ")]}))))
     (when (and (= view :shaded) (not plan.lighting))
       (table.insert sections
                     (fill "shaders/shading/light.glsl"
@@ -494,7 +522,9 @@ only when the plan has it."
     sections))
 
 (local targets
-  {:love {:header ["#pragma language glsl3"] :entry "shaders/entry/love.glsl"}
+  {:love {:header ["#pragma language glsl3"] :entry "shaders/entry/love.glsl" :varyings? true}
+   ;; The same without the vertex stage, for a driver with fewer varyings.
+   :love-uniforms {:header ["#pragma language glsl3"] :entry "shaders/entry/love.glsl"}
    :core {:header ["#version 330 core" "out vec4 fragColor;"] :entry "shaders/entry/core.glsl"}
    :probe {:header ["#pragma language glsl3"] :entry "shaders/entry/probe.glsl"}
    :shadertoy {:header [] :entry "shaders/entry/shadertoy.glsl"}})
@@ -522,16 +552,58 @@ only when the plan has it."
                      :float "(%s + nothing)" :vec2 "(%s + nothing)" :vec3 "(%s + nothing)"
                      :vec4 "(%s + nothing)"})
 
+;; On llvmpipe even a uniform copied once per pixel is an eight-lane gather per
+;; component (91 in the seed's shader, half its time with no shadows or mirrors), while
+;; a flat varying is a broadcast. So LÖVE's shaders read the copies from flat vec4
+;; varyings that a vertex stage fills from the uniforms, four vertices a frame; values
+;; edits still need no compile. Drivers give a vertex stage 32 vec4 outputs (GL 3.3
+;; promises only 16) and LÖVE takes 2: up to 28 here, the rest read from the uniforms
+;; as before; a driver that refuses gets the :love-uniforms shader (gpu.compile-plan).
+;; Integers travel as floats (exact below 2^24: step budgets, counts).
+(local max-varyings 28)
+(local varying-sizes {:float 1 :vec2 2 :vec3 3 :vec4 4 :int 1})
+
 (fn indexed-by-variable? [lines name]
   (accumulate [found? false _ line (ipairs lines) &until found?]
     (not= nil (line:find (.. "%f[%w_]" name "%[[^%d]")))))
 
-(fn load-once [lines]
+(fn pack-varyings [reads]
+  ;; Flat varyings for the uniform reads `reads` ([{:read "uX[0]" :ty ty}]) that
+  ;; fit: vec4 slots filled in order, a value never split across two. Returns read ->
+  ;; what the pixel stage reads instead, and the vertex stage's lines.
+  (let [slots []
+        instead {}]
+    (each [_ {: read : ty} (ipairs reads)]
+      (let [n (. varying-sizes ty)
+            last (. slots (length slots))
+            slot (if (not n) nil
+                     (and last (<= (+ last.used n) 4)) last
+                     (< (length slots) max-varyings) (let [s {:used 0 :parts []}]
+                                                       (table.insert slots s)
+                                                       s))]
+        (when (and n slot)
+          (let [name (.. "vLoad" (- (length slots) 1))
+                swizzle (: "xyzw" :sub (+ slot.used 1) (+ slot.used n))]
+            (tset instead read (if (= ty :int) (.. "int(" name "." swizzle ")")
+                                   (.. name "." swizzle)))
+            (table.insert slot.parts (if (= ty :int) (.. "float(" read ")") read))
+            (set slot.used (+ slot.used n))))))
+    (values instead
+            (when (> (length slots) 0)
+              (icollect [i s (ipairs slots)]
+                (.. "    vLoad" (- i 1) " = vec4(" (table.concat s.parts ", ")
+                    (if (< s.used 3) (.. ", vec" (- 4 s.used) "(0.0)")
+                        (= s.used 3) ", 0.0" "")
+                    ");"))))))
+
+(fn load-once [lines ?varyings?]
   "`lines` (the shader's body, flattened) with each uniform read through a global
 copy, and the function that fills the copies: loadUniforms(), called first by every
-entry point."
+entry point. With `?varyings?` (LÖVE's entry) as many copies as fit in flat varyings
+come from a vertex stage of their own: returns the lines and the vertex stage's."
   (let [names []
-        copies []
+        reads []
+        declarations {}
         out []]
     (var opaque? false)
     (var nothing? false)
@@ -540,20 +612,25 @@ entry point."
         (if (and name (not (. read-directly name)) (not (ty:find "sampler"))
                  (not (indexed-by-variable? lines name)))
             (let [copy (.. "g" (name:sub 2))
-                  n (tonumber count)
-                  wrap (. opaque-types ty)
-                  value (fn [v] (if wrap (string.format wrap v) v))]
-              (when (and wrap (wrap:find "opaque")) (set opaque? true))
-              (when (and wrap (wrap:find "nothing")) (set nothing? true))
+                  n (tonumber count)]
               (table.insert names [name copy])
+              (tset declarations name line)
               (table.insert out line)
               (table.insert out (.. ty " " copy (if n (.. "[" n "]") "") ";"))
               (if n
                   (for [i 0 (- n 1)]
-                    (table.insert copies (string.format "    %s[%d] = %s;" copy i
-                                                        (value (string.format "%s[%d]" name i)))))
-                  (table.insert copies (string.format "    %s = %s;" copy (value name)))))
+                    (table.insert reads {:copy (string.format "%s[%d]" copy i) : ty :uniform name
+                                         :read (string.format "%s[%d]" name i)}))
+                  (table.insert reads {: copy : ty :uniform name :read name})))
             (table.insert out line))))
+    (local (instead vertex-lines) (if ?varyings? (pack-varyings reads) {}))
+    (local copies
+      (icollect [_ {: copy : ty : read} (ipairs reads)]
+        (let [wrap (. opaque-types ty)]
+          (when (and wrap (wrap:find "opaque")) (set opaque? true))
+          (when (and wrap (wrap:find "nothing")) (set nothing? true))
+          (string.format "    %s = %s;" copy
+                         (if wrap (string.format wrap (or (. instead read) read)) read)))))
     (for [i 1 (length out)]
       (let [line (. out i)]
         (when (not (line:match "^uniform ")) 
@@ -570,30 +647,59 @@ entry point."
     (when opaque? (table.insert out "    int opaque = 2147483647 - int(nothing);"))
     (each [_ c (ipairs copies)] (table.insert out c))
     (table.insert out "}")
-    out))
+    (values out
+            (when vertex-lines
+              ;; The uniforms the vertex stage reads, declared there as well (a
+              ;; uniform of both stages is one uniform).
+              (let [used {}
+                    vertex ["// Uniforms read once per vertex, not per pixel (see pack-varyings in"
+                            "// src/render/codegen.fnl): flat varyings reach each pixel as broadcasts."]]
+                (each [_ {: uniform : read} (ipairs reads)]
+                  (when (and (. instead read) (not (. used uniform)))
+                    (tset used uniform true)
+                    (table.insert vertex (. declarations uniform))))
+                (for [i 0 (- (length vertex-lines) 1)]
+                  (table.insert vertex (.. "flat out vec4 vLoad" i ";")))
+                (table.insert vertex "vec4 position(mat4 transform_projection, vec4 vertex_position) {")
+                (each [_ l (ipairs vertex-lines)] (table.insert vertex l))
+                (table.insert vertex "    return transform_projection * vertex_position;")
+                (table.insert vertex "}")
+                {:vertex vertex :count (length vertex-lines)})))))
 
 (fn generate [plan target]
   (let [body []
         out []
-        sections [target.header
-                  [(.. "// Generated by src/render/codegen.fnl for: " plan.key)]]]
+        sections [[(.. "// Generated by src/render/codegen.fnl for: " plan.key)]]]
+    (flatten-into out "" target.header)
+    (when (> (length target.header) 0) (table.insert out ""))
     (each [_ s (ipairs (body-lines plan))] (table.insert sections s))
     (each [i s (ipairs sections)]
       (when (> i 1) (table.insert body ""))
       (flatten-into body "" s))
-    (flatten-into out "" (if plan.load-once? (load-once body)
-                             (doto body (table.insert "") (table.insert "void loadUniforms() {}"))))
-    (table.insert out "")
-    (flatten-into out ""
-                  (fill target.entry
-                        {:mirror [(.. "float mirror = " (if plan.mirrors? "gMirror" "1.0") ";")
-                                  "return uProbeChannel == 0 ? vec4(d, color) : vec4(mirror, 0.0, 0.0, 1.0);"]}))
+    (let [(lines vertex) (if plan.load-once? (load-once body target.varyings?)
+                             (doto body (table.insert "") (table.insert "void loadUniforms() {}")))]
+      ;; With a vertex stage the pixel stage's code goes under PIXEL (LÖVE compiles
+      ;; the text once per stage, defining VERTEX or PIXEL).
+      (when vertex
+        (table.insert out "#ifdef VERTEX")
+        (flatten-into out "" vertex.vertex)
+        (table.insert out "#else")
+        (for [i 0 (- vertex.count 1)]
+          (table.insert out (.. "flat in vec4 vLoad" i ";"))))
+      (flatten-into out "" lines)
+      (table.insert out "")
+      (flatten-into out ""
+                    (fill target.entry
+                          {:mirror [(.. "float mirror = " (if plan.mirrors? "gMirror" "1.0") ";")
+                                    "return uProbeChannel == 0 ? vec4(d, color) : vec4(mirror, 0.0, 0.0, 1.0);"]}))
+      (when vertex (table.insert out "#endif")))
     (.. (table.concat out "\n") "\n")))
 
 (fn shader [plan ?target]
   "GLSL fragment shader text for `plan`. `?target` is :love (default: LÖVE's effect()
-entry point), :core (a plain #version 330 core shader, for headless tests and
-glslangValidator) or :probe (LÖVE, one scene evaluation per pixel; see --probe). Returns the text, or nil and a message when a chunk cannot be read."
+entry point, the uniforms read once handed to pixels in flat varyings; :love-uniforms
+reads them from the uniforms instead), :core (a plain #version 330 core shader, for
+headless tests and glslangValidator) or :probe (LÖVE, one scene evaluation per pixel; see --probe). Returns the text, or nil and a message when a chunk cannot be read."
   (let [target (. targets (or ?target :love))
         _ (assert target (.. "unknown target " (tostring ?target)))
         (ok? result) (pcall generate plan target)]

@@ -15,6 +15,7 @@
 ;; computed in double.
 
 (local registry (require :src.sdf.registry))
+(local box-gradient (. ((. (require :src.sdf.primitives) :lookup) :box) :gradient))
 
 (local sqrt math.sqrt)
 (local floor math.floor)
@@ -371,18 +372,10 @@ and its number k (1-based)."
 (fn normal [field i x y z]
   "fieldNormal: the exact normal of object `i` (1-based) at world (x y z), its
 distance's gradient: nx ny nz."
+  ;; A rounded box's gradient is its inner box's (a sphere's: a box of no extent).
   (let [[ox oy oz] field.lo
-        [cx cy cz ax ay az] (. field.shapes i)
-        dx (- x ox cx) dy (- y oy cy) dz (- z oz cz)
-        ex (- (abs dx) ax) ey (- (abs dy) ay) ez (- (abs dz) az)
-        sx (if (< dx 0) -1 1) sy (if (< dy 0) -1 1) sz (if (< dz 0) -1 1)]
-    (if (> (max ex ey ez) 0)
-        (let [gx (* (max ex 0) sx) gy (* (max ey 0) sy) gz (* (max ez 0) sz)
-              len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))]
-          (if (> len 0) (values (/ gx len) (/ gy len) (/ gz len)) (values 0 0 1)))
-        (and (>= ex ey) (>= ex ez)) (values sx 0 0)
-        (>= ey ez) (values 0 sy 0)
-        (values 0 0 sz))))
+        [cx cy cz ax ay az] (. field.shapes i)]
+    (box-gradient (- x ox cx) (- y oy cy) (- z oz cz) ax ay az)))
 
 (fn distance [field x y z ?skip]
   "The field's distance at world (x y z) as the shader's fieldMap gives it: exact

@@ -188,11 +188,12 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                                   :cells-per-object options.field-cells})
         fd (set plan.field fd)
         (nil err) (set field-error (.. scene.file ": " err))))
-    ;; When every object has its exact normal in closed form (a field's, and ground
-    ;; planes beside it), normals need no differences (codegen's exact-normal lines).
-    (set plan.exact-normals? (and plan.field (= nil tape) (= plan.normals-of :object)
-                                  (accumulate [only-planes? true _ k (ipairs kinds)]
-                                    (and only-planes? (= k.kind :plane)))))
+    ;; When every object has its exact normal in closed form (no scene trees; the
+    ;; grouped kinds' gradients and a field's), normals need no differences
+    ;; (shaders/pipeline/normal-exact.glsl).
+    (set plan.exact-normals? (and (= nil tape) (= plan.normals-of :object)
+                                  (accumulate [all? true _ k (ipairs kinds)]
+                                    (and all? (not= nil k.entry.gradient-glsl)))))
     (set plan.key (structure-key plan))
     (if field-error (values nil field-error)
         (and members (not plan.bounds))

@@ -24,6 +24,10 @@
 ;;   :bounds      optional (fn [o]) -> [hx hy hz] half extents of a box centred at
 ;;                the origin that holds the shape; absent when it is unbounded
 ;;   :placed?     false for primitives placed by their own parameters (the plane)
+;;   :gradient-glsl  optional: the exact normal in closed form, the distance's gradient,
+;;                `vec3 gradX(vec3 p, <args>)` (X as in sdX), with
+;;   :gradient    (fn [x y z ...args]) -> nx ny nz, in double; objects whose kind has
+;;                one take it as their normal instead of finite differences
 
 (local files (require :src.util.files))
 
@@ -51,6 +55,10 @@ float dot2(vec3 v) { return dot(v, v); }"
              (d.glsl:find (.. "float " d.glsl-name "(vec3 p") 1 true))
         "needs :glsl defining float <:glsl-name>(vec3 p, ...)")
   (need (= (type d.cpu) :function) "needs :cpu")
+  (when (or d.gradient d.gradient-glsl)
+    (need (and (= (type d.gradient) :function) (= (type d.gradient-glsl) :string)
+               (d.gradient-glsl:find (.. "vec3 " (d.glsl-name:gsub "^sd" "grad") "(vec3 p") 1 true))
+          "needs both :gradient and :gradient-glsl defining vec3 grad<Name>(vec3 p, ...)"))
   (each [_ h (ipairs (or d.helpers []))]
     (need (. helpers h) (.. "uses an unknown helper " (tostring h))))
   (set d.lipschitz (or d.lipschitz 1))

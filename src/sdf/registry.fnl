@@ -3,6 +3,8 @@
 ;; Each entry holds the kind's parameters as scene files write them, its uniform layout,
 ;; and how it calls its primitive descriptor (src/sdf/primitives/) with the position
 ;; applied: the GLSL function and the CPU form are the descriptor's, described once.
+;; :gradient-glsl and :gradient call the descriptor's exact normal the same way
+;; (:gradient-of names the descriptor when the entry draws with a chunk of its own).
 
 (local sqrt math.sqrt)
 (local abs math.abs)
@@ -14,6 +16,8 @@
 (local sphere-cpu (. (primitives.lookup :sphere) :cpu))
 (local box-cpu (. (primitives.lookup :box) :cpu))
 (local plane-cpu (. (primitives.lookup :plane) :cpu))
+(local sphere-gradient (. (primitives.lookup :sphere) :gradient))
+(local box-gradient (. (primitives.lookup :box) :gradient))
 
 (fn sphere-distance [o x y z]
   "Distance from (x y z) to sphere `o` (world coordinates, double)."
@@ -29,6 +33,19 @@
 (fn plane-distance [o x y z]
   "Signed distance from (x y z) to the ground plane z = o.height."
   (plane-cpu x y z 0 0 1 o.height))
+
+;; Exact normals, the distances' gradients (the descriptors' :gradient).
+
+(fn sphere-normal [o x y z]
+  (let [[cx cy cz] o.pos]
+    (sphere-gradient (- x cx) (- y cy) (- z cz) o.radius)))
+
+(fn box-normal [o x y z]
+  (let [[cx cy cz] o.pos
+        [sx sy sz] o.size]
+    (box-gradient (- x cx) (- y cy) (- z cz) (* sx 0.5) (* sy 0.5) (* sz 0.5))))
+
+(fn plane-normal [] (values 0 0 1))
 
 ;;; Uniform packers: each takes the object and the camera position and returns the
 ;;; values of one array element. Positions are made camera-relative here, in double.
@@ -63,6 +80,8 @@
     :distance-glsl "sdSphere(p - uSphere[i].xyz, uSphere[i].w)"
     :color-glsl "uSphereColor[i]"
     :distance sphere-distance
+    :gradient-glsl "gradSphere(p - uSphere[i].xyz, uSphere[i].w)"
+    :gradient sphere-normal
     ;; Lowering: large spheres take the large-sphere code (same CPU distance).
     :variant (fn [o] (when (>= o.radius large-radius) :large-sphere))}
    {:kind :large-sphere
@@ -78,7 +97,11 @@
                {:name "uLargeSphereColor" :type :vec3 :pack (fn [o] o.color)}]
     :distance-glsl "sdLargeSphere(p, uLargeSphere[i], uLargeSphereK[i])"
     :color-glsl "uLargeSphereColor[i]"
-    :distance sphere-distance}
+    :distance sphere-distance
+    ;; A direction needs no cancellation-free form: the sphere's own gradient.
+    :gradient-of :sphere
+    :gradient-glsl "gradSphere(p - uLargeSphere[i].xyz, uLargeSphere[i].w)"
+    :gradient sphere-normal}
    {:kind :box
     :doc "Axis-aligned box with full extents :size centred on :pos."
     :params [{:name :pos :type :vec3 :default [0 0 0]}
@@ -92,7 +115,9 @@
                {:name "uBoxColor" :type :vec3 :pack (fn [o] o.color)}]
     :distance-glsl "sdBox(p - uBoxCenter[i], uBoxHalfSize[i])"
     :color-glsl "uBoxColor[i]"
-    :distance box-distance}
+    :distance box-distance
+    :gradient-glsl "gradBox(p - uBoxCenter[i], uBoxHalfSize[i])"
+    :gradient box-normal}
    {:kind :plane
     :doc "Ground plane z = :height, facing up."
     :params [{:name :height :type :number :default 0}
@@ -104,7 +129,9 @@
                {:name "uPlaneColor" :type :vec3 :pack (fn [o] o.color)}]
     :distance-glsl "sdPlane(p, vec3(0.0, 0.0, 1.0), uPlaneHeight[i])"
     :color-glsl "uPlaneColor[i]"
-    :distance plane-distance}])
+    :distance plane-distance
+    :gradient-glsl "gradPlane(p, vec3(0.0, 0.0, 1.0), uPlaneHeight[i])"
+    :gradient plane-normal}])
 
 (local by-kind (collect [_ entry (ipairs kinds)] entry.kind entry))
 

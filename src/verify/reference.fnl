@@ -31,8 +31,11 @@
 
 (fn tracer [scene plan ?options]
   "A tracer for `scene` lowered to `plan`. Options: :cam-pos (the camera position,
-which scaled hit tests measure distances from; default the origin) and :pixel-angle
-(1 / (projection distance * image height), for the :pixel hit test).
+which scaled hit tests measure distances from; default the origin), :pixel-angle
+(1 / (projection distance * image height), for the :pixel hit test) and :counts (a
+table the shaded view adds its distance evaluations to, as the shader makes them:
+:primary, :shadow and :mirror march steps, :normal (differences; none for exact
+normals) and :color (mapColor calls, one per hit)).
 Returns a table of closures
   :map        (fn [x y z]) -> distance (never above the draw distance)
   :map-color  (fn [x y z]) -> distance, index into plan.objects or nil
@@ -48,6 +51,7 @@ Positions are in world coordinates."
   (let [options (or ?options {})
         [cx cy cz] (or options.cam-pos [0 0 0])
         pixel-angle (or options.pixel-angle 0)
+        counts options.counts
         render scene.render
         draw render.draw-distance
         eps render.epsilon
@@ -72,6 +76,8 @@ Positions are in world coordinates."
         n (length grouped)
         nf (if fd fd.count 0)
         fns (icollect [_ o (ipairs grouped)] (. (registry.lookup o.kind) :distance))
+        ;; Their exact normals (every grouped kind has one).
+        gradients (icollect [_ o (ipairs grouped)] (. (registry.lookup o.kind) :gradient))
         trees (if plan.tape (emit-lua.compile plan.tape) {:distance [] :material []})
         tree-distance trees.distance
         tree-material trees.material
@@ -296,6 +302,9 @@ Positions are in world coordinates."
       (if fd (march-field ox oy oz dx dy dz ?t-max)
           (march-plain ox oy oz dx dy dz ?t-max)))
 
+    (fn tally [key n]
+      (when counts (tset counts key (+ (or (. counts key) 0) n))))
+
     (fn safe-normalize [x y z]
       (let [len (sqrt (+ (* x x) (* y y) (* z z)))]
         (if (> len 0) (values (/ x len) (/ y len) (/ z len)) (values 0 0 1))))
@@ -331,6 +340,7 @@ Positions are in world coordinates."
         d))
 
     (fn differences [map x y z h]
+      (tally :normal (if (= normal-method :central) 6 4))
       (case normal-method
           :one-sided (let [d (map x y z)]
                        (safe-normalize (- d (map (- x h) y z))
@@ -349,19 +359,23 @@ Positions are in world coordinates."
 
     (fn normal [x y z]
       ;; The whole scene's differences with :normals-of :scene (or when no object is
-      ;; near); else the nearest object's own (mapObject), taken where another object
-      ;; comes within 2h at the point pushed out of its reach (normal-crease.glsl).
+      ;; near); else the nearest object's exact gradient when it has one (a grouped
+      ;; or field object: normal-exact.glsl), or its own differences (mapObject),
+      ;; taken where another object comes within 2h at the point pushed out of its
+      ;; reach (normal-crease.glsl).
       (let [h (normal-delta x y z)
             (_ i) (map-color x y z)]
-        (if plan.exact-normals?
-            (if (and i (> i n)) (field.normal fd (- i n) x y z) (values 0 0 1))
+        (if (and plan.exact-normals? (not i))
+            (values 0 0 1)
             (or (= plan.normals-of :scene) (not i))
             (differences map x y z h)
-            ;; A field's objects: the exact gradient (fieldNormal).
-            (and fd (> i n) (<= i (+ n nf)))
+            (<= i n)
+            ((. gradients i) (. objs i) x y z)
+            (<= i (+ n nf))
             (field.normal fd (- i n) x y z)
             (let [others (others-map i)
                   other (others x y z)]
+              (tally :normal (if (< other (* 2 h)) 7 1))
               (if (< other (* 2 h))
                   (let [(ax ay az) (safe-normalize (- (others (+ x h) y z) (others (- x h) y z))
                                                    (- (others x (+ y h) z) (others x (- y h) z))
@@ -382,7 +396,8 @@ Positions are in world coordinates."
             ;; the article's goes on to the draw distance.
             (let [s (* 2 (normal-delta px py pz))
                   limit (if bound-spheres (math.min (- len (* 2 (normal-delta lx ly lz))) draw) draw)
-                  ts (march (+ px (* nx s)) (+ py (* ny s)) (+ pz (* nz s)) ldx ldy ldz limit)]
+                  (ts steps) (march (+ px (* nx s)) (+ py (* ny s)) (+ pz (* nz s)) ldx ldy ldz limit)]
+              (tally :shadow steps)
               (if (< ts limit) (values (* lambert 0.5) true) (values lambert false)))
             (values lambert false))))
 
@@ -393,6 +408,7 @@ Positions are in world coordinates."
 
     (fn trace [ox oy oz dx dy dz]
       (let [(t steps) (march ox oy oz dx dy dz)
+            _ (tally :primary steps)
             hit? (< t draw)
             result {:hit? hit? :distance t :steps steps :path []}]
         (var (r g b) (values 0 0 0))
@@ -430,6 +446,7 @@ Positions are in world coordinates."
                 :shaded
                 (let [(nx ny nz) (normal px py pz)
                       (_ _ cr cg cb primary-mirror) (map-color px py pz)
+                      _ (tally :color 1)
                       (lambert shadowed?) (lightness px py pz nx ny nz)]
                   (set result.lightness lambert)
                   (set result.shadowed? shadowed?)
@@ -453,7 +470,8 @@ Positions are in world coordinates."
                           rx (- vx (* k mx)) ry (- vy (* k my)) rz (- vz (* k mz))
                           s (* 2 (normal-delta qx qy qz))
                           sx (+ qx (* mx s)) sy (+ qy (* my s)) sz (+ qz (* mz s))
-                          tr (march sx sy sz rx ry rz)]
+                          (tr mirror-steps) (march sx sy sz rx ry rz)]
+                      (when (not stop?) (tally :mirror mirror-steps))
                       (if stop? nil
                           (>= tr draw)
                           (do (set (r g b) (values (* (+ r (/ er bounce)) 0.5)
@@ -465,6 +483,7 @@ Positions are in world coordinates."
                           (let [hx (+ sx (* rx tr)) hy (+ sy (* ry tr)) hz (+ sz (* rz tr))
                                 (hnx hny hnz) (normal hx hy hz)
                                 (_ j hr hg hb hit-mirror) (map-color hx hy hz)
+                                _ (tally :color 1)
                                 hl (* (lightness hx hy hz hnx hny hnz) 0.5)]
                             (table.insert result.path (or (object-index j) 0))
                             (table.insert result.points [hx hy hz])
@@ -521,7 +540,7 @@ it (0..1; default its centre, 0.5 0.5)."
                    (+ (* fy pd) (* ry uvx) (* uy uvy))
                    (+ (* fz pd) (* rz uvx) (* uz uvy)))))))
 
-(fn render-pixels [scene plan cam width height pixels]
+(fn render-pixels [scene plan cam width height pixels ?counts]
   "Reference colours of `pixels` (a list of [x y], 0-based from the top-left) of a
 width x height image of `scene` lowered to `plan` seen by camera state `cam`.
 Returns a list of {:x :y :color [r g b] (0..1, clamped) :hit? :distance t :steps n
@@ -531,8 +550,8 @@ and each bounce (-1: the bounce escaped). With supersampling (plan.samples N > 1
 colour is the mean of N x N rays on a grid inside the pixel, each clamped, as the
 shader's; the other fields are the first ray's. Adaptive (plan.adaptive?): the centre
 ray's result, unless it finds an edge (then :edge? is true and the colour is the
-grid's mean)."
-  (let [T (tracer scene plan {:cam-pos cam.pos
+grid's mean). `?counts` gathers the distance evaluations (see tracer)."
+  (let [T (tracer scene plan {:cam-pos cam.pos :counts ?counts
                              :pixel-angle (/ 1 (* (camera.projection-distance cam) height))})
         ray (ray-setup cam width height)
         [ox oy oz] cam.pos

@@ -18,4 +18,28 @@
               ox (max qx 0) oy (max qy 0) oz (max qz 0)]
           (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz)))
              (min (max qx qy qz) 0))))
+ ;; The exact normal: the distance's gradient. Outside, along the part of p beyond
+ ;; the half extents; inside (and on a face), the axis of the nearest face.
+ :gradient-glsl "vec3 gradBox(vec3 p, vec3 h) {
+    vec3 e = abs(p) - h;
+    vec3 s = vec3(p.x < 0.0 ? -1.0 : 1.0, p.y < 0.0 ? -1.0 : 1.0, p.z < 0.0 ? -1.0 : 1.0);
+    if (max(e.x, max(e.y, e.z)) > 0.0) {
+        vec3 g = max(e, 0.0) * s;
+        float len = length(g);
+        return len > 0.0 ? g / len : vec3(0.0, 0.0, 1.0);
+    }
+    if (e.x >= e.y && e.x >= e.z) return vec3(s.x, 0.0, 0.0);
+    if (e.y >= e.z) return vec3(0.0, s.y, 0.0);
+    return vec3(0.0, 0.0, s.z);
+}"
+ :gradient (fn [x y z hx hy hz]
+             (let [ex (- (abs x) hx) ey (- (abs y) hy) ez (- (abs z) hz)
+                   sx (if (< x 0) -1 1) sy (if (< y 0) -1 1) sz (if (< z 0) -1 1)]
+               (if (> (max ex ey ez) 0)
+                   (let [gx (* (max ex 0) sx) gy (* (max ey 0) sy) gz (* (max ez 0) sz)
+                         len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))]
+                     (if (> len 0) (values (/ gx len) (/ gy len) (/ gz len)) (values 0 0 1)))
+                   (and (>= ex ey) (>= ex ez)) (values sx 0 0)
+                   (>= ey ez) (values 0 sy 0)
+                   (values 0 0 sz))))
  :bounds (fn [o] (let [[x y z] o.size] [(* x 0.5) (* y 0.5) (* z 0.5)]))}

@@ -13,4 +13,9 @@
     return dot(p, n) - h;
 }"
  :cpu (fn [x y z nx ny nz h]
-        (- (+ (* x nx) (* y ny) (* z nz)) h))}
+        (- (+ (* x nx) (* y ny) (* z nz)) h))
+ ;; The exact normal: the plane's own.
+ :gradient-glsl "vec3 gradPlane(vec3 p, vec3 n, float h) {
+    return n;
+}"
+ :gradient (fn [_x _y _z nx ny nz _h] (values nx ny nz))}

@@ -11,4 +11,12 @@
 }"
  :cpu (fn [x y z r]
         (- (math.sqrt (+ (* x x) (* y y) (* z z))) r))
+ ;; The exact normal: the distance's gradient, away from the centre (up at it).
+ :gradient-glsl "vec3 gradSphere(vec3 p, float r) {
+    float len = length(p);
+    return len > 0.0 ? p / len : vec3(0.0, 0.0, 1.0);
+}"
+ :gradient (fn [x y z _r]
+             (let [len (math.sqrt (+ (* x x) (* y y) (* z z)))]
+               (if (> len 0) (values (/ x len) (/ y len) (/ z len)) (values 0 0 1))))
  :bounds (fn [o] [o.radius o.radius o.radius])}
