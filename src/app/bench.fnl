@@ -24,10 +24,12 @@
     (gpu.finish! canvas)
     (* 1000 (- (love.timer.getTime) start))))
 
-(fn make-variant [{: label : scene-path : scene-source : size : plan-options : source-path : render}]
+(fn make-variant [{: label : scene-path : scene-source : size : plan-options : source-path : render
+                   : target}]
   "A benchmark variant: a compiled shader, its uniforms and a canvas, or nil and a
 message. The scene is the file `scene-path`, or the text `scene-source`; `render`
-overrides some of its render settings."
+overrides some of its render settings; `target` names codegen's target (default LÖVE's,
+through gpu.compile-plan)."
   (case (if scene-source
             ((. (require :src.scene.load) :load-string) scene-source label)
             (frame.load-scene scene-path))
@@ -36,7 +38,8 @@ overrides some of its render settings."
                     (frame.plan-for scene plan-options))
             (nil err) (values nil err)
             plan (let [[w h] size
-                       source (when source-path (love.filesystem.read source-path))]
+                       source (if source-path (love.filesystem.read source-path)
+                                  target ((. (require :src.render.codegen) :shader) plan target))]
                    (case (let [start (love.timer.getTime)
                                (shader err) (if source (gpu.compile-source source label)
                                                 (gpu.compile-plan plan label))]
@@ -99,8 +102,24 @@ and `b`, and the share of pixels that differ by more than 8/255 in some channel.
   ;; The scene defaults for the march (src/scene/load.fnl), over the seed's article
   ;; settings.
   (let [d (. ((. (require :src.scene.load) :defaults)) :render)]
-    {:hit-test d.hit-test :normals d.normals :relaxation d.relaxation :epsilon d.epsilon
-     :max-steps d.max-steps :bounds d.bounds}))
+    {:hit-test d.hit-test :normals d.normals :normals-of d.normals-of :relaxation d.relaxation
+     :epsilon d.epsilon :max-steps d.max-steps :bounds d.bounds :out-of-steps d.out-of-steps}))
+
+(fn evaluations [render]
+  "Distance evaluations per pixel of the seed scene with `render` over its own
+settings, counted by the CPU reference at 192x108: a table of :primary, :shadow and
+:mirror march steps, :normal and :color, and :total."
+  (let [scene (assert (frame.load-scene "scenes/seed.fnl"))
+        _ (each [k x (pairs render)] (tset scene.render k x))
+        plan (assert (frame.plan-for scene {}))
+        (w h) (values 192 108)
+        counts {:primary 0 :shadow 0 :mirror 0 :normal 0 :color 0}]
+    ((. (require :src.verify.reference) :render-pixels)
+     scene plan (camera.from-scene scene) w h
+     (fcollect [i 0 (- (* w h) 1)] [(% i w) (math.floor (/ i w))]) counts)
+    (let [per (collect [k n (pairs counts)] k (/ n (* w h)))]
+      (set per.total (+ per.primary per.shadow per.mirror per.normal per.color))
+      per)))
 
 ;; The scaling row (issue 12): the same 40 x 40 x 10 region over a floor filled with
 ;; n spheres, their radius shrinking as 1 / sqrt(n) so that together they cover about
@@ -147,7 +166,9 @@ showcase scenes, and our pixel rate next to the article's CPU program."
                 :plan-options direct :render defaults-no-bounds}
                {:id :defaults-once :label "seed, defaults, uniforms once" :scene-path seed
                 :size fhd :render defaults-no-bounds}
-               {:id :defaults :label "seed, defaults (uniforms once + bounds)" :scene-path seed
+               {:id :defaults-uniforms :label "seed, defaults, uniforms once + bounds" :scene-path seed
+                :size fhd :render defaults-render :target :love-uniforms}
+               {:id :defaults :label "seed, defaults (+ flat varyings)" :scene-path seed
                 :size fhd :render defaults-render}
                {:id :gallery-none :label "gallery 1280x720, no levers"
                 :scene-path "scenes/gallery.fnl" :size hd :plan-options direct :render no-bounds}
@@ -195,7 +216,9 @@ showcase scenes, and our pixel rate next to the article's CPU program."
           (print (string.format "lever, uniforms read once per pixel: seed article's %.2fx, seed defaults without bounds %.2fx faster"
                                 (ratio :article-none :article) (ratio :defaults-none :defaults-once)))
           (print (string.format "lever, bounds (seed, defaults, uniforms once): %.2fx faster"
-                                (ratio :defaults-once :defaults)))
+                                (ratio :defaults-once :defaults-uniforms)))
+          (print (string.format "lever, flat varyings instead of uniform reads (seed, defaults): %.2fx faster"
+                                (ratio :defaults-uniforms :defaults)))
           (print (string.format "all levers: seed defaults %.2fx, gallery %.2fx, organic %.2fx faster"
                                 (ratio :defaults-none :defaults)
                                 (ratio :gallery-none :gallery) (ratio :organic-none :organic)))
@@ -210,6 +233,10 @@ showcase scenes, and our pixel rate next to the article's CPU program."
                                   n (. v (.. "scaling-" n) :median) (ratio (.. "scaling-" n) :scaling-10))))
           (print (string.format "  100 spheres as a field %.2fx faster than in uniform arrays"
                                 (ratio :scaling-100-uniforms :scaling-100)))
+          (each [_ [what render] (ipairs [["article's settings" {}] ["defaults" defaults-render]])]
+            (let [e (evaluations render)]
+              (print (string.format "distance evaluations per pixel, seed, %s (CPU reference, 192x108): %.1f (march steps: primary %.2f, shadow %.2f, mirror %.2f; normals %.2f; colours %.2f)"
+                                    what e.total e.primary e.shadow e.mirror e.normal e.color))))
           (print (string.format "article's CPU program, seed 256x224: %d ms; ours %.1f ms (%.0fx faster)"
                                 article-ms-256x224 v.small.median
                                 (/ article-ms-256x224 v.small.median)))
