@@ -163,8 +163,11 @@
                       shader (codegen.shader prepared.plan :core)]
                   (assert.is_truthy (shader:find "n = gradBox(p - gBoxCenter[0]" 1 true))
                   (each [_ [label pattern replacement]
-                         (ipairs [;; A face's normal along the wrong axis's sign.
-                                  ["box faces" "return vec3%(s%.x, 0%.0, 0%.0%);" "return vec3(-s.x, 0.0, 0.0);"]
+                         (ipairs [;; Outside, the sign of the offset lost: faces toward
+                                  ;; -x, -y or -z point the other way. (Hit points lie on
+                                  ;; or just outside the surface, so this is the branch
+                                  ;; that draws them.)
+                                  ["box faces" "vec3 g = max%(e, 0%.0%) %* s;" "vec3 g = max(e, 0.0);"]
                                   ;; A sphere's normal from the wrong point.
                                   ["sphere" "return len > 0%.0 %? p / len" "return len > 0.0 ? -p / len"]])]
                     (let [(source n) (shader:gsub pattern replacement)
