@@ -31,10 +31,11 @@
 ;; built-in behaviour, which is the article's: a setting that asks for the article's
 ;; value of an unknown key still applies (without it); any other value is skipped.
 (local article {:max-steps 500 :epsilon 1e-4 :hit-test :fixed :normals :one-sided
-                :relaxation 1})
+                :relaxation 1 :normals-of :scene :bounds false :out-of-steps :surface})
 
 ;; The settings a "defaults" table may leave out are filled from the loader's defaults.
-(local tuning-keys [:max-steps :epsilon :hit-test :normals :relaxation])
+(local tuning-keys [:max-steps :epsilon :hit-test :normals :relaxation :normals-of :bounds
+                    :out-of-steps])
 
 ;; Converged settings, with a fallback for when the loader lacks the newer keys.
 (local strict-cpu [{:max-steps 4000 :hit-test :pixel :epsilon 0.02 :normals :central
@@ -108,6 +109,17 @@
             (add (.. "px" e) :hit-test {:hit-test :pixel :epsilon e}))
           (add "central" :normals {:normals :central})
           (add "tetra" :normals {:normals :tetrahedron})
+          ;; The levers of issue 11 and the normals of issue 10, each against the
+          ;; scene's own.
+          (each [_ of (ipairs [:object :scene])]
+            (when (not= of base.normals-of)
+              (add (.. "normals-of-" of) :normals {:normals-of of})))
+          (each [_ b (ipairs [true false])]
+            (when (not= b base.bounds)
+              (add (if b "bounds" "no-bounds") :bounds {:bounds b})))
+          (each [_ o (ipairs [:background :surface])]
+            (when (not= o base.out-of-steps)
+              (add (.. "oos-" o) :out-of-steps {:out-of-steps o})))
           (each [_ w (ipairs [1.2 1.4 1.6 1.8])]
             (add (.. "w" w) :relaxation {:relaxation w}))
           (for [r 0 (- (or base.reflections 0) 1)]
