@@ -555,7 +555,7 @@ only when the plan has it."
 ;; On llvmpipe even a uniform copied once per pixel is an eight-lane gather per
 ;; component (91 in the seed's shader, half its time with no shadows or mirrors), while
 ;; a flat varying is a broadcast. So LÖVE's shaders read the copies from flat vec4
-;; varyings that a vertex stage fills from the uniforms, four vertices a frame; values
+;; varyings that a vertex stage fills from the uniforms, four vertices a frame; value
 ;; edits still need no compile. Drivers give a vertex stage 32 vec4 outputs (GL 3.3
 ;; promises only 16) and LÖVE takes 2: up to 28 here, the rest read from the uniforms
 ;; as before; a driver that refuses gets the :love-uniforms shader (gpu.compile-plan).
