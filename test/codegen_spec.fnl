@@ -336,7 +336,7 @@
                          "^%s*{ const int i = 0;$" "^%s*steps = 0;$" "^%s*steps = i %+ 1;$"
                          ;; object numbers for the nearest object's normal (map-object.glsl)
                          "^int gObject = %-1;" "^%s*gObject = %-1;$" " gObject = [%d i%+]+; }$"
-                         "^%s*if %(gObject == %d+%) " "^%s*if %(gObject < %d+%) {$" "^%s*if %(gObject < 0%) return map%(p%);$"
+                         "^%s*if %(gObject == %d+%) " "^%s*if %(gObject >= %d+ && gObject < %d+%) {$" "^%s*if %(gObject < 0%) return map%(p%);$"
                          "^%s*int i = gObject %- %d+;$" "^%s*if %(gObject != [%d i%+]+%) "
                          ;; compile-time counts: lights, samples, shadow steps
                          "^const int k%w+ = %d+;"

@@ -72,7 +72,15 @@
             (assert.is_true e.exact?)
             ;; Every uniform the GLSL expressions use is one the kind declares.
             (each [name (: (.. e.distance-glsl " " e.color-glsl) :gmatch "(u%w+)%[i%]")]
-              (assert.truthy (uniform e.kind name) name))))))))
+              (assert.truthy (uniform e.kind name) name))
+            ;; Every kind has its exact normal (the reference and normal-exact.glsl
+            ;; count on it), calling a gradient its descriptor defines.
+            (let [d (primitives.lookup (or e.gradient-of e.primitive))
+                  gname (e.gradient-glsl:match "^(%w+)%(")]
+              (assert.is_function e.gradient e.kind)
+              (assert.truthy (d.gradient-glsl:find (.. "vec3 " gname "(") 1 true) e.kind)
+              (each [name (e.gradient-glsl:gmatch "(u%w+)%[i%]")]
+                (assert.truthy (uniform e.kind name) name)))))))))
 
 (describe "registry: CPU distances"
   (fn []

@@ -248,20 +248,25 @@ src/render/bounds.fnl)."
      (field-term plan (if (= field-base 0) "gObject" (.. "gObject - " field-base)))
      (if plan.tape (emit-glsl.distance-terms plan.tape tree-base) [])]))
 
-(fn gradient-terms [plan action]
-  ;; Each grouped object's exact normal in closed form (its kind's :gradient-glsl), for
-  ;; calcNormal: `action` is "n = " (normal-exact.glsl) or "return " (the exact slot of
-  ;; normal-crease.glsl). A written-out slot by its number, a loop's slots by range.
+(fn object-cases [plan statement]
+  ;; One case per grouped object, run when gObject is its number: `statement` (a
+  ;; string using `[i]`, as kind entries do) by a written-out slot's number, or by
+  ;; range for a loop's slots.
   (let [bases (object-bases plan)]
     (icollect [_ k (ipairs plan.kinds)]
       (if (and (not plan.uber?) (<= k.capacity max-unrolled))
-          (kind-loop k plan [(object-id k plan (.. "    if (gObject == @id) " action
-                                                   k.entry.gradient-glsl ";"))])
+          (kind-loop k plan [(object-id k plan (.. "    if (gObject == @id) " (statement k)))])
           (let [base (. bases k.kind)]
             [(.. "if (gObject >= " base " && gObject < " (+ base k.capacity) ") {")
              (.. "    int i = gObject" (if (= base 0) "" (.. " - " base)) ";")
-             (.. "    " action k.entry.gradient-glsl ";")
+             (.. "    " (statement k))
              "}"])))))
+
+(fn gradient-terms [plan action]
+  ;; Each grouped object's exact normal in closed form (its kind's :gradient-glsl), for
+  ;; calcNormal: `action` is "n = " (normal-exact.glsl) or "return " (the exact slot of
+  ;; normal-crease.glsl).
+  (object-cases plan #(.. action $.entry.gradient-glsl ";")))
 
 (fn field-gradient-term [plan action]
   ;; A field object's exact normal (fieldNormal), by its number.
@@ -284,17 +289,10 @@ src/render/bounds.fnl)."
           (emit-glsl.text-lines d.gradient-glsl))))))
 
 (fn object-terms [plan]
-  ;; mapObject's cases: a written-out slot by its number, a loop's slots by range
-  ;; (earlier numbers have returned already), each tree object by its number.
-  (let [(bases tree-base field-base) (object-bases plan)]
-    [(icollect [_ k (ipairs plan.kinds)]
-       (if (and (not plan.uber?) (<= k.capacity max-unrolled))
-           (kind-loop k plan [(object-id k plan (.. "    if (gObject == @id) return "
-                                                    k.entry.distance-glsl ";"))])
-           [(.. "if (gObject < " (+ (. bases k.kind) k.capacity) ") {")
-            (.. "    int i = gObject" (if (= (. bases k.kind) 0) "" (.. " - " (. bases k.kind))) ";")
-            (.. "    return " k.entry.distance-glsl ";")
-            "}"]))
+  ;; mapObject's cases: each grouped object's distance (object-cases), then the
+  ;; field's and each tree object's by number (earlier numbers have returned).
+  (let [(_ tree-base field-base) (object-bases plan)]
+    [(object-cases plan #(.. "return " $.entry.distance-glsl ";"))
      (if plan.field
          [(.. "if (gObject < " tree-base ") return fieldObject(p, gObject"
               (if (= field-base 0) "" (.. " - " field-base)) ");")]
