@@ -344,7 +344,13 @@
                          "^%s*if %(bounce > 0%) {$"
                          ;; load-once's integer that the compiler cannot fold
                          "^%s*int opaque = 2147483647 %- int%(nothing%);$"
-                         "^%s*g%w+ = %(u%w+ && opaque > 0%);$"]]
+                         "^%s*g%w+ = %(u%w+ && opaque > 0%);$"
+                         ;; normals' loops from gZero (prelude.glsl), their turns' axes and signs
+                         "^int gZero = 0;$"
+                         "^%s*for %(int %w+ = gZero; %w+ < %d; %w+%+%+%) {$"
+                         "^%s*int axis = i / 2;$" "^%s*float s = i == 2 %* axis %? 1%.0 : %-1%.0;$"
+                         "^%s*vec3 e = vec3%(axis == 0 %? h : 0%.0, axis == 1 %? h : 0%.0, axis == 2 %? h : 0%.0%);$"
+                         "^%s*vec3 k = vec3%(float%(%(%(i %+ 3%) / 2%) %% 2%), float%(%(i / 2%) %% 2%), float%(i %% 2%)%) %* 2%.0 %- 1%.0;$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]
               (let [masked (-> line (: :gsub "%d+%.%d+" "F") (: :gsub "%[%d+%]" "[N]"))]

@@ -8,10 +8,15 @@ vec3 calcNormal(vec3 p) {
     float h = normalDelta(p);
     float other = mapOthers(p);
     if (other < 2.0 * h) {
-        vec2 e = vec2(h, 0.0);
-        vec3 away = safeNormalize(vec3(mapOthers(p + e.xyy) - mapOthers(p - e.xyy),
-                                       mapOthers(p + e.yxy) - mapOthers(p - e.yxy),
-                                       mapOthers(p + e.yyx) - mapOthers(p - e.yyx)));
+        // Central differences of the others, in a loop from gZero (one copy of them).
+        vec3 g = vec3(0.0);
+        for (int i = gZero; i < 6; i++) {
+            int axis = i / 2;
+            float s = i == 2 * axis ? 1.0 : -1.0;
+            vec3 e = vec3(axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0);
+            g[axis] += s * mapOthers(p + s * e);
+        }
+        vec3 away = safeNormalize(g);
         p += away * (2.0 * h - other);
     }
     return objectNormal(p);

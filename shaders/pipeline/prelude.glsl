@@ -11,3 +11,8 @@ uniform int uMaxSteps;
 uniform float uEpsilon;       // hit test: world units, or a fraction (see hitThreshold)
 uniform float uDrawDist;
 // @slot feature-uniforms
+
+// 0, set by loadUniforms from a value the compiler cannot fold. A loop that starts
+// from it is kept as a loop: a call inside it is compiled once, not once per turn
+// (normals: four to six scene evaluations each).
+int gZero = 0;

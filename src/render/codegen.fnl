@@ -604,7 +604,6 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
         declarations {}
         out []]
     (var opaque? false)
-    (var nothing? false)
     (each [_ line (ipairs lines)]
       (let [(ty name count) (line:match "^uniform (%w+) (u[%w_]+)%[?(%d*)%]?;")]
         (if (and name (not (. read-directly name)) (not (ty:find "sampler"))
@@ -626,7 +625,6 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
       (icollect [_ {: copy : ty : read} (ipairs reads)]
         (let [wrap (. opaque-types ty)]
           (when (and wrap (wrap:find "opaque")) (set opaque? true))
-          (when (and wrap (wrap:find "nothing")) (set nothing? true))
           (string.format "    %s = %s;" copy
                          (if wrap (string.format wrap (or (. instead read) read)) read)))))
     (for [i 1 (length out)]
@@ -639,9 +637,9 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
     (table.insert out "")
     (table.insert out "// Every uniform copied once per pixel (see load-once in src/render/codegen.fnl).")
     (table.insert out "void loadUniforms() {")
-    (when (or opaque? nothing?)
-      (table.insert out "    // Through values the compiler cannot fold (see load-once in codegen.fnl).")
-      (table.insert out "    float nothing = 0.0 / gl_FragCoord.x;"))
+    (table.insert out "    // Through values the compiler cannot fold (see load-once in codegen.fnl).")
+    (table.insert out "    float nothing = 0.0 / gl_FragCoord.x;")
+    (table.insert out "    gZero = int(nothing);")
     (when opaque? (table.insert out "    int opaque = 2147483647 - int(nothing);"))
     (each [_ c (ipairs copies)] (table.insert out c))
     (table.insert out "}")
@@ -675,7 +673,8 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
       (when (> i 1) (table.insert body ""))
       (flatten-into body "" s))
     (let [(lines vertex) (if plan.load-once? (load-once body target.varyings?)
-                             (doto body (table.insert "") (table.insert "void loadUniforms() {}")))]
+                             (doto body (table.insert "")
+                                   (table.insert "void loadUniforms() { gZero = int(0.0 / gl_FragCoord.x); }")))]
       ;; With a vertex stage the pixel stage's code goes under PIXEL (LÖVE compiles
       ;; the text once per stage, defining VERTEX or PIXEL).
       (when vertex

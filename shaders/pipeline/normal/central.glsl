@@ -1,7 +1,13 @@
-// Surface normal by central differences: second-order accurate. Six map evaluations.
+// Surface normal by central differences: second-order accurate. Six map evaluations,
+// in a loop from gZero so that the compiler keeps one copy of map, not six.
 vec3 calcNormal(vec3 p) {
-    vec2 e = vec2(normalDelta(p), 0.0);
-    return safeNormalize(vec3(map(p + e.xyy) - map(p - e.xyy),
-                              map(p + e.yxy) - map(p - e.yxy),
-                              map(p + e.yyx) - map(p - e.yyx)));
+    float h = normalDelta(p);
+    vec3 g = vec3(0.0);
+    for (int i = gZero; i < 6; i++) {
+        int axis = i / 2;
+        float s = i == 2 * axis ? 1.0 : -1.0;
+        vec3 e = vec3(axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0);
+        g[axis] += s * map(p + s * e);
+    }
+    return safeNormalize(g);
 }

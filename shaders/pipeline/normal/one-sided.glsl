@@ -1,7 +1,13 @@
 // Surface normal by one-sided differences, the article's: the gradient of map between
-// p and p minus a small step along each axis. Four map evaluations.
+// p and p minus a small step along each axis. Four map evaluations, three of them in a
+// loop from gZero (one copy of map for the three).
 vec3 calcNormal(vec3 p) {
     float d = map(p);
-    vec2 e = vec2(normalDelta(p), 0.0);
-    return safeNormalize(vec3(d - map(p - e.xyy), d - map(p - e.yxy), d - map(p - e.yyx)));
+    float h = normalDelta(p);
+    vec3 g = vec3(0.0);
+    for (int axis = gZero; axis < 3; axis++) {
+        vec3 e = vec3(axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0);
+        g[axis] = d - map(p - e);
+    }
+    return safeNormalize(g);
 }

@@ -1,8 +1,12 @@
 // Surface normal by the tetrahedron technique: four samples at the corners of a
-// tetrahedron give a central-difference quality gradient for four map evaluations.
+// tetrahedron, k = (1,-1,-1), (-1,-1,1), (-1,1,-1), (1,1,1), give a central-difference
+// quality gradient for four map evaluations, in a loop from gZero (one copy of map).
 vec3 calcNormal(vec3 p) {
     float h = normalDelta(p);
-    vec2 k = vec2(1.0, -1.0);
-    return safeNormalize(k.xyy * map(p + k.xyy * h) + k.yyx * map(p + k.yyx * h) +
-                         k.yxy * map(p + k.yxy * h) + k.xxx * map(p + k.xxx * h));
+    vec3 n = vec3(0.0);
+    for (int i = gZero; i < 4; i++) {
+        vec3 k = vec3(float(((i + 3) / 2) % 2), float((i / 2) % 2), float(i % 2)) * 2.0 - 1.0;
+        n += k * map(p + k * h);
+    }
+    return safeNormalize(n);
 }
