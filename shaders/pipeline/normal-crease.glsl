@@ -6,18 +6,24 @@
 vec3 calcNormal(vec3 p) {
     // @slot exact
     float h = normalDelta(p);
-    float other = mapOthers(p);
-    if (other < 2.0 * h) {
-        // Central differences of the others, in a loop from gZero (one copy of them).
-        vec3 g = vec3(0.0);
-        for (int i = gZero; i < 6; i++) {
-            int axis = i / 2;
-            float s = i == 2 * axis ? 1.0 : -1.0;
-            vec3 e = vec3(axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0);
-            g[axis] += s * mapOthers(p + s * e);
+    // Turn 0 finds how near the others come; only when that is within reach, turns
+    // 1-6 take their central differences. One loop from gZero: one copy of mapOthers.
+    float other = 0.0;
+    vec3 g = vec3(0.0);
+    for (int i = gZero; i < 7; i++) {
+        int axis = i > 0 ? (i - 1) / 2 : 3;
+        float s = i > 0 && i == 2 * axis + 1 ? 1.0 : -1.0;
+        vec3 e = vec3(axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0);
+        float d = mapOthers(p + s * e);
+        if (i == 0) {
+            other = d;
+            if (other >= 2.0 * h) break;
+        } else {
+            g[axis] += s * d;
         }
-        vec3 away = safeNormalize(g);
-        p += away * (2.0 * h - other);
+    }
+    if (other < 2.0 * h) {
+        p += safeNormalize(g) * (2.0 * h - other);
     }
     return objectNormal(p);
 }
