@@ -67,7 +67,9 @@ through gpu.compile-plan)."
     (case (make-variant {:label o.scene :scene-path o.scene :size size
                          :plan-options {:view o.view}})
       (nil err) (values nil err)
-      v (do (run-rounds! [v] o.frames)
+      v (let [(_ version _ device) (love.graphics.getRendererInfo)]
+          (print (.. "renderer: " device " (OpenGL " version ")"))
+          (run-rounds! [v] o.frames)
             (print (string.format "%s %dx%d: median %.1f ms per frame over %d frames"
                                   o.scene (. size 1) (. size 2) v.median o.frames))
             ;; llvmpipe finishes compiling on first use: the first frame's excess over
