@@ -219,3 +219,32 @@
         (let [(p err) (plan.scene->plan (load "{:objects []}") {:uber? true :uniform-limit 41})]
           (assert.is_nil p)
           (assert.truthy (err:find "needs 42 uniform vectors" 1 true)))))))
+
+(describe "plan: renderer options"
+  (fn []
+    (it "copies uniforms once per pixel on software renderers only"
+      (fn []
+        (each [_ name (ipairs ["llvmpipe (LLVM 15.0.6, 256 bits)" "softpipe" "Mesa swrast"
+                               "Google SwiftShader" "GDI Generic"])]
+          (assert.is_true (plan.software-renderer? name) name)
+          (assert.is_true (. (plan.renderer-options name) :load-once?) name))
+        (each [_ name (ipairs ["NVIDIA H100 80GB HBM3/PCIe/SSE2"
+                               "AMD Radeon RX 7900 XTX (radeonsi, navi31, LLVM 15.0.6, DRM 3.54)"
+                               "Mesa Intel(R) UHD Graphics 620 (KBL GT2)" "Apple M2"])]
+          (assert.is_false (plan.software-renderer? name) name)
+          (assert.is_false (. (plan.renderer-options name) :load-once?) name))))
+
+    (it "keeps what the caller chose and the caller's table"
+      (fn []
+        (let [given {:view :normals :load-once? true}
+              options (plan.renderer-options "NVIDIA H100" given)]
+          (assert.is_true options.load-once?)
+          (assert.equal :normals options.view)
+          (assert.is_false (rawequal given options))
+          (assert.is_false (. (plan.renderer-options "llvmpipe" {:load-once? false}) :load-once?)))))
+
+    (it "gives a GPU's plan a key of its own"
+      (fn []
+        (let [src "{:objects [{:kind :sphere}]}"]
+          (assert.not_equal (key-of src (plan.renderer-options "llvmpipe"))
+                            (key-of src (plan.renderer-options "NVIDIA H100"))))))))

@@ -74,8 +74,9 @@ through gpu.compile-plan)."
                                   o.scene (. size 1) (. size 2) v.median o.frames))
             ;; llvmpipe finishes compiling on first use: the first frame's excess over
             ;; the median is that part of the compile.
-            (print (string.format "shader: newShader %.0f ms, first frame %.0f ms (%.0f ms over the median)"
-                                  v.compile-ms v.first-ms (- v.first-ms v.median)))
+            (print (string.format "shader: newShader %.0f ms, first frame %.0f ms (%.0f ms over the median); uniforms %s"
+                                  v.compile-ms v.first-ms (- v.first-ms v.median)
+                                  (if v.plan.load-once? "read once per pixel" "read where used")))
             true))))
 
 (fn image-difference [a b]
@@ -194,6 +195,10 @@ showcase scenes, and our pixel rate next to the article's CPU program."
         scaling-variants []]
     (var err nil)
     (each [_ spec (ipairs specs) &until err]
+      ;; Every variant says how it reads uniforms, whatever suits this renderer
+      ;; (plan.renderer-options): the levers are compared as labelled.
+      (set spec.plan-options (collect [k x (pairs (or spec.plan-options {}))] k x))
+      (when (= nil spec.plan-options.load-once?) (set spec.plan-options.load-once? true))
       (case (make-variant spec)
         (nil e) (set err e)
         made (do (tset v spec.id made)

@@ -45,8 +45,15 @@ and a message when the shader does not compile."
             true)
         (values nil (.. path ": cannot write: " (tostring err))))))
 
-(fn plan-for [scene ?options]
-  "The plan of `scene` (see plan.scene->plan)."
-  (plan-mod.scene->plan scene ?options))
+(fn renderer-options [?options]
+  "`?options` for plan.scene->plan, with what suits this renderer filled in (see
+plan.renderer-options)."
+  (let [(_ _ _ device) (love.graphics.getRendererInfo)]
+    (plan-mod.renderer-options device ?options)))
 
-{: load-scene : read-text : render-to-canvas! : write-png : plan-for}
+(fn plan-for [scene ?options]
+  "The plan of `scene` for this renderer (see plan.scene->plan and
+plan.renderer-options)."
+  (plan-mod.scene->plan scene (renderer-options ?options)))
+
+{: load-scene : read-text : render-to-canvas! : write-png : plan-for : renderer-options}
