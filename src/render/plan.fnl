@@ -96,10 +96,9 @@ SwiftShader, Microsoft's GDI renderer."
   "`?options` for scene->plan with what suits the renderer called `name` filled in
 where they leave it open. On a software renderer each uniform is copied once per
 pixel (:load-once?): there a uniform read is an eight-lane gather, every time. A
-GPU reads uniforms from a constant cache and keeps private copies in registers,
-which a big tree spills: there the shader reads the uniforms where it uses them
-(measured on an H100: colonnade at 1920x1080 in 451 ms against 655, flower 193
-against 221, gallery and the seed alike)."
+GPU reads uniforms from a constant cache, and there the shader reads them where it
+uses them (measured on an H100: colonnade at 1920x1080 in 451 ms against 655 with
+the copies, flower 193 against 221, gallery and the seed alike)."
   (let [options (collect [k v (pairs (or ?options {}))] k v)]
     (when (= nil options.load-once?)
       (set options.load-once? (software-renderer? name)))
