@@ -47,9 +47,11 @@ and a message when the shader does not compile."
 
 (fn renderer-options [?options]
   "`?options` for plan.scene->plan, with what suits this renderer filled in (see
-plan.renderer-options)."
-  (let [(_ _ _ device) (love.graphics.getRendererInfo)]
-    (plan-mod.renderer-options device ?options)))
+plan.renderer-options). Modes with no graphics (the CPU probe, --tree) draw nothing:
+their options are left as given."
+  (case (when love.graphics (pcall love.graphics.getRendererInfo))
+    (true _ _ _ device) (plan-mod.renderer-options device ?options)
+    _ (or ?options {})))
 
 (fn plan-for [scene ?options]
   "The plan of `scene` for this renderer (see plan.scene->plan and
