@@ -369,7 +369,7 @@
                          "^%s*float s = i > 0 && i == 2 %* axis %+ 1 %? 1%.0 : %-1%.0;$"
                          "^%s*if %(i == 0%) {$"
                          "^%s*int axis = i / 2;$" "^%s*float s = i == 2 %* axis %? 1%.0 : %-1%.0;$"
-                         "^%s*vec3 e = vec3%(axis == 0 %? h : 0%.0, axis == 1 %? h : 0%.0, axis == 2 %? h : 0%.0%);$"
+                         "^%s*return vec3%(axis == 0 %? h : 0%.0, axis == 1 %? h : 0%.0, axis == 2 %? h : 0%.0%);$"
                          "^%s*vec3 k = vec3%(float%(%(%(i %+ 3%) / 2%) %% 2%), float%(%(i / 2%) %% 2%), float%(i %% 2%)%) %* 2%.0 %- 1%.0;$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]

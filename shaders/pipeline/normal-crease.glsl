@@ -13,7 +13,7 @@ vec3 calcNormal(vec3 p) {
     for (int i = gZero; i < 7; i++) {
         int axis = i > 0 ? (i - 1) / 2 : 3;
         float s = i > 0 && i == 2 * axis + 1 ? 1.0 : -1.0;
-        vec3 e = vec3(axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0);
+        vec3 e = axisStep(axis, h);
         float d = mapOthers(p + s * e);
         if (i == 0) {
             other = d;

@@ -12,4 +12,9 @@ vec3 safeNormalize(vec3 v) {
     return len > 0.0 ? v / len : vec3(0.0, 0.0, 1.0);
 }
 
+// A step of h along axis 0, 1 or 2 (finite differences taken in a loop).
+vec3 axisStep(int axis, float h) {
+    return vec3(axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0);
+}
+
 // @slot method

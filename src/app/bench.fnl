@@ -70,14 +70,14 @@ through gpu.compile-plan)."
       v (let [(_ version _ device) (love.graphics.getRendererInfo)]
           (print (.. "renderer: " device " (OpenGL " version ")"))
           (run-rounds! [v] o.frames)
-            (print (string.format "%s %dx%d: median %.1f ms per frame over %d frames"
-                                  o.scene (. size 1) (. size 2) v.median o.frames))
-            ;; llvmpipe finishes compiling on first use: the first frame's excess over
-            ;; the median is that part of the compile.
-            (print (string.format "shader: newShader %.0f ms, first frame %.0f ms (%.0f ms over the median); uniforms %s"
-                                  v.compile-ms v.first-ms (- v.first-ms v.median)
-                                  (if v.plan.load-once? "read once per pixel" "read where used")))
-            true))))
+          (print (string.format "%s %dx%d: median %.1f ms per frame over %d frames"
+                                o.scene (. size 1) (. size 2) v.median o.frames))
+          ;; llvmpipe finishes compiling on first use: the first frame's excess over
+          ;; the median is that part of the compile.
+          (print (string.format "shader: newShader %.0f ms, first frame %.0f ms (%.0f ms over the median); uniforms %s"
+                                v.compile-ms v.first-ms (- v.first-ms v.median)
+                                (if v.plan.load-once? "read once per pixel" "read where used")))
+          true))))
 
 (fn image-difference [a b]
   "Mean and max per-channel difference (0-255) between the canvases of variants `a`

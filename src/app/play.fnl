@@ -65,9 +65,8 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
        (= (. a.pos 1) (. b.pos 1)) (= (. a.pos 2) (. b.pos 2)) (= (. a.pos 3) (. b.pos 3))))
 
 (fn plan-with [scene reflections]
-  (plan-mod.scene->plan scene (frame.renderer-options
-                                {:view state.view :reflections reflections
-                                 :model (when state.classic? :classic)})))
+  (frame.plan-for scene {:view state.view :reflections reflections
+                         :model (when state.classic? :classic)}))
 
 (fn load-unprotected! [path fresh?]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new

@@ -58,4 +58,4 @@ their options are left as given."
 plan.renderer-options)."
   (plan-mod.scene->plan scene (renderer-options ?options)))
 
-{: load-scene : read-text : render-to-canvas! : write-png : plan-for : renderer-options}
+{: load-scene : read-text : render-to-canvas! : write-png : plan-for}

@@ -545,6 +545,8 @@ only when the plan has it."
 ;; (found in the disassembly of a field's walk: the draw distance, the step budget and
 ;; the turn bound were read so, three gathers in a loop of 296 instructions; through
 ;; these values the loop is 205).
+(local nothing "0.0 / gl_FragCoord.x")
+
 (local opaque-types {:int "min(%s, opaque)" :ivec2 "min(%s, opaque)" :ivec3 "min(%s, opaque)"
                      :ivec4 "min(%s, opaque)" :bool "(%s && opaque > 0)"
                      :float "(%s + nothing)" :vec2 "(%s + nothing)" :vec3 "(%s + nothing)"
@@ -638,7 +640,7 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
     (table.insert out "// Every uniform copied once per pixel (see load-once in src/render/codegen.fnl).")
     (table.insert out "void loadUniforms() {")
     (table.insert out "    // Through values the compiler cannot fold (see load-once in codegen.fnl).")
-    (table.insert out "    float nothing = 0.0 / gl_FragCoord.x;")
+    (table.insert out (.. "    float nothing = " nothing ";"))
     (table.insert out "    gZero = int(nothing);")
     (when opaque? (table.insert out "    int opaque = 2147483647 - int(nothing);"))
     (each [_ c (ipairs copies)] (table.insert out c))
@@ -674,7 +676,7 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
       (flatten-into body "" s))
     (let [(lines vertex) (if plan.load-once? (load-once body target.varyings?)
                              (doto body (table.insert "")
-                                   (table.insert "void loadUniforms() { gZero = int(0.0 / gl_FragCoord.x); }")))]
+                                   (table.insert (.. "void loadUniforms() { gZero = int(" nothing "); }"))))]
       ;; With a vertex stage the pixel stage's code goes under PIXEL (LÖVE compiles
       ;; the text once per stage, defining VERTEX or PIXEL).
       (when vertex

@@ -6,7 +6,7 @@ vec3 calcNormal(vec3 p) {
     for (int i = gZero; i < 6; i++) {
         int axis = i / 2;
         float s = i == 2 * axis ? 1.0 : -1.0;
-        vec3 e = vec3(axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0);
+        vec3 e = axisStep(axis, h);
         g[axis] += s * map(p + s * e);
     }
     return safeNormalize(g);

@@ -6,7 +6,7 @@ vec3 calcNormal(vec3 p) {
     float h = normalDelta(p);
     vec3 g = vec3(0.0);
     for (int axis = gZero; axis < 3; axis++) {
-        vec3 e = vec3(axis == 0 ? h : 0.0, axis == 1 ? h : 0.0, axis == 2 ? h : 0.0);
+        vec3 e = axisStep(axis, h);
         g[axis] = d - map(p - e);
     }
     return safeNormalize(g);
