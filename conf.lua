@@ -51,4 +51,9 @@ function love.conf(t)
   end
 end
 
-require("main")
+-- The player's compile helper loads only what it needs (see src/app/warm-helper.fnl).
+if has_arg("--warm-shader") then
+  require("src.app.warm-helper")
+else
+  require("main")
+end

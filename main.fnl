@@ -111,16 +111,22 @@
       true (love.event.quit 0)
       (_ err) (fail! err))))
 
+(fn edit-latency [o]
+  ((. (require :src.app.edit-latency) :run) o))
+
 (fn input-check [o]
   ((. (require :src.app.input-check) :run) o))
 
 (fn play [o]
   (let [play-mod (require :src.app.play)]
+    ;; A changed shader is compiled by a helper process first (src/app/warm.fnl),
+    ;; except for a screenshot run (it waits for nothing) or with --sync-compile.
+    (set o.warm? (not (or o.shot o.sync-compile?)))
     (play-mod.start! o)))
 
 (local modes {:print-shader print-shader :render render :bench bench
               :probe probe :tree tree :kinds kinds :help help :export-shader export-shader
-              :record record
+              :record record :edit-latency edit-latency
               :bench-report bench-report :soak soak :input-check input-check :play play})
 
 (fn headless-error-handler [message]

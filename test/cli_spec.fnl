@@ -33,6 +33,13 @@
                          [(cli.parse ["--target-fps" "0.5"])])
         (assert.are.equal :input-check (. (cli.parse ["--input-check"]) :mode))))
 
+    (it "parses --sync-compile for playing only (no compile helper)"
+      (fn []
+        (assert.is_true (. (cli.parse ["a.fnl" "--sync-compile"]) :sync-compile?))
+        (assert.is_true (. (cli.parse ["--edit-latency" "a.fnl" "--sync-compile"]) :sync-compile?))
+        (assert.are.same [nil "--sync-compile only goes with playing a scene or --edit-latency"]
+                         [(cli.parse ["--render" "a.fnl" "--out" "a.png" "--sync-compile"])])))
+
     (it "parses the scene-tree modes: --probe (with --gpu), --tree, --kinds"
       (fn []
         (assert.are.same {:mode :probe :scene "a.fnl" :gpu? true :frames 5 :cycles 300}

@@ -7,6 +7,8 @@
 
 (local usage
   "usage: love . [SCENE] [--target-fps N]      play SCENE (default scenes/seed.fnl), moving at N fps (30)
+       love . [SCENE] --sync-compile         play, compiling a changed scene's shader in the player
+                                             (default: a helper process compiles it first)
        love . [SCENE] --shot FILE.png [--frames N]   play N frames, save the window, quit
        love . --render SCENE --out FILE.png [--size WxH] [--view VIEW]
        love . --print-shader SCENE [--view VIEW] [--target love|core]
@@ -19,6 +21,9 @@
        love . --kinds                        every primitive and operation, with parameters
        love . --export-shader SCENE --out FILE.glsl   a Shadertoy shader with the values baked in
        love . --record SCENE --out DIR --frames N [--fps F] [--size WxH] [--turntable]
+       love . --edit-latency SCENE [--sync-compile]   the player's delay in showing an edit
+       love . --warm-shader FILE.glsl        compile a shader and draw it once (the player's helper;
+                                             conf.lua runs it before anything else)
        love . --help                         this text
 VIEW is one of shaded, normals, glow, heat.")
 
@@ -27,7 +32,7 @@ VIEW is one of shaded, normals, glow, heat.")
                     :--target-fps :target-fps})
 (local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench
                    :--probe :probe :--tree :tree :--export-shader :export-shader
-                   :--record :record})
+                   :--record :record :--edit-latency :edit-latency})
 
 (fn parse-size [s]
   (let [(w h) (s:match "^(%d+)[xX](%d+)$")
@@ -71,6 +76,8 @@ VIEW is one of shaded, normals, glow, heat.")
       (values nil (.. "--shot must name a .png file, got " o.shot))
       (or (same-path? o.out o.scene) (same-path? o.shot o.scene))
       (values nil (.. "the output file is the scene file " o.scene "; choose another name"))
+      (and o.sync-compile? (not= o.mode :play) (not= o.mode :edit-latency))
+      (values nil "--sync-compile only goes with playing a scene or --edit-latency")
       (and o.shot (not= o.mode :play))
       (values nil "--shot only goes with playing a scene")
       (and o.gpu? (not= o.mode :probe))
@@ -84,7 +91,7 @@ VIEW is one of shaded, normals, glow, heat.")
 (fn parse [args]
   "Parse the game's arguments (after LÖVE's own). Returns an options table
 {:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:input-check|:probe|:tree|:kinds|:help
- |:export-shader
+ |:export-shader|:record|:edit-latency
  :scene :out :size [w h] :frames n :view v :target t :gpu? (probe on the GPU)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]
     (var i 1)
@@ -101,6 +108,7 @@ VIEW is one of shaded, normals, glow, heat.")
                     (set i (+ i 1))))
             (= a "--gpu") (set o.gpu? true)
             (= a "--turntable") (set o.turntable? true)
+            (= a "--sync-compile") (set o.sync-compile? true)
             (or (= a "--help") (= a "-h"))
             (set o.mode :help)
             (or (= a "--bench-report") (= a "--soak") (= a "--kinds") (= a "--input-check"))

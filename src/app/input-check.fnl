@@ -9,6 +9,8 @@
 (local camera (require :src.render.camera))
 (local panel (require :src.app.panel))
 (local files (require :src.util.files))
+(local filestat (require :src.util.filestat))
+(local warm (require :src.app.warm))
 
 (local scene-text
   ";; a scene for the input check: comments and odd layout stay as they are
@@ -135,6 +137,38 @@ next frame."
              (string.format "the saved file is reloaded as a value edit (%d reloads, %s)"
                             (- state.reloads reloads)
                             (if (?. state.last-load :compiled?) "compiled" "uniforms only"))))
+    ;; A structural edit with the compile helper (warm.fnl) on, as when playing: the
+    ;; load waits for the helper while the last scene stays on screen, then shows the
+    ;; new scene, its shader compiled once. Whether the driver's cache really fills
+    ;; does not matter here (only how long the player's own compile takes).
+    (let [w (warm.new)
+          old state.scene
+          compiles state.cache.compiles
+          reloads state.reloads
+          text (files.read-user path)]
+      (set w.enabled? (not= nil (and w.exe w.source)))
+      (set state.warm w)
+      (with-open [f (assert (io.open path :wb))]
+        (f:write (pick-values 1 (text:gsub ":objects %[" ":objects [{:kind :box :size [1 1 1] :pos [2 0 0.5] :color [0.2 0.4 0.9]}\n"))))
+      (play.poll-file! (+ (filestat.now) 0.05))
+      (play.poll-file! (+ (filestat.now) 0.3))
+      (check (and w.enabled? state.pending (= state.scene old) (= state.cache.compiles compiles))
+             (string.format "a structural edit waits for the compile helper, the last scene on screen (%s, %s)"
+                            (if w.enabled? "helper found" "no helper") (tostring state.error)))
+      (wait 2)
+      (check (= state.scene old) "the last scene is still drawn while the helper works")
+      ;; The cap only stops a broken helper from hanging the check: a helper takes
+      ;; about a second here.
+      (let [until (+ (love.timer.getTime) 240)]
+        (while (and state.pending (< (love.timer.getTime) until))
+          (wait)))
+      (check (and (not= state.scene old) (= state.reloads (+ reloads 1))
+                  (= state.cache.compiles (+ compiles 1)) (?. state.last-load :helper?)
+                  (= state.error nil) (= (warm.status w (. (play.current-plan) :key)) :done))
+             (string.format "then the edited scene shows, its shader compiled once after the helper (%s, %s)"
+                            (tostring (warm.status w (?. (play.current-plan) :key)))
+                            (tostring state.error)))
+      (set state.warm nil))
     ;; ] opens the next bundled scene and keeps the render scale chosen with -.
     (let [scale state.scale]
       (push-key "]")

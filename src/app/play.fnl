@@ -15,6 +15,8 @@
 (local text (require :src.util.text))
 (local params (require :src.scene.params))
 (local panel (require :src.app.panel))
+(local warm (require :src.app.warm))
+(local codegen (require :src.render.codegen))
 
 (local move-speed 10)   ; world units per second
 (local turn-speed 90)   ; degrees per second
@@ -28,6 +30,10 @@
               :move-times []
               :message-until 0 :error nil :gamepad nil :watch nil :poll-at 0
               :reloads 0 :progress (progress.new)
+              ;; Compiles in a helper process first (warm.fnl; nil: in the player), the
+              ;; load waiting for its helper ({: path : fresh? : key : start}) and the
+              ;; last scene and plan drawn ({: scene : plan}), shown meanwhile.
+              :warm nil :pending nil :drawn nil :waiting-since nil
               ;; The parameter panel: open?, the slider being dragged, and the values
               ;; moved away from the file's, by name ({:value :base}, see params).
               :panel {:open? false :drag nil :overrides {} :status ""}})
@@ -68,12 +74,21 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
   (frame.plan-for scene {:view state.view :reflections reflections
                          :model (when state.classic? :classic)}))
 
-(fn load-unprotected! [path fresh?]
+(fn compile-waits? [plan]
+  "True while `plan`'s shader is being compiled by a helper process (warm.fnl): the
+player goes on drawing what it drew last. Never when nothing is on screen yet, or
+when the shader is compiled already."
+  (and state.warm state.drawn (not (gpu.cached? state.cache plan))
+       (not (warm.ready? state.warm plan.key #(codegen.shader plan :love)))))
+
+(fn load-unprotected! [path fresh? ?since]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
 file, not an edit) resets the camera and the player's settings; an edit keeps them,
 unless the file's own camera or settings changed and the player left them alone.
-On any failure the last good scene keeps running and the error is shown."
-  (let [start (love.timer.getTime)
+On any failure the last good scene keeps running and the error is shown. A shader
+that a helper process is compiling leaves the load pending (state.pending); update
+loads the file again once the helper is done, `?since` the time of the first try."
+  (let [start (or ?since (love.timer.getTime))
         info (file-info path)
         old state.scene
         ;; Slider positions not yet saved survive an edit of the file (params drops
@@ -92,9 +107,17 @@ On any failure the last good scene keeps running and the error is shown."
                               scene.render.reflections
                               state.reflections)
               (plan perr) (plan-with scene reflections)
+              wait? (and plan (compile-waits? plan))
               compiles-before state.cache.compiles
-              (shader serr) (if plan (gpu.shader-for state.cache plan) (values nil perr))]
-          (if (not shader)
+              (shader serr) (if wait? (values nil nil)
+                                plan (gpu.shader-for state.cache plan)
+                                (values nil perr))]
+          (if wait?
+              (do (when (not= (?. state.pending :key) plan.key)
+                    (say! (.. path ": compiling its shader in a helper process; "
+                              (if old "the last scene stays until it is ready" "please wait"))))
+                  (set state.pending {: path : fresh? :key plan.key : start}))
+              (not shader)
               (do (set state.error serr)
                   (when (not state.quiet?) (io.stderr:write (.. serr "\n"))))
               (let [file-cam (camera.from-scene scene)
@@ -116,18 +139,32 @@ On any failure the last good scene keeps running and the error is shown."
                 (set state.reloads (+ state.reloads 1))
                 (let [ms (* 1000 (- (love.timer.getTime) start))
                       compiled? (> state.cache.compiles compiles-before)]
-                  (set state.last-load {:ms ms :compiled? compiled?})
+                  (set state.last-load {:ms ms :compiled? compiled? :helper? (not= ?since nil)})
                   (say! (string.format "%s %s in %.0f ms (%s)" (if fresh? "loaded" "reloaded")
-                                       path ms (if compiled? "shader compiled" "uniforms only"))))))))))
+                                       path ms (if (not compiled?) "uniforms only"
+                                                   ?since "shader compiled by a helper process"
+                                                   "shader compiled"))))))))))
 
-(fn load! [path fresh?]
+(fn load! [path fresh? ?since]
   "Load the scene at `path` (see load-unprotected!); a failure inside the loader
 itself is shown like a broken file, and the last good scene keeps running."
-  (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh?)]
+  ;; A newer load replaces the one waiting for its helper.
+  (set state.pending nil)
+  (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh? ?since)]
     (when (not ok?)
       (set state.error (.. path ": the scene could not be loaded (an internal error): "
                            (tostring err))))
-    (set state.progress (progress.new))))
+    (when (not state.pending)
+      (set state.progress (progress.new)))))
+
+(fn finish-pending! []
+  "Collect finished helpers; a load waiting for one that is done runs again (now a
+cache hit in the driver, or a plain compile when the helper failed)."
+  (when state.warm
+    (warm.poll! state.warm)
+    (case state.pending
+      p (when (warm.settled? state.warm p.key)
+          (load! p.path p.fresh? p.start)))))
 
 (fn apply-parameters! []
   "The panel moved a value: evaluate the scene's text again with the panel's values
@@ -179,7 +216,9 @@ file watcher then reloads it as a value edit."
 immediate, and it costs nothing). `?now` overrides the wall clock (the soak test
 moves it forward instead of waiting)."
   (let [clock (filestat.now)]
-    (when (and state.path state.watch (or ?now (>= clock state.poll-at)))
+    ;; While another file's load waits for its helper, state.watch is that file's.
+    (when (and state.path state.watch (not (?. state.pending :fresh?))
+               (or ?now (>= clock state.poll-at)))
       (set state.poll-at (+ clock 0.1))
       (let [info (file-info state.path)]
         (case (watch.poll! state.watch info (or ?now (filestat.now)))
@@ -454,8 +493,13 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
     (when state.last-load
       (table.insert lines (string.format "last load: %.0f ms (%s), %d so far"
                                          state.last-load.ms
-                                         (if state.last-load.compiled? "shader compiled" "uniforms only")
+                                         (if (not state.last-load.compiled?) "uniforms only"
+                                             state.last-load.helper? "shader compiled by a helper"
+                                             "shader compiled")
                                          state.reloads)))
+    (case (or (?. state.pending :start) state.waiting-since)
+      since (table.insert lines (string.format "compiling the new shader in a helper process (%.1f s)"
+                                               (- (love.timer.getTime) since))))
     (when (and state.message (< (love.timer.getTime) state.message-until))
       (table.insert lines state.message))
     lines))
@@ -480,14 +524,14 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
     (love.graphics.setColor 1 1 1 1)
     (love.graphics.draw canvas 0 0 0 (/ ww (canvas:getWidth)) (/ wh (canvas:getHeight)))))
 
-(fn draw-moving [plan]
+(fn draw-moving [scene plan]
   ;; The whole image at the moving scale, every frame.
   (let [canvas (ensure-move-canvas!)]
-    (case (frame.render-to-canvas! state.cache canvas state.scene plan state.cam)
+    (case (frame.render-to-canvas! state.cache canvas scene plan state.cam)
       (nil err) (set state.error err))
     (draw-stretched canvas)))
 
-(fn draw-still [plan]
+(fn draw-still [scene plan]
   (let [canvas (ensure-canvas!)
         refine state.refine]
     (when (and refine refine.copy?)
@@ -504,7 +548,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
     ;; One band of the image per frame when a whole frame would take too long.
     (let [p state.progress
           rows (when (> p.bands 1) [(progress.rows p (canvas:getHeight))])]
-      (case (frame.render-to-canvas! state.cache canvas state.scene plan state.cam rows)
+      (case (frame.render-to-canvas! state.cache canvas scene plan state.cam rows)
         (nil err) (set state.error err)
         _ (progress.drawn! p)))
     (when (and refine (progress.complete? state.progress))
@@ -519,11 +563,33 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
       (set state.move-times []))
     (draw-stretched canvas)))
 
+(fn shown []
+  "The scene and plan to draw: the scene's own, or while a helper compiles the shader
+of a new plan (a view or a switch changed the shader), the last ones drawn."
+  (case (current-plan)
+    (nil err) (values nil err)
+    plan (if (compile-waits? plan)
+             (do (when (not state.waiting-since)
+                   (set state.waiting-since (love.timer.getTime)))
+                 (values state.drawn.scene state.drawn.plan))
+             (do (set state.waiting-since nil)
+                 (values state.scene plan)))))
+
 (fn draw []
   (when state.scene
-    (case (current-plan)
-      plan (if state.adaptive.moving? (draw-moving plan) (draw-still plan))
-      (nil err) (set state.error err)))
+    (case (shown)
+      (nil err) (set state.error err)
+      (scene plan) (do (when (and state.drawn (not= plan.key state.drawn.plan.key))
+                         ;; Another shader: the bands of the image start again.
+                         (set state.progress (progress.new)))
+                       (if state.adaptive.moving? (draw-moving scene plan)
+                           ;; Waiting for a helper with the camera still: the image on
+                           ;; screen is the last one again; the cores go to the helper.
+                           (and (or state.pending state.waiting-since) state.canvas)
+                           (do (love.timer.sleep 0.01) (draw-stretched state.canvas))
+                           (draw-still scene plan))
+                       (when (gpu.cached? state.cache plan)
+                         (set state.drawn {: scene : plan})))))
   (when state.hud?
     (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))
   (case (panel-layout)
@@ -549,6 +615,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
 (fn start! [options]
   "Play the scene file named in `options.scene`: install the LÖVE callbacks."
   (set state.cache (gpu.new-cache))
+  (set state.warm (when options.warm? (warm.new)))
   (set state.interactive-fps (or options.target-fps default-interactive-fps))
   (load! options.scene true)
   (when (and options.shot (not state.scene))
@@ -561,6 +628,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
                      (when (not state.scene) (love.timer.sleep 0.05))
                      (progress.measured! state.progress dt)
                      (poll-file!)
+                     (finish-pending!)
                      (advance-time! dt)
                      (when state.cam
                        (handle-keyboard dt)

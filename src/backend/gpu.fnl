@@ -4,6 +4,7 @@
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
 (local field (require :src.render.field))
+(local quad (require :src.backend.quad))
 
 (local max-cached-shaders 8)
 
@@ -44,6 +45,10 @@ varyings (codegen's pack-varyings) gets the shader that reads uniforms instead."
         (let [(plain perr) (codegen.shader plan :love-uniforms)
               fallback (when plain (compile-source plain label))]
           (if fallback fallback (values nil (or perr err)))))))
+
+(fn cached? [cache plan]
+  "True when `plan`'s shader is compiled and in `cache`."
+  (not= nil (. cache.shaders plan.key)))
 
 (fn shader-for [cache plan]
   "The compiled shader for `plan`, compiling it on a cache miss. Returns the shader and
@@ -131,15 +136,11 @@ dropped."
 (fn draw! [shader us width height]
   "Draw the full-screen quad of `width` x `height` with `shader` into the current target."
   (send! shader us)
-  (love.graphics.push :all)
-  (love.graphics.setShader shader)
-  (love.graphics.setColor 1 1 1 1)
-  (love.graphics.rectangle :fill 0 0 width height)
-  (love.graphics.pop))
+  (quad.draw! shader width height))
 
 (fn finish! [canvas]
   "Wait until the GPU has finished drawing into `canvas` (reads back one pixel)."
   (: (canvas:newImageData 1 1 0 0 1 1) :release))
 
-{: new-cache : shader-for : compile-source : compile-plan : send! : draw! : finish!
+{: new-cache : cached? : shader-for : compile-source : compile-plan : send! : draw! : finish!
  : texture-uploads}

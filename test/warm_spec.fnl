@@ -1,0 +1,68 @@
+;; The compile helper's pure parts (src/app/warm.fnl): when the driver's cache is shared
+;; between processes, the helper's command line, and the helper's bookkeeping with a
+;; stand-in for the LÖVE thread. The whole path (a helper process, the player waiting
+;; for it) runs in `love . --input-check` (test/input_spec.fnl).
+(local warm (require :src.app.warm))
+
+(fn env [vars] (fn [name] (. vars name)))
+
+(describe "the compile helper"
+  (fn []
+    (it "trusts Mesa's and NVIDIA's on-disk caches unless they are switched off"
+      (fn []
+        (let [mesa "4.5 (Core Profile) Mesa 22.3.6"]
+          (assert.is_true (warm.cache-shared? (env {}) mesa "Mesa"))
+          (assert.is_false (warm.cache-shared? (env {:MESA_SHADER_CACHE_DISABLE "true"}) mesa "Mesa"))
+          (assert.is_false (warm.cache-shared? (env {:MESA_SHADER_CACHE_DISABLE "1"}) mesa "Mesa"))
+          (assert.is_false (warm.cache-shared? (env {:MESA_GLSL_CACHE_DISABLE "Yes"}) mesa "Mesa"))
+          (assert.is_true (warm.cache-shared? (env {:MESA_SHADER_CACHE_DISABLE "false"}) mesa "Mesa")))
+        (let [nv "3.3.0 NVIDIA 580.159.04"]
+          (assert.is_true (warm.cache-shared? (env {}) nv "NVIDIA Corporation"))
+          (assert.is_false (warm.cache-shared? (env {:__GL_SHADER_DISK_CACHE "0"}) nv "NVIDIA Corporation")))
+        ;; Anything else: no promise that another process's compile helps.
+        (assert.is_false (warm.cache-shared? (env {}) "4.6" "ATI Technologies Inc."))
+        (assert.is_false (warm.cache-shared? (env {}) nil nil))))
+
+    (it "quotes every path it puts on the helper's command line"
+      (fn []
+        (assert.are.equal "'a b'" (warm.shell-quote "a b"))
+        (assert.are.equal "'it'\\''s; rm -rf x'" (warm.shell-quote "it's; rm -rf x"))
+        (assert.are.equal
+          "SDL_VIDEODRIVER=offscreen '/usr/bin/love' '/home/a b/game' --warm-shader '/tmp/x$y' >/dev/null 2>&1"
+          (warm.helper-command "/usr/bin/love" "/home/a b/game" "/tmp/x$y"))))
+
+    (it "runs one helper at a time, the newest request waiting, and settles each key once"
+      (fn []
+        ;; A stand-in for start!'s thread: jobs finish when the test says so.
+        (let [started []
+              w {:enabled? true :settled {} :settled-count 0 :running nil :queued nil
+                 :start! (fn [w key _source]
+                           (table.insert started key)
+                           (set w.running {: key :channel {:pop #(?. w.outcome key)}
+                                           :thread {:getError #nil} :path "/nonexistent"})
+                           true)
+                 :outcome {}}]
+          (assert.is_false (warm.ready? w :a #"A"))
+          (assert.are.equal :running (warm.status w :a))
+          (assert.is_false (warm.ready? w :b #"B"))
+          (assert.is_false (warm.ready? w :c #"C"))   ; c replaces b in the queue
+          (assert.are.equal :queued (warm.status w :c))
+          (assert.are.equal nil (warm.status w :b))
+          (assert.are.same [:a] started)
+          (tset w.outcome :a true)
+          (warm.poll! w)
+          (assert.are.equal :done (warm.status w :a))
+          (assert.is_true (warm.ready? w :a #"A"))
+          (assert.are.same [:a :c] started)
+          (tset w.outcome :c false)
+          (warm.poll! w)
+          (assert.are.equal :failed (warm.status w :c))
+          ;; A failed helper leaves the compile to the player: ready.
+          (assert.is_true (warm.ready? w :c #"C"))
+          ;; A shader that cannot be generated needs no helper: the player reports it.
+          (assert.is_true (warm.ready? w :d #(values nil "no shader")))
+          (assert.are.same [:a :c] started))))
+
+    (it "leaves everything to the player when it is off"
+      (fn []
+        (assert.is_true (warm.ready? {:enabled? false} :a #(error "not asked")))))))
