@@ -156,18 +156,32 @@ next frame."
              (string.format "a structural edit waits for the compile helper, the last scene on screen (%s, %s)"
                             (if w.enabled? "helper found" "no helper") (tostring state.error)))
       (wait 2)
-      (check (= state.scene old) "the last scene is still drawn while the helper works")
+      (check (and (= state.scene old) (= (?. state.drawn :scene) old))
+             "the last scene is still drawn while the helper works")
       ;; The cap only stops a broken helper from hanging the check: a helper takes
       ;; about a second here.
       (let [until (+ (love.timer.getTime) 240)]
         (while (and state.pending (< (love.timer.getTime) until))
           (wait)))
-      (check (and (not= state.scene old) (= state.reloads (+ reloads 1))
+      (wait 2)
+      (check (and (not= state.scene old) (= state.drawn.scene state.scene) (= state.reloads (+ reloads 1))
                   (= state.cache.compiles (+ compiles 1)) (?. state.last-load :helper?)
                   (= state.error nil) (= (warm.status w (. (play.current-plan) :key)) :done))
-             (string.format "then the edited scene shows, its shader compiled once after the helper (%s, %s)"
+             (string.format "then the edited scene is drawn, its shader compiled once after the helper (%s, %s)"
                             (tostring (warm.status w (?. (play.current-plan) :key)))
                             (tostring state.error)))
+      ;; Another view is another shader: the last image stays until its helper is done.
+      (let [before state.drawn.plan.key]
+        (push-key :tab)
+        (wait 2)
+        (check (and state.waiting-since (= state.drawn.plan.key before))
+               "a new view waits for the compile helper, the last image on screen")
+        (let [until (+ (love.timer.getTime) 240)]
+          (while (and state.waiting-since (< (love.timer.getTime) until))
+            (wait)))
+        (wait 2)
+        (check (and (not= state.drawn.plan.key before) (= state.error nil))
+               (string.format "then the new view is drawn (%s)" (tostring state.view))))
       (set state.warm nil))
     ;; ] opens the next bundled scene and keeps the render scale chosen with -.
     (let [scale state.scale]
