@@ -53,7 +53,7 @@ end
 
 -- The player's compile helper loads only what it needs (see src/app/warm-helper.fnl).
 if has_arg("--warm-shader") then
-  require("src.app.warm-helper")
+  require("src.app.warm-helper")["install!"]()
 else
   require("main")
 end

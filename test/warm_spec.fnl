@@ -3,6 +3,7 @@
 ;; stand-in for the LÖVE thread. The whole path (a helper process, the player waiting
 ;; for it) runs in `love . --input-check` (test/input_spec.fnl).
 (local warm (require :src.app.warm))
+(local helper (require :src.app.warm-helper))
 
 (fn env [vars] (fn [name] (. vars name)))
 
@@ -62,6 +63,13 @@
           ;; A shader that cannot be generated needs no helper: the player reports it.
           (assert.is_true (warm.ready? w :d #(values nil "no shader")))
           (assert.are.same [:a :c] started))))
+
+    (it "hands the helper the player's texture sizes in lines it removes again"
+      (fn []
+        (let [source "//warm-texture uFieldCells 1024 22\n//warm-texture uFieldObjects 1024 30\nvoid main() {}\n// a comment\n"]
+          (assert.are.same [["uFieldCells" 1024 22] ["uFieldObjects" 1024 30]] (helper.textures source))
+          (assert.are.equal "void main() {}\n// a comment\n" (helper.shader-text source))
+          (assert.are.same [] (helper.textures "void main() {}\n")))))
 
     (it "leaves everything to the player when it is off"
       (fn []

@@ -17,6 +17,7 @@
 (local panel (require :src.app.panel))
 (local warm (require :src.app.warm))
 (local codegen (require :src.render.codegen))
+(local uniforms (require :src.render.uniforms))
 
 (local move-speed 10)   ; world units per second
 (local turn-speed 90)   ; degrees per second
@@ -74,12 +75,24 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
   (frame.plan-for scene {:view state.view :reflections reflections
                          :model (when state.classic? :classic)}))
 
-(fn compile-waits? [plan]
-  "True while `plan`'s shader is being compiled by a helper process (warm.fnl): the
-player goes on drawing what it drew last. Never when nothing is on screen yet, or
-when the shader is compiled already."
+(fn warm-source [scene plan]
+  ;; What the compile helper gets: the shader's text, after a line for each texture
+  ;; the player will bind with its size (see warm-helper.fnl).
+  (case (codegen.shader plan :love)
+    source (.. (table.concat
+                 (icollect [_ u (ipairs (uniforms.pack scene plan state.cam 8 8))]
+                   (when (= u.type :texture)
+                     (string.format "//warm-texture %s %d %d\n" u.name u.texture.width
+                                    u.texture.height))))
+               source)
+    (nil err) (values nil err)))
+
+(fn compile-waits? [scene plan]
+  "True while the shader of `plan` (for `scene`) is being compiled by a helper process
+(warm.fnl): the player goes on drawing what it drew last. Never when nothing is on
+screen yet, or when the shader is compiled already."
   (and state.warm state.drawn (not (gpu.cached? state.cache plan))
-       (not (warm.ready? state.warm plan.key #(codegen.shader plan :love)))))
+       (not (warm.ready? state.warm plan.key #(warm-source scene plan)))))
 
 (fn load-unprotected! [path fresh? ?since]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
@@ -107,7 +120,7 @@ loads the file again once the helper is done, `?since` the time of the first try
                               scene.render.reflections
                               state.reflections)
               (plan perr) (plan-with scene reflections)
-              wait? (and plan (compile-waits? plan))
+              wait? (and plan (compile-waits? scene plan))
               compiles-before state.cache.compiles
               (shader serr) (if wait? (values nil nil)
                                 plan (gpu.shader-for state.cache plan)
@@ -568,7 +581,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
 of a new plan (a view or a switch changed the shader), the last ones drawn."
   (case (current-plan)
     (nil err) (values nil err)
-    plan (if (compile-waits? plan)
+    plan (if (compile-waits? state.scene plan)
              (do (when (not state.waiting-since)
                    (set state.waiting-since (love.timer.getTime)))
                  (values state.drawn.scene state.drawn.plan))

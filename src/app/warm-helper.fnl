@@ -13,6 +13,17 @@
     (when (= a "--warm-shader") (set path (. args (+ i 1)))))
   path)
 
+(fn textures [source]
+  "The textures the player will bind, from the lines `//warm-texture NAME W H` it puts
+before the shader: [[name w h] ...]."
+  (icollect [name w h (source:gmatch "//warm%-texture ([%w_]+) (%d+) (%d+)\n")]
+    [name (tonumber w) (tonumber h)]))
+
+(fn shader-text [source]
+  ;; Without those lines: the text the player compiles, so that the driver's cache
+  ;; finds it.
+  (pick-values 1 (source:gsub "//warm%-texture [^\n]*\n" "")))
+
 (fn fail! [message]
   (io.stderr:write (.. "error: " message "\n"))
   (love.event.quit 1))
@@ -23,18 +34,30 @@
         source (case (and path (io.open path :rb))
                  f (let [t (f:read :*a)] (f:close) t))]
     (if (not source) (fail! (.. (tostring path) ": cannot read the shader"))
-        (case (pcall love.graphics.newShader source)
+        (case (pcall love.graphics.newShader (shader-text source))
           (false err) (fail! (.. path ": the shader did not compile:\n" (tostring err)))
           (true shader) (let [canvas (love.graphics.newCanvas 8 8)]
+                          ;; A field's textures as the player makes them: rgba32f,
+                          ;; sampled nearest, of the same size (gpu.float-image). The
+                          ;; driver's code for the shader depends on the format, the
+                          ;; sampler and whether each side is a power of two.
+                          (each [_ [name w h] (ipairs (textures source))]
+                            (when (shader:hasUniform name)
+                              (let [image (love.graphics.newImage
+                                            (love.image.newImageData w h :rgba32f))]
+                                (image:setFilter :nearest :nearest)
+                                (shader:send name image))))
                           (quad.draw-into! canvas shader)
                           ;; Reading a pixel back waits until the draw has run.
                           (: (canvas:newImageData 1 1 0 0 1 1) :release)
                           (love.event.quit 0))))))
 
-(set love.errorhandler
-     (fn [message]
-       (io.stderr:write (.. "error: " (tostring message) "\n"))
-       (os.exit 1)))
-(set love.load warm!)
+(fn install! []
+  "Make LÖVE run the helper: conf.lua calls this instead of loading main.fnl."
+  (set love.errorhandler
+       (fn [message]
+         (io.stderr:write (.. "error: " (tostring message) "\n"))
+         (os.exit 1)))
+  (set love.load warm!))
 
-{: warm! : shader-path}
+{: install! : warm! : shader-path : textures : shader-text}
