@@ -12,16 +12,12 @@
 (local play (require :src.app.play))
 (local files (require :src.util.files))
 (local filestat (require :src.util.filestat))
+(local scripted (require :src.app.scripted))
 
 (fn with-sphere [text color]
   ;; The scene's own text, evaluated as it is, with one more top-level object.
   (.. "(let [scene (do " text "\n)]\n  (table.insert scene.objects {:kind :sphere :radius 0.05 :pos [0 0 -50] :color "
       color "})\n  scene)\n"))
-
-(fn temp-path []
-  (let [base (os.tmpname)]
-    (os.remove base)
-    (.. base ".fnl")))
 
 (fn write! [path text]
   (with-open [f (assert (io.open path :wb))] (f:write text)))
@@ -59,7 +55,7 @@
   "Play a copy of `o.scene`, edit it twice and print the latencies; quits 0, or 1
 when the scene cannot be read."
   (let [text (files.read-user o.scene)
-        path (temp-path)]
+        path (scripted.temp-scene-path)]
     (if (not text)
         (do (io.stderr:write (.. "error: " o.scene ": cannot read the scene file\n"))
             (love.event.quit 1))
@@ -67,23 +63,17 @@ when the scene cannot be read."
             (love.window.setMode 640 360)
             (set play.state.quiet? true)
             (play.start! {:scene path :frames 0 :warm? (not o.sync-compile?)})
-            (let [co (coroutine.create
-                       #(script path text o
-                                (fn [label ms longest note]
-                                  (print (string.format "%s %s, %s: shown after %.0f ms, longest frame %.0f ms%s"
-                                                        o.scene label
-                                                        (if (?. play.state.warm :enabled?) "compile helper"
-                                                            "compiled in the player")
-                                                        ms longest note)))))
-                  update love.update]
-              (set love.update
-                   (fn [dt]
-                     (update dt)
-                     (let [(ok? err) (coroutine.resume co)]
-                       (when (not ok?)
-                         (io.stderr:write (.. "error: " (debug.traceback co (tostring err)) "\n")))
-                       (when (not= (coroutine.status co) :suspended)
-                         (os.remove path)
-                         (love.event.quit (if ok? 0 1)))))))))))
+            (scripted.run-per-frame!
+              #(script path text o
+                       (fn [label ms longest note]
+                         (print (string.format "%s %s, %s: shown after %.0f ms, longest frame %.0f ms%s"
+                                               o.scene label
+                                               (if (?. play.state.warm :enabled?) "compile helper"
+                                                   "compiled in the player")
+                                               ms longest note))))
+              #(io.stderr:write (.. "error: " $ "\n"))
+              (fn [ok?]
+                (os.remove path)
+                (love.event.quit (if ok? 0 1))))))))
 
 {: run}

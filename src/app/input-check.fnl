@@ -11,6 +11,7 @@
 (local files (require :src.util.files))
 (local filestat (require :src.util.filestat))
 (local warm (require :src.app.warm))
+(local scripted (require :src.app.scripted))
 
 (local scene-text
   ";; a scene for the input check: comments and odd layout stay as they are
@@ -25,11 +26,6 @@
             :pos [0 0 1] :color (param :tint [0.8 0.3 0.2])}
            {:kind :plane :height 0 :color [0.6 0.6 0.6]}]}
 ")
-
-(fn temp-path []
-  (let [base (os.tmpname)]
-    (os.remove base)
-    (.. base ".fnl")))
 
 (fn distance [a b]
   (let [dx (- (. a 1) (. b 1)) dy (- (. a 2) (. b 2)) dz (- (. a 3) (. b 3))]
@@ -204,7 +200,7 @@ next frame."
 (fn run [o]
   "Start the player on a temporary scene and run the checks; quits with 0 when
 every check held, else 1."
-  (let [path (temp-path)
+  (let [path (scripted.temp-scene-path)
         failures []
         check (fn [ok? what]
                 (print (.. "input check: " what ": " (if ok? "ok" "FAILED")))
@@ -213,17 +209,12 @@ every check held, else 1."
     (love.window.setMode 320 180)
     (set play.state.quiet? true)
     (play.start! {:scene path :frames 0})
-    (let [co (coroutine.create #(script path check))
-          update love.update]
-      (set love.update
-           (fn [dt]
-             (update dt)
-             (let [(ok? err) (coroutine.resume co)]
-               (when (not ok?)
-                 (check false (.. "the check itself failed: " (debug.traceback co (tostring err)))))
-               (when (not= (coroutine.status co) :suspended)
-                 (os.remove path)
-                 (print (string.format "input checks: %d failed" (length failures)))
-                 (love.event.quit (if (= 0 (length failures)) 0 1)))))))))
+    (scripted.run-per-frame!
+      #(script path check)
+      #(check false (.. "the check itself failed: " $))
+      (fn [_]
+        (os.remove path)
+        (print (string.format "input checks: %d failed" (length failures)))
+        (love.event.quit (if (= 0 (length failures)) 0 1))))))
 
 {: run}
