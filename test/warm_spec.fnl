@@ -71,6 +71,21 @@
           (assert.are.equal "void main() {}\n// a comment\n" (helper.shader-text source))
           (assert.are.same [] (helper.textures "void main() {}\n")))))
 
+    (it "stops asking for helpers after three failures in a row"
+      (fn []
+        (let [w {:enabled? true :settled {} :settled-count 0
+                 :start! (fn [w key _source]
+                           (set w.running {: key :channel {:pop #false} :thread {:getError #nil}
+                                           :path "/nonexistent"})
+                           true)}]
+          (each [_ key (ipairs [:a :b :c])]
+            (assert.is_true w.enabled?)
+            (assert.is_false (warm.ready? w key #"S"))
+            (warm.poll! w))
+          (assert.is_false w.enabled?)
+          (assert.is_true w.gave-up?)
+          (assert.is_true (warm.ready? w :d #(error "not asked"))))))
+
     (it "leaves everything to the player when it is off"
       (fn []
         (assert.is_true (warm.ready? {:enabled? false} :a #(error "not asked")))))))

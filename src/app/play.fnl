@@ -175,6 +175,9 @@ itself is shown like a broken file, and the last good scene keeps running."
 cache hit in the driver, or a plain compile when the helper failed)."
   (when state.warm
     (warm.poll! state.warm)
+    (when (and state.warm.gave-up? (not state.warm.said?))
+      (set state.warm.said? true)
+      (say! "the compile helper failed three times in a row: shaders compile in the player from now on"))
     (case state.pending
       p (when (warm.settled? state.warm p.key)
           (load! p.path p.fresh? p.start)))))

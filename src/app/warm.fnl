@@ -9,6 +9,7 @@
 ;; before: warming only ever moves work off the player's thread.
 
 (local max-settled 64)
+(local max-failures 3)
 
 ;; The helper runs in a LÖVE thread (os.execute blocks it, not the player) and reports
 ;; whether it succeeded on the channel it was given.
@@ -94,7 +95,13 @@ is 0. `getenv` looks up the environment (os.getenv)."
         (when (or (not= ok nil) err)
           (os.remove job.path)
           (settle! w job.key (if (and ok (not err)) :done :failed))
-          (set w.running nil)))))
+          (set w.running nil)
+          ;; A helper that fails again and again (no LÖVE to start, a driver that
+          ;; will not start headless) only adds its start to every edit: stop asking.
+          (set w.failures (if (and ok (not err)) 0 (+ (or w.failures 0) 1)))
+          (when (>= w.failures max-failures)
+            (set w.enabled? false)
+            (set w.gave-up? true))))))
   (when (and (not w.running) w.queued)
     (let [{: key : source} w.queued]
       (set w.queued nil)
