@@ -52,7 +52,7 @@ function love.conf(t)
 end
 
 -- The player's compile helper loads only what it needs (see src/app/warm-helper.fnl).
-if has_arg("--warm-shader") then
+if has_arg("--warm-shader") or has_arg("--warm-server") then
   require("src.app.warm-helper")["install!"]()
 else
   require("main")

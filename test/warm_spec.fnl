@@ -29,8 +29,21 @@
         (assert.are.equal "'a b'" (warm.shell-quote "a b"))
         (assert.are.equal "'it'\\''s; rm -rf x'" (warm.shell-quote "it's; rm -rf x"))
         (assert.are.equal
-          "SDL_VIDEODRIVER=offscreen '/usr/bin/love' '/home/a b/game' --warm-shader '/tmp/x$y' >/dev/null 2>&1"
-          (warm.helper-command "/usr/bin/love" "/home/a b/game" "/tmp/x$y"))))
+          "SDL_VIDEODRIVER=offscreen '/usr/bin/love' '/home/a b/game' --warm-server '/tmp/x$y' 4242 >/dev/null 2>&1"
+          (warm.helper-command "/usr/bin/love" "/home/a b/game" "/tmp/x$y" 4242))))
+
+    (it "writes a job whole: under its own name only once complete"
+      (fn []
+        (let [dir (.. (os.tmpname) ".d")
+              path (warm.job-path dir 7 :glsl)]
+          (os.execute (.. "mkdir " dir))
+          (assert.are.equal (.. dir "/job-7.glsl") path)
+          (assert.is_true (warm.write-whole! path "void main() {}"))
+          (assert.are.equal "void main() {}" (with-open [f (io.open path)] (f:read :*a)))
+          (assert.is_nil (io.open (.. path ".part")))
+          (os.remove path)
+          (os.remove dir)
+          (assert.is_nil (warm.write-whole! (.. dir "/gone/job-1.glsl") "x")))))
 
     (it "runs one helper at a time, the newest request waiting, and settles each key once"
       (fn []
@@ -39,8 +52,8 @@
               w {:enabled? true :settled {} :settled-count 0 :running nil :queued nil
                  :start! (fn [w key _source]
                            (table.insert started key)
-                           (set w.running {: key :channel {:pop #(?. w.outcome key)}
-                                           :thread {:getError #nil} :path "/nonexistent"})
+                           (set w.running {: key :check #(. {true :done false :failed}
+                                                            (?. w.outcome key))})
                            true)
                  :outcome {}}]
           (assert.is_false (warm.ready? w :a #"A"))
@@ -69,14 +82,15 @@
         (let [source "//warm-texture uFieldCells 1024 22\n//warm-texture uFieldObjects 1024 30\nvoid main() {}\n// a comment\n"]
           (assert.are.same [["uFieldCells" 1024 22] ["uFieldObjects" 1024 30]] (helper.textures source))
           (assert.are.equal "void main() {}\n// a comment\n" (helper.shader-text source))
-          (assert.are.same [] (helper.textures "void main() {}\n")))))
+          (assert.are.same [] (helper.textures "void main() {}\n"))
+          (assert.are.equal "/tmp/d" (helper.arg-after ["x" "--warm-server" "/tmp/d" "12"] "--warm-server"))
+          (assert.are.equal "12" (helper.arg-after ["x" "--warm-server" "/tmp/d" "12"] "--warm-server" 2)))))
 
     (it "stops asking for helpers after three failures in a row"
       (fn []
         (let [w {:enabled? true :settled {} :settled-count 0
                  :start! (fn [w key _source]
-                           (set w.running {: key :channel {:pop #false} :thread {:getError #nil}
-                                           :path "/nonexistent"})
+                           (set w.running {: key :check #:failed})
                            true)}]
           (each [_ key (ipairs [:a :b :c])]
             (assert.is_true w.enabled?)

@@ -634,6 +634,7 @@ of a new plan (a view or a switch changed the shader), the last ones drawn."
   (set state.warm (when options.warm? (warm.new)))
   (set state.interactive-fps (or options.target-fps default-interactive-fps))
   (load! options.scene true)
+  (when state.warm (warm.prepare! state.warm))
   (when (and options.shot (not state.scene))
     ;; Nothing to shoot: a script waits on this run, so fail like --render does.
     (io.stderr:write (.. "error: " (or state.error (.. options.scene ": no scene")) "\n"))

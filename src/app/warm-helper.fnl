@@ -1,17 +1,21 @@
-;; `love GAME --warm-shader FILE.glsl`: the player's compile helper (see warm.fnl).
-;; Compiles the shader in FILE and draws it once into a small canvas, so the driver's
-;; on-disk cache holds the program and the code of its first draw; exits 0, or 1 with
-;; the driver's message. conf.lua loads this module instead of main.fnl, so the helper
-;; starts in about a quarter of a second (the player's modules take a second to
-;; compile).
+;; The player's compile helper (see warm.fnl). It compiles a shader and draws it once
+;; into a small canvas, so the driver's on-disk cache holds the program and the code
+;; of its first draw. conf.lua loads this module instead of main.fnl when the command
+;; line asks for it, so the helper starts in about a quarter of a second (the player's
+;; modules take a second to compile).
+;;
+;;   love GAME --warm-shader FILE.glsl   one shader; exits 0, or 1 with the message
+;;   love GAME --warm-server DIR PID     the player's helper: jobs from DIR (job-N.glsl,
+;;                                       answered by job-N.done) until PID is gone
 
 (local quad (require :src.backend.quad))
 
-(fn shader-path [args]
-  (var path nil)
+(fn arg-after [args flag ?k]
+  "The argument `?k` places (default 1) after `flag` in `args`."
+  (var found nil)
   (each [i a (ipairs args)]
-    (when (= a "--warm-shader") (set path (. args (+ i 1)))))
-  path)
+    (when (= a flag) (set found (. args (+ i (or ?k 1))))))
+  found)
 
 (fn textures [source]
   "The textures the player will bind, from the lines `//warm-texture NAME W H` it puts
@@ -24,33 +28,78 @@ before the shader: [[name w h] ...]."
   ;; finds it.
   (pick-values 1 (source:gsub "//warm%-texture [^\n]*\n" "")))
 
+(fn read-file [path]
+  (case (io.open path :rb)
+    f (let [t (f:read :*a)] (f:close) t)))
+
+(fn warm-source! [source]
+  "Compile `source` and draw it once. True, or nil and the driver's message."
+  (case (pcall love.graphics.newShader (shader-text source))
+    (false err) (values nil (.. "the shader did not compile:\n" (tostring err)))
+    (true shader)
+    (let [canvas (love.graphics.newCanvas 8 8)
+          ;; A field's textures as the player makes them: rgba32f, sampled nearest,
+          ;; of the same size (gpu.float-image). The driver's code for the shader
+          ;; depends on the format, the sampler and whether each side is a power of two.
+          images (icollect [_ [name w h] (ipairs (textures source))]
+                   (when (shader:hasUniform name)
+                     (let [data (love.image.newImageData w h :rgba32f)
+                           image (love.graphics.newImage data)]
+                       (data:release)
+                       (image:setFilter :nearest :nearest)
+                       (shader:send name image)
+                       image)))]
+      (quad.draw-into! canvas shader)
+      ;; Reading a pixel back waits until the draw has run.
+      (: (canvas:newImageData 1 1 0 0 1 1) :release)
+      (each [_ image (ipairs images)] (image:release))
+      (canvas:release)
+      (shader:release)
+      true)))
+
+(fn write-whole! [path text]
+  ;; As warm.write-whole!: the player never reads half an answer.
+  (case (io.open (.. path ".part") :wb)
+    f (do (f:write text) (f:close) (os.rename (.. path ".part") path))))
+
+(fn alive? [pid]
+  (case (io.open (.. "/proc/" pid "/stat") :rb)
+    f (do (f:close) true)
+    _ false))
+
+(fn serve! [dir pid]
+  "Take jobs from `dir` in order until process `pid` is gone, then remove `dir`."
+  (var n 1)
+  (while (alive? pid)
+    (let [job (.. dir "/job-" n ".glsl")]
+      (case (read-file job)
+        source (do (os.remove job)
+                   (write-whole! (.. dir "/job-" n ".done")
+                                 (if (warm-source! source) "ok" "failed"))
+                   (set n (+ n 1)))
+        _ (love.timer.sleep 0.02))))
+  ;; What the player left behind: answers it never read, a job it never saw taken.
+  (for [i (math.max 1 (- n 1)) (+ n 1)]
+    (each [_ ext (ipairs [:glsl :done :glsl.part :done.part])]
+      (os.remove (.. dir "/job-" i "." ext))))
+  (os.remove dir)
+  (love.event.quit 0))
+
 (fn fail! [message]
   (io.stderr:write (.. "error: " message "\n"))
   (love.event.quit 1))
 
-(fn warm! [args]
-  "Compile and draw the shader named after --warm-shader in `args`."
-  (let [path (shader-path args)
-        source (case (and path (io.open path :rb))
-                 f (let [t (f:read :*a)] (f:close) t))]
-    (if (not source) (fail! (.. (tostring path) ": cannot read the shader"))
-        (case (pcall love.graphics.newShader (shader-text source))
-          (false err) (fail! (.. path ": the shader did not compile:\n" (tostring err)))
-          (true shader) (let [canvas (love.graphics.newCanvas 8 8)]
-                          ;; A field's textures as the player makes them: rgba32f,
-                          ;; sampled nearest, of the same size (gpu.float-image). The
-                          ;; driver's code for the shader depends on the format, the
-                          ;; sampler and whether each side is a power of two.
-                          (each [_ [name w h] (ipairs (textures source))]
-                            (when (shader:hasUniform name)
-                              (let [image (love.graphics.newImage
-                                            (love.image.newImageData w h :rgba32f))]
-                                (image:setFilter :nearest :nearest)
-                                (shader:send name image))))
-                          (quad.draw-into! canvas shader)
-                          ;; Reading a pixel back waits until the draw has run.
-                          (: (canvas:newImageData 1 1 0 0 1 1) :release)
-                          (love.event.quit 0))))))
+(fn run! [args]
+  "love.load of the helper: --warm-server DIR PID, or --warm-shader FILE."
+  (let [dir (arg-after args "--warm-server")
+        pid (tonumber (arg-after args "--warm-server" 2))
+        path (arg-after args "--warm-shader")
+        source (and path (read-file path))]
+    (if (and dir pid) (serve! dir pid)
+        (not source) (fail! (.. (tostring path) ": cannot read the shader"))
+        (case (warm-source! source)
+          true (love.event.quit 0)
+          (_ err) (fail! (.. path ": " err))))))
 
 (fn install! []
   "Make LÖVE run the helper: conf.lua calls this instead of loading main.fnl."
@@ -58,6 +107,6 @@ before the shader: [[name w h] ...]."
        (fn [message]
          (io.stderr:write (.. "error: " (tostring message) "\n"))
          (os.exit 1)))
-  (set love.load warm!))
+  (set love.load run!))
 
-{: install! : warm! : shader-path : textures : shader-text}
+{: install! : run! : arg-after : textures : shader-text}

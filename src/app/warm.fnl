@@ -7,12 +7,20 @@
 ;; done the player's own compile finds the cache filled and takes tens of ms.
 ;; A helper that fails, or a driver with no cache, leaves the compile to the player as
 ;; before: warming only ever moves work off the player's thread.
+;;
+;; The helper is one process for the player's lifetime (`love GAME --warm-server DIR
+;; PID`, started with the first request), so an edit does not pay LÖVE's start (about
+;; 0.3 s). It takes jobs as files in DIR: the player writes job-N.glsl, the helper
+;; answers job-N.done ("ok" or "failed"); both appear whole (written, then renamed). It
+;; quits when process PID (the player) is gone. A LÖVE thread waits on it (os.execute),
+;; so the player knows when it has died: its job fails, and the next request starts a
+;; new one.
 
 (local max-settled 64)
 (local max-failures 3)
 
-;; The helper runs in a LÖVE thread (os.execute blocks it, not the player) and reports
-;; whether it succeeded on the channel it was given.
+;; The helper runs under a LÖVE thread (os.execute blocks it, not the player), which
+;; says on its channel when the helper has quit.
 (local thread-code "
 local command, channel = ...
 local status = os.execute(command)
@@ -22,12 +30,27 @@ channel:push(status == 0 or status == true)
 (fn shell-quote [s]
   (.. "'" (pick-values 1 (s:gsub "'" "'\\''")) "'"))
 
-(fn helper-command [love-exe game-source shader-path]
-  "The shell command that fills the driver's cache with the shader in `shader-path`:
-LÖVE on the same game, headless (SDL's offscreen driver; Mesa shares one cache between
-it and a window), its output discarded."
-  (string.format "SDL_VIDEODRIVER=offscreen %s %s --warm-shader %s >/dev/null 2>&1"
-                 (shell-quote love-exe) (shell-quote game-source) (shell-quote shader-path)))
+(fn helper-command [love-exe game-source dir pid]
+  "The shell command that starts the helper: LÖVE on the same game, headless (SDL's
+offscreen driver; Mesa shares one cache between it and a window), taking jobs in
+`dir` for as long as process `pid` lives, its output discarded."
+  (string.format "SDL_VIDEODRIVER=offscreen %s %s --warm-server %s %d >/dev/null 2>&1"
+                 (shell-quote love-exe) (shell-quote game-source) (shell-quote dir) pid))
+
+(fn job-path [dir n ext]
+  "The file of job `n` in `dir`: job-N.glsl (the shader) or job-N.done (the answer)."
+  (.. dir "/job-" n "." ext))
+
+(fn write-whole! [path text]
+  "Write `text` to `path` so that a reader never sees part of it (a temporary file
+renamed over it). True, or nil and a message."
+  (let [tmp (.. path ".part")]
+    (case (io.open tmp :wb)
+      f (do (f:write text) (f:close)
+            (case (os.rename tmp path)
+              true true
+              (_ err) (values nil err)))
+      (nil err) (values nil err))))
 
 (fn env-true? [v]
   (and v (not= nil (. {:1 true :true true :y true :yes true} (v:lower)))))
@@ -44,11 +67,15 @@ is 0. `getenv` looks up the environment (os.getenv)."
       (not= (getenv "__GL_SHADER_DISK_CACHE") "0")
       false))
 
+(fn shell-line [command]
+  (let [p (io.popen command)
+        l (when p (p:read "*l"))]
+    (when p (p:close))
+    (when (and l (not= l "")) l)))
+
 (fn love-executable []
   ;; The running LÖVE binary (Linux: /proc), else the name it was started by.
-  (let [p (io.popen "readlink /proc/$PPID/exe 2>/dev/null")
-        exe (when p (let [l (p:read "*l")] (p:close) l))]
-    (if (and exe (not= exe "")) exe (?. _G.arg -2))))
+  (or (shell-line "readlink /proc/$PPID/exe 2>/dev/null") (?. _G.arg -2)))
 
 (fn new []
   "A warmer for the running player: enabled on Linux when the driver's cache is shared
@@ -60,24 +87,62 @@ is 0. `getenv` looks up the environment (os.getenv)."
      :exe exe :source source
      ;; plan key -> :done or :failed, once a helper has finished for it
      :settled {} :settled-count 0
-     ;; the helper at work ({: key : thread : channel : path}) and the one key waiting
-     ;; for it (a newer request replaces an older waiting one)
+     ;; the job at work ({: key :check (fn [] nil | :done | :failed)}) and the one
+     ;; key waiting for it (a newer request replaces an older waiting one)
      :running nil :queued nil
-     ;; how a helper is started (warm_spec gives a stand-in; nil: a LÖVE thread)
+     ;; the helper process ({: dir : thread : channel}) and the last job's number
+     :server nil :jobs 0
+     ;; how a job is started (warm_spec gives a stand-in; nil: start!)
      :start! nil}))
 
-(fn start! [w key source]
-  (let [path (os.tmpname)
-        out (io.open path :w)]
-    (if (not out)
-        (values nil (.. path ": cannot write the shader for the helper"))
+(fn start-server! [w]
+  ;; The helper process and its job folder (a fresh name from os.tmpname).
+  (let [base (os.tmpname)
+        dir (.. base ".warm")
+        pid (tonumber (shell-line "echo $PPID"))]
+    (os.remove base)
+    (if (not (and pid (case (os.execute (.. "mkdir -m 700 " (shell-quote dir)))
+                        0 true
+                        true true
+                        _ false)))
+        (values nil (.. dir ": cannot make the helper's folder"))
         (let [channel (love.thread.newChannel)
               thread (love.thread.newThread thread-code)]
-          (out:write source)
-          (out:close)
-          (thread:start (helper-command w.exe w.source path) channel)
-          (set w.running {: key : thread : channel : path})
-          true))))
+          (thread:start (helper-command w.exe w.source dir pid) channel)
+          (set w.server {: dir : thread : channel})
+          w.server))))
+
+(fn prepare! [w]
+  "Start the helper now, before the first edit needs it (it takes about 0.3 s to start)."
+  (when (and w.enabled? (not w.server) (not w.start!))
+    (start-server! w)))
+
+(fn server-gone? [server]
+  (or (not= nil (server.channel:peek)) (not= nil (server.thread:getError))))
+
+(fn start! [w key source]
+  "Give the helper the job of compiling `source` for plan `key` (starting the helper
+first when there is none). True, or nil and a message."
+  (when (and w.server (server-gone? w.server))
+    (set w.server nil))
+  (case (or w.server (start-server! w))
+    server (let [n (+ w.jobs 1)
+                 done (job-path server.dir n :done)]
+             (set w.jobs n)
+             (case (write-whole! (job-path server.dir n :glsl) source)
+               true (do (set w.running
+                             {: key
+                              :check #(case (io.open done :rb)
+                                        f (let [answer (f:read :*a)]
+                                            (f:close)
+                                            (os.remove done)
+                                            (if (= answer "ok") :done :failed))
+                                        _ (when (server-gone? server)
+                                            (set w.server nil)
+                                            :failed))})
+                        true)
+               (_ err) (values nil err)))
+    (nil err) (values nil err)))
 
 (fn settle! [w key outcome]
   (when (>= w.settled-count max-settled)
@@ -90,18 +155,15 @@ is 0. `getenv` looks up the environment (os.getenv)."
   "Collect a finished helper and start the waiting one. Call once a frame."
   (let [job w.running]
     (when job
-      (let [ok (job.channel:pop)
-            err (job.thread:getError)]
-        (when (or (not= ok nil) err)
-          (os.remove job.path)
-          (settle! w job.key (if (and ok (not err)) :done :failed))
-          (set w.running nil)
-          ;; A helper that fails again and again (no LÖVE to start, a driver that
-          ;; will not start headless) only adds its start to every edit: stop asking.
-          (set w.failures (if (and ok (not err)) 0 (+ (or w.failures 0) 1)))
-          (when (>= w.failures max-failures)
-            (set w.enabled? false)
-            (set w.gave-up? true))))))
+      (case (job.check)
+        outcome (do (settle! w job.key outcome)
+                    (set w.running nil)
+                    ;; A helper that fails again and again (no LÖVE to start, a driver
+                    ;; that will not start headless) only delays every edit: stop asking.
+                    (set w.failures (if (= outcome :done) 0 (+ (or w.failures 0) 1)))
+                    (when (>= w.failures max-failures)
+                      (set w.enabled? false)
+                      (set w.gave-up? true))))))
   (when (and (not w.running) w.queued)
     (let [{: key : source} w.queued]
       (set w.queued nil)
@@ -134,4 +196,5 @@ compiles it and shows the message) and returns false."
                    false)
         _ (do (settle! w key :failed) true))))
 
-{: new : ready? : settled? : poll! : status : helper-command : cache-shared? : shell-quote}
+{: new : prepare! : ready? : settled? : poll! : status : helper-command : job-path : write-whole!
+ : cache-shared? : shell-quote}
