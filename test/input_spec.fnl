@@ -14,4 +14,4 @@
           (assert.truthy (out:find "exit:0" 1 true) out)
           ;; Every check ran (a check that stopped the script early would say fewer).
           (let [(_ n) (out:gsub "input check: [^\n]*: ok\n" "")]
-            (assert.are.equal 19 n out)))))))
+            (assert.are.equal 21 n out)))))))

@@ -178,6 +178,35 @@ next frame."
         (wait 2)
         (check (and (not= state.drawn.plan.key before) (= state.error nil))
                (string.format "then the new view is drawn (%s)" (tostring state.view))))
+      ;; A helper killed at work: its job fails (or is done, when the kill came too
+      ;; late), the player compiles the shader itself, and the next request starts
+      ;; another helper.
+      (let [before state.drawn.plan.key
+            dir (?. w.server :dir)
+            pid (case (and dir (io.open (.. dir "/pid")))
+                  f (let [l (f:read "*l")] (f:close) (tonumber l)))]
+        (push-key :tab)
+        (wait 2)
+        ;; As a crash would (SDL turns SIGTERM into a quit event the helper never reads).
+        (when pid (os.execute (.. "kill -9 " pid)))
+        (let [until (+ (love.timer.getTime) 240)]
+          (while (and state.waiting-since (< (love.timer.getTime) until))
+            (wait)))
+        (wait 2)
+        (check (and pid (not= state.drawn.plan.key before) (= state.error nil))
+               (string.format "a killed helper leaves the compile to the player (pid %s, job %s, view %s)"
+                              (tostring pid) (tostring (warm.status w state.drawn.plan.key))
+                              (tostring state.view)))
+        (push-key :tab)
+        (wait 2)
+        (let [until (+ (love.timer.getTime) 240)]
+          (while (and state.waiting-since (< (love.timer.getTime) until))
+            (wait)))
+        (wait 2)
+        (check (and w.server (not= w.server.dir dir)
+                    (= (warm.status w state.drawn.plan.key) :done))
+               (string.format "and the next new shader gets a new helper (%s)"
+                              (tostring (warm.status w state.drawn.plan.key)))))
       (set state.warm nil))
     ;; ] opens the next bundled scene and keeps the render scale chosen with -.
     (let [scale state.scale]

@@ -68,7 +68,10 @@ before the shader: [[name w h] ...]."
     _ false))
 
 (fn serve! [dir pid]
-  "Take jobs from `dir` in order until process `pid` is gone, then remove `dir`."
+  "Take jobs from `dir` in order until process `pid` is gone, then remove `dir`. Its
+own process id is in `dir`/pid."
+  (case (io.popen "echo $PPID")
+    p (let [own (p:read "*l")] (p:close) (write-whole! (.. dir "/pid") own)))
   (var n 1)
   (while (alive? pid)
     (let [job (.. dir "/job-" n ".glsl")]
@@ -82,6 +85,7 @@ before the shader: [[name w h] ...]."
   (for [i (math.max 1 (- n 1)) (+ n 1)]
     (each [_ ext (ipairs [:glsl :done :glsl.part :done.part])]
       (os.remove (.. dir "/job-" i "." ext))))
+  (os.remove (.. dir "/pid"))
   (os.remove dir)
   (love.event.quit 0))
 

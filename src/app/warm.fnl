@@ -90,8 +90,9 @@ is 0. `getenv` looks up the environment (os.getenv)."
      ;; the job at work ({: key :check (fn [] nil | :done | :failed)}) and the one
      ;; key waiting for it (a newer request replaces an older waiting one)
      :running nil :queued nil
-     ;; the helper process ({: dir : thread : channel}) and the last job's number
-     :server nil :jobs 0
+     ;; the helper process ({: dir : thread : channel : jobs}, jobs: the last job's
+     ;; number)
+     :server nil
      ;; how a job is started (warm_spec gives a stand-in; nil: start!)
      :start! nil}))
 
@@ -109,7 +110,7 @@ is 0. `getenv` looks up the environment (os.getenv)."
         (let [channel (love.thread.newChannel)
               thread (love.thread.newThread thread-code)]
           (thread:start (helper-command w.exe w.source dir pid) channel)
-          (set w.server {: dir : thread : channel})
+          (set w.server {: dir : thread : channel :jobs 0})
           w.server))))
 
 (fn prepare! [w]
@@ -120,15 +121,26 @@ is 0. `getenv` looks up the environment (os.getenv)."
 (fn server-gone? [server]
   (or (not= nil (server.channel:peek)) (not= nil (server.thread:getError))))
 
+(fn forget-server! [w]
+  ;; A helper that died (it removes its folder when it quits on its own): what it
+  ;; left in its folder, and the folder.
+  (let [server w.server]
+    (set w.server nil)
+    (for [i 1 (+ server.jobs 1)]
+      (each [_ ext (ipairs [:glsl :done :glsl.part :done.part])]
+        (os.remove (job-path server.dir i ext))))
+    (os.remove (.. server.dir "/pid"))
+    (os.remove server.dir)))
+
 (fn start! [w key source]
   "Give the helper the job of compiling `source` for plan `key` (starting the helper
 first when there is none). True, or nil and a message."
   (when (and w.server (server-gone? w.server))
-    (set w.server nil))
+    (forget-server! w))
   (case (or w.server (start-server! w))
-    server (let [n (+ w.jobs 1)
+    server (let [n (+ server.jobs 1)
                  done (job-path server.dir n :done)]
-             (set w.jobs n)
+             (set server.jobs n)
              (case (write-whole! (job-path server.dir n :glsl) source)
                true (do (set w.running
                              {: key
@@ -138,7 +150,7 @@ first when there is none). True, or nil and a message."
                                             (os.remove done)
                                             (if (= answer "ok") :done :failed))
                                         _ (when (server-gone? server)
-                                            (set w.server nil)
+                                            (when (= w.server server) (forget-server! w))
                                             :failed))})
                         true)
                (_ err) (values nil err)))
