@@ -604,7 +604,9 @@ of a new plan (a view or a switch changed the shader), the last ones drawn."
                            (and (or state.pending state.waiting-since) state.canvas)
                            (do (love.timer.sleep 0.01) (draw-stretched state.canvas))
                            (draw-still scene plan))
-                       (when (gpu.cached? state.cache plan)
+                       (when (and (or (not= scene (?. state.drawn :scene))
+                                      (not= plan (?. state.drawn :plan)))
+                                  (gpu.cached? state.cache plan))
                          (set state.drawn {: scene : plan})))))
   (when state.hud?
     (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))

@@ -9,6 +9,7 @@
 ;;                                       answered by job-N.done) until PID is gone
 
 (local quad (require :src.backend.quad))
+(local {: job-path : write-whole!} (require :src.app.warm))
 
 (fn arg-after [args flag ?k]
   "The argument `?k` places (default 1) after `flag` in `args`."
@@ -57,11 +58,6 @@ before the shader: [[name w h] ...]."
       (shader:release)
       true)))
 
-(fn write-whole! [path text]
-  ;; As warm.write-whole!: the player never reads half an answer.
-  (case (io.open (.. path ".part") :wb)
-    f (do (f:write text) (f:close) (os.rename (.. path ".part") path))))
-
 (fn alive? [pid]
   (case (io.open (.. "/proc/" pid "/stat") :rb)
     f (do (f:close) true)
@@ -74,17 +70,16 @@ own process id is in `dir`/pid."
     p (let [own (p:read "*l")] (p:close) (write-whole! (.. dir "/pid") own)))
   (var n 1)
   (while (alive? pid)
-    (let [job (.. dir "/job-" n ".glsl")]
+    (let [job (job-path dir n :glsl)]
       (case (read-file job)
         source (do (os.remove job)
-                   (write-whole! (.. dir "/job-" n ".done")
-                                 (if (warm-source! source) "ok" "failed"))
+                   (write-whole! (job-path dir n :done) (if (warm-source! source) "ok" "failed"))
                    (set n (+ n 1)))
         _ (love.timer.sleep 0.02))))
   ;; What the player left behind: answers it never read, a job it never saw taken.
   (for [i (math.max 1 (- n 1)) (+ n 1)]
     (each [_ ext (ipairs [:glsl :done :glsl.part :done.part])]
-      (os.remove (.. dir "/job-" i "." ext))))
+      (os.remove (job-path dir i ext))))
   (os.remove (.. dir "/pid"))
   (os.remove dir)
   (love.event.quit 0))

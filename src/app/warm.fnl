@@ -2,9 +2,9 @@
 ;; process that asks for it: on llvmpipe a showcase tree takes 0.6 to 2.3 s, most of
 ;; it in LLVM, and no driver here compiles in the background. Mesa and NVIDIA keep
 ;; what they compile in an on-disk cache that every process shares, so the player
-;; hands the new shader to a helper process (`love GAME --warm-shader FILE`: compile,
-;; draw once, quit) and keeps drawing the last scene meanwhile; once the helper is
-;; done the player's own compile finds the cache filled and takes tens of ms.
+;; hands the new shader to a helper process (src/app/warm-helper.fnl: it compiles the
+;; shader and draws it once) and keeps drawing the last scene meanwhile; once the
+;; helper is done the player's own compile finds the cache filled and takes tens of ms.
 ;; A helper that fails, or a driver with no cache, leaves the compile to the player as
 ;; before: warming only ever moves work off the player's thread.
 ;;
