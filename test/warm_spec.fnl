@@ -49,7 +49,7 @@
       (fn []
         ;; A stand-in for start!'s thread: jobs finish when the test says so.
         (let [started []
-              w {:enabled? true :settled {} :settled-count 0 :running nil :queued nil
+              w {:enabled? true :settled {} :settled-count 0 :failures 0 :running nil :queued nil
                  :start! (fn [w key _source]
                            (table.insert started key)
                            (set w.running {: key :check #(. {true :done false :failed}
@@ -88,7 +88,7 @@
 
     (it "stops asking for helpers after three failures in a row"
       (fn []
-        (let [w {:enabled? true :settled {} :settled-count 0
+        (let [w {:enabled? true :settled {} :settled-count 0 :failures 0
                  :start! (fn [w key _source]
                            (set w.running {: key :check #:failed})
                            true)}]

@@ -13,14 +13,12 @@
 (local files (require :src.util.files))
 (local filestat (require :src.util.filestat))
 (local scripted (require :src.app.scripted))
+(local write! scripted.write!)
 
 (fn with-sphere [text color]
   ;; The scene's own text, evaluated as it is, with one more top-level object.
   (.. "(let [scene (do " text "\n)]\n  (table.insert scene.objects {:kind :sphere :radius 0.05 :pos [0 0 -50] :color "
       color "})\n  scene)\n"))
-
-(fn write! [path text]
-  (with-open [f (assert (io.open path :wb))] (f:write text)))
 
 (fn script [path text o report]
   (let [state play.state

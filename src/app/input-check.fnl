@@ -144,8 +144,7 @@ next frame."
           text (files.read-user path)]
       (set w.enabled? (not= nil (and w.exe w.source)))
       (set state.warm w)
-      (with-open [f (assert (io.open path :wb))]
-        (f:write (pick-values 1 (text:gsub ":objects %[" ":objects [{:kind :box :size [1 1 1] :pos [2 0 0.5] :color [0.2 0.4 0.9]}\n"))))
+      (scripted.write! path (pick-values 1 (text:gsub ":objects %[" ":objects [{:kind :box :size [1 1 1] :pos [2 0 0.5] :color [0.2 0.4 0.9]}\n")))
       (play.poll-file! (+ (filestat.now) 0.05))
       (play.poll-file! (+ (filestat.now) 0.3))
       (check (and w.enabled? state.pending (= state.scene old) (= state.cache.compiles compiles))
@@ -240,7 +239,7 @@ every check held, else 1."
         check (fn [ok? what]
                 (print (.. "input check: " what ": " (if ok? "ok" "FAILED")))
                 (when (not ok?) (table.insert failures what)))]
-    (with-open [f (assert (io.open path :wb))] (f:write scene-text))
+    (scripted.write! path scene-text)
     (love.window.setMode 320 180)
     (set play.state.quiet? true)
     (play.start! {:scene path :frames 0})

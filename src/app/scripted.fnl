@@ -4,9 +4,15 @@
 
 (fn temp-scene-path []
   "A fresh path for a temporary scene file (.fnl) in the system's temp folder."
+  ;; os.tmpname creates the file it names: take the unique name, remove that file
+  ;; (it would be left behind empty), and use the name with .fnl added.
   (let [base (os.tmpname)]
     (os.remove base)
     (.. base ".fnl")))
+
+(fn write! [path text]
+  "Write `text` to the file at `path` (an error when it cannot)."
+  (with-open [f (assert (io.open path :wb))] (f:write text)))
 
 (fn run-per-frame! [script on-error on-end]
   "Resume `script` (a function; it yields once per frame) after each of the player's
@@ -23,4 +29,4 @@ or failed), `(on-end ok?)` runs."
              (when (not= (coroutine.status co) :suspended)
                (on-end ok?)))))))
 
-{: temp-scene-path : run-per-frame!}
+{: temp-scene-path : write! : run-per-frame!}

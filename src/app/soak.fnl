@@ -9,6 +9,7 @@
 (local filestat (require :src.util.filestat))
 (local camera (require :src.render.camera))
 (local {: median} (require :src.verify.compare))
+(local {: temp-scene-path : write!} (require :src.app.scripted))
 
 (local structures 12)   ; distinct sphere counts, more than the shader cache holds
 
@@ -38,15 +39,6 @@
 (fn broken-text [i]
   (. broken-texts (+ 1 (% i (length broken-texts)))))
 
-(fn temp-scene-path []
-  ;; os.tmpname creates the file it names: take the unique name, remove that file
-  ;; (it would be left behind empty), and use the name with .fnl added.
-  (let [base (os.tmpname)]
-    (os.remove base)
-    (.. base ".fnl")))
-
-(fn write! [path text]
-  (with-open [f (assert (io.open path :wb))] (f:write text)))
 
 (fn centre-pixel [canvas]
   (let [data (canvas:newImageData)

@@ -9,7 +9,7 @@
 ;;                                       answered by job-N.done) until PID is gone
 
 (local quad (require :src.backend.quad))
-(local {: job-path : write-whole!} (require :src.app.warm))
+(local {: job-path : write-whole! : remove-jobs!} (require :src.app.warm))
 
 (fn arg-after [args flag ?k]
   "The argument `?k` places (default 1) after `flag` in `args`."
@@ -77,9 +77,7 @@ own process id is in `dir`/pid."
                    (set n (+ n 1)))
         _ (love.timer.sleep 0.02))))
   ;; What the player left behind: answers it never read, a job it never saw taken.
-  (for [i (math.max 1 (- n 1)) (+ n 1)]
-    (each [_ ext (ipairs [:glsl :done :glsl.part :done.part])]
-      (os.remove (job-path dir i ext))))
+  (remove-jobs! dir (math.max 1 (- n 1)) (+ n 1))
   (os.remove (.. dir "/pid"))
   (os.remove dir)
   (love.event.quit 0))

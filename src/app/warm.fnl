@@ -41,6 +41,12 @@ offscreen driver; Mesa shares one cache between it and a window), taking jobs in
   "The file of job `n` in `dir`: job-N.glsl (the shader) or job-N.done (the answer)."
   (.. dir "/job-" n "." ext))
 
+(fn remove-jobs! [dir first final]
+  "Remove the files of jobs `first` to `final` in `dir`, whatever stage they are in."
+  (for [i first final]
+    (each [_ ext (ipairs [:glsl :done :glsl.part :done.part])]
+      (os.remove (job-path dir i ext)))))
+
 (fn write-whole! [path text]
   "Write `text` to `path` so that a reader never sees part of it (a temporary file
 renamed over it). True, or nil and a message."
@@ -87,6 +93,8 @@ is 0. `getenv` looks up the environment (os.getenv)."
      :exe exe :source source
      ;; plan key -> :done or :failed, once a helper has finished for it
      :settled {} :settled-count 0
+     ;; helpers that failed in a row (see poll!)
+     :failures 0
      ;; the job at work ({: key :check (fn [] nil | :done | :failed)}) and the one
      ;; key waiting for it (a newer request replaces an older waiting one)
      :running nil :queued nil
@@ -115,7 +123,7 @@ is 0. `getenv` looks up the environment (os.getenv)."
 
 (fn prepare! [w]
   "Start the helper now, before the first edit needs it (it takes about 0.3 s to start)."
-  (when (and w.enabled? (not w.server) (not w.start!))
+  (when (and w.enabled? (not w.server))
     (start-server! w)))
 
 (fn server-gone? [server]
@@ -126,9 +134,7 @@ is 0. `getenv` looks up the environment (os.getenv)."
   ;; left in its folder, and the folder.
   (let [server w.server]
     (set w.server nil)
-    (for [i 1 (+ server.jobs 1)]
-      (each [_ ext (ipairs [:glsl :done :glsl.part :done.part])]
-        (os.remove (job-path server.dir i ext))))
+    (remove-jobs! server.dir 1 (+ server.jobs 1))
     (os.remove (.. server.dir "/pid"))
     (os.remove server.dir)))
 
@@ -172,16 +178,16 @@ first when there is none). True, or nil and a message."
                     (set w.running nil)
                     ;; A helper that fails again and again (no LÖVE to start, a driver
                     ;; that will not start headless) only delays every edit: stop asking.
-                    (set w.failures (if (= outcome :done) 0 (+ (or w.failures 0) 1)))
+                    (set w.failures (if (= outcome :done) 0 (+ w.failures 1)))
                     (when (>= w.failures max-failures)
                       (set w.enabled? false)
                       (set w.gave-up? true))))))
   (when (and (not w.running) w.queued)
     (let [{: key : source} w.queued]
       (set w.queued nil)
-      (when (not (. w.settled key))
-        (when (not ((or w.start! start!) w key source))
-          (settle! w key :failed))))))
+      (when (and (not (. w.settled key))
+                 (not ((or w.start! start!) w key source)))
+        (settle! w key :failed)))))
 
 (fn status [w key]
   "What became of `key`: :done or :failed once its helper finished, :running or
@@ -209,4 +215,5 @@ compiles it and shows the message) and returns false."
         _ (do (settle! w key :failed) true))))
 
 {: new : prepare! : ready? : settled? : poll! : status : helper-command : job-path : write-whole!
+ : remove-jobs!
  : cache-shared? : shell-quote}
