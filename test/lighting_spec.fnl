@@ -116,7 +116,21 @@
           (assert.is_false p.lighting.soft?)
           (assert.is_nil (: (codegen.shader p :core) :find "float visibility(" 1 true)))
         (let [p (assert (plan.scene->plan (load (modern "{:fog 0.1 :lights [{:kind :sun} {:kind :point}]}"))))]
-          (assert.matches "modern lights:2 soft ao fog specular" p.key))))
+          ;; The point light's softness is 0 by default: its hard march is kept.
+          (assert.matches "modern lights:2 soft hard ao fog specular" p.key))))
+
+    (it "soft shadows hold the hard march only when a light may have softness 0"
+      (fn []
+        (let [hard-march "if (softness <= 0.0)"
+              soft (assert (plan.scene->plan (load (modern "{:lights [{:kind :sun :softness 0.1}]}"))))
+              mixed (assert (plan.scene->plan (load (modern "{:lights [{:kind :sun :softness 0.1} {:kind :point :softness 0}]}"))))
+              ;; A softness that is a function of time, 0 at t = 0: both marches.
+              animated (assert (plan.scene->plan (load (modern "{:lights [{:kind :sun :softness (fn [t] (* 0.01 t))}]}"))))]
+          (assert.is_nil (: (codegen.shader soft :core) :find hard-march 1 true))
+          (assert.is_truthy (: (codegen.shader mixed :core) :find hard-march 1 true))
+          (assert.is_true animated.lighting.soft?)
+          (assert.is_truthy (: (codegen.shader animated :core) :find hard-march 1 true))
+          (assert.are_not.equal soft.key mixed.key))))
 
     (it "values are uniforms: moving a light or changing the fog density keeps the key"
       (fn []

@@ -163,6 +163,8 @@ showcase scenes, and our pixel rate next to the article's CPU program."
         no-bounds {:bounds false}
         defaults-no-bounds (doto (collect [k x (pairs defaults-render)] k x) (tset :bounds false))
         seed "scenes/seed.fnl"
+        tower "scenes/twisted-tower.fnl"
+        before-far {:far-field? false :hard-march? true}
         specs [{:id :floor :label "seed, analytic ray tracer (floor)" :scene-path seed
                 :size fhd :source-path "test/bench/seed-analytic.glsl"}
                {:id :article-none :label "seed, article's, uniforms where used" :scene-path seed
@@ -184,6 +186,18 @@ showcase scenes, and our pixel rate next to the article's CPU program."
                 :scene-path "scenes/organic.fnl" :size hd :plan-options direct :render no-bounds}
                {:id :organic :label "organic 1280x720" :scene-path "scenes/organic.fnl" :size hd}
                {:id :small :label "seed, article's, 256x224" :scene-path seed :size small}
+               ;; Issue 25: tree scenes before (no far field, the hard march kept in
+               ;; soft shadows) and after, and a hand-written port of one of them.
+               {:id :tower-before :label "twisted-tower 1280x720, before far fields"
+                :scene-path tower :size hd :plan-options before-far}
+               {:id :tower :label "twisted-tower 1280x720" :scene-path tower :size hd}
+               {:id :tower-port :label "twisted-tower 1280x720, hand-written port"
+                :scene-path tower :size hd :source-path "test/bench/twisted-tower-port.glsl"}
+               {:id :organic-before :label "organic 1280x720, before far fields"
+                :scene-path "scenes/organic.fnl" :size hd :plan-options before-far}
+               {:id :flower-before :label "flower 1280x720, before far fields"
+                :scene-path "scenes/flower.fnl" :size hd :plan-options before-far}
+               {:id :flower :label "flower 1280x720" :scene-path "scenes/flower.fnl" :size hd}
                {:id :city :label "city (10,000 objects) 1280x720" :scene-path "scenes/city.fnl"
                 :size hd}]
         scaling (icollect [_ n (ipairs scaling-counts)]
@@ -239,6 +253,12 @@ showcase scenes, and our pixel rate next to the article's CPU program."
           (print (string.format "all levers: seed defaults %.2fx, gallery %.2fx, organic %.2fx faster"
                                 (ratio :defaults-none :defaults)
                                 (ratio :gallery-none :gallery) (ratio :organic-none :organic)))
+          (print (string.format "far fields (issue 25), 1280x720: twisted-tower %.2fx, organic %.2fx, flower %.2fx faster than before"
+                                (ratio :tower-before :tower) (ratio :organic-before :organic)
+                                (ratio :flower-before :flower)))
+          (let [(mean worst share) (image-difference v.tower v.tower-port)]
+            (print (string.format "twisted-tower, generated / hand-written port: %.2fx the port's time (goal <= 1.1x); images differ by mean %.2f/255, max %.0f/255, %.1f%% of pixels over 8/255"
+                                  (ratio :tower :tower-port) mean worst (* 100 share))))
           (each [_ id (ipairs [:article :defaults])]
             (let [(mean worst share) (image-difference (. v id) v.floor)]
               (print (string.format "image, %s vs the analytic tracer: mean %.2f/255, max %.0f/255, %.1f%% of pixels over 8/255 (one pixel in 16 compared)"

@@ -349,10 +349,15 @@ only when the plan has it."
     [(fill "shaders/shading/modern/sky.glsl" {})
      (if l.ao? (fill "shaders/shading/modern/occlusion.glsl" {}) [])
      (if l.fog? (fill "shaders/shading/modern/fog.glsl" {}) [])
-     (if plan.shadows?
-         (fill (.. "shaders/shading/modern/shadow-" (if l.soft? "soft" "hard") ".glsl")
-               {:shadow-march [march]})
-         [])
+     (if (not plan.shadows?) []
+         l.soft? (fill "shaders/shading/modern/shadow-soft.glsl"
+                       {:hard-shadow (if l.hard?
+                                         ["if (softness <= 0.0) {"
+                                          ["    int shadowSteps;" (.. "    " march)
+                                           "    return ts < reach ? 0.0 : 1.0;"]
+                                          "}"]
+                                         [])})
+         (fill "shaders/shading/modern/shadow-hard.glsl" {:shadow-march [march]}))
      (fill "shaders/shading/modern/lights.glsl"
            {:shadow (if plan.shadows? ["visible = visibility(origin, l, reach, uLightColors[i].w);"] [])
             :specular (if l.specular? (fill "shaders/shading/modern/specular.glsl" {}) [])})]))

@@ -53,7 +53,8 @@
     (when (not plan.load-once?) (table.insert parts "uniforms-direct"))
     (when plan.lighting
       (let [l plan.lighting]
-        (table.insert parts (.. "modern lights:" l.lights (if l.soft? " soft" "") (if l.ao? " ao" "")
+        (table.insert parts (.. "modern lights:" l.lights (if l.soft? " soft" "")
+                                (if (and l.soft? l.hard?) " hard" "") (if l.ao? " ao" "")
                                 (if l.fog? " fog" "") (if l.specular? " specular" "")))))
     (when (= plan.out-of-steps :surface) (table.insert parts "out-of-steps:surface"))
     (when (> plan.samples 1)
@@ -119,6 +120,10 @@ the copies, flower 193 against 221, gallery and the seed alike)."
   :model          :classic draws a scene that has :lighting with the article's model
                   (the player's m key)
   :field-cells    grid cells per field object (default src/render/field.fnl's)
+  :far-field?     false: no far field and no object guards in scene trees (the
+                  benchmark's before; see src/sdf/lower.fnl)
+  :hard-march?    true: soft shadows keep the hard march even when no light has
+                  softness 0 (the benchmark's before)
   :field?         false: no field (src/render/field.fnl) however many spheres and
                   boxes the scene has; they go into uniform arrays (the oracle's and
                   the benchmark's before)
@@ -139,7 +144,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                                (lower.lower (icollect [_ o (ipairs trees)]
                                               (doto (collect [k v (pairs o.tree)] k v)
                                                 (tset :index o.index)))
-                                            {:modern? (not= nil scene.lighting)})
+                                            {:modern? (not= nil scene.lighting)
+                                             :far-field? options.far-field?})
                                (values nil nil))
         kinds (icollect [_ g (ipairs groups)]
                 (let [n (length g.objects)]
@@ -189,12 +195,22 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
     ;; The modern lighting model (a :lighting section): which of its features the
     ;; shader holds.
     (when (and shaded? scene.lighting (not options.probe?) (not= options.model :classic))
-      (let [l scene.lighting]
+      (let [l scene.lighting
+            ;; A softness that is a function of time may be 0 at one time and not
+            ;; at another: its shader has both marches.
+            animated? (accumulate [found? false _ a (ipairs (or scene.animated []))]
+                        (or found? (and (= (. a.path 1) "lighting")
+                                        (= (. a.path (length a.path)) "softness"))))]
         (set plan.lighting
              {:lights (length l.lights)
               :soft? (and plan.shadows?
-                          (accumulate [soft? false _ light (ipairs l.lights)]
+                          (accumulate [soft? animated? _ light (ipairs l.lights)]
                             (or soft? (> light.softness 0))))
+              ;; A light of softness 0 among soft ones: the soft shadow keeps the
+              ;; hard march for it. A softness that is a function of time may reach 0.
+              :hard? (accumulate [hard? (or animated? options.hard-march?) _ light
+                                  (ipairs l.lights)]
+                       (or hard? (<= light.softness 0)))
               :ao? (> l.ao 0)
               :fog? (> l.fog 0)
               :specular? l.specular

@@ -51,6 +51,7 @@
     :distance (table.insert out (.. "float " ins.dout " = "
                                     (call ins.desc.glsl-name
                                           (.. ins.din ", " (reg ins.pin)) ins.args) ";"))
+    :far (table.insert out (.. "float " ins.dout " = max(" ins.din ", " ins.bin ");"))
     :divide (table.insert out (string.format "float %s = %s * %.9g;  // Lipschitz %.6g"
                                              ins.dout ins.din (/ 1 ins.k) ins.k))
     :combine (do
@@ -116,14 +117,35 @@ but those named in `?defined` (GLSL name -> true: already in the shader)."
 (fn object-comment [o]
   (.. "// " o.info.path ": " o.info.kind))
 
+(fn indented [lines]
+  (icollect [_ l (ipairs lines)] (.. "    " l)))
+
+(fn guarded-lines [o materials? tail]
+  "Lines of object `o`'s code, then the lines `tail` (which use its distance). With a
+guard (see src/sdf/lower.fnl), the code after the guard's box and `tail` run only
+where that box is nearer than d: elsewhere the object's value, at least the box's,
+could not lower d."
+  (if o.guard
+      (let [head (emit-code [] (fcollect [i 1 o.guard.head] (. o.code i)) materials?)
+            rest (emit-code [] (fcollect [i (+ o.guard.head 1) (length o.code)] (. o.code i))
+                            materials?)]
+        (table.insert head (.. "if (" o.guard.bout " < d) {"))
+        (each [_ l (ipairs (indented rest))] (table.insert head l))
+        (each [_ l (ipairs (indented tail))] (table.insert head l))
+        (table.insert head "}")
+        head)
+      (let [lines (emit-code [] o.code materials?)]
+        (each [_ l (ipairs tail)] (table.insert lines l))
+        lines)))
+
 (fn distance-terms [tape ?first-id]
   "Lines for map(): each tree object's distance, folded into d. With `?first-id`, for
 mapOthers(): each but the one gObject numbers (see color-terms)."
   (icollect [i o (ipairs tape.objects)]
     [(object-comment o)
      (if ?first-id (.. "if (gObject != " (+ ?first-id i -1) ") {") "{")
-     (icollect [_ l (ipairs (emit-code [] o.code false))] (.. "    " l))
-     (.. "    d = min(d, " o.dout ");") "}"]))
+     (indented (guarded-lines o false [(.. "d = min(d, " o.dout ");")]))
+     "}"]))
 
 (fn color-terms [tape mirrors? ?first-id]
   "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
@@ -135,11 +157,13 @@ tree objects are numbered from it in tape order (see object-terms)."
     (icollect [i o (ipairs tape.objects)]
       (let [row (if modern? (.. o.mout "[0]") o.mout)]
         [(object-comment o) "{"
-         (icollect [_ l (ipairs (emit-code [] o.code true))] (.. "    " l))
-         (.. "    if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
-             (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
-             (if modern? (.. " gMaterial = " o.mout "[1];") "")
-             (if ?first-id (.. " gObject = " (+ ?first-id i -1) ";") "") " }")
+         (indented
+          (guarded-lines
+           o true
+           [(.. "if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
+                (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
+                (if modern? (.. " gMaterial = " o.mout "[1];") "")
+                (if ?first-id (.. " gObject = " (+ ?first-id i -1) ";") "") " }")]))
          "}"]))))
 
 (fn object-terms [tape first-id]

@@ -71,6 +71,7 @@
     :distance (e.line indent (.. (e.decl ins.dout) " = "
                                  (call e ins.desc.cpu (.. (e.r ins.din) ", " (point e ins.pin))
                                        ins.args)))
+    :far (e.line indent (.. (e.decl ins.dout) " = math.max(" (e.r ins.din) ", " (e.r ins.bin) ")"))
     :divide (e.line indent (string.format "%s = %s / %.17g" (e.decl ins.dout) (e.r ins.din) ins.k))
     :combine
     (let [da (e.r ins.da) db (e.r ins.db)]

@@ -17,23 +17,40 @@
 ;;   {:op :distance :desc D :args A :din d :pin p :dout d2}
 ;;   {:op :combine :desc D :args A :da :db :ma :mb :dout :mout}
 ;;   {:op :divide :k number :din :dout}              Lipschitz correction
+;;   {:op :far :din d :bin b :dout d2}               d2 = max(d, b): the far field
+;;                                                   (b a box's signed distance, a :prim)
 ;;   {:op :material :row r :mout m}                  a leaf's colour and mirror
 ;;   {:op :cells :desc D :args A :count n :pin :dout :mout :body [...] :cell-p p
 ;;    :body-d d :body-m m}                           the nearest of n cells
-;; Each node's info: {:kind :path :class (:exact or :bound) :lipschitz k :bounds}.
+;; Each node's info: {:kind :path :class (:exact or :bound) :lipschitz k :bounds :far?}.
+;;
+;; The far field. A node whose distance is divided by a Lipschitz factor (twist, bend,
+;; displace) is a weak bound far from it: twist's and bend's factor grows with the
+;; distance from their axis, so their value stays near 1/k however far the point is,
+;; and a scene that is a min over such nodes never gives a step longer than that.
+;; The signed distance to the node's bounding box is a bound too (what is inside the
+;; box is no nearer than the box), so the node's value becomes the max of the two:
+;; still a bound everywhere, and close to the true distance far away. Every object
+;; also keeps its box's distance apart (:guard {:head n :bout b}: after its first n
+;; instructions, register b holds it) and ends with the same max, so map() can skip
+;; an object whose box is farther than the nearest distance found so far: its value,
+;; at least the box's, could not lower the minimum. The skip changes no value, so
+;; the CPU evaluator, which has no minimum to compare with, needs none.
 
 (local primitives (require :src.sdf.primitives))
 (local operations (require :src.sdf.operations))
 
 (local sizes primitives.glsl-types)
+(local box-desc (primitives.lookup :box))
 
 (local default-material [1 1 1 1])   ; white, a full mirror: the article's surfaces
 ;; The modern model's materials take two rows: colour and mirror amount, then
 ;; roughness and emission. Unset, a surface is matte white plastic.
 (local modern-material [1 1 1 0 0.5 0 0 0])
 
-(fn new-state [?modern?]
-  {:rows [] :relative [] :used {} :used-list [] :counter 0 :key [] :modern? ?modern?})
+(fn new-state [?modern? ?far-field?]
+  {:rows [] :relative [] :used {} :used-list [] :counter 0 :key [] :modern? ?modern?
+   :far-field? (not= false ?far-field?)})
 
 (fn fresh! [st prefix]
   (set st.counter (+ st.counter 1))
@@ -116,6 +133,20 @@ translate(rotate(scale(node)))."
      :info {:kind node.kind :path node.path :class desc.class :lipschitz desc.lipschitz
             :bounds (and desc.bounds (desc.bounds node)) :children []}}))
 
+(fn box-bound! [st code pin half]
+  "Append code putting into a new register the signed distance from point register
+`pin` to the box of half extents `half` about its origin; return the register."
+  (let [bout (fresh! st "b")]
+    (use! st box-desc.glsl-name box-desc)
+    (table.insert code {:op :prim :desc box-desc :args (alloc-args! st box-desc half)
+                        : pin :dout bout})
+    bout))
+
+(fn far-field! [st code din bin]
+  (let [dout (fresh! st "d")]
+    (table.insert code {:op :far : din : bin : dout})
+    dout))
+
 (fn correct-lipschitz! [st code k dout]
   ;; A field that changes k > 1 per unit is divided by k, so it never overshoots.
   (if (> k 1)
@@ -129,7 +160,7 @@ translate(rotate(scale(node)))."
   (let [form (operations.variant desc node)
         ;; Twist and bend pack their child's radius: lower the child once aside.
         args-values (if desc.needs-bounds
-                        (let [child (. (lower-node (new-state st.modern?) [] (. node.children 1) "p0"
+                        (let [child (. (lower-node (new-state st.modern? st.far-field?) [] (. node.children 1) "p0"
                                                    (if st.modern? modern-material default-material))
                                        :info)
                               reason (.. ":" desc.kind " needs a child bounded in " desc.needs-bounds
@@ -194,8 +225,16 @@ translate(rotate(scale(node)))."
     (set info.bounds (desc.bounds-of node result.children))
     (set info.lipschitz (if desc.lipschitz-of (desc.lipschitz-of node result.children) 1))
     (table.insert st.key ")")
-    {:dout (if desc.corrects? result.dout (correct-lipschitz! st code info.lipschitz result.dout))
-     :mout result.mout : info}))
+    (let [dout (if desc.corrects? result.dout
+                   (correct-lipschitz! st code info.lipschitz result.dout))]
+      ;; Whether a node can divide is its kind's, not its values' (a factor of 1 now
+      ;; may be more after a value edit): the code's shape stays a function of the key.
+      (if (and desc.lipschitz-of info.bounds st.far-field?)
+          (do (set info.far? true)
+              (table.insert st.key "far")
+              {:dout (far-field! st code dout (box-bound! st code pin info.bounds))
+               :mout result.mout : info})
+          {: dout :mout result.mout : info}))))
 
 (set lower-node
      (fn [st code node pin inherited]
@@ -217,19 +256,40 @@ translate(rotate(scale(node)))."
                  :implicit? true})
         code []
         before (length st.rows)
-        result (lower-node st code top "p0" (if st.modern? modern-material default-material))]
+        result (lower-node st code top "p0" (if st.modern? modern-material default-material))
+        ;; The placed node's bounds are about the translation's output point, which
+        ;; the first instruction computes: the guard's box goes right after it.
+        placed (. result.info.children 1)
+        n (length code)
+        ;; A placed node with a far field of its own (a twist with :pos) already
+        ;; ends with its box's max on that point: its box becomes the guard's.
+        own? (and placed placed.far? (= :far (?. code n :op))
+                  (= (?. code (- n 1) :pin) (?. code 1 :pout)))
+        guard (when (and placed placed.bounds (= :point (?. code 1 :op)) st.far-field?)
+                (table.insert st.key "guard")
+                (if own?
+                    (let [box (table.remove code (- n 1))]
+                      (table.insert code 2 box)
+                      {:head 2 :bout box.dout})
+                    (let [tail []
+                          bout (box-bound! st tail (. code 1 :pout) placed.bounds)]
+                      (table.insert code 2 (. tail 1))
+                      {:head 2 : bout})))
+        dout (if (and guard (not own?)) (far-field! st code result.dout guard.bout)
+                 result.dout)]
     ;; The translate's arguments are the first row this object allocated.
     (table.insert st.relative before)
     (table.insert st.key ";")
-    {:index node.index :code code :dout result.dout :mout result.mout :info result.info}))
+    {:index node.index : code : dout :mout result.mout :info result.info : guard}))
 
 (fn lower [objects ?options]
   "Lower the validated tree objects `objects` (each with :index, its scene index and
 :path) into a tape (see the top of this file), or nil and a message naming the node
 when a node cannot be lowered (a twist of an unbounded child), then that node and the
-reason alone. Option :modern? gives every material two rows (:material-size 8)."
+reason alone. Option :modern? gives every material two rows (:material-size 8);
+:far-field? false leaves out far fields and guards (the benchmark's before)."
   (let [options (or ?options {})
-        st (new-state options.modern?)
+        st (new-state options.modern? options.far-field?)
         (ok? objs) (pcall #(icollect [_ o (ipairs objects)] (lower-object st o)))]
     (if ok?
         (do (table.insert st.key (.. "rows:" (length st.rows)))
@@ -243,10 +303,11 @@ reason alone. Option :modern? gives every material two rows (:material-size 8)."
         (error objs 0))))
 
 (fn class-label [info]
-  (if (> info.lipschitz 1)
-      (string.format "bound, Lipschitz %.3g (steps divided by it)" info.lipschitz)
-      (= info.class :exact) "exact"
-      "bound"))
+  (.. (if (> info.lipschitz 1)
+          (string.format "bound, Lipschitz %.3g (steps divided by it)" info.lipschitz)
+          (= info.class :exact) "exact"
+          "bound")
+      (if info.far? ", far field from its box" "")))
 
 (fn describe [tape]
   "Lines describing every node of `tape`'s objects, indented by depth, with its class:

@@ -2,13 +2,10 @@
 // the light, each pair of steps bounds how close the ray passed to a surface, and the
 // light is visible in proportion to the narrowest closest approach over the penumbra
 // width there (softness times the distance). Free of the banding of the plain
-// estimate. A light of softness 0 casts a hard shadow.
+// estimate. A light of softness 0 casts a hard shadow: that march is compiled in only
+// when a light of the scene may have softness 0 (the slot is empty otherwise).
 float visibility(vec3 o, vec3 l, float reach, float softness) {
-    if (softness <= 0.0) {
-        int shadowSteps;
-        // @slot shadow-march
-        return ts < reach ? 0.0 : 1.0;
-    }
+    // @slot hard-shadow
     float t0 = length(o);
     float seen = 1.0;
     float t = 0.0;
