@@ -42,6 +42,7 @@
 
 (local sizes primitives.glsl-types)
 (local box-desc (primitives.lookup :box))
+(local translate-desc (operations.lookup :translate))
 
 (local default-material [1 1 1 1])   ; white, a full mirror: the article's surfaces
 ;; The modern model's materials take two rows: colour and mirror amount, then
@@ -102,6 +103,9 @@
         m)
       inherited))
 
+(fn symmetric-box [b]
+  (when b {:lo (icollect [_ v (ipairs b)] (- v)) :hi b}))
+
 (fn wrap-shorthand [node]
   "The node with its :scale, :rotate and :pos shorthands made explicit operations:
 translate(rotate(scale(node)))."
@@ -130,16 +134,56 @@ translate(rotate(scale(node)))."
     (table.insert code {:op :material :row (material-row! st material) : mout})
     (table.insert st.key desc.kind)
     {: dout : mout
-     :info {:kind node.kind :path node.path :class desc.class :lipschitz desc.lipschitz
-            :bounds (and desc.bounds (desc.bounds node)) :children []}}))
+     :info (let [bounds (and desc.bounds (desc.bounds node))]
+             {:kind node.kind :path node.path :class desc.class :lipschitz desc.lipschitz
+              : bounds :box (symmetric-box bounds) :children []})}))
 
-(fn box-bound! [st code pin half]
+(fn box-of [node desc info children]
+  "The box {:lo :hi} holding `node` in its own frame, tighter than its symmetric
+:bounds where the node is off-centre: a translation moves its child's box, a union
+of translated children holds their boxes (grown as the node's bounds grow beyond its
+children's). Never larger than the symmetric bounds; nil when unbounded."
+  (let [sym (symmetric-box info.bounds)
+        boxes (icollect [_ c (ipairs children)] c.box)
+        box (if (not sym) nil
+                (and (= node.kind :translate) (. boxes 1))
+                (let [[c] boxes]
+                  {:lo (icollect [i v (ipairs c.lo)] (+ v (. node.offset i)))
+                   :hi (icollect [i v (ipairs c.hi)] (+ v (. node.offset i)))})
+                (and (= desc.role :combine) (= (length boxes) (length children)))
+                ;; The growth the node's bounds add to its children's (a blend radius).
+                (let [grow (fcollect [i 1 3]
+                             (math.max 0 (- (. info.bounds i)
+                                            (accumulate [m 0 _ c (ipairs children)]
+                                              (math.max m (. c.bounds i))))))]
+                  {:lo (fcollect [i 1 3] (- (accumulate [m math.huge _ b (ipairs boxes)]
+                                              (math.min m (. b.lo i)))
+                                            (. grow i)))
+                   :hi (fcollect [i 1 3] (+ (accumulate [m (- math.huge) _ b (ipairs boxes)]
+                                              (math.max m (. b.hi i)))
+                                            (. grow i)))})
+                sym)]
+    (when box
+      {:lo (fcollect [i 1 3] (math.max (. box.lo i) (. sym.lo i)))
+       :hi (fcollect [i 1 3] (math.min (. box.hi i) (. sym.hi i)))})))
+
+(fn box-bound! [st code pin box]
   "Append code putting into a new register the signed distance from point register
-`pin` to the box of half extents `half` about its origin; return the register."
-  (let [bout (fresh! st "b")]
+`pin` to `box` ({:lo :hi} about its origin), moved to the box's centre first when
+`centre?`; return the register."
+  (let [bout (fresh! st "b")
+        half (fcollect [i 1 3] (* 0.5 (- (. box.hi i) (. box.lo i))))
+        centre (fcollect [i 1 3] (* 0.5 (+ (. box.hi i) (. box.lo i))))
+        q (if box.centre?
+              (let [q (fresh! st "p")]
+                (use! st translate-desc.glsl-name translate-desc)
+                (table.insert code {:op :point :desc translate-desc
+                                    :args (alloc-args! st translate-desc centre) : pin :pout q})
+                q)
+              pin)]
     (use! st box-desc.glsl-name box-desc)
     (table.insert code {:op :prim :desc box-desc :args (alloc-args! st box-desc half)
-                        : pin :dout bout})
+                        :pin q :dout bout})
     bout))
 
 (fn far-field! [st code din bin]
@@ -224,6 +268,7 @@ translate(rotate(scale(node)))."
     (set info.class (desc.class-of node result.children))
     (set info.bounds (desc.bounds-of node result.children))
     (set info.lipschitz (if desc.lipschitz-of (desc.lipschitz-of node result.children) 1))
+    (set info.box (box-of node desc info result.children))
     (table.insert st.key ")")
     (let [dout (if desc.corrects? result.dout
                    (correct-lipschitz! st code info.lipschitz result.dout))]
@@ -232,7 +277,7 @@ translate(rotate(scale(node)))."
       (if (and desc.lipschitz-of info.bounds st.far-field?)
           (do (set info.far? true)
               (table.insert st.key "far")
-              {:dout (far-field! st code dout (box-bound! st code pin info.bounds))
+              {:dout (far-field! st code dout (box-bound! st code pin (symmetric-box info.bounds)))
                :mout result.mout : info})
           {: dout :mout result.mout : info}))))
 
@@ -265,16 +310,20 @@ translate(rotate(scale(node)))."
         ;; ends with its box's max on that point: its box becomes the guard's.
         own? (and placed placed.far? (= :far (?. code n :op))
                   (= (?. code (- n 1) :pin) (?. code 1 :pout)))
-        guard (when (and placed placed.bounds (= :point (?. code 1 :op)) st.far-field?)
+        guard (when (and placed placed.box (= :point (?. code 1 :op)) st.far-field?)
                 (table.insert st.key "guard")
                 (if own?
                     (let [box (table.remove code (- n 1))]
                       (table.insert code 2 box)
                       {:head 2 :bout box.dout})
+                    ;; The placed node's box may be off its origin (a tower standing
+                    ;; on z = 0): the guard's box is moved to its centre.
                     (let [tail []
-                          bout (box-bound! st tail (. code 1 :pout) placed.bounds)]
-                      (table.insert code 2 (. tail 1))
-                      {:head 2 : bout})))
+                          bout (box-bound! st tail (. code 1 :pout)
+                                           (doto (collect [k v (pairs placed.box)] k v)
+                                             (tset :centre? true)))]
+                      (for [i (length tail) 1 -1] (table.insert code 2 (. tail i)))
+                      {:head (+ 1 (length tail)) : bout})))
         dout (if (and guard (not own?)) (far-field! st code result.dout guard.bout)
                  result.dout)]
     ;; The translate's arguments are the first row this object allocated.
