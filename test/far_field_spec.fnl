@@ -142,6 +142,12 @@ true distance) at points 10 to 50 units from it. A list of {:path :ratio :value 
               lines (table.concat (lower.describe p.tape) "\n")]
           (each [_ o (ipairs p.tape.objects)]
             (assert.truthy o.guard))
+          ;; The tower stands on z = 0: its box reaches 0.9 below (the stairs' blend
+          ;; radius), not as deep as it is tall as its symmetric bounds do (±9.5).
+          (let [tower (. p.tape.objects 1 :info :children 1)]
+            (assert.are.equal -9.5 (- (. tower.bounds 3)))
+            (assert.is_true (< (math.abs (- (. tower.box :lo 3) -0.9)) 1e-9))
+            (assert.is_true (< (math.abs (- (. tower.box :hi 3) 9.5)) 1e-9)))
           (assert.truthy (lines:find "far field" 1 true))
           ;; Off for the benchmark's before: the previous tape, no guards.
           (let [(q) (scene-plan "twisted-tower" {:far-field? false})]

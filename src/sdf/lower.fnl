@@ -140,16 +140,14 @@ translate(rotate(scale(node)))."
 
 (fn box-of [node desc info children]
   "The box {:lo :hi} holding `node` in its own frame, tighter than its symmetric
-:bounds where the node is off-centre: a translation moves its child's box, a union
-of translated children holds their boxes (grown as the node's bounds grow beyond its
-children's). Never larger than the symmetric bounds; nil when unbounded."
+:bounds where the node is off-centre: the descriptor's :box-of when it has one (a
+translation moves its child's box), a combination holds its children's boxes (grown
+as the node's bounds grow beyond its children's). Never larger than the symmetric
+bounds; nil when unbounded."
   (let [sym (symmetric-box info.bounds)
         boxes (icollect [_ c (ipairs children)] c.box)
         box (if (not sym) nil
-                (and (= node.kind :translate) (. boxes 1))
-                (let [[c] boxes]
-                  {:lo (icollect [i v (ipairs c.lo)] (+ v (. node.offset i)))
-                   :hi (icollect [i v (ipairs c.hi)] (+ v (. node.offset i)))})
+                (and desc.box-of (= (length boxes) (length children))) (desc.box-of node boxes)
                 (and (= desc.role :combine) (= (length boxes) (length children)))
                 ;; The growth the node's bounds add to its children's (a blend radius).
                 (let [grow (fcollect [i 1 3]

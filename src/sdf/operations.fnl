@@ -16,7 +16,9 @@
 ;; :class-of (fn [o children]) -> :exact or :bound, where children are the lowered
 ;; children's infos ({:class :bounds}); :lipschitz-of (fn [o children]) -> k >= 1 (the
 ;; lowering divides the distance by k, unless the :post step corrects it point by
-;; point: :corrects? true, as twist and bend do); :bounds-of (fn [o children]) -> half extents
+;; point: :corrects? true, as twist and bend do); optional :box-of (fn [o child-boxes]) ->
+;; {:lo :hi}, a box tighter than the symmetric bounds (see box-of in src/sdf/lower.fnl);
+;; :bounds-of (fn [o children]) -> half extents
 ;; or nil (unbounded).
 
 (local {: sqrt : abs : min : max : floor : sin : cos : log : exp : atan2 : pi} math)
@@ -154,7 +156,12 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     :class-of first-class
     :bounds-of (fn [o children]
                  (let [b (. children 1 :bounds)]
-                   (when b (icollect [i v (ipairs b)] (+ v (abs (. o.offset i)))))))}
+                   (when b (icollect [i v (ipairs b)] (+ v (abs (. o.offset i)))))))
+    ;; The symmetric bounds above hold the moved child about the old origin; its box
+    ;; ({:lo :hi}, see src/sdf/lower.fnl) moves with it.
+    :box-of (fn [o [child]]
+              {:lo (icollect [i v (ipairs child.lo)] (+ v (. o.offset i)))
+               :hi (icollect [i v (ipairs child.hi)] (+ v (. o.offset i)))})}
    {:kind :rotate :role :point
     :class-doc "keeps"
     :doc "Rotates its child: :angles [x y z] in degrees (about x, then y, then z), or :axis and :angle."
