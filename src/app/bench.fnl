@@ -164,7 +164,7 @@ showcase scenes, and our pixel rate next to the article's CPU program."
         defaults-no-bounds (doto (collect [k x (pairs defaults-render)] k x) (tset :bounds false))
         seed "scenes/seed.fnl"
         tower "scenes/twisted-tower.fnl"
-        before-far {:far-field? false :hard-march? true}
+        before-far {:far-field? false :hard-march? true :shadow-bounds? false}
         specs [{:id :floor :label "seed, analytic ray tracer (floor)" :scene-path seed
                 :size fhd :source-path "test/bench/seed-analytic.glsl"}
                {:id :article-none :label "seed, article's, uniforms where used" :scene-path seed

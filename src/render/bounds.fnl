@@ -69,17 +69,20 @@ per object."
         (each [_ v (ipairs [(. rel 1) (. rel 2) (. rel 3) grown])] (table.insert out v))))
     out))
 
-(fn span [spheres ox oy oz dx dy dz far]
+(fn span [spheres ox oy oz dx dy dz far ?grow]
   "Where the ray o + t d (d a unit vector) is inside some bounding sphere of the flat
 list `spheres`: enter and exit t, the union's first entry and last exit, or far and
-0 when it meets none. The same arithmetic as boundsSpan in the shader."
+0 when it meets none. With `?grow` g, each sphere of radius r whose centre is q from
+o is grown by g (q + r): a soft shadow's penumbra, which widens with the distance
+(see shadow-soft.glsl). The same arithmetic as boundsSpan in the shader."
   (var enter far)
   (var exit 0)
   (for [i 1 (length spheres) 4]
     ;; From the point of closest approach (no cancellation of large squares when a
     ;; far ray passes near a small sphere).
     (let [qx (- ox (. spheres i)) qy (- oy (. spheres (+ i 1))) qz (- oz (. spheres (+ i 2)))
-          r (. spheres (+ i 3))
+          r0 (. spheres (+ i 3))
+          r (+ r0 (* (or ?grow 0) (+ (math.sqrt (+ (* qx qx) (* qy qy) (* qz qz))) r0)))
           b (+ (* qx dx) (* qy dy) (* qz dz))
           ax (- qx (* b dx)) ay (- qy (* b dy)) az (- qz (* b dz))
           disc (- (* r r) (+ (* ax ax) (* ay ay) (* az az)))]

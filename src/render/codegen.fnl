@@ -186,16 +186,18 @@ src/render/bounds.fnl)."
      ""
      "// Where the ray is inside some bounding sphere: the first entry and the last exit,"
      "// or (draw distance, 0) when it meets none. From the point of closest approach, so"
-     "// a far ray passing near a small sphere loses nothing to cancellation."
-     "vec2 boundsSpan(vec3 ro, vec3 rd) {"
+     "// a far ray passing near a small sphere loses nothing to cancellation. Each sphere"
+     "// of radius r, q from ro, grown by grow * (q + r): a soft shadow's penumbra."
+     "vec2 boundsSpan(vec3 ro, vec3 rd, float grow) {"
      "    float enter = uDrawDist;"
      "    float exit = 0.0;"
      (if (> n 0)
          [(.. "    for (int i = 0; i < " n "; i++) {")
           "        vec3 q = ro - uBounds[i].xyz;"
+          "        float r = uBounds[i].w + grow * (length(q) + uBounds[i].w);"
           "        float b = dot(q, rd);"
           "        vec3 a = q - b * rd;"
-          "        float disc = uBounds[i].w * uBounds[i].w - dot(a, a);"
+          "        float disc = r * r - dot(a, a);"
           "        if (disc >= 0.0) {"
           "            float s = sqrt(disc);"
           "            if (s - b > 0.0) {"
@@ -339,6 +341,28 @@ comment lines before the first part are the chunk's own documentation)."
         {:mirror-start p.start :mirror-before p.before :mirror-mix p.mix :mirror-next p.next})
       {:mirror-start [] :mirror-before [] :mirror-mix [] :mirror-next []}))
 
+(fn soft-bounded? [plan]
+  "Whether soft shadow rays march only where the finite objects' bounding spheres,
+grown by the penumbra, lie along them (the planes met in closed form), as primary
+rays do: with bounds and no field (a field's objects are not in mapFinite)."
+  (and (not= nil plan.bounds) (= nil plan.field) plan.lighting.shadow-bounds?))
+
+;; A soft shadow ray with bounds: a plane before the light hides it; else it marches
+;; the finite objects only over the span of their bounding spheres grown by the
+;; penumbra width there (softness times the distance, so a sphere q away with radius
+;; r grows by s (q + r) / (1 - s): no farther point of the ray can be darkened by
+;; it); a ray that meets none is lit. From a softness of 0.5 on the whole ray.
+(local soft-span-lines
+  ["if (planesHit(o, l) < reach) {"
+   "    return 0.0;"
+   "}"
+   "vec2 span = softness < 0.5 ? boundsSpan(o, l, softness / (1.0 - softness)) : vec2(0.0, uDrawDist);"
+   "t = max(span.x, 0.0);"
+   "reach = min(reach, span.y);"
+   "if (t >= reach) {"
+   "    return 1.0;"
+   "}"])
+
 (fn modern-lines [plan]
   "The modern model's functions (sky, occlusion, fog, shadows, direct light), each
 only when the plan has it."
@@ -356,7 +380,11 @@ only when the plan has it."
                                           ["    int shadowSteps;" (.. "    " march)
                                            "    return ts < reach ? 0.0 : 1.0;"]
                                           "}"]
-                                         [])})
+                                         [])
+                        :soft-span (if (soft-bounded? plan) soft-span-lines [])
+                        :soft-map [(if (soft-bounded? plan)
+                                       "float h = mapFinite(o + l * t);"
+                                       "float h = map(o + l * t);")]})
          (fill "shaders/shading/modern/shadow-hard.glsl" {:shadow-march [march]}))
      (fill "shaders/shading/modern/lights.glsl"
            {:shadow (if plan.shadows? ["visible = visibility(origin, l, reach, uLightColors[i].w);"] [])

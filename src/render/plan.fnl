@@ -54,7 +54,8 @@
     (when plan.lighting
       (let [l plan.lighting]
         (table.insert parts (.. "modern lights:" l.lights (if l.soft? " soft" "")
-                                (if (and l.soft? l.hard?) " hard" "") (if l.ao? " ao" "")
+                                (if (and l.soft? l.hard?) " hard" "")
+                                (if l.shadow-bounds? "" " shadows-unbounded") (if l.ao? " ao" "")
                                 (if l.fog? " fog" "") (if l.specular? " specular" "")))))
     (when (= plan.out-of-steps :surface) (table.insert parts "out-of-steps:surface"))
     (when (> plan.samples 1)
@@ -122,6 +123,8 @@ the copies, flower 193 against 221, gallery and the seed alike)."
   :field-cells    grid cells per field object (default src/render/field.fnl's)
   :far-field?     false: no far field and no object guards in scene trees (the
                   benchmark's before; see src/sdf/lower.fnl)
+  :shadow-bounds? false: soft shadow rays march the whole scene all the way, not
+                  only inside the bounding spheres (the benchmark's before)
   :hard-march?    true: soft shadows keep the hard march even when no light has
                   softness 0 (the benchmark's before)
   :field?         false: no field (src/render/field.fnl) however many spheres and
@@ -211,6 +214,9 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :hard? (accumulate [hard? (or animated? options.hard-march?) _ light
                                   (ipairs l.lights)]
                        (or hard? (<= light.softness 0)))
+              ;; Soft shadow rays march only inside the bounding spheres grown by the
+              ;; penumbra (codegen's soft-bounded?), unless switched off.
+              :shadow-bounds? (not= false options.shadow-bounds?)
               :ao? (> l.ao 0)
               :fog? (> l.fog 0)
               :specular? l.specular

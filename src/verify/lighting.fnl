@@ -70,14 +70,27 @@ the sky, and the surface points met ([x y z] each)."
         (if (< ts reach) 0 1)))
 
     (fn soft-visibility [ox oy oz lx ly lz reach softness]
-      ;; Quilez's improved penumbra estimate, as shadow-soft.glsl.
-      (let [t0 (T.distance-from-camera ox oy oz)]
+      ;; Quilez's improved penumbra estimate, as shadow-soft.glsl; with bounds only
+      ;; over the span of the bounding spheres grown by the penumbra (codegen's
+      ;; soft-span-lines), the planes met in closed form.
+      (let [t0 (T.distance-from-camera ox oy oz)
+            f (if T.soft-span T.map-finite map)]
         (var seen 1)
         (var t 0)
         (var h-prev 1e10)
         (var result nil)
+        (var limit reach)
+        (when T.soft-span
+          (if (< (T.planes-hit oz lz) reach)
+              (set result 0)
+              (let [(enter exit) (if (< softness 0.5)
+                                     (T.soft-span ox oy oz lx ly lz (/ softness (- 1 softness)))
+                                     (values 0 draw))]
+                (set t (max enter 0))
+                (set limit (min reach exit))
+                (when (>= t limit) (set result -1)))))
         (for [_ 1 shadow-steps &until result]
-          (let [h (map (+ ox (* lx t)) (+ oy (* ly t)) (+ oz (* lz t)))]
+          (let [h (f (+ ox (* lx t)) (+ oy (* ly t)) (+ oz (* lz t)))]
             (if (< h (threshold (+ t0 t)))
                 (set result 0)
                 (let [y (/ (* h h) (* 2 h-prev))
@@ -85,7 +98,7 @@ the sky, and the surface points met ([x y z] each)."
                   (set seen (min seen (/ closest (* softness (max (- t y) 1e-6)))))
                   (set h-prev h)
                   (set t (+ t h))
-                  (when (>= t reach) (set result -1))))))
+                  (when (>= t limit) (set result -1))))))
         (if (= result 0) 0
             (let [s (clamp01 seen)] (* s s (- 3 (* 2 s)))))))
 

@@ -10,8 +10,9 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
     float seen = 1.0;
     float t = 0.0;
     float hPrev = 10000000000.0;
+    // @slot soft-span
     for (int i = 0; i < kShadowSteps; i++) {
-        float h = map(o + l * t);
+        // @slot soft-map
         if (h < hitThreshold(t0 + t)) {
             return 0.0;
         }
