@@ -187,7 +187,8 @@ showcase scenes, and our pixel rate next to the article's CPU program."
                {:id :organic :label "organic 1280x720" :scene-path "scenes/organic.fnl" :size hd}
                {:id :small :label "seed, article's, 256x224" :scene-path seed :size small}
                ;; Issue 25: tree scenes before (no far field, the hard march kept in
-               ;; soft shadows) and after, and a hand-written port of one of them.
+               ;; soft shadows, which march everything all the way) and after, and a
+               ;; hand-written port of one of them.
                {:id :tower-before :label "twisted-tower 1280x720, before far fields"
                 :scene-path tower :size hd :plan-options before-far}
                {:id :tower :label "twisted-tower 1280x720" :scene-path tower :size hd}
@@ -253,7 +254,7 @@ showcase scenes, and our pixel rate next to the article's CPU program."
           (print (string.format "all levers: seed defaults %.2fx, gallery %.2fx, organic %.2fx faster"
                                 (ratio :defaults-none :defaults)
                                 (ratio :gallery-none :gallery) (ratio :organic-none :organic)))
-          (print (string.format "far fields (issue 25), 1280x720: twisted-tower %.2fx, organic %.2fx, flower %.2fx faster than before"
+          (print (string.format "issue 25 (far fields, bounded soft shadows), 1280x720: twisted-tower %.2fx, organic %.2fx, flower %.2fx faster than before"
                                 (ratio :tower-before :tower) (ratio :organic-before :organic)
                                 (ratio :flower-before :flower)))
           (let [(mean worst share) (image-difference v.tower v.tower-port)]
