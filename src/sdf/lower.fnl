@@ -165,14 +165,14 @@ bounds; nil when unbounded."
       {:lo (fcollect [i 1 3] (math.max (. box.lo i) (. sym.lo i)))
        :hi (fcollect [i 1 3] (math.min (. box.hi i) (. sym.hi i)))})))
 
-(fn box-bound! [st code pin box]
+(fn box-bound! [st code pin box ?centre?]
   "Append code putting into a new register the signed distance from point register
-`pin` to `box` ({:lo :hi} about its origin), moved to the box's centre first when
-`centre?`; return the register."
+`pin` to `box` ({:lo :hi} about its origin), the point moved to the box's centre
+first when `?centre?` (else the box is taken as centred); return the register."
   (let [bout (fresh! st "b")
         half (fcollect [i 1 3] (* 0.5 (- (. box.hi i) (. box.lo i))))
         centre (fcollect [i 1 3] (* 0.5 (+ (. box.hi i) (. box.lo i))))
-        q (if box.centre?
+        q (if ?centre?
               (let [q (fresh! st "p")]
                 (use! st translate-desc.glsl-name translate-desc)
                 (table.insert code {:op :point :desc translate-desc
@@ -317,9 +317,7 @@ bounds; nil when unbounded."
                     ;; The placed node's box may be off its origin (a tower standing
                     ;; on z = 0): the guard's box is moved to its centre.
                     (let [tail []
-                          bout (box-bound! st tail (. code 1 :pout)
-                                           (doto (collect [k v (pairs placed.box)] k v)
-                                             (tset :centre? true)))]
+                          bout (box-bound! st tail (. code 1 :pout) placed.box true)]
                       (for [i (length tail) 1 -1] (table.insert code 2 (. tail i)))
                       {:head (+ 1 (length tail)) : bout})))
         dout (if (and guard (not own?)) (far-field! st code result.dout guard.bout)
