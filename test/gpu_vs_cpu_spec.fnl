@@ -207,8 +207,8 @@
                   (assert.truthy prepared.plan.bounds)
                   (each [_ [label pattern replacement]
                          (ipairs [["bounding spheres at half their radius"
-                                   "float disc = r %* r"
-                                   "float disc = 0.25 * r * r"]
+                                   "float disc = uBounds%[i%]%.w %* uBounds%[i%]%.w"
+                                   "float disc = 0.25 * uBounds[i].w * uBounds[i].w"]
                                   ["the plane met 10% too far"
                                    "t = min%(t, %(gPlaneHeight%[0%] %- ro%.z%) / rd%.z%);"
                                    "t = min(t, 1.1 * (gPlaneHeight[0] - ro.z) / rd.z);"]])]

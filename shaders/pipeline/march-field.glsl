@@ -9,7 +9,7 @@
 float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float t0 = length(ro);   // the camera is at the origin: distance already travelled
     float tPlane = planesHit(ro, rd);
-    vec2 span = boundsSpan(ro, rd, 0.0);
+    vec2 span = boundsSpan(ro, rd);
     vec3 q0 = ro - uFieldOrigin;
     vec3 safe = fieldSafeDirection(rd);
     vec3 inv = 1.0 / safe;

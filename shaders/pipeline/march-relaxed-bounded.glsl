@@ -5,7 +5,7 @@
 float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     float t0 = length(ro);
     float tPlane = planesHit(ro, rd);
-    vec2 span = boundsSpan(ro, rd, 0.0);
+    vec2 span = boundsSpan(ro, rd);
     float tEnd = min(min(tPlane, span.y), tMax);
     float t = max(span.x, 0.0);
     float tPrev = t;

@@ -155,6 +155,63 @@ and forget cached ones."
    (field-term plan "-1")
    (if plan.tape (emit-glsl.distance-terms plan.tape) [])])
 
+(fn soft-bounded? [plan]
+  "Whether soft shadow rays march only where the finite objects' bounding spheres,
+grown by the penumbra, lie along them (the planes met in closed form), as primary
+rays do: with bounds and no field (a field's objects are not in mapFinite)."
+  (and (not= nil plan.bounds) (= nil plan.field) (?. plan :lighting :soft?)
+       (?. plan :lighting :shadow-bounds?)))
+
+;; A soft shadow ray with bounds: a plane before the light hides it; else it marches
+;; the finite objects only over the span of their bounding spheres grown by the
+;; penumbra width there (softness times the distance, so a sphere q away with radius
+;; r grows by s (q + r) / (1 - s): no farther point of the ray can be darkened by
+;; it); a ray that meets none is lit. From a softness of 0.5 on the whole ray.
+(local soft-span-lines
+  ["if (planesHit(o, l) < reach) {"
+   "    return 0.0;"
+   "}"
+   "vec2 span = softness < 0.5 ? boundsSpanGrown(o, l, softness / (1.0 - softness)) : vec2(0.0, uDrawDist);"
+   "t = max(span.x, 0.0);"
+   "reach = min(reach, span.y);"
+   "if (t >= reach) {"
+   "    return 1.0;"
+   "}"])
+
+(fn span-lines [n grown?]
+  ;; boundsSpan, and with `grown?` boundsSpanGrown (soft shadows): the same loop over
+  ;; the n bounding spheres, the second growing each.
+  [(if grown?
+       ["// boundsSpan with each sphere of radius r, q from ro, grown by grow * (q + r):"
+        "// a soft shadow's penumbra (see soft-span-lines)."
+        "vec2 boundsSpanGrown(vec3 ro, vec3 rd, float grow) {"]
+       ["// Where the ray is inside some bounding sphere: the first entry and the last exit,"
+        "// or (draw distance, 0) when it meets none. From the point of closest approach, so"
+        "// a far ray passing near a small sphere loses nothing to cancellation."
+        "vec2 boundsSpan(vec3 ro, vec3 rd) {"])
+   "    float enter = uDrawDist;"
+   "    float exit = 0.0;"
+   (if (> n 0)
+       [(.. "    for (int i = 0; i < " n "; i++) {")
+        "        vec3 q = ro - uBounds[i].xyz;"
+        (if grown? ["        float r = uBounds[i].w + grow * (length(q) + uBounds[i].w);"] [])
+        "        float b = dot(q, rd);"
+        "        vec3 a = q - b * rd;"
+        (if grown?
+            "        float disc = r * r - dot(a, a);"
+            "        float disc = uBounds[i].w * uBounds[i].w - dot(a, a);")
+        "        if (disc >= 0.0) {"
+        "            float s = sqrt(disc);"
+        "            if (s - b > 0.0) {"
+        "                enter = min(enter, -b - s);"
+        "                exit = max(exit, s - b);"
+        "            }"
+        "        }"
+        "    }"]
+       [])
+   "    return vec2(enter, min(exit, uDrawDist));"
+   "}"])
+
 (fn bounded-lines [plan]
   "mapFinite, planesHit and boundsSpan: what march-bounded.glsl reads (see
 src/render/bounds.fnl)."
@@ -184,31 +241,8 @@ src/render/bounds.fnl)."
      "    return t;"
      "}"
      ""
-     "// Where the ray is inside some bounding sphere: the first entry and the last exit,"
-     "// or (draw distance, 0) when it meets none. From the point of closest approach, so"
-     "// a far ray passing near a small sphere loses nothing to cancellation. Each sphere"
-     "// of radius r, q from ro, grown by grow * (q + r): a soft shadow's penumbra."
-     "vec2 boundsSpan(vec3 ro, vec3 rd, float grow) {"
-     "    float enter = uDrawDist;"
-     "    float exit = 0.0;"
-     (if (> n 0)
-         [(.. "    for (int i = 0; i < " n "; i++) {")
-          "        vec3 q = ro - uBounds[i].xyz;"
-          "        float r = uBounds[i].w + grow * (length(q) + uBounds[i].w);"
-          "        float b = dot(q, rd);"
-          "        vec3 a = q - b * rd;"
-          "        float disc = r * r - dot(a, a);"
-          "        if (disc >= 0.0) {"
-          "            float s = sqrt(disc);"
-          "            if (s - b > 0.0) {"
-          "                enter = min(enter, -b - s);"
-          "                exit = max(exit, s - b);"
-          "            }"
-          "        }"
-          "    }"]
-         [])
-     "    return vec2(enter, min(exit, uDrawDist));"
-     "}"]))
+     (span-lines n false)
+     (if (soft-bounded? plan) ["" (span-lines n true)] [])]))
 
 (fn color-terms [plan]
   ;; One `di` for the whole function: unrolled blocks share it.
@@ -340,28 +374,6 @@ comment lines before the first part are the chunk's own documentation)."
       (let [p (parts "shaders/shading/mirror.glsl")]
         {:mirror-start p.start :mirror-before p.before :mirror-mix p.mix :mirror-next p.next})
       {:mirror-start [] :mirror-before [] :mirror-mix [] :mirror-next []}))
-
-(fn soft-bounded? [plan]
-  "Whether soft shadow rays march only where the finite objects' bounding spheres,
-grown by the penumbra, lie along them (the planes met in closed form), as primary
-rays do: with bounds and no field (a field's objects are not in mapFinite)."
-  (and (not= nil plan.bounds) (= nil plan.field) plan.lighting.shadow-bounds?))
-
-;; A soft shadow ray with bounds: a plane before the light hides it; else it marches
-;; the finite objects only over the span of their bounding spheres grown by the
-;; penumbra width there (softness times the distance, so a sphere q away with radius
-;; r grows by s (q + r) / (1 - s): no farther point of the ray can be darkened by
-;; it); a ray that meets none is lit. From a softness of 0.5 on the whole ray.
-(local soft-span-lines
-  ["if (planesHit(o, l) < reach) {"
-   "    return 0.0;"
-   "}"
-   "vec2 span = softness < 0.5 ? boundsSpan(o, l, softness / (1.0 - softness)) : vec2(0.0, uDrawDist);"
-   "t = max(span.x, 0.0);"
-   "reach = min(reach, span.y);"
-   "if (t >= reach) {"
-   "    return 1.0;"
-   "}"])
 
 (fn modern-lines [plan]
   "The modern model's functions (sky, occlusion, fog, shadows, direct light), each
