@@ -24,7 +24,8 @@
         camera (require :src.render.camera)
         (scene err) (frame.load-scene o.scene)]
     (if (not scene) (fail! err)
-        (let [(plan perr) (frame.plan-for scene {:view o.view})
+        ;; One frame of values that never change: the trees' values as constants.
+        (let [(plan perr) (frame.plan-for scene {:view o.view :fold? true})
               [w h] (or o.size [512 448])]
           (if (not plan) (fail! perr)
               (let [canvas (love.graphics.newCanvas w h)
@@ -71,7 +72,7 @@
   (let [frame (require :src.backend.frame)
         export (require :src.render.export)
         (scene err) (frame.load-scene o.scene)
-        (plan perr) (if scene (frame.plan-for scene) (values nil err))
+        (plan perr) (if scene (frame.plan-for scene {:fold? true}) (values nil err))
         (text xerr) (if plan (export.shadertoy scene plan) (values nil perr))]
     (if (not text) (fail! xerr)
         (case (io.open o.out :wb)

@@ -31,7 +31,9 @@ excepted), or a point 10 units in front of the camera when there is none."
   (case (frame.load-scene o.scene)
     (nil err) (values nil err)
     scene
-    (case (frame.plan-for scene)
+    ;; Values that never change are constants in the code; functions of time keep
+    ;; theirs as uniforms (one shader for every frame).
+    (case (frame.plan-for scene {:fold? (not ((. (require :src.scene.load) :animated?) scene))})
       (nil err) (values nil err)
       plan
       (let [[w h] (or o.size [640 360])

@@ -641,6 +641,15 @@ only when the plan has it."
                         (= s.used 3) ", 0.0" "")
                     ");"))))))
 
+(fn read-indices [lines name]
+  "The constant indices at which `lines` read the uniform array `name` (a set)."
+  (let [used {}]
+    (each [_ line (ipairs lines)]
+      (when (not (line:match "^uniform "))
+        (each [i (line:gmatch (.. "%f[%w_]" name "%[(%d+)%]"))]
+          (tset used (tonumber i) true))))
+    used))
+
 (fn load-once [lines ?varyings?]
   "`lines` (the shader's body, flattened) with each uniform read through a global
 copy, and the function that fills the copies: loadUniforms(), called first by every
@@ -662,9 +671,13 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
               (table.insert out line)
               (table.insert out (.. ty " " copy (if n (.. "[" n "]") "") ";"))
               (if n
-                  (for [i 0 (- n 1)]
-                    (table.insert reads {:copy (string.format "%s[%d]" copy i) : ty :uniform name
-                                         :read (string.format "%s[%d]" name i)}))
+                  ;; Only the elements the code reads (a folded tape reads only its
+                  ;; camera-relative rows).
+                  (let [used (read-indices lines name)]
+                    (for [i 0 (- n 1)]
+                      (when (. used i)
+                        (table.insert reads {:copy (string.format "%s[%d]" copy i) : ty :uniform name
+                                             :read (string.format "%s[%d]" name i)}))))
                   (table.insert reads {: copy : ty :uniform name :read name})))
             (table.insert out line))))
     (local (instead vertex-lines) (if ?varyings? (pack-varyings reads) {}))

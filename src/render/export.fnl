@@ -7,11 +7,7 @@
 (local uniforms (require :src.render.uniforms))
 (local camera (require :src.render.camera))
 
-(fn float-literal [v]
-  ;; Nine significant digits give back the same float32; always with a decimal point
-  ;; or an exponent, as GLSL wants for a float.
-  (let [s (string.format "%.9g" v)]
-    (if (or (s:find "[%.e]") (s:find "inf") (s:find "nan")) s (.. s ".0"))))
+(local float-literal (. (require :src.sdf.emit-glsl) :float-literal))
 
 (fn value-literal [kind vals i]
   (let [n (. uniforms.components kind)]

@@ -121,6 +121,9 @@ the copies, flower 193 against 221, gallery and the seed alike)."
   :model          :classic draws a scene that has :lighting with the article's model
                   (the player's m key)
   :field-cells    grid cells per field object (default src/render/field.fnl's)
+  :fold?          true: the scene trees' values (but camera-relative positions) as
+                  constants in the code, and in the key (--render, --export-shader,
+                  --record of a scene without functions of time)
   :far-field?     false: no far field and no object guards in scene trees (the
                   benchmark's before; see src/sdf/lower.fnl)
   :shadow-bounds? false: soft shadow rays march the whole scene all the way, not
@@ -148,7 +151,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                                               (doto (collect [k v (pairs o.tree)] k v)
                                                 (tset :index o.index)))
                                             {:modern? (not= nil scene.lighting)
-                                             :far-field? options.far-field?})
+                                             :far-field? options.far-field?
+                                             :fold? options.fold?})
                                (values nil nil))
         kinds (icollect [_ g (ipairs groups)]
                 (let [n (length g.objects)]

@@ -6,10 +6,21 @@
 
 (local swizzles ["x" "y" "z" "w"])
 
+(fn float-literal [v]
+  "`v` as a GLSL float: nine significant digits give back the same float32, always
+with a decimal point or an exponent."
+  (let [s (string.format "%.9g" v)]
+    (if (or (s:find "[%.e]") (s:find "inf") (s:find "nan")) s (.. s ".0"))))
+
+(fn literal [vals]
+  (if (= 1 (length vals)) (float-literal (. vals 1))
+      (.. "vec" (length vals) "(" (table.concat (icollect [_ v (ipairs vals)] (float-literal v)) ", ")
+          ")")))
+
 (fn arg-expr [ref]
-  (var s "")
-  (for [i 1 ref.size] (set s (.. s (. swizzles (+ ref.offset i)))))
-  (.. "uTape[" ref.row "]." s))
+  (if ref.literal (literal ref.literal)
+      (let [s (fcollect [i 1 ref.size] (. swizzles (+ ref.offset i)))]
+        (.. "uTape[" ref.row "]." (table.concat s)))))
 
 (fn args-list [args]
   (icollect [_ a (ipairs args)] (arg-expr a)))
@@ -40,10 +51,13 @@
     :prim (table.insert out (.. "float " ins.dout " = "
                                 (call ins.desc.glsl-name (reg ins.pin) ins.args) ";"))
     :material (when materials?
-                (table.insert out (if (= mt.type "vec4")
-                                      (.. "vec4 " ins.mout " = uTape[" ins.row "];")
-                                      (.. "mat2x4 " ins.mout " = mat2x4(uTape[" ins.row "], uTape["
-                                          (+ ins.row 1) "]);"))))
+                (let [lit ins.literal
+                      row (fn [k] (if lit (literal (fcollect [i 1 4] (. lit (+ (* 4 k) i))))
+                                      (.. "uTape[" (+ ins.row k) "]")))]
+                  (table.insert out (if (= mt.type "vec4")
+                                        (.. "vec4 " ins.mout " = " (row 0) ";")
+                                        (.. "mat2x4 " ins.mout " = mat2x4(" (row 0) ", " (row 1)
+                                            ");")))))
     :point (table.insert out (.. "vec3 " ins.pout " = "
                                  (call ins.desc.glsl-name (reg ins.pin) ins.args) ";"))
     :post (table.insert out (.. "float " ins.dout " = "
@@ -175,4 +189,5 @@ holds its number (numbered from `first-id` in tape order, as color-terms does)."
      (.. "    return " o.dout ";")
      "}"]))
 
-{: functions : declarations : distance-terms : color-terms : object-terms : text-lines}
+{: functions : declarations : distance-terms : color-terms : object-terms : text-lines
+ : float-literal}

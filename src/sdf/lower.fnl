@@ -327,17 +327,43 @@ first when `?centre?` (else the box is taken as centred); return the register."
     (table.insert st.key ";")
     {:index node.index : code : dout :mout result.mout :info result.info : guard}))
 
+(fn fold! [st objects]
+  "Give every argument and material of `objects`' code that does not sit in a
+camera-relative row its numbers as :literal, and the key those numbers: the GLSL
+emitter then writes them as constants (see the tape's :fold? in `lower`)."
+  (let [relative (collect [_ r (ipairs st.relative)] r true)
+        row-values (fn [row n] (fcollect [k 1 n] (. st.rows (+ row 1 (math.floor (/ (- k 1) 4)))
+                                                     (+ 1 (% (- k 1) 4)))))]
+    (fn walk [code]
+      (each [_ ins (ipairs code)]
+        (each [_ ref (ipairs (or ins.args []))]
+          (when (not (. relative ref.row))
+            (set ref.literal (fcollect [k 1 ref.size] (. st.rows (+ ref.row 1) (+ ref.offset k))))))
+        (when (= ins.op :material)
+          (set ins.literal (row-values ins.row (if st.modern? 8 4))))
+        (when ins.body (walk ins.body))))
+    (each [_ o (ipairs objects)] (walk o.code))
+    ;; The values are part of the code now: they are part of its key.
+    (table.insert st.key "fold:")
+    (each [i row (ipairs st.rows)]
+      (when (not (. relative (- i 1)))
+        (table.insert st.key (table.concat (icollect [_ v (ipairs row)] (string.format "%.9g" v))
+                                           ","))))))
+
 (fn lower [objects ?options]
   "Lower the validated tree objects `objects` (each with :index, its scene index and
 :path) into a tape (see the top of this file), or nil and a message naming the node
 when a node cannot be lowered (a twist of an unbounded child), then that node and the
 reason alone. Option :modern? gives every material two rows (:material-size 8);
-:far-field? false leaves out far fields and guards (the benchmark's before)."
+:far-field? false leaves out far fields and guards (the benchmark's before);
+:fold? true writes every value but the camera-relative rows into the code as
+constants (:literal on arguments and materials), and into the key."
   (let [options (or ?options {})
         st (new-state options.modern? options.far-field?)
         (ok? objs) (pcall #(icollect [_ o (ipairs objects)] (lower-object st o)))]
     (if ok?
-        (do (table.insert st.key (.. "rows:" (length st.rows)))
+        (do (when options.fold? (fold! st objs))
+            (table.insert st.key (.. "rows:" (length st.rows)))
             (when st.modern? (table.insert st.key "materials:8"))
             {:objects objs :rows st.rows :relative st.relative :mirrors? st.mirrors?
              :material-size (if st.modern? 8 4)
