@@ -212,6 +212,36 @@ next frame."
                     (= (warm.status w state.drawn.plan.key) :done))
                (string.format "and the next new shader gets a new helper (%s)"
                               (tostring (warm.status w state.drawn.plan.key)))))
+      ;; Settled values are drawn by the shader with them as constants (folded) once
+      ;; the helper has built it; a value edit goes back to the uniform shader at
+      ;; once, compiling nothing. A scene tree (a torus) gives it values to fold.
+      (let [text (files.read-user path)
+            reloads state.reloads
+            wait-until (fn [done?]
+                         (let [until (+ (love.timer.getTime) 240)]
+                           (while (and (not (done?)) (< (love.timer.getTime) until))
+                             (wait))))]
+        (scripted.write! path (pick-values 1 (text:gsub ":objects %[" ":objects [{:kind :torus :radius 1 :thickness 0.2 :pos [-2 0 1]}\n")))
+        (play.poll-file! (+ (filestat.now) 0.05))
+        (play.poll-file! (+ (filestat.now) 0.3))
+        (wait-until #(and (> state.reloads reloads) (not state.pending)))
+        (wait-until #(?. state.drawn :plan :base-key))
+        (wait 2)
+        (let [plan (play.current-plan)]
+          (check (and plan.tape (= state.drawn.plan.base-key plan.key) (= state.error nil))
+                 (string.format "settled values are drawn by the folded shader the helper built (%s)"
+                                (tostring (?. state.drawn :plan :base-key)))))
+        (let [compiles state.cache.compiles
+              reloads state.reloads
+              text (files.read-user path)]
+          (scripted.write! path (pick-values 1 (text:gsub ":radius 1 :thickness 0.2" ":radius 1.25 :thickness 0.2")))
+          (play.poll-file! (+ (filestat.now) 0.05))
+          (play.poll-file! (+ (filestat.now) 0.3))
+          (wait 2)
+          (check (and (= nil state.drawn.plan.base-key) (= state.cache.compiles compiles)
+                      (= state.reloads (+ reloads 1)) (= state.drawn.scene state.scene))
+                 (string.format "a value edit goes back to the uniform shader at once (%s, %d compiled)"
+                                (tostring state.drawn.plan.base-key) (- state.cache.compiles compiles)))))
       (set state.warm nil))
     ;; ] opens the next bundled scene and keeps the render scale chosen with -.
     (let [scale state.scale]
