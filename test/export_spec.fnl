@@ -9,6 +9,7 @@
 (local uniforms (require :src.render.uniforms))
 (local camera (require :src.render.camera))
 (local export (require :src.render.export))
+(local images (require :test.support.images))
 
 (local width 96)
 (local height 64)
@@ -49,16 +50,8 @@
             (let [app (render ctx (codegen.shader plan :core)
                               (uniforms.pack scene plan (camera.from-scene scene) width height))
                   exported (render ctx (wrap text ["#version 330 core"])
-                                   [{:name "iResolution" :type :vec3 :values [width height 1]}])]
-              (var worst 0)
-              (var over 0)
-              (for [y 0 (- height 1)]
-                (for [x 0 (- width 1)]
-                  (let [[r g b] [(headless.pixel app x y)]
-                        [r2 g2 b2] [(headless.pixel exported x y)]
-                        d (math.max (math.abs (- r r2)) (math.abs (- g g2)) (math.abs (- b b2)))]
-                    (set worst (math.max worst d))
-                    (when (> d 2) (set over (+ over 1))))))
+                                   [{:name "iResolution" :type :vec3 :values [width height 1]}])
+                  (worst over) (images.channel-difference app exported width height)]
               (print (string.format "\nexport %s: largest channel difference %d, %d of %d pixels over 2/255"
                                     file worst over (* width height)))
               ;; The constants are the uniforms' float32 values to nine digits, so the

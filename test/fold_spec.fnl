@@ -11,6 +11,7 @@
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
 (local camera (require :src.render.camera))
+(local images (require :test.support.images))
 
 (local width 96)
 (local height 64)
@@ -63,16 +64,8 @@
                 folded (assert (plan-mod.scene->plan scene {:fold? true}))
                 cam (camera.from-scene scene)
                 a (render ctx (codegen.shader plain :core) (uniforms.pack scene plain cam width height))
-                b (render ctx (codegen.shader folded :core) (uniforms.pack scene folded cam width height))]
-            (var worst 0)
-            (var over 0)
-            (for [y 0 (- height 1)]
-              (for [x 0 (- width 1)]
-                (let [[r g bl] [(headless.pixel a x y)]
-                      [r2 g2 b2] [(headless.pixel b x y)]
-                      d (math.max (math.abs (- r r2)) (math.abs (- g g2)) (math.abs (- bl b2)))]
-                  (set worst (math.max worst d))
-                  (when (> d 2) (set over (+ over 1))))))
+                b (render ctx (codegen.shader folded :core) (uniforms.pack scene folded cam width height))
+                (worst over) (images.channel-difference a b width height)]
             (print (string.format "\nfold %s: largest channel difference %d, %d of %d pixels over 2/255"
                                   file worst over (* width height)))
             ;; The tolerance of test/export_spec.fnl, for the same reason: the constants
