@@ -519,7 +519,13 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
         (table.insert lines (string.format "%dx%d (scale %.2f)" (canvas:getWidth)
                                            (canvas:getHeight) state.scale)))
     (when state.scene
-      (table.insert lines (.. "scene: " (text.printable state.scene.name 80) "  view: " state.view))
+      (table.insert lines (.. "scene: " (text.printable state.scene.name 80) "  view: " state.view
+                              ;; Which shader draws: the values as uniforms, or folded
+                              ;; into constants once they settled (folded-plan).
+                              (if (?. state.drawn :plan :tape)
+                                  (if state.drawn.plan.base-key "  values: folded"
+                                      "  values: uniforms")
+                                  "")))
       (table.insert lines (string.format "reflections: %d  fov: %.1f" state.reflections cam.fov))
       (table.insert lines (string.format "pos: %.2f %.2f %.2f  yaw %.1f  pitch %.1f"
                                          (. cam.pos 1) (. cam.pos 2) (. cam.pos 3)
