@@ -23,10 +23,7 @@
 (local glslang (. (require :test.support.glslang) :ok?))
 
 (fn render [ctx source us]
-  (let [program (assert (headless.compile ctx source))
-        image (assert (headless.render ctx program {: width : height :uniforms us}))]
-    (headless.release ctx program)
-    image))
+  (images.render ctx source us width height))
 
 (describe "shader export"
   (fn []

@@ -17,10 +17,7 @@
 (local height 64)
 
 (fn render [ctx source us]
-  (let [program (assert (headless.compile ctx source))
-        image (assert (headless.render ctx program {: width : height :uniforms us}))]
-    (headless.release ctx program)
-    image))
+  (images.render ctx source us width height))
 
 (fn plan-of [text ?options]
   (let [(s err) (load.load-string text "fold.fnl")]

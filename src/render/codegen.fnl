@@ -156,11 +156,8 @@ and forget cached ones."
    (if plan.tape (emit-glsl.distance-terms plan.tape) [])])
 
 (fn soft-bounded? [plan]
-  "Whether soft shadow rays march only where the finite objects' bounding spheres,
-grown by the penumbra, lie along them (the planes met in closed form), as primary
-rays do: with bounds and no field (a field's objects are not in mapFinite)."
-  (and (not= nil plan.bounds) (= nil plan.field) (?. plan :lighting :soft?)
-       (?. plan :lighting :shadow-bounds?)))
+  ;; See plan.lighting.soft-bounded? in src/render/plan.fnl.
+  (= true (?. plan :lighting :soft-bounded?)))
 
 ;; A soft shadow ray with bounds: a plane before the light hides it; else it marches
 ;; the finite objects only over the span of their bounding spheres grown by the

@@ -218,8 +218,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :hard? (accumulate [hard? (or animated? options.hard-march?) _ light
                                   (ipairs l.lights)]
                        (or hard? (<= light.softness 0)))
-              ;; Soft shadow rays march only inside the bounding spheres grown by the
-              ;; penumbra (codegen's soft-bounded?), unless switched off.
+              ;; Soft shadow rays may march only inside the bounding spheres grown by
+              ;; the penumbra (see :soft-bounded? below), unless switched off.
               :shadow-bounds? (not= false options.shadow-bounds?)
               :ao? (> l.ao 0)
               :fog? (> l.fog 0)
@@ -236,6 +236,13 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                                   :cells-per-object options.field-cells})
         fd (set plan.field fd)
         (nil err) (set field-error (.. scene.file ": " err))))
+    ;; Soft shadow rays march the finite objects only over their bounding spheres'
+    ;; span, the planes met in closed form, as primary rays do: with bounds and no
+    ;; field (a field's objects are not among the finite ones). The shader
+    ;; (codegen's modern-lines) and the CPU reference (lighting.fnl) both read this.
+    (when plan.lighting
+      (set plan.lighting.soft-bounded? (and plan.lighting.soft? plan.lighting.shadow-bounds?
+                                            (not= nil plan.bounds) (= nil plan.field))))
     ;; When every object has its exact normal in closed form (no scene trees; the
     ;; grouped kinds' gradients and a field's), normals need no differences
     ;; (shaders/pipeline/normal-exact.glsl).

@@ -518,9 +518,9 @@ Positions are in world coordinates."
               (or (> turn tests.edge-turn)
                   (and (< facing tests.grazing) (> turn tests.limb-turn)))))))
 
-    ;; Soft shadows with bounds and no field, as codegen's soft-bounded?: the finite
-    ;; objects over the span of their bounding spheres grown by `grow`.
-    (local soft-span (when (and bound-spheres (not fd) (?. plan :lighting :shadow-bounds?))
+    ;; Soft shadows over the span of the bounding spheres grown by `grow` (see
+    ;; plan.lighting.soft-bounded? in src/render/plan.fnl).
+    (local soft-span (when (?. plan :lighting :soft-bounded?)
                        (fn [ox oy oz dx dy dz grow]
                          (bounds.span bound-spheres ox oy oz dx dy dz draw grow))))
     (local closures {: map : map-color : march : normal : lightness : trace : normal-delta : crease?

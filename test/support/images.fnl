@@ -1,6 +1,14 @@
-;; Comparing two images rendered headless (src/backend/headless.fnl) pixel by pixel.
+;; Rendering a shader headless (src/backend/headless.fnl) and comparing two images
+;; pixel by pixel.
 
 (local headless (require :src.backend.headless))
+
+(fn render [ctx source us width height]
+  "The image of fragment shader `source` with uniforms `us` at `width` x `height`."
+  (let [program (assert (headless.compile ctx source))
+        image (assert (headless.render ctx program {: width : height :uniforms us}))]
+    (headless.release ctx program)
+    image))
 
 (fn channel-difference [image-a image-b width height]
   "The largest channel difference (0-255) between images `image-a` and `image-b` of `width` x
@@ -16,4 +24,4 @@
         (when (> d 2) (set over (+ over 1))))))
   (values worst over))
 
-{: channel-difference}
+{: render : channel-difference}
