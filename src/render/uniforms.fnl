@@ -44,12 +44,22 @@ is a hit (see shaders/pipeline/hit/)."
 
 (fn tape-values [tape [cx cy cz]]
   "The tape's rows as one flat list; rows holding a world position (each tree
-object's outermost translation) are made camera-relative here, in double."
+object's outermost translation) are made camera-relative here, in double. A plane
+placed directly by its translation (the tape's :planes) gets a translation of 0 and
+its height seen from the camera, h + dot(n, translation - camera), so the shader's
+plane sees the camera-relative point, not the world point rounded to float32."
   (let [relative (collect [_ r (ipairs tape.relative)] r true)
+        placing (collect [_ pl (ipairs (or tape.planes []))] pl.translate true)
+        planes (collect [_ pl (ipairs (or tape.planes []))] pl.row pl.translate)
         out []]
     (each [i row (ipairs tape.rows)]
       (let [[x y z w] row]
-        (if (. relative (- i 1))
+        (if (. placing (- i 1))
+            (append! out [0 0 0 w])
+            (. planes (- i 1))
+            (let [[tx ty tz] (. tape.rows (+ (. planes (- i 1)) 1))]
+              (append! out [x y z (+ w (* x (- tx cx)) (* y (- ty cy)) (* z (- tz cz)))]))
+            (. relative (- i 1))
             (append! out [(- x cx) (- y cy) (- z cz) w])
             (append! out [x y z w]))))
     out))

@@ -7,6 +7,10 @@
 ;;             :dout (distance register) :mout (material register) :info (node info)}
 ;;   :rows     parameter values, four numbers per row (the GLSL sees vec4 uTape[rows])
 ;;   :relative rows whose xyz are world positions, made camera-relative on upload
+;;   :planes   {:row r :translate t :height ref} for each object that is a plane
+;;             placed directly by its translation (row t): on upload row t becomes 0
+;;             and the plane's height in row r (argument `ref`) takes the camera off
+;;             instead (see `plane-placed`)
 ;;   :used     descriptor names the code calls (the GLSL holds only those)
 ;;   :key      the structure: equal keys mean the same generated code
 ;;   :mirrors? whether any material is less than a full mirror
@@ -50,7 +54,7 @@
 (local modern-material [1 1 1 0 0.5 0 0 0])
 
 (fn new-state [?modern? ?far-field?]
-  {:rows [] :relative [] :used {} :used-list [] :counter 0 :key [] :modern? ?modern?
+  {:rows [] :relative [] :planes [] :used {} :used-list [] :counter 0 :key [] :modern? ?modern?
    :far-field? (not= false ?far-field?)})
 
 (fn fresh! [st prefix]
@@ -289,6 +293,20 @@ first when `?centre?` (else the box is taken as centred); return the register."
                                                    (.. "unknown kind " (tostring node.kind)))
                               pin material)))))
 
+;; A plane is unbounded: however near the camera its object's translation is, the
+;; point the plane sees, p - (translation - camera), is the world point far from the
+;; origin, and float32 (0.0625 apart at 1e6) rings its distance and shadows. Placed
+;; directly by the translation, the plane is the same plane at height
+;; h + dot(n, translation - camera) seen from the camera: on upload the translation
+;; is sent as 0 and that height, in double, so its point is the camera-relative one.
+;; The code is the same; the CPU evaluator reads the rows in world coordinates.
+(fn plane-placed [code]
+  "The plane primitive of `code` that the object's translation (its first instruction)
+places directly, or nil."
+  (let [[point prim] code]
+    (when (and prim (= :prim prim.op) (= :plane prim.desc.kind) (= prim.pin point.pout))
+      prim)))
+
 (fn lower-object [st node]
   ;; The shader's point is camera-relative. The object's outermost translation takes
   ;; the camera position off in double on the CPU (its row is marked relative); an
@@ -324,20 +342,30 @@ first when `?centre?` (else the box is taken as centred); return the register."
                  result.dout)]
     ;; The translate's arguments are the first row this object allocated.
     (table.insert st.relative before)
+    (case (plane-placed code)
+      plane (let [[n h] plane.args]
+              ;; The normal and the height share one row (see plane-placed).
+              (assert (and (= n.row h.row) (= n.offset 0) (= h.offset 3)))
+              (table.insert st.planes {:row n.row :translate before :height h})))
     (table.insert st.key ";")
     {:index node.index : code : dout :mout result.mout :info result.info : guard}))
 
 (fn fold! [st objects]
   "Give every argument and material of `objects`' code that does not sit in a
-camera-relative row its numbers as :literal, and the key those numbers: the GLSL
-emitter then writes them as constants (see the tape's :fold? in `lower`)."
+camera-relative row (nor is a placed plane's height) its numbers as :literal, and the
+key those numbers: the GLSL emitter then writes them as constants (see the tape's
+:fold? in `lower`)."
   (let [relative (collect [_ r (ipairs st.relative)] r true)
+        ;; A placed plane's height takes the camera off on upload: it stays a uniform
+        ;; (its normal, in the same row, is folded).
+        heights (collect [_ pl (ipairs st.planes)] pl.height true)
+        plane-rows (collect [_ pl (ipairs st.planes)] pl.row true)
         row-values (fn [row n] (fcollect [k 1 n] (. st.rows (+ row 1 (math.floor (/ (- k 1) 4)))
                                                      (+ 1 (% (- k 1) 4)))))]
     (fn walk [code]
       (each [_ ins (ipairs code)]
         (each [_ ref (ipairs (or ins.args []))]
-          (when (not (. relative ref.row))
+          (when (not (or (. relative ref.row) (. heights ref)))
             (set ref.literal (fcollect [k 1 ref.size] (. st.rows (+ ref.row 1) (+ ref.offset k))))))
         (when (= ins.op :material)
           (set ins.literal (row-values ins.row (if st.modern? 8 4))))
@@ -347,8 +375,9 @@ emitter then writes them as constants (see the tape's :fold? in `lower`)."
     (table.insert st.key "fold:")
     (each [i row (ipairs st.rows)]
       (when (not (. relative (- i 1)))
-        (table.insert st.key (table.concat (icollect [_ v (ipairs row)] (string.format "%.9g" v))
-                                           ","))))))
+        (let [folded (if (. plane-rows (- i 1)) [(. row 1) (. row 2) (. row 3)] row)]
+          (table.insert st.key (table.concat (icollect [_ v (ipairs folded)] (string.format "%.9g" v))
+                                             ",")))))))
 
 (fn lower [objects ?options]
   "Lower the validated tree objects `objects` (each with :index, its scene index and
@@ -356,8 +385,9 @@ emitter then writes them as constants (see the tape's :fold? in `lower`)."
 when a node cannot be lowered (a twist of an unbounded child), then that node and the
 reason alone. Option :modern? gives every material two rows (:material-size 8);
 :far-field? false leaves out far fields and guards (the benchmark's before);
-:fold? true writes every value but the camera-relative rows into the code as
-constants (:literal on arguments and materials), and into the key."
+:fold? true writes every value but the camera-relative rows and the placed planes'
+heights into the code as constants (:literal on arguments and materials), and into
+the key."
   (let [options (or ?options {})
         st (new-state options.modern? options.far-field?)
         (ok? objs) (pcall #(icollect [_ o (ipairs objects)] (lower-object st o)))]
@@ -365,7 +395,8 @@ constants (:literal on arguments and materials), and into the key."
         (do (when options.fold? (fold! st objs))
             (table.insert st.key (.. "rows:" (length st.rows)))
             (when st.modern? (table.insert st.key "materials:8"))
-            {:objects objs :rows st.rows :relative st.relative :mirrors? st.mirrors?
+            {:objects objs :rows st.rows :relative st.relative :planes st.planes
+             :mirrors? st.mirrors?
              :material-size (if st.modern? 8 4)
              :used (icollect [_ name (ipairs st.used-list)] {: name :desc (. st.used name)})
              :key (table.concat st.key " ")})
