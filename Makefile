@@ -4,7 +4,7 @@
 SCENE ?= scenes/seed.fnl
 HEADLESS = SDL_VIDEODRIVER=offscreen
 
-.PHONY: deps run test bench golden report report-quick dist clean
+.PHONY: deps run test bench golden report report-quick dist clean check-states
 
 deps:
 	@bash tools/install-deps.sh
@@ -33,6 +33,12 @@ report: deps
 report-quick: deps
 	@bash tools/install-deps.sh gnuplot-nox
 	luajit tools/fnl.lua tools/report.fnl --quick
+
+# Under Xvfb: does the player ever show a picture mixing two scene states? (about
+# 1.5 minutes; PLAYER=DIR checks another checkout's player; see README, Tests).
+check-states:
+	@bash tools/install-deps.sh xvfb xdotool x11-apps bc
+	bash tools/check-states.sh $(PLAYER)
 
 golden: deps
 	$(HEADLESS) luajit tools/fnl.lua tools/golden.fnl
