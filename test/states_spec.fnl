@@ -113,6 +113,9 @@ pixels, blue in the low byte), of image."
                                  {:strips 8 :step 1})]
           (assert.is_true r.mixed?)
           (assert.is_true (< (math.abs (- r.spread 12)) 1)))
+        ;; A band 4 rows tall, one strip of the default height.
+        (let [r (states.classify (picture 120 80 (fn [_ y] (if (<= 40 y 43) 0.5 0.55))))]
+          (assert.is_true r.mixed?))
         ;; States 0.02 apart (4.8 degrees) are within the tolerance.
         (let [r (states.classify (picture 120 80 (fn [_ y] (if (< y 50) 0.5 0.52)))
                                  {:strips 8 :step 1})]

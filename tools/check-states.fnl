@@ -35,9 +35,16 @@
   (if (path:match "%.xwd$") (states.read-xwd path) (png.read-file path)))
 
 (fn strip-line [result]
-  (table.concat (icollect [_ s (ipairs result.strips)]
-                  (if s.hue (string.format "%.0f" s.hue) "-"))
-                " "))
+  ;; The strips' states top to bottom, runs of one value written once with their
+  ;; length: "144 x40, 215 x110" ("-": no state).
+  (let [runs []]
+    (each [_ s (ipairs result.strips)]
+      (let [v (if s.hue (string.format "%.0f" s.hue) "-")
+            last (. runs (length runs))]
+        (if (and last (= last.v v))
+            (set last.n (+ last.n 1))
+            (table.insert runs {: v :n 1}))))
+    (table.concat (icollect [_ r (ipairs runs)] (.. r.v " x" r.n)) ", ")))
 
 (fn parse-args [argv]
   (let [o {:scenarios [] :files [] :x1 960 :y1 600 :out "out/check-states" :min-range 30
@@ -129,7 +136,7 @@
                             (states.hue->value (if (<= lo hi) lo 0))
                             (states.hue->value (if (<= lo hi) hi 0)) calm))
       (when worst
-        (print (string.format "           worst %s: %s by %.0f deg (tolerance %g)\n           strip hues, top to bottom: %s\n           saved as %s"
+        (print (string.format "           worst %s: %s by %.0f deg (tolerance %g)\n           strip hues, top to bottom (strips of 4 rows): %s\n           saved as %s"
                               worst.path
                               (if worst.result.between?
                                   "a state between the first and the last, apart from both"

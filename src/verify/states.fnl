@@ -36,6 +36,12 @@
 ;; moves 6 degrees in 0.125 s.
 (local tolerance 6)
 
+;; Rows per strip: a player may draw bands of a few rows (up to 256 bands in 720
+;; rows), and a band less than half a strip tall would not move the strip's median.
+;; Sampling every other row and column, a strip of 4 rows of 960 pixels has 960
+;; samples, plenty for a median.
+(local strip-rows 4)
+
 (local bins-per-degree 2)
 (local hue-min -60)    ; hues above 300 are taken as negative (reds near 360)
 (local hue-max 300)
@@ -65,16 +71,17 @@ is under min-chroma (grey, dark or black)."
 (fn strip-hues [image opts]
   "The state of each horizontal strip of `image`: a sequence of {:y0 :y1 :hue
 :share}, :hue the median hue (degrees) of the strip's coloured pixels, nil when
-under min-share of them are coloured. opts (all optional): :strips (20), the region
+under min-share of them are coloured. opts (all optional): :strips (one per
+strip-rows rows), the region
 :x0 :x1 :y0 :y1 (the whole image; x1, y1 exclusive) and :step (2: every other pixel
 of every other row is sampled)."
   (let [{: width : height : pixels} image
         opts (or opts {})
-        n (or opts.strips 20)
         x0 (or opts.x0 0)
         x1 (math.min width (or opts.x1 width))
         ry0 (or opts.y0 0)
         ry1 (math.min height (or opts.y1 height))
+        n (or opts.strips (math.max 1 (math.floor (/ (- ry1 ry0) strip-rows))))
         step (or opts.step 2)
         nbins (* bins-per-degree (- hue-max hue-min))]
     (fcollect [s 1 n]
