@@ -51,4 +51,13 @@
               (let [n (draw-frame! p height rows)]
                 (assert.is_true (<= n (math.ceil (/ height p.bands))))
                 (progress.measured! p (* (rand) (rand) 2))))
-            (for [y 1 height] (assert.is_true (= true (. rows y)) (.. "row " y " not drawn")))))))))
+            (for [y 1 height] (assert.is_true (= true (. rows y)) (.. "row " y " not drawn")))))))
+
+    (it "starts with as many bands as a known frame time needs"
+      (fn []
+        ;; A whole picture of 1.3 s (flower at 1280x720 on llvmpipe): 13 bands of 0.1 s.
+        (assert.are.equal 13 (progress.bands-for 1.3))
+        (assert.are.equal 1 (progress.bands-for 0.01))
+        (assert.are.equal progress.max-bands (progress.bands-for 1000))
+        (assert.are.equal 13 (. (progress.new (progress.bands-for 1.3)) :bands))
+        (assert.are.equal 4 (. (progress.new) :bands))))))

@@ -225,11 +225,13 @@ next frame."
         (play.poll-file! (+ (filestat.now) 0.05))
         (play.poll-file! (+ (filestat.now) 0.3))
         (wait-until #(and (> state.reloads reloads) (not state.pending)))
-        (wait-until #(?. state.drawn :plan :base-key))
+        ;; A whole picture is not drawn again while its state stays: the camera
+        ;; turns (the values stay settled) so that the next pictures are drawn.
+        (wait-until #(do (push-key :d) (?. state.drawn :plan :base-key)))
         (wait 2)
         (let [plan (play.current-plan)]
           (check (and plan.tape (= state.drawn.plan.base-key plan.key) (= state.error nil))
-                 (string.format "settled values are drawn by the folded shader the helper built (%s)"
+                 (string.format "settled values are drawn by the folded shader the helper built, once the camera turns (%s)"
                                 (tostring (?. state.drawn :plan :base-key)))))
         (let [compiles state.cache.compiles
               reloads state.reloads

@@ -27,10 +27,17 @@
 
 (local state {:scene nil :path nil :cam nil :view :shaded :reflections 0
               :scale 1 :hud? true :cache nil :canvas nil :message nil :taps {} :dragging? false
-              :time 0 :paused? false :adaptive (adaptive.new 1) :move-canvas nil
+              :time 0 :paused? false :adaptive (adaptive.new) :move-canvas nil
               :move-times []
-              :message-until 0 :error nil :gamepad nil :watch nil :poll-at 0
-              :reloads 0 :progress (progress.new)
+              ;; One scene state a picture: `generation` counts the changes of the
+              ;; scene's values (a load, a slider, the clock), `picture` is what is on
+              ;; screen ({: key : canvas}, key from state-key), `refine` the full
+              ;; resolution being drawn in bands for that same key, and `last-render`
+              ;; the render of the last frame, timed for the frame-time model.
+              :generation 0 :plan-id 0 :picture nil :refine nil :last-render nil
+              :first-picture nil
+              :messages [] :error nil :gamepad nil :watch nil :poll-at 0
+              :reloads 0
               ;; Compiles in a helper process first (warm.fnl; nil: in the player), the
               ;; load waiting for its helper ({: path : fresh? : key : start}) and the
               ;; last scene and plan drawn ({: scene : plan}), shown meanwhile.
@@ -45,11 +52,19 @@
     (icollect [_ name (ipairs items)]
       (when (name:match "%.fnl$") (.. "scenes/" name)))))
 
-(fn say! [message]
+(fn say! [message ?seconds]
+  "Show `message` in the HUD for `?seconds` (4), under the ones still showing (the
+last four are kept), and print it."
   (let [message (text.printable message)]
     (when (not state.quiet?) (print message))
-    (set state.message message))
-  (set state.message-until (+ (love.timer.getTime) 4)))
+    (set state.message message)
+    (table.insert state.messages {:text message
+                                  :until (+ (love.timer.getTime) (or ?seconds 4))})
+    (when (> (length state.messages) 4) (table.remove state.messages 1))))
+
+(fn changed! []
+  "The scene's values changed: a picture of the old ones is of another state."
+  (set state.generation (+ state.generation 1)))
 
 ;;; Loading and hot reload
 
@@ -93,6 +108,24 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
 screen yet, or when the shader is compiled already."
   (and state.warm state.drawn (not (gpu.cached? state.cache plan))
        (not (warm.ready? state.warm plan.key #(warm-source scene plan)))))
+
+;; A new shader's first renders: one pixel (the driver builds its code at the first
+;; draw), then two sizes timed, small enough for any scene (colonnade, about 11 us a
+;; pixel on llvmpipe, takes 30 ms for both) and apart enough to fit a line.
+(local probe-sizes [[1 1] [16 9] [64 36]])
+
+(fn probe! [scene plan]
+  "Draw `plan`'s shader into small canvases, timed: the driver builds the code it runs
+(at its first draw), and the frame-time model learns what a picture costs, so the
+first picture of the scene can be sized to come at once."
+  (each [i [w h] (ipairs probe-sizes)]
+    (let [canvas (love.graphics.newCanvas w h)
+          start (love.timer.getTime)]
+      (frame.render-to-canvas! state.cache canvas scene plan state.cam)
+      (let [data (canvas:newImageData 1 1 0 0 1 1)] (data:release))
+      (when (> i 1)
+        (adaptive.rendered! state.adaptive plan.key (* w h) (- (love.timer.getTime) start)))
+      (canvas:release))))
 
 (fn load-unprotected! [path fresh? ?since]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
@@ -147,9 +180,15 @@ loads the file again once the helper is done, `?since` the time of the first try
                 (if fresh? (set state.time 0)
                     (scene-mod.animated? scene) (scene-mod.animate scene state.time))
                 (set state.scene scene)
+                (changed!)
                 (set state.path path)
                 (set state.error nil)
                 (set state.reloads (+ state.reloads 1))
+                ;; A new shader is ready once the driver has also built the code it
+                ;; runs, at its first draw: that is part of the compile, not of the
+                ;; first picture.
+                (when (> state.cache.compiles compiles-before) (probe! scene plan))
+                (set state.first-picture {:since (love.timer.getTime) : path})
                 (let [ms (* 1000 (- (love.timer.getTime) start))
                       compiled? (> state.cache.compiles compiles-before)]
                   (set state.last-load {:ms ms :compiled? compiled? :helper? (not= ?since nil)})
@@ -167,8 +206,7 @@ itself is shown like a broken file, and the last good scene keeps running."
     (when (not ok?)
       (set state.error (.. path ": the scene could not be loaded (an internal error): "
                            (tostring err))))
-    (when (not state.pending)
-      (set state.progress (progress.new)))))
+))
 
 (fn finish-pending! []
   "Collect finished helpers; a load waiting for one that is done runs again (now a
@@ -191,6 +229,7 @@ cache hit in the driver, or a plain compile when the helper failed)."
         (set state.error err)
         (do (when (scene-mod.animated? scene) (scene-mod.animate scene state.time))
             (set state.scene scene)
+            (changed!)
             (set state.error nil)))))
 
 (fn parameter-status []
@@ -255,7 +294,7 @@ shows its message and keeps the last values."
     (set state.time (+ state.time (if state.step? (/ 1 30) dt)))
     (set state.step? false)
     (case (scene-mod.animate state.scene state.time)
-      true (set state.plan-memo nil)
+      true (do (set state.plan-memo nil) (changed!))
       (nil err) (set state.error err))))
 
 (fn current-plan []
@@ -268,9 +307,10 @@ the reflection count changed (not every frame)."
         (let [(plan err) (plan-with state.scene state.reflections)]
           ;; New values (an edit, a slider, the clock): the uniform shader draws them
           ;; at once; the folded one waits until they settle (see folded-plan).
+          (set state.plan-id (+ state.plan-id 1))
           (set state.plan-memo {:scene state.scene :view state.view :classic? state.classic?
                                 :reflections state.reflections : plan : err
-                                :since (love.timer.getTime)})
+                                :since (love.timer.getTime) :id state.plan-id})
           (values plan err)))))
 
 ;; Values unchanged this long have settled: the compile helper then builds the shader
@@ -299,13 +339,12 @@ plan without scene trees (nothing to fold)."
                               (warm.ready? state.warm folded.key #(warm-source scene folded))))
           folded)))))
 
-;; While the camera moves the image is drawn whole at a lower resolution, chosen to
-;; hold this frame rate; when it stops, the full resolution is refined in bands.
+;; While the state changes the image is drawn whole at a lower resolution, chosen to
+;; hold this frame rate; when it stays, the full resolution is refined in bands.
 (local default-interactive-fps 30)
 
-(fn ensure-move-canvas! []
+(fn ensure-move-canvas! [s]
   (let [(ww wh) (love.graphics.getDimensions)
-        s state.adaptive.scale
         w (math.max 1 (math.floor (* ww s)))
         h (math.max 1 (math.floor (* wh s)))]
     (when (or (not state.move-canvas)
@@ -323,8 +362,7 @@ plan without scene trees (nothing to fold)."
               (not= w (state.canvas:getWidth)) (not= h (state.canvas:getHeight)))
       (when state.canvas (state.canvas:release))
       (set state.canvas (love.graphics.newCanvas w h))
-      (state.canvas:setFilter :nearest :nearest)
-      (set state.progress (progress.new)))
+      (state.canvas:setFilter :nearest :nearest))
     state.canvas))
 
 ;;; Input
@@ -343,7 +381,11 @@ least tap-seconds for a key pressed since the last update."
         tapped? tap-seconds
         0)))
 
-(fn handle-keyboard [dt]
+(fn modifier-down? []
+  ;; ctrl+s saves, alt+return goes fullscreen: keys held with these move nothing.
+  (down? :lctrl :rctrl :lalt :ralt :lgui :rgui))
+
+(fn move-by-keys! [dt]
   (let [cam state.cam
         shift? (down? :lshift :rshift)
         w (held :w dt) s (held :s dt) a (held :a dt) d (held :d dt)]
@@ -355,7 +397,11 @@ least tap-seconds for a key pressed since the last update."
     (let [r (held :r dt) f (held :f dt)]
       (when (> (+ r f) 0) (camera.elevate! cam (* move-speed (- r f)))))
     (let [o (held :o dt) p (held :p dt)]
-      (when (> (+ o p) 0) (camera.zoom! cam (* fov-speed (- p o))))))
+      (when (> (+ o p) 0) (camera.zoom! cam (* fov-speed (- p o)))))))
+
+(fn handle-keyboard [dt]
+  (when (not (modifier-down?))
+    (move-by-keys! dt))
   (set state.taps {}))
 
 (fn axis [pad name]
@@ -434,7 +480,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
 (fn keypressed [key]
   (let [alt? (down? :lalt :ralt)
         ctrl? (down? :lctrl :rctrl)]
-    (when (not ctrl?) (tset state.taps key true))
+    (when (not (modifier-down?)) (tset state.taps key true))
     (case key
       :f2 (toggle-panel!)
       (where :s ctrl?) (save-parameters!)
@@ -506,20 +552,33 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
 
 ;;; Drawing
 
+(fn coarse? []
+  "True when the picture on screen is a whole low-resolution one (the state changed
+this frame or the last), not the full resolution being refined."
+  (and state.picture state.move-canvas (= state.picture.canvas state.move-canvas)))
+
 (fn hud-lines []
   (let [cam state.cam
         canvas state.canvas
         lines [(string.format "%d fps  %.1f ms" (love.timer.getFPS)
                               (* 1000 (love.timer.getAverageDelta)))]]
-    (if (and state.adaptive.moving? state.move-canvas)
-        (table.insert lines (string.format "%dx%d while moving (holding %d fps; full scale %.2f)"
-                                           (state.move-canvas:getWidth) (state.move-canvas:getHeight)
-                                           state.interactive-fps state.scale))
+    (if (coarse?)
+        (table.insert lines
+                      (if state.adaptive.out-of-reach?
+                          (string.format "%dx%d while changing: %d fps is out of reach (%.0f ms a frame go to the window, HUD and Lua)"
+                                         (state.move-canvas:getWidth) (state.move-canvas:getHeight)
+                                         state.interactive-fps (* 1000 (or state.adaptive.fixed 0)))
+                          (string.format "%dx%d while changing (holding %d fps; full scale %.2f)"
+                                         (state.move-canvas:getWidth) (state.move-canvas:getHeight)
+                                         state.interactive-fps state.scale)))
         canvas
         (table.insert lines (string.format "%dx%d (scale %.2f)" (canvas:getWidth)
                                            (canvas:getHeight) state.scale)))
     (when state.scene
       (table.insert lines (.. "scene: " (text.printable state.scene.name 80) "  view: " state.view
+                              (if state.scene.lighting
+                                  (if state.classic? "  lighting: classic" "  lighting: modern")
+                                  "  lighting: classic")
                               ;; Which shader draws: the values as uniforms, or folded
                               ;; into constants once they settled (folded-plan).
                               (if (?. state.drawn :plan :tape)
@@ -536,23 +595,27 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
     (when (and state.scene (scene-mod.animated? state.scene))
       (table.insert lines (string.format "t = %.2f s%s" state.time
                                          (if state.paused? " (paused; space plays, . steps)"
-                                             " (space pauses)"))))
-    (when (and (> state.progress.bands 1) (not state.adaptive.moving?))
-      (table.insert lines (string.format "progressive: %d bands, one per frame (a full frame takes %.1f s)"
-                                         state.progress.bands
-                                         (* state.progress.bands (love.timer.getAverageDelta)))))
+                                             " (space pauses; paused, the picture sharpens)"))))
+    (case (?. state.refine :progress)
+      p (when (and (not (coarse?)) (not (progress.complete? p)) (> p.bands 1))
+          (table.insert lines (string.format "refining: %d bands, one per frame (%.0f%% drawn)"
+                                             p.bands (* 100 (math.min 1 p.covered))))))
     (when state.last-load
-      (table.insert lines (string.format "last load: %.0f ms (%s), %d so far"
+      (table.insert lines (string.format "last load: %.0f ms (%s)%s, %d so far"
                                          state.last-load.ms
                                          (if (not state.last-load.compiled?) "uniforms only"
                                              state.last-load.helper? "shader compiled by a helper"
                                              "shader compiled")
+                                         (case state.last-load.first-ms
+                                           ms (string.format "; first picture %.0f ms later" ms)
+                                           _ "")
                                          state.reloads)))
     (case (or (?. state.pending :start) state.waiting-since)
       since (table.insert lines (string.format "compiling the new shader in a helper process (%.1f s)"
                                                (- (love.timer.getTime) since))))
-    (when (and state.message (< (love.timer.getTime) state.message-until))
-      (table.insert lines state.message))
+    (let [now (love.timer.getTime)]
+      (each [_ m (ipairs state.messages)]
+        (when (< now m.until) (table.insert lines m.text))))
     lines))
 
 (fn draw-text-box [message x y color]
@@ -575,78 +638,126 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
     (love.graphics.setColor 1 1 1 1)
     (love.graphics.draw canvas 0 0 0 (/ ww (canvas:getWidth)) (/ wh (canvas:getHeight)))))
 
-(fn draw-moving [scene plan]
-  ;; The whole image at the moving scale, every frame.
-  (let [canvas (ensure-move-canvas!)]
-    (case (frame.render-to-canvas! state.cache canvas scene plan state.cam)
-      (nil err) (set state.error err))
-    (draw-stretched canvas)))
+(fn state-key [memo-id]
+  "The scene state a picture shows: the scene's values (their generation, which the
+clock of an animated scene moves too), the plan (view, reflections, model: the folded
+twin of a plan draws the same state), the camera and the picture's size."
+  (let [(ww wh) (love.graphics.getDimensions)]
+    (string.format "%d %d %s %dx%d %.6g" state.generation memo-id
+                   (adaptive.camera-key state.cam) ww wh state.scale)))
 
-(fn draw-still [scene plan]
+(fn render-timed! [canvas scene plan ?rows]
+  "Draw into `canvas` (the rows `?rows` only, when given) and wait for the renderer to
+finish: the seconds it took, or nil when it failed (the error is shown)."
+  (let [start (love.timer.getTime)]
+    (case (frame.render-to-canvas! state.cache canvas scene plan state.cam ?rows)
+      (nil err) (do (set state.error err) nil)
+      ;; Reading one pixel back waits for the renderer, so the time is the render's.
+      _ (let [data (canvas:newImageData 1 1 0 0 1 1)]
+          (data:release)
+          (- (love.timer.getTime) start)))))
+
+(fn draw-coarse! [scene plan key]
+  "A new state: its whole picture now, at the scale that holds the target rate (or a
+small one for a shader not measured yet)."
+  (when (not (adaptive.known? state.adaptive plan.key)) (probe! scene plan))
+  (let [(ww wh) (love.graphics.getDimensions)
+        s (adaptive.scale-for state.adaptive plan.key (/ 1 state.interactive-fps) (* ww wh)
+                              state.scale)
+        canvas (ensure-move-canvas! s)]
+    (case (render-timed! canvas scene plan)
+      seconds (do (set state.last-render {:shader plan.key :coarse? true :seconds seconds
+                                          :pixels (* (canvas:getWidth) (canvas:getHeight))})
+                  (set state.picture {: key : canvas})
+                  (set state.refine nil)
+                  (when state.first-picture (set state.first-picture.drawn? true))))))
+
+(fn start-refine! [plan key]
+  "The state on screen stayed: the full resolution starts from its whole coarse
+picture, scaled up, and is refined in bands of that same state."
   (let [canvas (ensure-canvas!)
-        refine state.refine]
-    (when (and refine refine.copy?)
-      ;; Just stopped: start from the last moving image, scaled up, and refine it.
-      (set refine.copy? false)
-      (when state.move-canvas
-        (love.graphics.push :all)
-        (love.graphics.setCanvas canvas)
-        (love.graphics.draw state.move-canvas 0 0 0
-                            (/ (canvas:getWidth) (state.move-canvas:getWidth))
-                            (/ (canvas:getHeight) (state.move-canvas:getHeight)))
-        (love.graphics.pop))
-      (set state.progress (progress.new)))
-    ;; One band of the image per frame when a whole frame would take too long.
-    (let [p state.progress
-          rows (when (> p.bands 1) [(progress.rows p (canvas:getHeight))])]
-      (case (frame.render-to-canvas! state.cache canvas scene plan state.cam rows)
-        (nil err) (set state.error err)
-        _ (progress.drawn! p)))
-    (when (and refine (progress.complete? state.progress))
-      (set state.refine nil)
-      (say! (string.format "moving: %d frames at %dx%d, median %.0f ms; full %dx%d %.0f ms after stopping"
-                           (length state.move-times)
-                           (if state.move-canvas (state.move-canvas:getWidth) 0)
-                           (if state.move-canvas (state.move-canvas:getHeight) 0)
-                           (* 1000 (or (median state.move-times) 0))
-                           (canvas:getWidth) (canvas:getHeight)
-                           (* 1000 (- (love.timer.getTime) refine.start))))
-      (set state.move-times []))
-    (draw-stretched canvas)))
+        from state.picture.canvas
+        whole? (and (= (from:getWidth) (canvas:getWidth)) (= (from:getHeight) (canvas:getHeight)))
+        p (progress.new (case (adaptive.render-seconds state.adaptive plan.key
+                                                       (* (canvas:getWidth) (canvas:getHeight)))
+                          seconds (progress.bands-for seconds)))]
+    (love.graphics.push :all)
+    (love.graphics.setCanvas canvas)
+    (love.graphics.setColor 1 1 1 1)
+    (love.graphics.draw from 0 0 0 (/ (canvas:getWidth) (from:getWidth))
+                        (/ (canvas:getHeight) (from:getHeight)))
+    (love.graphics.pop)
+    ;; A coarse picture already at full resolution (a light scene) is the picture.
+    (when whole? (set p.covered 1))
+    (set state.refine {: key :progress p :start (love.timer.getTime)})
+    (set state.picture {: key : canvas})))
+
+(fn refine-step! [scene plan]
+  "One band of the full-resolution picture being refined; nothing once it is whole."
+  (let [r state.refine
+        p r.progress
+        canvas state.canvas]
+    (when (not (progress.complete? p))
+      (let [(y0 y1) (progress.rows p (canvas:getHeight))]
+        (case (render-timed! canvas scene plan [y0 y1])
+          seconds (do (progress.drawn! p)
+                      (set state.last-render {:shader plan.key :band? true :seconds seconds
+                                              :pixels (* (canvas:getWidth) (- y1 y0))})))
+        (when (progress.complete? p)
+          (when (> (length state.move-times) 1)
+            (say! (string.format "changing: %d frames at %dx%d, median %.0f ms; full %dx%d %.0f ms after it stayed"
+                                 (length state.move-times)
+                                 (if state.move-canvas (state.move-canvas:getWidth) 0)
+                                 (if state.move-canvas (state.move-canvas:getHeight) 0)
+                                 (* 1000 (or (median state.move-times) 0))
+                                 (canvas:getWidth) (canvas:getHeight)
+                                 (* 1000 (- (love.timer.getTime) r.start)))))
+          (set state.move-times []))))))
+
+(fn draw-scene! [scene plan key]
+  "Draw the frame of state `key`: never a picture that mixes two states."
+  (if (= key (?. state.refine :key)) (refine-step! scene plan)
+      (= key (?. state.picture :key)) (do (start-refine! plan key) (refine-step! scene plan))
+      (draw-coarse! scene plan key))
+  (when state.picture (draw-stretched state.picture.canvas)))
 
 (fn shown []
-  "The scene and plan to draw: the scene's own, or while a helper compiles the shader
-of a new plan (a view or a switch changed the shader), the last ones drawn."
+  "The scene and plan to draw, and the id of the plan (see state-key): the scene's
+own, or while a helper compiles the shader of a new plan (a view or a switch changed
+the shader), the last ones drawn."
   (case (current-plan)
     (nil err) (values nil err)
     plan (if (compile-waits? state.scene plan)
              (do (when (not state.waiting-since)
                    (set state.waiting-since (love.timer.getTime)))
-                 (values state.drawn.scene state.drawn.plan))
+                 (values state.drawn.scene state.drawn.plan state.drawn.id))
              (do (set state.waiting-since nil)
-                 (values state.scene (or (folded-plan plan) plan))))))
+                 (values state.scene (or (folded-plan plan) plan) state.plan-memo.id)))))
+
+(fn idle? []
+  "True when the full-resolution picture is whole: while its state stays, a frame
+only shows it again."
+  (and state.refine (progress.complete? state.refine.progress)))
 
 (fn draw []
   (when state.scene
     (case (shown)
       (nil err) (set state.error err)
-      (scene plan) (do (when (and state.drawn (not= (or plan.base-key plan.key)
-                                                    (or state.drawn.plan.base-key
-                                                        state.drawn.plan.key)))
-                         ;; Another shader: the bands of the image start again. Not for
-                         ;; the folded twin of the shader on screen: the same values,
-                         ;; the same picture.
-                         (set state.progress (progress.new)))
-                       (if state.adaptive.moving? (draw-moving scene plan)
-                           ;; Waiting for a helper with the camera still: the image on
-                           ;; screen is the last one again; the cores go to the helper.
-                           (and (or state.pending state.waiting-since) state.canvas)
-                           (do (love.timer.sleep 0.01) (draw-stretched state.canvas))
-                           (draw-still scene plan))
-                       (when (and (or (not= scene (?. state.drawn :scene))
-                                      (not= plan (?. state.drawn :plan)))
-                                  (gpu.cached? state.cache plan))
-                         (set state.drawn {: scene : plan})))))
+      (scene plan id) (let [key (state-key id)]
+                        (if (and (or state.pending state.waiting-since) state.picture
+                                 (= key state.picture.key))
+                            ;; Waiting for a helper, the state on screen unchanged: the
+                            ;; picture again, not refined further; the cores go to the helper.
+                            (do (love.timer.sleep 0.01) (draw-stretched state.picture.canvas))
+                            (do (when (and (idle?) (= key state.refine.key))
+                                  ;; Whole and current: shown again, nothing drawn; no
+                                  ;; need to spin.
+                                  (love.timer.sleep 0.005))
+                                (draw-scene! scene plan key)))
+                        (when (and (or (not= scene (?. state.drawn :scene))
+                                       (not= plan (?. state.drawn :plan)))
+                                   (gpu.cached? state.cache plan))
+                          (set state.drawn {: scene : plan : id})))))
   (when state.hud?
     (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))
   (case (panel-layout)
@@ -669,6 +780,25 @@ of a new plan (a view or a switch changed the shader), the last ones drawn."
           (nil err) (do (io.stderr:write (.. "error: " path ": cannot write: " err "\n"))
                         (love.event.quit 1)))))))
 
+(fn frame-measured! [dt]
+  "`dt` is the last frame's whole time: feed it, with that frame's render, to the
+frame-time model (and the band schedule); say when a loaded scene's first picture
+reached the screen."
+  (case state.last-render
+    r (do (adaptive.measured! state.adaptive r.shader r.pixels r.seconds dt)
+          (if r.coarse? (table.insert state.move-times dt)
+              (and r.band? state.refine) (progress.measured! state.refine.progress dt))
+          (set state.last-render nil)))
+  (case state.first-picture
+    {: since :drawn? true : path}
+    (let [ms (* 1000 (- (love.timer.getTime) since))]
+      (set state.first-picture nil)
+      (when state.last-load (set state.last-load.first-ms ms))
+      (when (not state.quiet?)
+        (print (string.format "first picture of %s on screen %.0f ms after its shader was ready (%dx%d)"
+                               path ms (if state.move-canvas (state.move-canvas:getWidth) 0)
+                               (if state.move-canvas (state.move-canvas:getHeight) 0)))))))
+
 (fn start! [options]
   "Play the scene file named in `options.scene`: install the LÖVE callbacks."
   (set state.cache (gpu.new-cache))
@@ -684,17 +814,13 @@ of a new plan (a view or a switch changed the shader), the last ones drawn."
                      ;; Nothing to render (a broken or missing first scene): the
                      ;; message is on screen; do not spin at hundreds of frames a second.
                      (when (not state.scene) (love.timer.sleep 0.05))
-                     (progress.measured! state.progress dt)
+                     (frame-measured! dt)
                      (poll-file!)
                      (finish-pending!)
                      (advance-time! dt)
                      (when state.cam
                        (handle-keyboard dt)
-                       (handle-gamepad dt)
-                       (case (adaptive.update! state.adaptive state.cam dt (/ 1 state.interactive-fps)
-                                               state.scale)
-                         :moving (table.insert state.move-times dt)
-                         :stopped (set state.refine {:start (love.timer.getTime) :copy? true})))))
+                       (handle-gamepad dt))))
   (var frames 0)
   (set love.draw (fn []
                    (draw)
@@ -702,7 +828,7 @@ of a new plan (a view or a switch changed the shader), the last ones drawn."
                    ;; Shoot once N frames are drawn and the image is whole (a
                    ;; progressive image needs every band drawn).
                    (when (and options.shot (not state.shooting?) (>= frames options.frames)
-                              (or (not state.scene) (progress.complete? state.progress)))
+                              (or (not state.scene) (idle?)))
                      (set state.shooting? true)
                      (shoot-and-quit! options.shot))))
   (set love.keypressed keypressed)

@@ -8,9 +8,16 @@
 (local start-bands 4)    ; a new scene starts split, until its frame time is known
 (local max-bands 256)
 
-(fn new []
-  "A schedule for a new scene or canvas: split into a few bands at first."
-  {:bands start-bands :next 1 :covered 0 :slowest 0})
+(fn new [?bands]
+  "A schedule for a new picture: split into `?bands` bands (when the frame time is
+known, see adaptive.render-seconds), else a few at first."
+  {:bands (math.max 1 (math.min max-bands (or ?bands start-bands))) :next 1 :covered 0
+   :slowest 0})
+
+(fn bands-for [seconds]
+  "The band count that keeps a frame whose whole picture takes `seconds` within the
+budget."
+  (math.max 1 (math.min max-bands (math.ceil (/ seconds budget)))))
 
 (fn rows [p height]
   "The rows [y0 y1) of `height` to draw this frame."
@@ -50,4 +57,4 @@ proportion, so one slow frame is enough), fewer when far under it."
   "True once every row of the image has been drawn at least once."
   (>= p.covered (- 1 1e-9)))
 
-{: new : rows : drawn! : measured! : complete? : budget : max-bands}
+{: new : bands-for : rows : drawn! : measured! : complete? : budget : max-bands}
