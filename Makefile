@@ -35,7 +35,7 @@ report-quick: deps
 	luajit tools/fnl.lua tools/report.fnl --quick
 
 # Under Xvfb: does the player ever show a picture mixing two scene states? (about
-# 1.5 minutes; PLAYER=DIR checks another checkout's player; see README, Tests).
+# a minute; PLAYER=DIR checks another checkout's player; see README, Tests).
 check-states:
 	@bash tools/install-deps.sh xvfb xdotool x11-apps bc
 	bash tools/check-states.sh $(PLAYER)

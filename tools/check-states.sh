@@ -29,7 +29,10 @@ die() { echo "check-states: $*" >&2; exit 2; }
 REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${OUT:-$REPO/out/check-states}
 GRAB_S=${GRAB_S:-0.15}
-SCENES=$(cd "${SCENES:-$REPO/test/states}" 2>/dev/null && pwd) || die "no scene folder $SCENES"
+SCENES_ARG=${SCENES:-$REPO/test/states}
+SCENES=$(cd "$SCENES_ARG" 2>/dev/null && pwd) || die "no scene folder $SCENES_ARG"
+[ -f "$SCENES/hue.fnl" ] && [ -f "$SCENES/hue-animated.fnl" ] \
+  || die "$SCENES has no hue.fnl and hue-animated.fnl"
 TITLE="Fennel raymarcher"
 
 for tool in love luajit xvfb-run xdotool xwd bc; do
@@ -60,7 +63,8 @@ if [ -z "${CHECK_STATES_DISPLAY:-}" ]; then
 fi
 
 WORK="$OUT/frames"
-rm -rf "$OUT"; mkdir -p "$WORK"
+# Only what this script writes is removed: OUT may be a folder with other things in it.
+rm -rf "$WORK"; rm -f "$OUT"/*-worst.png; mkdir -p "$WORK"
 cp "$SCENES/hue.fnl" "$WORK/hue.fnl"
 cp "$SCENES/hue-animated.fnl" "$WORK/hue-animated.fnl"
 LOVE_PID=""
