@@ -29,9 +29,9 @@
 ;; Strips whose median hues differ by more than this many degrees mix states. Measured
 ;; (`tools/check-states.sh --calibrate`): single-state renders of test/states/hue.fnl
 ;; at 1280x720 for six :hue values, whole and shrunk to 160x90 then stretched back with
-;; linear filtering, have a strip spread of 0 (every strip's median in the same
-;; half-degree bin); so do the unmixed frames the player showed in the check (at most
-;; 0.5 degree). 6 is twelve bins, and under every step the scenarios take: a slider
+;; linear filtering, have a strip spread of at most 0.5 degree (one histogram bin); so
+;; do the unmixed frames the player showed in the check (at most 1 degree while the
+;; animated hue runs). 6 is twelve bins, and under every step the scenarios take: a slider
 ;; step of the drag is 9.6 degrees, the edits move 48 to 72, and the animated hue
 ;; moves 6 degrees in 0.125 s.
 (local tolerance 6)
