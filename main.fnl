@@ -148,4 +148,4 @@
             (let [(ok? err) (xpcall run debug.traceback o)]
               (when (not ok?) (fail! (tostring err))))))
     (nil err) (do (set love.errorhandler headless-error-handler)
-                  (fail! (.. err "\n" cli.usage)))))
+                  (fail! (.. err "\n(love . --help lists the modes and options)")))))

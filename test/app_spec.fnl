@@ -68,7 +68,13 @@
                                "--render scenes/missing.fnl --out test/out/m.png"])]
           (let [(code out) (run args)]
             (assert.are.equal 1 code args)
-            (assert.truthy (out:find "error: " 1 true) args)))))
+            (assert.truthy (out:find "error: " 1 true) args)))
+        ;; An argument error: its message and one line pointing at --help, not the
+        ;; whole usage after it.
+        (let [(code out) (run "--bogus")]
+          (assert.are.equal 1 code out)
+          (assert.truthy (out:find "error: unknown option --bogus\n(love . --help lists the modes and options)" 1 true) out)
+          (assert.falsy (out:find "usage:" 1 true) out))))
 
     (it "prints the generated shader from another working directory"
       (fn []
@@ -151,6 +157,9 @@
           (assert.are.equal 0 code out)
           (assert.are.equal 0 code2 out2)
           (assert.truthy (out:find "frame 3/3" 1 true) out)
+          ;; stderr is a pipe here, not a terminal: one line an update, no \r.
+          (assert.truthy (out:find "frame 1/3 (t = 0.000 s)\nframe 2/3" 1 true) out)
+          (assert.falsy (out:find "\r" 1 true) out)
           (for [i 1 3]
             (let [name (string.format "frame-%04d.png" i)]
               (assert.are.equal (read (.. "test/out/rec-a/" name)) (read (.. "test/out/rec-b/" name)) name)))

@@ -2,6 +2,7 @@
 ;; `make bench`, which times several shader variants interleaved in one run so that the
 ;; ratios it prints are not skewed by a shared, noisy machine.
 
+(local status (require :src.util.status))
 (local frame (require :src.backend.frame))
 (local gpu (require :src.backend.gpu))
 (local camera (require :src.render.camera))
@@ -60,9 +61,8 @@ through gpu.compile-plan)."
   (for [round 1 rounds]
     (each [_ v (ipairs variants)]
       (table.insert v.times (time-frame! v)))
-    (io.stderr:write (string.format "\rround %d/%d" round rounds))
-    (io.stderr:flush))
-  (io.stderr:write "\n")
+    (status.update! (string.format "round %d/%d" round rounds)))
+  (status.done!)
   (each [_ v (ipairs variants)] (set v.median (median v.times))))
 
 (fn run-scene [o]

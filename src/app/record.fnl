@@ -3,6 +3,7 @@
 ;; command gives the same files), with progress on stderr. --turntable orbits the
 ;; camera once around the scene's centre over the recording.
 
+(local status (require :src.util.status))
 (local frame (require :src.backend.frame))
 (local gpu (require :src.backend.gpu))
 (local camera (require :src.render.camera))
@@ -60,9 +61,8 @@ excepted), or a point 10 units in front of the camera when there is none."
               (nil e) (set err e)
               _ (case (frame.write-png canvas path)
                   (nil e) (set err e)))
-            (io.stderr:write (string.format "\rframe %d/%d (t = %.3f s)" (+ i 1) o.frames (/ i fps)))
-            (io.stderr:flush)))
-        (io.stderr:write "\n")
+            (status.update! (string.format "frame %d/%d (t = %.3f s)" (+ i 1) o.frames (/ i fps)))))
+        (status.done!)
         (if err (values nil err)
             (do (print (string.format "wrote %d frames of %dx%d to %s/frame-0001.png ..."
                                       o.frames w h o.out))

@@ -4,6 +4,7 @@
 ;; each picked up by the file watcher and rendered; it checks what a player would see
 ;; and reports reload times, Lua memory and live shaders.
 
+(local status (require :src.util.status))
 (local play (require :src.app.play))
 (local frame (require :src.backend.frame))
 (local filestat (require :src.util.filestat))
@@ -216,9 +217,8 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
         (set memory-warm (collectgarbage :count))
         (set live-warm (- state.cache.compiles state.cache.released)))
       (when (= (% i 100) 0)
-        (io.stderr:write (string.format "\rsoak: %d/%d reloads" i cycles))
-        (io.stderr:flush)))
-    (io.stderr:write "\n")
+        (status.update! (string.format "soak: %d/%d reloads" i cycles))))
+    (status.done!)
     (collectgarbage :collect)
     (collectgarbage :collect)
     (os.remove path)
