@@ -95,7 +95,11 @@ the sky, and the surface points met ([x y z] each)."
                 (set result 0)
                 (let [y (/ (* h h) (* 2 h-prev))
                       closest (sqrt (max (- (* h h) (* y y)) 0))]
-                  (set seen (min seen (/ closest (* softness (max (- t y) 1e-6)))))
+                  ;; At or behind the origin the closest approach is the surface
+                  ;; the ray leaves (shadow-soft.glsl): no darkening.
+                  (let [along (- t y)]
+                    (when (> along 0)
+                      (set seen (min seen (/ closest (* softness along))))))
                   (set h-prev h)
                   (set t (+ t h))
                   (when (>= t limit) (set result -1))))))

@@ -18,7 +18,13 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
         }
         float y = h * h / (2.0 * hPrev);
         float closest = sqrt(max(h * h - y * y, 0.0));
-        seen = min(seen, closest / (softness * max(t - y, 0.000001)));
+        // The closest approach lies at t - y along the ray. At or behind the origin it
+        // is the surface the ray leaves (a ray along the normal has y = t + the start
+        // offset, and closest 0 up to rounding): no occluder, so no darkening.
+        float along = t - y;
+        if (along > 0.0) {
+            seen = min(seen, closest / (softness * along));
+        }
         hPrev = h;
         t += h;
         if (t >= reach) {
