@@ -458,6 +458,9 @@ least tap-seconds for a key pressed since the last update."
 (fn toggle-fullscreen! []
   (love.window.setFullscreen (not (love.window.getFullscreen)) :desktop))
 
+;; Long enough to read (or copy) the path, which the other messages do not push out.
+(local screenshot-seconds 10)
+
 (fn screenshot! [bare?]
   "F12: the window as it looks (window resolution, HUD and messages included);
 shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
@@ -465,17 +468,20 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
         name (.. (if bare? "render-" "screenshot-") stamp ".png")
         where (.. (love.filesystem.getSaveDirectory) "/" name)]
     (if bare?
-        (when state.canvas
-          (let [data (state.canvas:newImageData)]
-            (data:encode :png name)
-            (data:release)
-            (say! (string.format "saved the bare render (%dx%d) to %s"
-                                 (state.canvas:getWidth) (state.canvas:getHeight) where))))
+        ;; The picture on screen, at its own resolution (a low one while it changes).
+        (case state.picture
+          {: canvas} (let [data (canvas:newImageData)]
+                       (data:encode :png name)
+                       (data:release)
+                       (say! (string.format "saved the bare render (%dx%d) to %s"
+                                            (canvas:getWidth) (canvas:getHeight) where)
+                             screenshot-seconds)))
         (love.graphics.captureScreenshot
           (fn [data]
             (data:encode :png name)
             (say! (string.format "saved the window (%dx%d) to %s; shift+F12 saves the bare render"
-                                 (data:getWidth) (data:getHeight) where)))))))
+                                 (data:getWidth) (data:getHeight) where)
+                  screenshot-seconds))))))
 
 (fn keypressed [key]
   (let [alt? (down? :lalt :ralt)
@@ -662,8 +668,10 @@ finish: the seconds it took, or nil when it failed (the error is shown)."
 small one for a shader not measured yet)."
   (when (not (adaptive.known? state.adaptive plan.key)) (probe! scene plan))
   (let [(ww wh) (love.graphics.getDimensions)
-        s (adaptive.scale-for state.adaptive plan.key (/ 1 state.interactive-fps) (* ww wh)
-                              state.scale)
+        ;; A loaded scene's first frame also pays for what the model has not seen yet
+        ;; (the HUD's first text, the new canvases): its picture gets half the time.
+        target (/ (if state.first-picture 0.5 1) state.interactive-fps)
+        s (adaptive.scale-for state.adaptive plan.key target (* ww wh) state.scale)
         canvas (ensure-move-canvas! s)]
     (case (render-timed! canvas scene plan)
       seconds (do (set state.last-render {:shader plan.key :coarse? true :seconds seconds
