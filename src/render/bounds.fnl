@@ -5,6 +5,9 @@
 ;; LuaJIT; the GLSL (shaders/pipeline/march-bounded.glsl) and the CPU reference
 ;; (src/verify/reference.fnl) follow the same rules.
 
+;; From this radius on a sphere loses float32 precision near its surface.
+(local {: large-radius} (require :src.sdf.registry))
+
 (fn length3 [[x y z]] (math.sqrt (+ (* x x) (* y y) (* z z))))
 
 (fn tree-infos [plan]
@@ -16,12 +19,25 @@
 (an infinite tree node, or a sphere of radius 1000 or more, whose bound would lose
 float32 precision near its surface). `infos`: see tree-infos."
   (if o.tree
-      ;; A tree object's root is the translation of its placement; its child's
-      ;; bounds are half extents about that point.
+      ;; A tree object's root is the translation of its placement (its :pos, or the
+      ;; node itself when it is a translation); its child's bounds are half extents
+      ;; about that point. Their sphere grows with the distance from the root to
+      ;; what it holds: a group without a :pos whose children stand 1e6 out gets one
+      ;; 1e6 wide about the origin, whose ray test loses its span in float32 (as a
+      ;; sphere of radius 1000 or more loses its surface). From that radius on, the
+      ;; sphere about the child's box ({:lo :hi} about the root) holds it instead.
       (let [child (?. infos o.index :children 1)
-            b (and child child.bounds)]
-        (when b [(or o.tree.pos [0 0 0]) (length3 b)]))
-      (= o.kind :sphere) (when (< o.radius 1000) [o.pos o.radius])
+            [px py pz] (or o.tree.pos (and (= o.tree.kind :translate) o.tree.offset) [0 0 0])
+            b (and child child.bounds)
+            box (and child child.box)]
+        (if (and b box (>= (length3 b) large-radius))
+            (let [{: lo : hi} box]
+              [[(+ px (* 0.5 (+ (. lo 1) (. hi 1))))
+                (+ py (* 0.5 (+ (. lo 2) (. hi 2))))
+                (+ pz (* 0.5 (+ (. lo 3) (. hi 3))))]
+               (length3 (fcollect [i 1 3] (* 0.5 (- (. hi i) (. lo i)))))])
+            b [[px py pz] (length3 b)]))
+      (= o.kind :sphere) (when (< o.radius large-radius) [o.pos o.radius])
       (= o.kind :box) (let [[x y z] o.size] [o.pos (* 0.5 (length3 [x y z]))])
       nil))
 

@@ -44,23 +44,29 @@ is a hit (see shaders/pipeline/hit/)."
 
 (fn tape-values [tape [cx cy cz]]
   "The tape's rows as one flat list; rows holding a world position (each tree
-object's outermost translation) are made camera-relative here, in double. A plane
-placed directly by its translation (the tape's :planes) gets a translation of 0 and
-its height seen from the camera, h + dot(n, translation - camera), so the shader's
-plane sees the camera-relative point, not the world point rounded to float32."
+object's outermost translation) are made camera-relative here, in double. An object
+that takes the camera off one level in (the tape's :inner, see src/sdf/lower.fnl's
+hand-in) gets a translation of 0, each translation reading it T + t - camera and
+each plane reading it the height h + dot(n, T - camera): the shader's point stays
+near the camera, not the world point rounded to float32."
   (let [relative (collect [_ r (ipairs tape.relative)] r true)
-        placing (collect [_ pl (ipairs (or tape.planes []))] pl.translate true)
-        planes (collect [_ pl (ipairs (or tape.planes []))] pl.row pl.translate)
+        ;; Row index (0-based) -> the values sent for it.
+        instead {}
+        _ (each [_ {: root : translations : planes} (ipairs (or tape.inner []))]
+            (let [[tx ty tz w] (. tape.rows (+ root 1))
+                  dx (- tx cx) dy (- ty cy) dz (- tz cz)]
+              (tset instead root [0 0 0 w])
+              (each [_ r (ipairs translations)]
+                (let [[x y z w] (. tape.rows (+ r 1))]
+                  (tset instead r [(+ x dx) (+ y dy) (+ z dz) w])))
+              (each [_ {: row} (ipairs planes)]
+                (let [[x y z w] (. tape.rows (+ row 1))]
+                  (tset instead row [x y z (+ w (* x dx) (* y dy) (* z dz))])))))
         out []]
     (each [i row (ipairs tape.rows)]
       (let [[x y z w] row]
-        (if (. placing (- i 1))
-            (append! out [0 0 0 w])
-            (. planes (- i 1))
-            (let [[tx ty tz] (. tape.rows (+ (. planes (- i 1)) 1))]
-              (append! out [x y z (+ w (* x (- tx cx)) (* y (- ty cy)) (* z (- tz cz)))]))
-            (. relative (- i 1))
-            (append! out [(- x cx) (- y cy) (- z cz) w])
+        (if (. instead (- i 1)) (append! out (. instead (- i 1)))
+            (. relative (- i 1)) (append! out [(- x cx) (- y cy) (- z cz) w])
             (append! out [x y z w]))))
     out))
 

@@ -7,10 +7,10 @@
 ;;             :dout (distance register) :mout (material register) :info (node info)}
 ;;   :rows     parameter values, four numbers per row (the GLSL sees vec4 uTape[rows])
 ;;   :relative rows whose xyz are world positions, made camera-relative on upload
-;;   :planes   {:row r :translate t :height ref} for each object that is a plane
-;;             placed directly by its translation (row t): on upload row t becomes 0
-;;             and the plane's height in row r (argument `ref`) takes the camera off
-;;             instead (see `plane-placed`)
+;;   :inner    {:root t :translations [row ...] :planes [{:row r :height ref} ...]}
+;;             for each object whose camera offset is taken off one level in (see
+;;             `hand-in`): on upload its translation's row t is 0, and those rows
+;;             (a plane's height, in argument `ref`) take the camera off instead
 ;;   :used     descriptor names the code calls (the GLSL holds only those)
 ;;   :key      the structure: equal keys mean the same generated code
 ;;   :mirrors? whether any material is less than a full mirror
@@ -54,7 +54,7 @@
 (local modern-material [1 1 1 0 0.5 0 0 0])
 
 (fn new-state [?modern? ?far-field?]
-  {:rows [] :relative [] :planes [] :used {} :used-list [] :counter 0 :key [] :modern? ?modern?
+  {:rows [] :relative [] :inner [] :used {} :used-list [] :counter 0 :key [] :modern? ?modern?
    :far-field? (not= false ?far-field?)})
 
 (fn fresh! [st prefix]
@@ -293,28 +293,49 @@ first when `?centre?` (else the box is taken as centred); return the register."
                                                    (.. "unknown kind " (tostring node.kind)))
                               pin material)))))
 
-;; A plane is unbounded: however near the camera its object's translation is, the
-;; point the plane sees, p - (translation - camera), is the world point far from the
-;; origin, and float32 (0.0625 apart at 1e6) rings its distance and shadows. Placed
-;; directly by the translation, the plane is the same plane at height
-;; h + dot(n, translation - camera) seen from the camera: on upload the translation
-;; is sent as 0 and that height, in double, so its point is the camera-relative one.
-;; The code is the same; the CPU evaluator reads the rows in world coordinates.
-(fn plane-placed [code]
-  "The plane primitive of `code` that the object's translation (its first instruction)
-places directly, or nil."
-  (let [[point prim] code]
-    (when (and prim (= :prim prim.op) (= :plane prim.desc.kind) (= prim.pin point.pout))
-      prim)))
+;; An object's translation T is sent as T - camera, so its point is the camera-relative
+;; one moved to the object's origin. When that origin is far from what the object draws
+;; (a plane, unbounded; an object without a placement, whose origin is the world's),
+;; that point is the world point, rounded to float32 (0.0625 apart at 1e6): rings and
+;; lost shadows. When every instruction reading the translation's output is a
+;; translation (a child's :pos, the guard's box centre) or a plane, the camera is taken
+;; off one level in instead: T is sent as 0, each such translation t as T + t - camera
+;; and each such plane's height h as h + dot(n, T - camera), in double. The code is the
+;; same; the CPU evaluator reads the rows in world coordinates. lower-object does it
+;; for an object without a placement, and for a placed one when only planes read its
+;; point (a placed group keeps its children's offsets constant, for folding).
+(fn hand-in [code]
+  "{:translations [row ...] :planes [{:row r :height ref} ...]} for the instructions of
+`code` that read the object's translation's output (its first instruction), when each
+is a translation or a plane; else nil."
+  (let [p (. code 1 :pout)
+        found {:translations [] :planes []}]
+    (var ok? (= :point (?. code 1 :op)))
+    (fn walk [instructions]
+      (each [_ ins (ipairs instructions)]
+        (when (= ins.pin p)
+          (case [ins.op ins.desc.kind]
+            [:point :translate] (table.insert found.translations (. ins.args 1 :row))
+            [:prim :plane] (let [[n h] ins.args]
+                             ;; The normal and the height share one row.
+                             (assert (and (= n.row h.row) (= n.offset 0) (= h.offset 3)))
+                             (table.insert found.planes {:row n.row :height h}))
+            _ (set ok? false)))
+        (when ins.body (walk ins.body))))
+    (when ok? (walk (icollect [i ins (ipairs code)] (when (> i 1) ins))))
+    (when (and ok? (or (> (length found.translations) 0) (> (length found.planes) 0)))
+      found)))
 
 (fn lower-object [st node]
   ;; The shader's point is camera-relative. The object's outermost translation takes
   ;; the camera position off in double on the CPU (its row is marked relative); an
   ;; object without one gets a translation by zero, so its point is the world point.
-  (let [top (wrap-shorthand node)
-        top (if (= top.kind :translate) top
-                {:kind :translate :offset [0 0 0] :children [top] :path node.path
-                 :implicit? true})
+  (let [wrapped (wrap-shorthand node)
+        unplaced? (not= wrapped.kind :translate)
+        top (if unplaced?
+                {:kind :translate :offset [0 0 0] :children [wrapped] :path node.path
+                 :implicit? true}
+                wrapped)
         code []
         before (length st.rows)
         result (lower-node st code top "p0" (if st.modern? modern-material default-material))
@@ -342,24 +363,27 @@ places directly, or nil."
                  result.dout)]
     ;; The translate's arguments are the first row this object allocated.
     (table.insert st.relative before)
-    (case (plane-placed code)
-      plane (let [[n h] plane.args]
-              ;; The normal and the height share one row (see plane-placed).
-              (assert (and (= n.row h.row) (= n.offset 0) (= h.offset 3)))
-              (table.insert st.planes {:row n.row :translate before :height h})))
+    (case (hand-in code)
+      (where inner (or unplaced? (= 0 (length inner.translations))))
+      (table.insert st.inner (doto inner (tset :root before))))
     (table.insert st.key ";")
     {:index node.index : code : dout :mout result.mout :info result.info : guard}))
 
 (fn fold! [st objects]
   "Give every argument and material of `objects`' code that does not sit in a
-camera-relative row (nor is a placed plane's height) its numbers as :literal, and the
+camera-relative row (nor takes the camera off, see hand-in) its numbers as :literal, and the
 key those numbers: the GLSL emitter then writes them as constants (see the tape's
 :fold? in `lower`)."
   (let [relative (collect [_ r (ipairs st.relative)] r true)
-        ;; A placed plane's height takes the camera off on upload: it stays a uniform
-        ;; (its normal, in the same row, is folded).
-        heights (collect [_ pl (ipairs st.planes)] pl.height true)
-        plane-rows (collect [_ pl (ipairs st.planes)] pl.row true)
+        ;; Rows that take the camera off one level in (see hand-in) stay uniforms; of
+        ;; a plane's row only the height does (its normal is folded).
+        heights {}
+        plane-rows {}
+        _ (each [_ inner (ipairs st.inner)]
+            (each [_ r (ipairs inner.translations)] (tset relative r true))
+            (each [_ pl (ipairs inner.planes)]
+              (tset heights pl.height true)
+              (tset plane-rows pl.row true)))
         row-values (fn [row n] (fcollect [k 1 n] (. st.rows (+ row 1 (math.floor (/ (- k 1) 4)))
                                                      (+ 1 (% (- k 1) 4)))))]
     (fn walk [code]
@@ -385,8 +409,8 @@ key those numbers: the GLSL emitter then writes them as constants (see the tape'
 when a node cannot be lowered (a twist of an unbounded child), then that node and the
 reason alone. Option :modern? gives every material two rows (:material-size 8);
 :far-field? false leaves out far fields and guards (the benchmark's before);
-:fold? true writes every value but the camera-relative rows and the placed planes'
-heights into the code as constants (:literal on arguments and materials), and into
+:fold? true writes every value but the camera-relative rows (and those of `hand-in`)
+into the code as constants (:literal on arguments and materials), and into
 the key."
   (let [options (or ?options {})
         st (new-state options.modern? options.far-field?)
@@ -395,7 +419,7 @@ the key."
         (do (when options.fold? (fold! st objs))
             (table.insert st.key (.. "rows:" (length st.rows)))
             (when st.modern? (table.insert st.key "materials:8"))
-            {:objects objs :rows st.rows :relative st.relative :planes st.planes
+            {:objects objs :rows st.rows :relative st.relative :inner st.inner
              :mirrors? st.mirrors?
              :material-size (if st.modern? 8 4)
              :used (icollect [_ name (ipairs st.used-list)] {: name :desc (. st.used name)})
