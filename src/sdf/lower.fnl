@@ -314,7 +314,7 @@ is a translation or a plane; else nil."
     (fn walk [instructions]
       (each [_ ins (ipairs instructions)]
         (when (= ins.pin p)
-          (case [ins.op ins.desc.kind]
+          (case [ins.op (?. ins :desc :kind)]
             [:point :translate] (table.insert found.translations (. ins.args 1 :row))
             [:prim :plane] (let [[n h] ins.args]
                              ;; The normal and the height share one row.
@@ -329,7 +329,8 @@ is a translation or a plane; else nil."
 (fn lower-object [st node]
   ;; The shader's point is camera-relative. The object's outermost translation takes
   ;; the camera position off in double on the CPU (its row is marked relative); an
-  ;; object without one gets a translation by zero, so its point is the world point.
+  ;; object without one gets a translation by zero, whose point would be the world
+  ;; point: the camera is taken off one level in where it can be (see hand-in).
   (let [wrapped (wrap-shorthand node)
         unplaced? (not= wrapped.kind :translate)
         top (if unplaced?
@@ -371,9 +372,9 @@ is a translation or a plane; else nil."
 
 (fn fold! [st objects]
   "Give every argument and material of `objects`' code that does not sit in a
-camera-relative row (nor takes the camera off, see hand-in) its numbers as :literal, and the
-key those numbers: the GLSL emitter then writes them as constants (see the tape's
-:fold? in `lower`)."
+camera-relative row (nor takes the camera off, see hand-in) its numbers as :literal,
+and the key those numbers: the GLSL emitter then writes them as constants (see the
+tape's :fold? in `lower`)."
   (let [relative (collect [_ r (ipairs st.relative)] r true)
         ;; Rows that take the camera off one level in (see hand-in) stay uniforms; of
         ;; a plane's row only the height does (its normal is folded).
@@ -410,8 +411,7 @@ when a node cannot be lowered (a twist of an unbounded child), then that node an
 reason alone. Option :modern? gives every material two rows (:material-size 8);
 :far-field? false leaves out far fields and guards (the benchmark's before);
 :fold? true writes every value but the camera-relative rows (and those of `hand-in`)
-into the code as constants (:literal on arguments and materials), and into
-the key."
+into the code as constants (:literal on arguments and materials), and into the key."
   (let [options (or ?options {})
         st (new-state options.modern? options.far-field?)
         (ok? objs) (pcall #(icollect [_ o (ipairs objects)] (lower-object st o)))]
