@@ -18,7 +18,7 @@ run: deps
 
 # The suite also makes a quick accuracy report, whose plots need gnuplot.
 test:
-	@bash tools/install-deps.sh gnuplot-nox zip
+	@bash tools/install-deps.sh gnuplot-nox zip xvfb xdotool x11-apps bc
 	@$(HEADLESS) bash tools/run-tests.sh
 
 bench: deps

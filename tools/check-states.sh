@@ -56,7 +56,9 @@ fi
 PLAYER=$(cd "${1:-$REPO}" 2>/dev/null && pwd) || die "no player directory ${1:-}"
 [ -f "$PLAYER/main.fnl" ] && [ -f "$PLAYER/conf.lua" ] || die "$PLAYER is not the player's folder (no main.fnl and conf.lua)"
 
-# Everything below runs inside its own X server.
+# Everything below runs inside its own X server, in a real window (make test sets
+# SDL_VIDEODRIVER=offscreen, which would open none).
+unset SDL_VIDEODRIVER
 if [ -z "${CHECK_STATES_DISPLAY:-}" ]; then
   exec xvfb-run -a -s "-screen 0 1280x720x24" \
        env CHECK_STATES_DISPLAY=1 OUT="$OUT" GRAB_S="$GRAB_S" SCENES="$SCENES" bash "$0" "$PLAYER"
