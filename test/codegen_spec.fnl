@@ -359,6 +359,8 @@
                          "^const int k%w+ = %d+;"
                          "^%s*for %(int %w+ = %d+; %w+ <=? %w+; %w+%+%+%) {$"
                          "^%s*if %(bounce > 0%) {$"
+                         ;; a secondary ray's first step (march.glsl's startHalf)
+                         "^%s*startHalf = i == 0 && "
                          ;; load-once's integer that the compiler cannot fold
                          "^%s*int opaque = 2147483647 %- int%(nothing%);$"
                          "^%s*g%w+ = %(u%w+ && opaque > 0%);$"

@@ -191,7 +191,7 @@
   [["ambient occlusion" "occ = occlusion(p, n);" ""]
    ["fog" "through = fogTransmittance(origin, dir, t);" ""]
    ["specular" "c += radiance * mix(vec3(1.0), albedo, mirror)" "c += 0.0 * mix(vec3(1.0), albedo, mirror)"]
-   ["soft shadows" "seen = min(seen, closest / (softness * max(t - y, 0.000001)));" ""]
+   ["soft shadows" "seen = min(seen, closest / (softness * along));" ""]
    ["Fresnel reflection" "radiance += weight * sky(dir);" "radiance += weight * uSkyHorizon;"]
    ["emission" "+ albedo * gMaterial.y;" ";"]
    ["point light falloff" "falloff = 1.0 / (1.0 + r * r);" ""]])

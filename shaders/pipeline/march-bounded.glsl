@@ -16,9 +16,17 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     if (t >= tEnd) {
         return min(tPlane, tMax);
     }
+    // A shadow or mirror ray (not a primary one: those start at the camera, the
+    // origin) whose first step is at its start must come nearer than startLimit of
+    // the distance there (half of it; no limit in the article's fixed hit test) to
+    // count a hit: one that starts within the hit threshold of a surface (in a
+    // crease, or off a surface whose distance grows slower than 1) never hits at
+    // its own start.
+    float startHalf = 10000000000.0;
     for (int i = 0; i < uMaxSteps; i++) {
         float d = mapFinite(ro + rd * t);
-        float threshold = hitThreshold(t0 + t);
+        startHalf = i == 0 && t == 0.0 && t0 > 0.0 ? startLimit(d) : startHalf;
+        float threshold = min(hitThreshold(t0 + t), startHalf);
         // @slot count-step
         t += d;
         if (d < threshold) {

@@ -33,6 +33,13 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     vec3 tDelta = uFieldCell * abs(inv);
     vec3 tNext = vec3(0.0);
     int evals = 0;
+    // A shadow or mirror ray (not a primary one: those start at the camera, the
+    // origin) whose first step is at its start must come nearer than startLimit of
+    // the distance there (half of it; no limit in the article's fixed hit test) to
+    // count a hit: one that starts within the hit threshold of a surface (in a
+    // crease, or off a surface whose distance grows slower than 1) never hits at
+    // its own start.
+    float startHalf = 10000000000.0;
     for (int i = 0; i < uMaxSteps + uFieldCrossings + 1; i++) {
         if (state == 0 && t >= gridIn) {
             vec3 q = q0 + rd * t;
@@ -44,6 +51,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
         }
         vec3 p = ro + rd * t;
         float d = mapFinite(p);
+        startHalf = i == 0 && t == 0.0 && t0 > 0.0 ? startLimit(d) : startHalf;
         bool evaluated = kFieldOthers;
         if (state == 1) {
             vec4 list = fieldRead(uFieldCells, uFieldRows.x, fieldCellIndex(cell));
@@ -59,7 +67,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
         if (evaluated) {
             evals++;
             steps = evals;
-            if (d < hitThreshold(t0 + t)) {
+            if (d < min(hitThreshold(t0 + t), startHalf)) {
                 return t + d;
             }
         }

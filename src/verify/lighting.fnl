@@ -78,6 +78,10 @@ the sky, and the surface points met ([x y z] each)."
         (var seen 1)
         (var t 0)
         (var h-prev 1e10)
+        ;; As the marches: a hit must come nearer than start-limit of the start's
+        ;; distance.
+        (var start-half 1e10)
+        (var first? true)
         (var result nil)
         (var limit reach)
         (when T.soft-span
@@ -91,7 +95,9 @@ the sky, and the surface points met ([x y z] each)."
                 (when (>= t limit) (set result -1)))))
         (for [_ 1 shadow-steps &until result]
           (let [h (f (+ ox (* lx t)) (+ oy (* ly t)) (+ oz (* lz t)))]
-            (if (< h (threshold (+ t0 t)))
+            (when (and first? (= t 0)) (set start-half (T.start-limit h)))
+            (set first? false)
+            (if (< h (min (threshold (+ t0 t)) start-half))
                 (set result 0)
                 (let [y (/ (* h h) (* 2 h-prev))
                       closest (sqrt (max (- (* h h) (* y y)) 0))]

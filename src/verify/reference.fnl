@@ -156,6 +156,12 @@ Positions are in world coordinates."
         :relative (* eps dist)
         :pixel (* eps dist pixel-angle)))
 
+    (fn start-limit [d]
+      ;; The nearest a secondary ray may come to count a hit, given the distance d at
+      ;; its start (startLimit in shaders/pipeline/hit/): half of it, except in the
+      ;; article's fixed test or from inside a solid.
+      (if (or (= hit-test :fixed) (<= d 0)) draw (* 0.5 d)))
+
     (fn distance-from-camera [x y z]
       (let [ex (- x cx) ey (- y cy) ez (- z cz)]
         (sqrt (+ (* ex ex) (* ey ey) (* ez ez)))))
@@ -203,6 +209,8 @@ Positions are in world coordinates."
         (var (next-x next-y next-z) (values 0 0 0))
         (var evals 0)
         (var result nil)
+        (var start-half draw)
+        (var first? true)
         (when (>= t t-end) (set result t-past))
         (for [_ 1 max-iterations &until result]
           (when (and (= state 0) (>= t grid-in))
@@ -215,6 +223,8 @@ Positions are in world coordinates."
               (set cell-end (math.min next-x next-y next-z))))
           (let [px (+ ox (* dx t)) py (+ oy (* dy t)) pz (+ oz (* dz t))]
             (var d (map-finite px py pz))
+            (when (and first? (= t 0) (> t0 0)) (set start-half (start-limit d)))
+            (set first? false)
             (var evaluated? others?)
             (when (= state 1)
               (let [k (+ 1 cx (* nx (+ cy (* ny cz))))]
@@ -228,7 +238,7 @@ Positions are in world coordinates."
                       (set result hit))))))
             (when (and evaluated? (not result))
               (set evals (+ evals 1))
-              (when (< d (threshold (+ t0 t)))
+              (when (< d (math.min (threshold (+ t0 t)) start-half))
                 (set result (+ t d))))
             (when (not result)
               (if (< (+ t d) cell-end)
@@ -268,6 +278,11 @@ Positions are in world coordinates."
         (var r-prev 0)
         (var omega relaxation)
         (var steps 0)
+        ;; A secondary ray (t0 > 0; primary rays start at the camera) whose first
+        ;; step is at its start must come nearer than start-limit of the distance
+        ;; there to count a hit, so one starting inside the hit threshold (in a
+        ;; crease) never hits at its start (march.glsl's startHalf).
+        (var start-half draw)
         ;; Past the end: the plane when it comes before the limit, else the limit
         ;; (a miss).
         (local t-past (math.min t-plane (or ?t-max draw)))
@@ -276,10 +291,11 @@ Positions are in world coordinates."
         (for [i 0 (- max-steps 1) &until done?]
           (let [d (f (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
             (set steps (+ i 1))
+            (when (and (= i 0) (= t 0) (> t0 0)) (set start-half (start-limit d)))
             (if (and (> omega 1) (< (+ (abs d) r-prev) (- t t-prev)))
                 (do (set t (+ t-prev r-prev))
                     (set omega 1))
-                (< d (threshold (+ t0 t)))
+                (< d (math.min (threshold (+ t0 t)) start-half))
                 (do (set t (+ t d))
                     (set done? true))
                 (do (set t-prev t)
@@ -525,7 +541,7 @@ Positions are in world coordinates."
                          (bounds.span bound-spheres ox oy oz dx dy dz draw grow))))
     (local closures {: map : map-color : march : normal : lightness : trace : normal-delta : crease?
                      : needs-samples? : map-finite : planes-hit : soft-span
-                     : threshold : distance-from-camera})
+                     : threshold : start-limit : distance-from-camera})
     (when (and shaded? plan.lighting)
       (set modern-shade (lighting.shader closures scene plan)))
     closures))

@@ -10,10 +10,14 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
     float seen = 1.0;
     float t = 0.0;
     float hPrev = 10000000000.0;
+    // As the marches (march.glsl): a hit must come nearer than startLimit of the
+    // start's distance, so the ray's own start is never one.
+    float startHalf = 10000000000.0;
     // @slot soft-span
     for (int i = 0; i < kShadowSteps; i++) {
         // @slot soft-map
-        if (h < hitThreshold(t0 + t)) {
+        startHalf = i == 0 && t == 0.0 ? startLimit(h) : startHalf;
+        if (h < min(hitThreshold(t0 + t), startHalf)) {
             return 0.0;
         }
         float y = h * h / (2.0 * hPrev);
