@@ -1,63 +1,63 @@
-;; Progressive rendering's schedule (src/app/progress.fnl): how a heavy frame is split into
-;; bands drawn one per frame, with frame times fed in (no clock, no GPU).
+;; Progressive refinement's schedule (src/app/progress.fnl): a picture drawn in bands
+;; from the top, each as tall as fits the budget at the measured time a row, render
+;; times fed in (no clock, no GPU).
 (local progress (require :src.app.progress))
 
-(fn draw-frame! [p height rows-drawn]
-  (let [(y0 y1) (progress.rows p height)]
-    (for [y y0 (- y1 1)] (tset rows-drawn (+ y 1) true))
-    (progress.drawn! p)
-    (- y1 y0)))
+(fn refine [p per-row ?limit]
+  "Draw `p` to the end, each row taking (per-row y) seconds; the bands drawn."
+  (let [drawn []]
+    (while (and (not (progress.complete? p)) (< (length drawn) (or ?limit 10000)))
+      (let [(y0 y1) (progress.rows p)
+            seconds (accumulate [s 0 _ y (ipairs (fcollect [y y0 (- y1 1)] y))] (+ s (per-row y)))]
+        (table.insert drawn [y0 y1 seconds])
+        (progress.drawn! p y0 y1 seconds)))
+    drawn))
 
-(describe "progressive rendering"
+(describe "progressive refinement"
   (fn []
-    (it "draws a whole pass in bands that cover every row once"
+    (it "draws every row once, from the top, and then is complete"
       (fn []
-        (let [p (progress.new)
-              rows {}
-              counts []]
-          (for [_ 1 p.bands]
-            (let [(y0 y1) (progress.rows p 101)]
-              (for [y y0 (- y1 1)] (tset counts (+ y 1) (+ 1 (or (. counts (+ y 1)) 0))))
-              (progress.drawn! p)))
-          (for [y 1 101] (assert.are.equal 1 (. counts y) (.. "row " y)))
-          (assert.is_true (progress.complete? p)))))
+        (let [p (progress.new 101)
+              counts {}]
+          (each [_ [y0 y1] (ipairs (refine p #0.001))]
+            (for [y y0 (- y1 1)] (tset counts y (+ 1 (or (. counts y) 0)))))
+          (for [y 0 100] (assert.are.equal 1 (. counts y) (.. "row " y)))
+          (assert.is_true (progress.complete? p))
+          (assert.are.equal 1 (progress.covered p)))))
 
-    (it "splits further, in proportion, after one slow frame, and merges when fast"
+    (it "starts with as many bands as a predicted whole picture needs"
       (fn []
-        (let [p (progress.new)]
-          (progress.measured! p 3.0)          ; 30x the budget: at most 16x more bands
-          (assert.are.equal 64 p.bands)
-          (progress.measured! p 60)
-          (assert.are.equal progress.max-bands p.bands)
-          (progress.measured! p 0.05)         ; within budget: stays
-          (assert.are.equal progress.max-bands p.bands)
-          (for [_ 1 20] (progress.measured! p 0.001))
-          (assert.are.equal 1 p.bands))))
+        ;; 1.3 s for the whole picture (flower at 1280x720 on llvmpipe): 13 bands.
+        (assert.are.equal 13 (progress.bands (progress.new 720 1.3)))
+        (assert.are.equal 1 (progress.bands (progress.new 720 0.01)))
+        (assert.are.equal 4 (progress.bands (progress.new 720)))
+        ;; A smaller budget for the render (the frame's other work took the rest).
+        (assert.are.equal 26 (progress.bands (progress.new 720 1.3 0.05)))))
 
-    (it "bounds one frame's rows by the band count, and completes only when every row is drawn"
+    (it "sizes each band to the budget at the time a row took in the one before"
       (fn []
-        ;; A seeded walk through frame times, slow and fast, changing the band count
-        ;; mid-pass: whenever the schedule says complete, every row was drawn.
-        (var seed 12345)
-        (fn rand [] (set seed (% (* seed 16807) 2147483647)) (/ seed 2147483647))
-        (for [_ 1 50]
-          (let [p (progress.new)
-                rows {}
-                height 300]
-            (var frames 0)
-            (while (not (progress.complete? p))
-              (set frames (+ frames 1))
-              (assert.is_true (< frames 5000) "never completes")
-              (let [n (draw-frame! p height rows)]
-                (assert.is_true (<= n (math.ceil (/ height p.bands))))
-                (progress.measured! p (* (rand) (rand) 2))))
-            (for [y 1 height] (assert.is_true (= true (. rows y)) (.. "row " y " not drawn")))))))
+        ;; 10 ms a row: 10 rows fit in 0.1 s, whatever the prediction said.
+        (let [p (progress.new 720 100)
+              bands (refine p #0.01)]
+          (assert.are.equal 10 (- (. bands 2 2) (. bands 2 1)))
+          (each [i [_ _ seconds] (ipairs bands)]
+            (when (> i 1)
+              (assert.is_true (<= seconds (+ progress.budget 1e-9)) (.. "band " i ": " seconds)))))))
 
-    (it "starts with as many bands as a known frame time needs"
+    (it "keeps bands within the budget when the cost changes down the picture"
       (fn []
-        ;; A whole picture of 1.3 s (flower at 1280x720 on llvmpipe): 13 bands of 0.1 s.
-        (assert.are.equal 13 (progress.bands-for 1.3))
-        (assert.are.equal 1 (progress.bands-for 0.01))
-        (assert.are.equal progress.max-bands (progress.bands-for 1000))
-        (assert.are.equal 13 (. (progress.new (progress.bands-for 1.3)) :bands))
-        (assert.are.equal 4 (. (progress.new) :bands))))))
+        ;; The top is sky (cheap), the bottom a heavy surface: one band may overshoot
+        ;; where the cost jumps, the next is sized again.
+        (let [p (progress.new 720 1)
+              bands (refine p #(if (< $1 300) 1e-4 0.02))
+              over (icollect [_ [_ _ s] (ipairs bands)] (when (> s (* 1.01 progress.budget)) s))]
+          (assert.is_true (progress.complete? p))
+          (assert.is_true (<= (length over) 1) (.. (length over) " bands over the budget")))))
+
+    (it "never draws fewer than 1/256 of the picture a band, nor more than all of it"
+      (fn []
+        (let [p (progress.new 1024)]
+          (progress.drawn! p 0 4 1000)
+          (assert.are.equal 4 p.rows)
+          (progress.drawn! p 4 8 0)
+          (assert.are.equal 1024 p.rows))))))

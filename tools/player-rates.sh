@@ -6,7 +6,8 @@
 #
 #   tools/player-rates.sh [SCENE ...]     # default: every scenes/*.fnl
 #
-# Environment: HOLD_S (5), TARGET_FPS (30). Needs xvfb-run and xdotool
+# Environment: HOLD_S (5), TARGET_FPS (30), PLAYER (the game folder to run: this
+# checkout). Needs xvfb-run and xdotool
 # (`make check-states` installs them).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -22,7 +23,7 @@ trap 'rm -f "$log"' EXIT
 
 one() {
   local scene=$1
-  stdbuf -oL love . "$scene" --target-fps "$TARGET_FPS" >"$log" 2>&1 &
+  stdbuf -oL love "${PLAYER:-.}" "$scene" --target-fps "$TARGET_FPS" >"$log" 2>&1 &
   local pid=$!
   local wid="" i
   for i in $(seq 1 600); do

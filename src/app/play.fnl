@@ -603,9 +603,9 @@ this frame or the last), not the full resolution being refined."
                                          (if state.paused? " (paused; space plays, . steps)"
                                              " (space pauses; paused, the picture sharpens)"))))
     (case (?. state.refine :progress)
-      p (when (and (not (coarse?)) (not (progress.complete? p)) (> p.bands 1))
+      p (when (and (not (coarse?)) (not (progress.complete? p)))
           (table.insert lines (string.format "refining: %d bands, one per frame (%.0f%% drawn)"
-                                             p.bands (* 100 (math.min 1 p.covered))))))
+                                             (progress.bands p) (* 100 (progress.covered p))))))
     (when state.last-load
       (table.insert lines (string.format "last load: %.0f ms (%s)%s, %d so far"
                                          state.last-load.ms
@@ -686,9 +686,12 @@ picture, scaled up, and is refined in bands of that same state."
   (let [canvas (ensure-canvas!)
         from state.picture.canvas
         whole? (and (= (from:getWidth) (canvas:getWidth)) (= (from:getHeight) (canvas:getHeight)))
-        p (progress.new (case (adaptive.render-seconds state.adaptive plan.key
-                                                       (* (canvas:getWidth) (canvas:getHeight)))
-                          seconds (progress.bands-for seconds)))]
+        ;; A band frame's render gets what the frame's other work leaves of the budget.
+        p (progress.new (canvas:getHeight)
+                        (adaptive.render-seconds state.adaptive plan.key
+                                                 (* (canvas:getWidth) (canvas:getHeight)))
+                        (math.max (* 0.25 progress.budget)
+                                  (- progress.budget (or state.adaptive.fixed 0))))]
     (love.graphics.push :all)
     (love.graphics.setCanvas canvas)
     (love.graphics.setColor 1 1 1 1)
@@ -696,7 +699,7 @@ picture, scaled up, and is refined in bands of that same state."
                         (/ (canvas:getHeight) (from:getHeight)))
     (love.graphics.pop)
     ;; A coarse picture already at full resolution (a light scene) is the picture.
-    (when whole? (set p.covered 1))
+    (when whole? (set p.next p.height))
     (set state.refine {: key :progress p :start (love.timer.getTime)})
     (set state.picture {: key : canvas})))
 
@@ -706,9 +709,9 @@ picture, scaled up, and is refined in bands of that same state."
         p r.progress
         canvas state.canvas]
     (when (not (progress.complete? p))
-      (let [(y0 y1) (progress.rows p (canvas:getHeight))]
+      (let [(y0 y1) (progress.rows p)]
         (case (render-timed! canvas scene plan [y0 y1])
-          seconds (do (progress.drawn! p)
+          seconds (do (progress.drawn! p y0 y1 seconds)
                       (set state.last-render {:shader plan.key :band? true :seconds seconds
                                               :pixels (* (canvas:getWidth) (- y1 y0))})))
         (when (progress.complete? p)
@@ -794,8 +797,7 @@ frame-time model (and the band schedule); say when a loaded scene's first pictur
 reached the screen."
   (case state.last-render
     r (do (adaptive.measured! state.adaptive r.shader r.pixels r.seconds dt)
-          (if r.coarse? (table.insert state.move-times dt)
-              (and r.band? state.refine) (progress.measured! state.refine.progress dt))
+          (when r.coarse? (table.insert state.move-times dt))
           (set state.last-render nil)))
   (case state.first-picture
     {: since :drawn? true : path}
