@@ -14,8 +14,14 @@
 (local threshold 40)
 (local flat 20)
 
+(fn load [file]
+  "The scene of `file`, or of a random scene's source (a table {:source text})."
+  (if (= :table (type file))
+      (scene.load-string file.source file.name)
+      (scene.load-file file)))
+
 (fn prepare [file width height ?render ?plan-options]
-  (let [(s err) (scene.load-file file)]
+  (let [(s err) (load file)]
     (assert s err)
     (each [k v (pairs (or ?render {}))] (tset s.render k v))
     (let [(p perr) (plan.scene->plan s (doto (collect [k v (pairs (or ?plan-options {}))] k v)
@@ -54,6 +60,49 @@ fireflies.unsupported)."
                   (string.format "(%d, %d) %.0f off" f.x f.y f.off))
                 "; "))
 
+;; Random scenes: a floor, a light and six primitives of random kind (every bounded
+;; one of src/sdf/primitives.fnl), place, turn, size and colour, from a seeded
+;; generator (Park-Miller; the same scenes on every run). Classic: every surface a
+;; full mirror; modern: a soft sun and ambient occlusion.
+(local random-kinds [:box-frame :box :capped-cone :capped-cylinder :capped-torus :capsule
+                     :cheap-octahedron :cut-hollow-sphere :cut-sphere :death-star :dodecahedron
+                     :ellipsoid :hex-prism :icosahedron :link :octahedron :pyramid :rhombus
+                     :round-box :round-cone :rounded-cylinder :solid-angle :sphere :tetrahedron
+                     :torus :tri-prism :vesica])
+
+(fn random-scenes [seed n]
+  "`n` random scene sources, each {:name :source}, classic and modern in turn."
+  (var state seed)
+  (fn rand []
+    (set state (% (* state 16807) 2147483647))
+    (/ state 2147483647))
+  (fn r2 [v] (/ (math.floor (* v 100)) 100))
+  (let [fennel (require :fennel)
+        out []]
+    (for [k 1 n]
+      (let [objects [{:kind :plane :height 0 :color [0.8 0.78 0.72]}]]
+        (for [i 1 6]
+          (let [gx (- (% (- i 1) 3) 1)
+                gy (- (math.floor (/ (- i 1) 3)) 0.5)]
+            (table.insert objects
+                          {:kind (. random-kinds (+ 1 (math.floor (* (rand) (length random-kinds)))))
+                           :pos [(r2 (+ (* gx 3) (- (rand) 0.5))) (r2 (+ (* gy 3) (- (rand) 0.5)))
+                                 (r2 (+ 0.3 (* 0.5 (rand))))]
+                           :rotate [(r2 (* 90 (rand))) (r2 (* 90 (rand))) (r2 (* 360 (rand)))]
+                           :scale (r2 (+ 0.6 (* 0.5 (rand))))
+                           :color [(r2 (rand)) (r2 (rand)) (r2 (rand))]})))
+        (let [base {:name (.. "random-" k)
+                    :camera {:pos [8.5 -8.5 6] :yaw 135 :pitch 28 :fov 55}
+                    :light {:pos [(r2 (- (* 30 (rand)) 15)) (r2 (- (* 30 (rand)) 15)) 20]}
+                    :render {:reflections 1}
+                    : objects}]
+          (table.insert out {:name (.. "random-" k) :source (fennel.view base)})
+          (set base.lighting {:ao 0.8 :ao-radius 0.4
+                              :lights [{:kind :sun :direction [-0.5 -0.4 0.6] :softness 0.05
+                                        :intensity 3}]})
+          (table.insert out {:name (.. "random-" k "-modern") :source (fennel.view base)}))))
+    out))
+
 (describe "specks on the GPU"
   (fn []
     (let [(ctx why) (headless.context)]
@@ -73,25 +122,27 @@ fireflies.unsupported)."
                                            160 90)]
                   (assert.are.equal 0 (length found) (listing found)))))
             ;; Every showcase scene, each model it has, at 320x180: a quarter of
-            ;; 640x360's pixels, so that the 1 + 16 samples of the 20 runs stay near a
-            ;; minute and a half on llvmpipe. `most` is the count of unsupported
-            ;; fireflies measured at this size after the soft-shadow fix (the same as
-            ;; before it: the fix removed a cluster, which the 4 x 4 render keeps). The
-            ;; issue asks for 0 everywhere; the scenes above 0 are open (near misses at
-            ;; silhouettes whose normal faces away from the eye, mirror rays starting
-            ;; in a crease): these ceilings only keep them from growing.
+            ;; 640x360's pixels, so that the 1 + 16 samples of the 20 runs stay near half
+            ;; a minute on llvmpipe. `most` is the count of unsupported fireflies
+            ;; measured at this size after this issue's fixes (before them: colonnade
+            ;; modern 1, flower modern 1, machined-part modern 15, the rest as now).
+            ;; The issue asks for 0 everywhere; the scenes above 0 are open and these
+            ;; ceilings only keep them from growing: near misses at silhouettes, whose
+            ;; normal faces away from the eye (machined-part, flat), and reflections of
+            ;; sub-pixel detail (tile gaps, flutes, a sun glint at an edge), which the
+            ;; 4 x 4 render averages away. None is a ray meeting its own start.
             (each [_ [file model most] (ipairs [["scenes/city.fnl" :classic 1]
                                                 ["scenes/city.fnl" :modern 1]
                                                 ["scenes/colonnade.fnl" :classic 7]
                                                 ["scenes/colonnade.fnl" :modern 1]
                                                 ["scenes/flat.fnl" nil 2]
                                                 ["scenes/flower.fnl" :classic 1]
-                                                ["scenes/flower.fnl" :modern 1]
+                                                ["scenes/flower.fnl" :modern 0]
                                                 ["scenes/gallery.fnl" nil 0]
                                                 ["scenes/lighting.fnl" :classic 0]
                                                 ["scenes/lighting.fnl" :modern 0]
                                                 ["scenes/machined-part.fnl" :classic 7]
-                                                ["scenes/machined-part.fnl" :modern 15]
+                                                ["scenes/machined-part.fnl" :modern 14]
                                                 ["scenes/organic.fnl" :classic 0]
                                                 ["scenes/organic.fnl" :modern 1]
                                                 ["scenes/platonic-shelf.fnl" :classic 1]
@@ -99,9 +150,32 @@ fireflies.unsupported)."
                                                 ["scenes/seed.fnl" nil 1]
                                                 ["scenes/spheres.fnl" nil 0]
                                                 ["scenes/twisted-tower.fnl" :classic 1]
-                                                ["scenes/twisted-tower.fnl" :modern 0]])]
+                                                ["scenes/twisted-tower.fnl" :modern 0]
+                                                ;; A column's foot on the floor tiles at
+                                                ;; 1280x720's pixel size: 5 before (the
+                                                ;; reflected floor at the crease shadowed
+                                                ;; by the column its shadow ray started in);
+                                                ;; the one left reflects the sky past a flute.
+                                                ["test/fixtures/specks/colonnade-foot.fnl" :classic 1]])]
               (it (.. "finds at most " most " unsupported fireflies in " file " (" (or model :classic) ") at 320x180")
                 (fn []
                   (let [found (unsupported ctx file 320 180 (when model {: model}))]
                     (print (string.format "specks %s (%s): %d unsupported fireflies" file (or model :classic) (length found)))
-                    (assert.is_true (<= (length found) most) (listing found)))))))))))
+                    (assert.is_true (<= (length found) most) (listing found))))))
+            (it "finds no unsupported firefly at a column's foot in colonnade at 160x90 (modern)"
+              (fn []
+                ;; 640x360's pixel size; 1 before (84 of luma under its neighbours).
+                (let [found (unsupported ctx "test/fixtures/specks/colonnade-foot.fnl" 160 90
+                                         {:model :modern})]
+                  (assert.are.equal 0 (length found) (listing found)))))
+            (it "finds at most one unsupported firefly in each random scene of the primitives at 320x180"
+              (fn []
+                ;; Measured: 0 in six of the eight; random-2-modern's is a sun glint at
+                ;; a polyhedron's edge, random-3's a reflection past an edge.
+                (each [_ r (ipairs (random-scenes 20251126 4))]
+                  (let [found (unsupported ctx r 320 180)]
+                    (print (string.format "specks %s: %d unsupported fireflies" r.name (length found)))
+                    (assert.is_true (<= (length found) (if (or (= r.name "random-2-modern")
+                                                               (= r.name "random-3"))
+                                                           1 0))
+                                    (.. r.name ": " (listing found))))))))))))
