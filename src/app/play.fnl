@@ -205,8 +205,7 @@ itself is shown like a broken file, and the last good scene keeps running."
   (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh? ?since)]
     (when (not ok?)
       (set state.error (.. path ": the scene could not be loaded (an internal error): "
-                           (tostring err))))
-))
+                           (tostring err))))))
 
 (fn finish-pending! []
   "Collect finished helpers; a load waiting for one that is done runs again (now a
