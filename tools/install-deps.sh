@@ -17,18 +17,27 @@ sudo=""
 if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 
-# Runs a command with its output kept aside, and shows that output only if it fails.
-quietly() {
-  local log
+# Runs an apt command, waiting while another process (an unattended upgrade, another
+# install) holds apt's or dpkg's lock, up to 10 minutes; its output is shown only if
+# it fails for another reason.
+apt_waiting() {
+  local log waited=0
   log=$(mktemp)
-  if ! "$@" >"$log" 2>&1; then
+  while ! "$@" >"$log" 2>&1; do
+    if grep -qiE "could not get lock|unable to acquire the dpkg frontend lock|unable to lock" "$log" \
+       && [ "$waited" -lt 600 ]; then
+      [ "$waited" -eq 0 ] && echo "install-deps: apt is busy (another process holds its lock); waiting for it" >&2
+      sleep 5; waited=$((waited + 5))
+      continue
+    fi
     cat "$log" >&2
     rm -f "$log"
     echo "install-deps: failed: $*" >&2
     return 1
-  fi
+  done
   rm -f "$log"
 }
+lock_wait=(-o DPkg::Lock::Timeout=600)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -37,8 +46,8 @@ done
 
 if [ ${#missing[@]} -gt 0 ]; then
   echo "install-deps: installing ${missing[*]}"
-  $sudo apt-get update -qq
-  quietly $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  apt_waiting $sudo apt-get update -qq
+  apt_waiting $sudo apt-get "${lock_wait[@]}" install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
 fennel_ok() {
@@ -56,6 +65,6 @@ if ! fennel_ok; then
                -o "APT::Sandbox::User=root")
   apt-get "${apt_private[@]}" update -qq
   (cd "$state/deb" && apt-get "${apt_private[@]}" download -qq fennel)
-  quietly $sudo apt-get install -y -qq --no-install-recommends "$state"/deb/fennel_*.deb
+  apt_waiting $sudo apt-get "${lock_wait[@]}" install -y -qq --no-install-recommends "$state"/deb/fennel_*.deb
   fennel_ok || { echo "install-deps: fennel was installed but 'fennel --version' is not 1.5+" >&2; exit 1; }
 fi
