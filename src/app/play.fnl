@@ -679,6 +679,19 @@ small one for a shader not measured yet)."
                   (set state.refine nil)
                   (when state.first-picture (set state.first-picture.drawn? true))))))
 
+(fn refined! [r canvas]
+  "The full-resolution picture of `r` is whole: say how the frames went while the
+state changed, and how long the refinement took."
+  (when (> (length state.move-times) 1)
+    (say! (string.format "changing: %d frames at %dx%d, median %.0f ms; full %dx%d %.0f ms after it stayed"
+                         (length state.move-times)
+                         (if state.move-canvas (state.move-canvas:getWidth) 0)
+                         (if state.move-canvas (state.move-canvas:getHeight) 0)
+                         (* 1000 (or (median state.move-times) 0))
+                         (canvas:getWidth) (canvas:getHeight)
+                         (* 1000 (- (love.timer.getTime) r.start)))))
+  (set state.move-times []))
+
 (fn start-refine! [plan key]
   "The state on screen stayed: the full resolution starts from its whole coarse
 picture, scaled up, and is refined in bands of that same state."
@@ -698,9 +711,11 @@ picture, scaled up, and is refined in bands of that same state."
                         (/ (canvas:getHeight) (from:getHeight)))
     (love.graphics.pop)
     ;; A coarse picture already at full resolution (a light scene) is the picture.
-    (when whole? (set p.next p.height))
     (set state.refine {: key :progress p :start (love.timer.getTime)})
-    (set state.picture {: key : canvas})))
+    (set state.picture {: key : canvas})
+    (when whole?
+      (set p.next p.height)
+      (refined! state.refine canvas))))
 
 (fn refine-step! [scene plan]
   "One band of the full-resolution picture being refined; nothing once it is whole."
@@ -714,15 +729,7 @@ picture, scaled up, and is refined in bands of that same state."
                       (set state.last-render {:shader plan.key :band? true :seconds seconds
                                               :pixels (* (canvas:getWidth) (- y1 y0))})))
         (when (progress.complete? p)
-          (when (> (length state.move-times) 1)
-            (say! (string.format "changing: %d frames at %dx%d, median %.0f ms; full %dx%d %.0f ms after it stayed"
-                                 (length state.move-times)
-                                 (if state.move-canvas (state.move-canvas:getWidth) 0)
-                                 (if state.move-canvas (state.move-canvas:getHeight) 0)
-                                 (* 1000 (or (median state.move-times) 0))
-                                 (canvas:getWidth) (canvas:getHeight)
-                                 (* 1000 (- (love.timer.getTime) r.start)))))
-          (set state.move-times []))))))
+          (refined! r canvas))))))
 
 (fn draw-scene! [scene plan key]
   "Draw the frame of state `key`: never a picture that mixes two states."
