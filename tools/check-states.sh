@@ -6,7 +6,9 @@
 #   drag        the F2 panel's :hue slider dragged from 0.1 to 0.9 in 3 s
 #   value-edit  the file's :hue literal edited to 0.6 (a value edit: uniforms only)
 #   structural  the file rewritten with one more object and :hue 0.3 (a new shader)
-#   animated    test/states/hue-animated.fnl, whose hue is a function of time
+#   animated    hue.fnl with its :hue a function of time: 24 to 216 degrees and back
+#               every 8 s (0.1 to 0.9 of :hue), 48 degrees a second; two moments
+#               0.125 s apart differ by 6 degrees, the classifier's tolerance
 # tools/check-states.fnl then cuts every frame (left of the panel, above the message
 # area) into horizontal strips, reads each strip's state from its hue, and counts the
 # frames whose strips disagree (src/verify/states.fnl); the worst frame of each
@@ -18,7 +20,7 @@
 # PLAYER_DIR is the LÖVE game folder to run (another checkout or worktree); the scenes
 # and the classifier always come from this checkout. Environment: OUT (default
 # out/check-states), GRAB_S (0.15), KEEP=1 keeps the window dumps (3.7 MB each),
-# SCENES (test/states: the folder holding hue.fnl and hue-animated.fnl;
+# SCENES (test/states: the folder holding hue.fnl;
 # test/states/light has versions light enough for every frame to be drawn whole).
 # Exit 0: no frame mixes states; 1: some frame does; 2: the check could not run
 # (no window, a scenario whose state never changed, a missing tool).
@@ -31,8 +33,7 @@ OUT=${OUT:-$REPO/out/check-states}
 GRAB_S=${GRAB_S:-0.15}
 SCENES_ARG=${SCENES:-$REPO/test/states}
 SCENES=$(cd "$SCENES_ARG" 2>/dev/null && pwd) || die "no scene folder $SCENES_ARG"
-[ -f "$SCENES/hue.fnl" ] && [ -f "$SCENES/hue-animated.fnl" ] \
-  || die "$SCENES has no hue.fnl and hue-animated.fnl"
+[ -f "$SCENES/hue.fnl" ] || die "$SCENES has no hue.fnl"
 TITLE="Fennel raymarcher"
 
 for tool in love luajit xvfb-run xdotool xwd bc; do
@@ -68,7 +69,10 @@ WORK="$OUT/frames"
 # Only what this script writes is removed: OUT may be a folder with other things in it.
 rm -rf "$WORK"; rm -f "$OUT"/*-worst.png; mkdir -p "$WORK"
 cp "$SCENES/hue.fnl" "$WORK/hue.fnl"
-cp "$SCENES/hue-animated.fnl" "$WORK/hue-animated.fnl"
+# The animated scene: a triangle wave of time in place of the :hue parameter.
+sed 's/^(local hue (param :hue .*$/(local hue (fn [t] (let [p (% (\/ t 8) 1)] (+ 0.1 (* 0.8 (if (< p 0.5) (* 2 p) (- 2 (* 2 p))))))))/' \
+  "$SCENES/hue.fnl" > "$WORK/hue-animated.fnl"
+grep -q '^(local hue (fn' "$WORK/hue-animated.fnl" || die "$SCENES/hue.fnl has no (local hue (param :hue ...)) line"
 LOVE_PID=""
 GRAB_PID=""
 cleanup() {
@@ -194,7 +198,7 @@ sleep 10
 grab_stop
 stop_player
 
-say "animated: hue-animated.fnl, 48 degrees of hue a second"
+say "animated: hue.fnl with its hue a function of time, 48 degrees a second"
 start_player "$WORK/hue-animated.fnl" "$WORK/player-animated.log"
 sleep 5
 xdotool key --window "$WID" h

@@ -12,8 +12,12 @@
                     (- 1 (math.max 0 (math.min k (- 4 k) 1)))))]
     [(f 5) (f 3) (f 1)]))
 
-(local c (colour hue))
-(local sky (icollect [_ x (ipairs c)] (+ 0.45 (* 0.55 x))))
+;; tools/check-states.sh plays this scene animated by writing a function of time in
+;; place of the :hue line above: the colours are then functions of time too.
+(fn of-hue [f]
+  (if (= :function (type hue)) (fn [t] (f (hue t))) (f hue)))
+(local c (of-hue colour))
+(local sky (of-hue (fn [h] (icollect [_ x (ipairs (colour h))] (+ 0.45 (* 0.55 x))))))
 
 {:name "states: hue"
  :camera {:pos [9 -10 7] :yaw 132 :pitch 22 :fov 60}
