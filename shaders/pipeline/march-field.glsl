@@ -67,7 +67,8 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
         if (evaluated) {
             evals++;
             steps = evals;
-            if (d < min(hitThreshold(t0 + t), startHalf)) {
+            float h = hitThreshold(t0 + t);
+            if (d < min(h, startHalf) && arriving(d, mapFinite(p + rd * h), h, t0 + t)) {
                 return t + d;
             }
         }

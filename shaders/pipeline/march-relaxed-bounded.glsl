@@ -31,7 +31,8 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             omega = 1.0;
             continue;
         }
-        if (d < min(hitThreshold(t0 + t), startHalf)) {
+        float h = hitThreshold(t0 + t);
+        if (d < min(h, startHalf) && arriving(d, mapFinite(ro + rd * (t + h)), h, t0 + t)) {
             t += d;
             return t;
         }
