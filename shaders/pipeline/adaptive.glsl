@@ -2,18 +2,15 @@
 // Adaptive supersampling: one ray through the pixel's centre first, and only where
 // what it met says the pixel holds an edge, kSamples x kSamples rays on the grid inside
 // it (as full supersampling; the centre ray is not counted). An edge: the primary ray
-// took many steps (it grazed a surface: near misses, silhouettes); it hit at a grazing
-// angle (the silhouette of a smooth object); or the whole scene's normal over the
-// pixel's footprint turns away from the surface's own (a crease, a corner, another
-// object within the footprint).
+// hit at a grazing angle (the silhouette of a smooth object); or the whole scene's
+// normal over the pixel's footprint turns away from the surface's own (a crease, a
+// corner, another object within the footprint); or, tested in render(), a second ray
+// in the pixel disagrees with the centre's.
 // @slot constants
 bool gCentre = false;        // renderSample is tracing the centre ray
 bool gNeedsSamples = false;  // and found an edge
 
-bool needsSamples(vec3 rd, float t, int steps) {
-    if (steps >= kEdgeSteps) {
-        return true;
-    }
+bool needsSamples(vec3 rd, float t) {
     if (t >= uDrawDist) {
         return false;
     }
@@ -36,12 +33,20 @@ bool needsSamples(vec3 rd, float t, int steps) {
 }
 
 // @part render
+// Where the centre ray finds no edge, a second ray elsewhere in the pixel: what no
+// test on the centre ray sees (an edge in a mirror, a shadow's edge, an object smaller
+// than the pixel) mostly makes the two differ, and then the pixel gets the grid too.
+// Where they agree, the pixel is their mean.
 vec3 render(vec2 pixel) {
     gCentre = true;
     vec3 centre = clamp(renderSample(pixel), 0.0, 1.0);
     gCentre = false;
     if (!gNeedsSamples) {
-        return centre;
+        vec3 second = clamp(renderSample(pixel + kSecond), 0.0, 1.0);
+        vec3 luma = vec3(0.2126, 0.7152, 0.0722);
+        if (abs(dot(second - centre, luma)) <= kContrast) {
+            return 0.5 * (centre + second);
+        }
     }
     return gridSamples(pixel);
 }

@@ -480,9 +480,8 @@ only when the plan has it."
       (table.insert sections (fill "shaders/pipeline/arrive.glsl" {})))
     (when plan.bounds
       (table.insert sections (bounded-lines plan)))
-    ;; Only the glow and heat views and adaptive supersampling read the step count;
-    ;; elsewhere it is not kept.
-    (let [count-step (if (or plan.glow? plan.adaptive? (= view :glow) (= view :heat))
+    ;; Only the glow and heat views read the step count; elsewhere it is not kept.
+    (let [count-step (if (or plan.glow? (= view :glow) (= view :heat))
                          ["steps = i + 1;"] [])]
       (table.insert sections (fill (if (and plan.field (= 0 plan.bounds.count) plan.field.walk?)
                                        "shaders/pipeline/march-field-spheres.glsl"
@@ -530,14 +529,16 @@ only when the plan has it."
       ;; The edge tests, before render() calls them; the averaging render() after.
       (let [tests plan.edge-tests
             constants [(.. "const int kSamples = " plan.samples ";")
-                       (.. "const int kEdgeSteps = " tests.edge-steps
-                           ";      // a centre ray this long grazed something")
                        (string.format "const float kGrazing = %.2f;    // cosine of the view to the normal"
                                       tests.grazing)
                        (string.format "const float kEdgeTurn = %.6f;  // 1 - cosine: a turn this large is an edge"
                                       tests.edge-turn)
                        (string.format "const float kLimbTurn = %.6f;  // and this large where the view grazes"
-                                      tests.limb-turn)]]
+                                      tests.limb-turn)
+                       (string.format "const vec2 kSecond = vec2(%.6f, %.6f);  // the second ray, from the centre"
+                                      (- (. tests.second 1) 0.5) (- (. tests.second 2) 0.5))
+                       (string.format "const float kContrast = %.6f;  // a luma difference this large is an edge"
+                                      tests.contrast)]]
         (table.insert sections
                       (icollect [_ line (ipairs (. (parts "shaders/pipeline/adaptive.glsl") :tests))]
                         (if (= line "// @slot constants") constants line)))))
@@ -545,7 +546,7 @@ only when the plan has it."
                                  {:view (view-lines plan)
                                   :adaptive (if plan.adaptive?
                                                 ["if (gCentre) {"
-                                                 "    gNeedsSamples = needsSamples(rd, t, steps);"
+                                                 "    gNeedsSamples = needsSamples(rd, t);"
                                                  "}"]
                                                 [])}))
     (when (> plan.samples 1)

@@ -18,12 +18,21 @@
 (local default-uniform-limit 4096)
 
 ;; Adaptive supersampling's edge tests (shaders/pipeline/adaptive.glsl and the
-;; reference's needs-samples?): a centre ray of this many steps; or, a pixel's footprint
-;; further along the ray, a whole-scene normal that turns from the surface's own by
-;; 1 - cos > edge-turn (an edge, another object), or by more than limb-turn where the
-;; view meets the surface at a cosine under `grazing` (the limb of a curved surface).
-;; Chosen on gallery, lighting and organic at 640x360: 2.4-6.5% of pixels flagged.
-(local edge-tests {:edge-steps 24 :grazing 0.3 :edge-turn 0.1 :limb-turn 1e-4})
+;; reference's needs-samples?): a pixel's footprint further along the centre ray, a
+;; whole-scene normal that turns from the surface's own by 1 - cos > edge-turn (an
+;; edge, another object), or by more than limb-turn where the view meets the surface
+;; at a cosine under `grazing` (the limb of a curved surface). Chosen on gallery,
+;; lighting and organic at 640x360: 2.4-6.5% of pixels flagged. And what no test on
+;; the centre ray sees (an edge seen in a mirror, a shadow's edge, an object smaller
+;; than the pixel, a near miss): a second ray at `second` (x, y in the pixel, 0..1)
+;; whose colour's luma differs from the centre's by more than `contrast` (0..1). With
+;; it, the 4 x 4 still of every showcase scene has no unsupported firefly at 320x180
+;; (contrast 0.06 to 0.15 alike; test/specks_spec.fnl). A centre ray of many steps no
+;; longer counts as an edge: in colonnade nearly every ray takes 24 (its tiles and
+;; flutes), and the grid there cost 9.2 s at 640x360 on llvmpipe against 5.5 s without
+;; that test, for the same pictures' fireflies (none).
+(local edge-tests {:grazing 0.3 :edge-turn 0.1 :limb-turn 1e-4
+                   :second [0.875 0.875] :contrast 0.1})
 
 (fn view? [v]
   (var found? false)
@@ -118,6 +127,8 @@ the copies, flower 193 against 221, gallery and the seed alike)."
   :bounds?        false: march every object everywhere, planes too (see
                   src/render/bounds.fnl; the benchmark's before of that lever)
   :samples        supersampling, N x N rays per pixel (default the scene's)
+  :adaptive?      true: with :samples above 1, adaptive (default the scene's :adaptive;
+                  the player's anti-aliased still)
   :model          :classic draws a scene that has :lighting with the article's model
                   (the player's m key)
   :field-cells    grid cells per field object (default src/render/field.fnl's)
@@ -183,7 +194,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :samples (or options.samples scene.render.samples 1)
               ;; Extra samples only at edges: the shaded view's (it has the normals).
               :adaptive? (and (> (or options.samples scene.render.samples 1) 1) shaded?
-                              (= true scene.render.adaptive))
+                              (or (= true options.adaptive?) (= true scene.render.adaptive)))
               :edge-tests edge-tests
               ;; Only the shaded and normals views compute normals.
               :normals (when (or shaded? (= view :normals)) scene.render.normals)

@@ -528,12 +528,11 @@ Positions are in world coordinates."
         (set result.color [(clamp01 r) (clamp01 g) (clamp01 b)])
         result))
 
-    (fn needs-samples? [ox oy oz dx dy dz t steps]
+    (fn needs-samples? [ox oy oz dx dy dz t]
       ;; Adaptive supersampling's edge tests on a centre ray that went t with `steps`
       ;; (see shaders/pipeline/adaptive.glsl and plan.edge-tests).
       (let [tests plan.edge-tests]
-        (if (>= steps tests.edge-steps) true
-            (>= t draw) false
+        (if (>= t draw) false
             (let [px (+ ox (* dx t)) py (+ oy (* dy t)) pz (+ oz (* dz t))
                   (nx ny nz) (normal px py pz)
                   e (* t pixel-angle)
@@ -583,8 +582,9 @@ order of `pixels`. :path lists the scene index of the object hit by the primary 
 and each bounce (-1: the bounce escaped). With supersampling (plan.samples N > 1) the
 colour is the mean of N x N rays on a grid inside the pixel, each clamped, as the
 shader's; the other fields are the first ray's. Adaptive (plan.adaptive?): the centre
-ray's result, unless it finds an edge (then :edge? is true and the colour is the
-grid's mean). `?counts` gathers the distance evaluations (see tracer)."
+ray's result with the colour the mean of it and a second ray's (plan.edge-tests),
+unless the centre ray finds an edge or the two differ (then :edge? is true and the
+colour is the grid's mean). `?counts` gathers the distance evaluations (see tracer)."
   (let [T (tracer scene plan {:cam-pos cam.pos :counts ?counts
                              :pixel-angle (/ 1 (* (camera.projection-distance cam) height))})
         ray (ray-setup cam width height)
@@ -592,11 +592,24 @@ grid's mean). `?counts` gathers the distance evaluations (see tracer)."
         n (or plan.samples 1)]
     (icollect [_ [x y] (ipairs pixels)]
       (let [centre (when (or (= n 1) plan.adaptive?) (T.trace ox oy oz (ray x y)))
-            edge? (and plan.adaptive?
-                       (let [(dx dy dz) (ray x y)]
-                         (T.needs-samples? ox oy oz dx dy dz centre.distance centre.steps)))
-            result (if (or (= n 1) (and plan.adaptive? (not edge?)))
-                       centre
+            tests plan.edge-tests
+            geometric? (and plan.adaptive?
+                            (let [(dx dy dz) (ray x y)]
+                              (T.needs-samples? ox oy oz dx dy dz centre.distance)))
+            ;; No edge on the centre ray: a second ray, and the grid only when its
+            ;; colour's luma differs by more than tests.contrast (adaptive.glsl).
+            second (when (and plan.adaptive? (not geometric?))
+                     (T.trace ox oy oz (ray x y (. tests.second 1) (. tests.second 2))))
+            contrast? (when second
+                        (let [[r1 g1 b1] centre.color [r2 g2 b2] second.color]
+                          (> (math.abs (+ (* 0.2126 (- r2 r1)) (* 0.7152 (- g2 g1)) (* 0.0722 (- b2 b1))))
+                             tests.contrast)))
+            edge? (or geometric? contrast?)
+            result (if (= n 1) centre
+                       (and plan.adaptive? (not edge?))
+                       (doto centre
+                         (tset :color (icollect [i c (ipairs centre.color)]
+                                        (* 0.5 (+ c (. second.color i))))))
                        (let [sum [0 0 0]]
                          (var first nil)
                          (for [j 0 (- n 1)]
