@@ -1,6 +1,7 @@
 ;; The player itself, in a real window under Xvfb (tools/check-states.sh): a slider
 ;; drag, a value edit, a structural edit and an animated scene, each grabbed about six
-;; times a second; no grabbed picture may mix two scene states. About a minute.
+;; times a second; no grabbed picture may mix two scene states. Left alone, the
+;; picture gets its anti-aliased still. About a minute.
 ;; `make test` installs Xvfb, xdotool, xwd and bc.
 
 (fn run [command]
@@ -24,6 +25,8 @@
                 (print out)
                 (let [mixed (tonumber (out:match "(%d+) frames? mix two states"))]
                   (assert.are.equal 0 mixed (.. "pictures mixing two states; worst frames in test/out/check-states\n" out))
+                  (assert.is_truthy (out:find "anti-aliased still: " 1 true)
+                                    (.. "no anti-aliased still after the structural edit\n" out))
                   ;; Exit 2 with every frame classified: a scenario whose state never
                   ;; changed within the script's waits (a machine too slow for them);
                   ;; that says nothing about mixing, so it is reported, not failed.

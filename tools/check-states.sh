@@ -196,6 +196,17 @@ sed -e "s/(param :hue 0\.1 /(param :hue 0.3 /" \
 grep -q capped-cone "$WORK/hue.fnl" || die "the structural edit did not apply to $SCENES/hue.fnl"
 sleep 10
 grab_stop
+# Left alone, the picture gets its anti-aliased still (bands of the same state, which
+# the frames above may hold too): the player says when it is whole (at most 120 s).
+t=0
+until grep -q "^anti-aliased still: " "$WORK/player.log" || [ "$t" -ge 120 ]; do
+  sleep 1; t=$((t + 1))
+done
+if grep -q "^anti-aliased still: " "$WORK/player.log"; then
+  say "$(grep "^anti-aliased still: " "$WORK/player.log" | tail -1)"
+else
+  say "no anti-aliased still 120 s after the structural edit"
+fi
 stop_player
 
 say "animated: hue.fnl with its hue a function of time, 48 degrees a second"

@@ -86,9 +86,17 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
   (and a b (= a.yaw b.yaw) (= a.pitch b.pitch) (= a.fov b.fov)
        (= (. a.pos 1) (. b.pos 1)) (= (. a.pos 2) (. b.pos 2)) (= (. a.pos 3) (. b.pos 3))))
 
-(fn plan-with [scene reflections ?fold?]
+;; The still: once the full-resolution picture of a state is whole and the state
+;; stays, it is drawn again over itself, band by band, with adaptive supersampling
+;; (shaders/pipeline/adaptive.glsl: still-samples x still-samples rays where the
+;; centre ray finds an edge or a second ray disagrees): the same state, anti-aliased,
+;; without the dotted edges and sparkles of one ray per pixel.
+(local still-samples 4)
+
+(fn plan-with [scene reflections ?fold? ?still?]
   (frame.plan-for scene {:view state.view :reflections reflections
-                         :model (when state.classic? :classic) :fold? ?fold?}))
+                         :model (when state.classic? :classic) :fold? ?fold?
+                         :samples (when ?still? still-samples) :adaptive? ?still?}))
 
 (fn warm-source [scene plan]
   ;; What the compile helper gets: the shader's text, after a line for each texture
@@ -562,6 +570,19 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
 this frame or the last), not the full resolution being refined."
   (and state.picture state.move-canvas (= state.picture.canvas state.move-canvas)))
 
+(fn whole? []
+  "True when the full-resolution picture is whole (its still may follow)."
+  (and state.refine (progress.complete? state.refine.progress)))
+
+(fn idle? []
+  "True when nothing is left to draw for the picture on screen: it is whole, and
+its still is drawn, or there is none, or its shader is not ready yet (a helper
+builds it). While its state stays, a frame only shows it again."
+  (and (whole?)
+       (case state.refine.still
+         {:progress p} (progress.complete? p)
+         _ true)))
+
 (fn hud-lines []
   (let [cam state.cam
         canvas state.canvas
@@ -577,8 +598,12 @@ this frame or the last), not the full resolution being refined."
                                          (state.move-canvas:getWidth) (state.move-canvas:getHeight)
                                          state.interactive-fps state.scale)))
         canvas
-        (table.insert lines (string.format "%dx%d (scale %.2f)" (canvas:getWidth)
-                                           (canvas:getHeight) state.scale)))
+        (table.insert lines (string.format "%dx%d (scale %.2f)%s" (canvas:getWidth)
+                                           (canvas:getHeight) state.scale
+                                           (case (?. state.refine :still)
+                                             {:progress p} (if (progress.complete? p)
+                                                               ", anti-aliased (adaptive 4 x 4)" "")
+                                             _ ""))))
     (when state.scene
       (table.insert lines (.. "scene: " (text.printable state.scene.name 80) "  view: " state.view
                               (if state.scene.lighting
@@ -605,6 +630,13 @@ this frame or the last), not the full resolution being refined."
       p (when (and (not (coarse?)) (not (progress.complete? p)))
           (table.insert lines (string.format "refining: %d bands, one per frame (%.0f%% drawn)"
                                              (progress.bands p) (* 100 (progress.covered p))))))
+    (when (and (not (coarse?)) (whole?))
+      (case state.refine.still
+        {:progress p} (when (not (progress.complete? p))
+                        (table.insert lines (string.format "anti-aliasing: %d bands (%.0f%% drawn)"
+                                                           (progress.bands p) (* 100 (progress.covered p)))))
+        nil (when (not= false (?. state.plan-memo :still))
+              (table.insert lines "anti-aliasing: its shader is compiling in a helper process"))))
     (when state.last-load
       (table.insert lines (string.format "last load: %.0f ms (%s)%s, %d so far"
                                          state.last-load.ms
@@ -731,9 +763,61 @@ picture, scaled up, and is refined in bands of that same state."
         (when (progress.complete? p)
           (refined! r canvas))))))
 
+(fn still-of [scene plan]
+  "The still's twin of `plan` (the plan on screen), once its shader is compiled or
+its helper is done; nil while the helper builds it; false when there is none: a
+plan that samples more than once already, a view without shading, no helper (a
+compile in the window's process would freeze it), a failed build."
+  (let [memo state.plan-memo]
+    (if (or (not memo) (> (or plan.samples 1) 1) (not= plan.view :shaded)
+            (not (?. state.warm :enabled?)))
+        false
+        (do
+          (when (= nil memo.still)
+            (let [(still) (plan-with scene state.reflections (not= nil plan.base-key) true)]
+              (set memo.still (or still false))))
+          (case memo.still
+            false false
+            still (if (gpu.cached? state.cache still) still
+                      (warm.ready? state.warm still.key #(warm-source scene still))
+                      (if (= :failed (warm.status state.warm still.key)) false still)
+                      nil))))))
+
+(fn still-step! [scene plan]
+  "The full-resolution picture is whole and its state stays: one band of its
+anti-aliased still (see still-samples), once the still's shader is ready."
+  (let [r state.refine
+        canvas state.canvas]
+    (when (= nil r.still)
+      (case (still-of scene plan)
+        false (set r.still false)
+        still (do (when (not (adaptive.known? state.adaptive still.key)) (probe! scene still))
+                  (set r.still {:plan still :start (love.timer.getTime)
+                                :progress (progress.new (canvas:getHeight)
+                                                        (adaptive.render-seconds
+                                                         state.adaptive still.key
+                                                         (* (canvas:getWidth) (canvas:getHeight)))
+                                                        (math.max (* 0.25 progress.budget)
+                                                                  (- progress.budget (or state.adaptive.fixed 0))))}))))
+    (case r.still
+      {:plan still :progress p}
+      (when (not (progress.complete? p))
+        (let [(y0 y1) (progress.rows p)]
+          (case (render-timed! canvas scene still [y0 y1])
+            seconds (do (progress.drawn! p y0 y1 seconds)
+                        (set state.last-render {:shader still.key :band? true :seconds seconds
+                                                :pixels (* (canvas:getWidth) (- y1 y0))}))
+            ;; A still that fails to draw is given up; the picture stays whole.
+            _ (set r.still false)))
+        (when (and r.still (progress.complete? p))
+          (say! (string.format "anti-aliased still: %dx%d in %.1f s" (canvas:getWidth)
+                               (canvas:getHeight) (- (love.timer.getTime) r.still.start))))))))
+
 (fn draw-scene! [scene plan key]
   "Draw the frame of state `key`: never a picture that mixes two states."
-  (if (= key (?. state.refine :key)) (refine-step! scene plan)
+  (if (and (= key (?. state.refine :key)) (progress.complete? state.refine.progress))
+      (still-step! scene plan)
+      (= key (?. state.refine :key)) (refine-step! scene plan)
       (= key (?. state.picture :key)) (do (start-refine! plan key) (refine-step! scene plan))
       (draw-coarse! scene plan key))
   (when state.picture (draw-stretched state.picture.canvas)))
@@ -750,11 +834,6 @@ the shader), the last ones drawn."
                  (values state.drawn.scene state.drawn.plan state.drawn.id))
              (do (set state.waiting-since nil)
                  (values state.scene (or (folded-plan plan) plan) state.plan-memo.id)))))
-
-(fn idle? []
-  "True when the full-resolution picture is whole: while its state stays, a frame
-only shows it again."
-  (and state.refine (progress.complete? state.refine.progress)))
 
 (fn draw []
   (when state.scene
@@ -829,6 +908,8 @@ reached the screen."
 (fn start! [options]
   "Play the scene file named in `options.scene`: install the LÖVE callbacks."
   (set state.cache (gpu.new-cache))
+  ;; What the player prints reaches a log as it happens, not when it quits.
+  (io.stdout:setvbuf :line)
   (prepare-font!)
   (set state.warm (when options.warm? (warm.new)))
   (set state.interactive-fps (or options.target-fps default-interactive-fps))
