@@ -1,5 +1,6 @@
-;; The state of one file for the watcher: its kind, size and modification time with
-;; sub-second precision, and the wall clock in the same units. Through LuaJIT's FFI on
+;; The state of one file for the watcher and the output writer: its kind, size,
+;; modification time with sub-second precision, device, inode and permission bits, and
+;; the wall clock in the same units. Through LuaJIT's FFI on
 ;; Linux (x86-64 and arm64 layouts of struct stat); elsewhere through lua-filesystem,
 ;; whose times are whole seconds (marked :coarse?).
 
@@ -21,14 +22,20 @@
     (let [(ok? err) (pcall ffi.cdef (.. (. layouts ffi.arch)
                                         " typedef struct { long sec, nsec; } rm_timespec_t;
                                           int stat(const char *path, rm_stat_t *buf);
+                                          int lstat(const char *path, rm_stat_t *buf);
                                           int access(const char *path, int mode);
                                           int clock_gettime(int clock, rm_timespec_t *ts);"))]
       ;; stat is a real symbol from glibc 2.33 on; older ones only have __xstat.
-      (when (and ok? (pcall #(. ffi.C :stat)))
+      (when (and ok? (pcall #(. ffi.C :stat)) (pcall #(. ffi.C :lstat)))
         {:buf (ffi.new "rm_stat_t") :ts (ffi.new "rm_timespec_t")}))))
 
-(local regular 0x8000)
-(local directory 0x4000)
+;; The file-type bits of st_mode, by name (the same on every POSIX system).
+(local kinds {0x8000 :file 0x4000 :directory 0x1000 :fifo 0xC000 :socket
+              0x2000 :char-device 0x6000 :block-device 0xA000 :link})
+
+;; lua-filesystem's names for the same.
+(local lfs-kinds {:file :file :directory :directory "named pipe" :fifo :socket :socket
+                  "char device" :char-device "block device" :block-device :link :link})
 
 (fn now []
   "Wall-clock seconds, in the same units as `stat`'s :mtime."
@@ -37,22 +44,40 @@
           (+ (tonumber native.ts.sec) (* 1e-9 (tonumber native.ts.nsec))))
       (os.time)))
 
-(fn stat [path]
-  "{:kind :file|:directory|:other :size :mtime :coarse? :readable?} for `path`, or nil
-when it does not exist."
-  (if native
-      (when (= 0 (ffi.C.stat path native.buf))
-        (let [b native.buf
-              mode (tonumber b.mode)
-              bits (* 4096 (% (math.floor (/ mode 4096)) 16))
-              kind (if (= bits regular) :file (= bits directory) :directory :other)]
-          {: kind :size (tonumber b.size) :coarse? false
-           :mtime (+ (tonumber b.mtime) (* 1e-9 (tonumber b.mtime_ns)))
-           :readable? (= 0 (ffi.C.access path 4))}))
-      lfs
-      (case (lfs.attributes path)
-        a {:kind (case a.mode :file :file :directory :directory _ :other)
-           :size a.size :mtime a.modification :coarse? true
-           :readable? (not= nil (case (io.open path :rb) f (do (f:close) true)))})))
+(fn native-stat [f path]
+  (when (= 0 (f path native.buf))
+    (let [b native.buf
+          mode (tonumber b.mode)
+          type (or (. kinds (* 4096 (% (math.floor (/ mode 4096)) 16))) :other)]
+      {:kind (if (or (= type :file) (= type :directory)) type :other)
+       : type :size (tonumber b.size) :coarse? false
+       :mtime (+ (tonumber b.mtime) (* 1e-9 (tonumber b.mtime_ns)))
+       :dev (tonumber b.dev) :ino (tonumber b.ino) :perm (% mode 4096)
+       :readable? (= 0 (ffi.C.access path 4))})))
 
-{: stat : now :precise? (not= nil native)}
+(fn lfs-stat [f path]
+  (case (f path)
+    a (let [type (or (. lfs-kinds a.mode) :other)]
+        {:kind (if (or (= type :file) (= type :directory)) type :other)
+         : type :size a.size :mtime a.modification :coarse? true
+         :dev a.dev :ino a.ino
+         :perm (accumulate [n 0 i c (a.permissions:gmatch "()(.)")]
+                 (if (= c "-") n (+ n (^ 2 (- 9 i)))))
+         ;; Opening a FIFO to see whether it is readable would wait for a writer.
+         :readable? (and (= type :file)
+                         (not= nil (case (io.open path :rb) f (do (f:close) true))))})))
+
+(fn stat [path]
+  "{:kind :file|:directory|:other :type :size :mtime :coarse? :readable? :dev :ino
+:perm} for `path` (links followed), or nil when it does not exist. :type is :file,
+:directory, :fifo, :socket, :char-device, :block-device or :other; :perm the
+permission bits."
+  (if native (native-stat ffi.C.stat path)
+      lfs (lfs-stat lfs.attributes path)))
+
+(fn lstat [path]
+  "As `stat`, but of a symbolic link itself (its :type is then :link)."
+  (if native (native-stat ffi.C.lstat path)
+      (and lfs lfs.symlinkattributes) (lfs-stat lfs.symlinkattributes path)))
+
+{: stat : lstat : now :precise? (not= nil native)}
