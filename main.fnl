@@ -18,11 +18,18 @@
                 text (do (io.write text) (love.event.quit 0))
                 (nil cerr) (fail! cerr)))))))
 
+(fn out-options [o]
+  ;; The command line's output: named as --out, never the scene file.
+  {:protect [o.scene] :label (.. "--out " o.out)})
+
 (fn render [o]
   (let [frame (require :src.backend.frame)
         gpu (require :src.backend.gpu)
         camera (require :src.render.camera)
-        (scene err) (frame.load-scene o.scene)]
+        output (require :src.util.output)
+        ;; A refused --out is refused before the scene is even read.
+        (checked cerr) (output.check o.out (out-options o))
+        (scene err) (if checked (frame.load-scene o.scene) (values nil cerr))]
     (if (not scene) (fail! err)
         ;; One frame of values that never change: the trees' values as constants.
         (let [(plan perr) (frame.plan-for scene {:view o.view :fold? true})
@@ -32,7 +39,7 @@
                     (ok? rerr) (frame.render-to-canvas! (gpu.new-cache) canvas scene plan
                                                         (camera.from-scene scene))]
                 (if (not ok?) (fail! rerr)
-                    (case (frame.write-png canvas o.out)
+                    (case (frame.write-png canvas o.out (out-options o))
                       true (do (print (.. "wrote " o.out " (" w "x" h ")"))
                                (love.event.quit 0))
                       (_ werr) (fail! werr)))))))))
@@ -71,15 +78,16 @@
 (fn export-shader [o]
   (let [frame (require :src.backend.frame)
         export (require :src.render.export)
-        (scene err) (frame.load-scene o.scene)
+        output (require :src.util.output)
+        (checked cerr) (output.check o.out (out-options o))
+        (scene err) (if checked (frame.load-scene o.scene) (values nil cerr))
         (plan perr) (if scene (frame.plan-for scene {:fold? true}) (values nil err))
         (text xerr) (if plan (export.shadertoy scene plan) (values nil perr))]
     (if (not text) (fail! xerr)
-        (case (io.open o.out :wb)
-          f (do (f:write text) (f:close)
-                (print (.. "wrote " o.out " (Shadertoy: paste it into a new shader's Image tab)"))
-                (love.event.quit 0))
-          (nil ferr) (fail! (.. o.out ": cannot write: " (tostring ferr)))))))
+        (case (output.write! o.out text (out-options o))
+          true (do (print (.. "wrote " o.out " (Shadertoy: paste it into a new shader's Image tab)"))
+                   (love.event.quit 0))
+          (nil ferr) (fail! ferr)))))
 
 (fn record [o]
   (case ((. (require :src.app.record) :run) o)

@@ -11,6 +11,7 @@
 (local plan-mod (require :src.render.plan))
 (local watch (require :src.app.watch))
 (local filestat (require :src.util.filestat))
+(local output (require :src.util.output))
 (local progress (require :src.app.progress))
 (local text (require :src.util.text))
 (local params (require :src.scene.params))
@@ -870,10 +871,9 @@ the shader), the last ones drawn."
   (love.graphics.captureScreenshot
     (fn [data]
       (let [bytes (: (data:encode :png) :getString)]
-        (case (io.open path :wb)
-          out (do (out:write bytes) (out:close) (print (.. "wrote " path))
-                  (love.event.quit 0))
-          (nil err) (do (io.stderr:write (.. "error: " path ": cannot write: " err "\n"))
+        (case (output.write! path bytes {:protect [state.path] :label (.. "--shot " path)})
+          true (do (print (.. "wrote " path)) (love.event.quit 0))
+          (nil err) (do (io.stderr:write (.. "error: " err "\n"))
                         (love.event.quit 1)))))))
 
 (fn frame-measured! [dt]

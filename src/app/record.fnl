@@ -7,6 +7,7 @@
 (local frame (require :src.backend.frame))
 (local gpu (require :src.backend.gpu))
 (local camera (require :src.render.camera))
+(local output (require :src.util.output))
 
 (fn scene-centre [scene]
   "The middle of the box around the objects' placements (planes and unplaced trees
@@ -23,9 +24,6 @@ excepted), or a point 10 units in front of the camera when there is none."
           (let [lo (accumulate [m math.huge _ p (ipairs points)] (math.min m (. p i)))
                 hi (accumulate [m (- math.huge) _ p (ipairs points)] (math.max m (. p i)))]
             (* 0.5 (+ lo hi)))))))
-
-(fn ensure-dir [dir]
-  (os.execute (.. "mkdir -p '" (dir:gsub "'" "'\\''") "'")))
 
 (fn run [o]
   "Record o.frames frames of o.scene into o.out. Returns true, or nil and a message."
@@ -44,8 +42,8 @@ excepted), or a point 10 units in front of the camera when there is none."
             cam0 (camera.from-scene scene)
             centre (scene-centre scene)
             scene-mod (require :src.scene.load)]
-        (ensure-dir o.out)
-        (var err nil)
+        (var err (case (output.ensure-dir! o.out {:label (.. "--out " o.out)})
+                   (nil e) e))
         (for [i 0 (- o.frames 1) &until err]
           ;; Functions of time take their values at t = i / fps; the plan is lowered
           ;; again for them (values only: the shader stays).
@@ -59,7 +57,7 @@ excepted), or a point 10 units in front of the camera when there is none."
                 path (string.format "%s/frame-%04d.png" o.out (+ i 1))]
             (case (if plan (frame.render-to-canvas! cache canvas scene plan cam) (values nil perr))
               (nil e) (set err e)
-              _ (case (frame.write-png canvas path)
+              _ (case (frame.write-png canvas path {:protect [o.scene]})
                   (nil e) (set err e)))
             (status.update! (string.format "frame %d/%d (t = %.3f s)" (+ i 1) o.frames (/ i fps)))))
         (status.done!)

@@ -5,6 +5,7 @@
 (local plan-mod (require :src.render.plan))
 (local uniforms (require :src.render.uniforms))
 (local gpu (require :src.backend.gpu))
+(local output (require :src.util.output))
 
 (fn read-text [path]
   "The text of the scene file at `path`: relative to the working directory first, then
@@ -33,17 +34,16 @@ and a message when the shader does not compile."
           (love.graphics.pop)
           true))))
 
-(fn write-png [canvas path]
-  "Write `canvas` as a PNG file at `path` (any path, not only LÖVE's save folder)."
+(fn write-png [canvas path ?options]
+  "Write `canvas` as a PNG file at `path` (any path, not only LÖVE's save folder)
+through output.write! (`?options` as it takes them: :protect, :label). Returns true,
+or nil and a message naming the path."
   (let [data (canvas:newImageData)
         file-data (data:encode :png)
-        (out err) (io.open path :wb)]
+        bytes (file-data:getString)]
     (data:release)
-    (if out
-        (do (out:write (file-data:getString))
-            (out:close)
-            true)
-        (values nil (.. path ": cannot write: " (tostring err))))))
+    (file-data:release)
+    (output.write! path bytes ?options)))
 
 (fn renderer-options [?options]
   "`?options` for plan.scene->plan, with what suits this renderer filled in (see

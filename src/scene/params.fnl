@@ -7,6 +7,7 @@
 
 (local fennel (require :fennel))
 (local text (require :src.util.text))
+(local output (require :src.util.output))
 
 (local max-params 64)   ; rows a panel can show and a person can use
 
@@ -205,10 +206,14 @@ and 'file:line: reason' when a name is not written as a literal or is used twice
 
 ;;; Writing values back
 
-(fn number-literal [v]
-  ;; Short and exact enough for a slider (six significant digits), as Fennel reads it.
-  (let [s (string.format "%.6g" v)]
-    (if (= s "-0") "0" s)))
+(fn number-literal [v ?min ?max]
+  ;; The shortest of 15, 16 or 17 significant digits that Fennel reads back as the
+  ;; same number, kept within [?min, ?max] (a value at its range's edge is the edge).
+  (let [v (math.max (or ?min v) (math.min (or ?max v) v))
+        s (accumulate [s nil _ digits (ipairs [15 16 17]) &until s]
+            (let [s (string.format (.. "%." digits "g") v)]
+              (when (= (tonumber s) v) s)))]
+    (if (or (= s "-0") (= v 0)) "0" s)))
 
 (fn replace-spans [source edits]
   "`source` with each {:from :to :with} edit applied (spans do not overlap)."
@@ -241,16 +246,18 @@ nil and 'file:line: reason'."
                                   v (. vals i)
                                   new (if (= (type v) :boolean) (tostring v)
                                           (= (tonumber old) v) old
-                                          (number-literal v))]
+                                          (number-literal v p.min p.max))]
                               (when (not= new old)
                                 (table.insert edits {: from : to :with new})))))))))
         (if err (values nil err)
             (values (replace-spans source edits) (length edits))))))
 
 (fn save! [path params ?read]
-  "Write the values of `params` into the scene file at `path`, atomically (a new
-file beside it renamed over it), re-reading the file first so edits made since it
-was loaded are kept. Returns the count of literals changed, or nil and a message."
+  "Write the values of `params` into the scene file at `path`, atomically (see
+output.write!: a new file created exclusively beside it, renamed over it; a scene
+opened through links is saved into the file they lead to, and the links stay),
+re-reading the file first so edits made since it was loaded are kept. Returns the
+count of literals changed, or nil and a message."
   (let [(source rerr) (if ?read (?read path)
                           (case (io.open path :rb)
                             f (let [s (f:read :*a)] (f:close) s)
@@ -259,16 +266,9 @@ was loaded are kept. Returns the count of literals changed, or nil and a message
         (values nil (.. path ": cannot read the scene file to save: " (tostring rerr)))
         (case (write-back source path params)
           (nil err) (values nil err)
-          (new-text 0) 0
-          (new-text n)
-          (let [tmp (.. path ".saving")]
-            (case (io.open tmp :wb)
-              (nil e) (values nil (.. path ": cannot save: " (tostring e)))
-              f (let [(ok? e) (f:write new-text)]
-                  (f:close)
-                  (case (and ok? (os.rename tmp path))
-                    true n
-                    _ (do (os.remove tmp)
-                          (values nil (.. path ": cannot save: " (tostring (or e "rename failed")))))))))))))
+          (_ 0) 0
+          (new-text n) (case (output.write! path new-text)
+                         true n
+                         (nil err) (values nil err))))))
 
 {: collector : param-function : failure-line : same-value? : sites : write-back : save!}
