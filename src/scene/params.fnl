@@ -206,14 +206,23 @@ and 'file:line: reason' when a name is not written as a literal or is used twice
 
 ;;; Writing values back
 
+(fn loaded-number [literal]
+  ;; The number a scene gets for `literal`. The compiler writes a number into Lua with
+  ;; tostring, which keeps 14 significant digits under LuaJIT: that is what loads.
+  (let [(ok? code) (pcall fennel.compile-string literal)]
+    (and ok? (tonumber (code:match "^return%s+(.-)%s*$")))))
+
 (fn number-literal [v ?min ?max]
-  ;; The shortest of 15, 16 or 17 significant digits that Fennel reads back as the
-  ;; same number, kept within [?min, ?max] (a value at its range's edge is the edge).
-  (let [v (math.max (or ?min v) (math.min (or ?max v) v))
-        s (accumulate [s nil _ digits (ipairs [15 16 17]) &until s]
-            (let [s (string.format (.. "%." digits "g") v)]
-              (when (= (tonumber s) v) s)))]
-    (if (or (= s "-0") (= v 0)) "0" s)))
+  ;; The shortest literal that loads as exactly the number it reads as: `v` itself when
+  ;; the compiler keeps it, else the nearest number it does keep; within [?min, ?max]
+  ;; (the loaded bounds, which the compiler keeps), so a value at an edge is the edge.
+  (let [loads-as (or (loaded-number (string.format "%.17g" v)) v)
+        target (math.max (or ?min loads-as) (math.min (or ?max loads-as) loads-as))
+        s (or (faccumulate [s nil digits 1 17 &until s]
+                (let [s (string.format (.. "%." digits "g") target)]
+                  (when (and (= (tonumber s) target) (= (loaded-number s) target)) s)))
+              (string.format "%.17g" target))]
+    (if (= target 0) "0" s)))
 
 (fn replace-spans [source edits]
   "`source` with each {:from :to :with} edit applied (spans do not overlap)."
