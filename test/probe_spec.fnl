@@ -141,3 +141,95 @@
             (assert.are.equal 1 code)
             (assert.truthy (out:find "stdin:3: expected three finite numbers `x y z`, got \"4 5 x\"" 1 true)
                            out)))))))
+
+;;; Unbounded input: read in chunks and answered in batches, a long line refused
+;;; before it is read whole.
+
+(fn endless-file [line]
+  "A file that gives `line` over and over, never an end; counts the bytes read."
+  (let [block (string.rep line (math.ceil (/ 200000 (length line))))
+        f {:bytes 0}]
+    (set f.read (fn [self n]
+                  (let [off (% self.bytes (length line))]
+                    (set self.bytes (+ self.bytes n))
+                    (block:sub (+ off 1) (+ off n)))))
+    f))
+
+(fn peak-kb [path]
+  ;; /usr/bin/time -o writes "Command exited ..." first when the status is not 0.
+  (tonumber (: (or (with-open [f (io.open path)] (f:read :*a)) "") :match "(%d+)%s*$")))
+
+(fn run-probe-stdin [producer scene-path]
+  "`producer | love . --probe scene-path`: exit code, stdout, stderr, peak memory in
+KB (nil without /usr/bin/time) and seconds."
+  (let [time? (os.execute "test -x /usr/bin/time")
+        t0 (os.time)
+        out (with-open [p (io.popen (.. producer " | SDL_VIDEODRIVER=offscreen timeout 120 "
+                                        (if time? "/usr/bin/time -f %M -o test/out/probe-peak " "")
+                                        "love . --probe " scene-path
+                                        " 2>test/out/probe-err; echo \"exit:$?\""))]
+              (p:read :*a))
+        err (with-open [f (io.open "test/out/probe-err")] (f:read :*a))]
+    (values (tonumber (out:match "exit:(%d+)%s*$")) (out:gsub "exit:%d+%s*$" "") err
+            (when time? (peak-kb "test/out/probe-peak")) (- (os.time) t0))))
+
+(describe "probe input"
+  (fn []
+    (os.execute "mkdir -p test/out")
+    (write-file "test/out/probe-sphere.fnl" "{:objects [{:kind :sphere}]}\n")
+
+    (it "an endless stream is answered batch by batch in constant memory"
+      (fn []
+        (let [f (endless-file "0.5 -1 2\n")
+              next-batch (probe.point-reader f "stdin")]
+          (collectgarbage :collect)
+          (var (total growth) (values 0 0))
+          (let [base (collectgarbage :count)]
+            (for [i 1 64]
+              (let [b (assert (next-batch))]
+                (assert.is_true (<= (length b) 16384))
+                (set total (+ total (length b))))
+              ;; What the reader keeps between batches, not garbage not yet swept.
+              (when (= 0 (% i 8))
+                (collectgarbage :collect)
+                (set growth (math.max growth (- (collectgarbage :count) base))))))
+          (assert.are.equal (* 64 16384) total)
+          (assert.are.same [0.5 -1 2] (. (next-batch) 1))
+          (assert.is_true (< growth 1024) (.. "the reader keeps " growth " KB")))))
+
+    (it "a line over 4096 bytes is refused, naming stdin and the line, before it is read whole"
+      (fn []
+        (let [f (endless-file "1")
+              text-head "1 2 3\n\n"
+              g {:bytes 0 :read (fn [self n]
+                                  (if (= self.bytes 0)
+                                      (do (set self.bytes (length text-head)) text-head)
+                                      (f:read n)))}
+              next-batch (probe.point-reader g "stdin")]
+          (assert.are.same [[1 2 3]] (next-batch))
+          (let [(points msg) (next-batch)]
+            (assert.is_nil points)
+            (assert.are.equal "stdin:3: line longer than 4096 bytes; a point is three numbers `x y z`" msg))
+          (assert.is_true (< f.bytes (* 1024 1024)) (.. f.bytes " bytes read")))))
+
+    (it "the app refuses a 10 MB line at once, naming stdin, in bounded memory"
+      (fn []
+        (let [(code out err peak secs)
+              (run-probe-stdin "head -c 10000000 /dev/zero | tr '\\0' 1" "test/out/probe-sphere.fnl")]
+          (assert.are.equal 1 code err)
+          (assert.are.equal "" out)
+          (assert.truthy (err:find "error: stdin:1: line longer than 4096 bytes; a point is three numbers `x y z`" 1 true) err)
+          (assert.falsy (: (err:lower) :find "traceback" 1 true) err)
+          (assert.is_true (<= secs 10) (.. secs " s"))
+          (when peak (assert.is_true (< peak (* 100 1024)) (.. "peak " peak " KB"))))))
+
+    (it "the app answers 2,000,000 points from a stream in bounded memory"
+      (fn []
+        (let [(code out err peak) (run-probe-stdin "yes '0 0 0' | head -c 12000000"
+                                                   "test/out/probe-sphere.fnl")
+              (_ lines) (out:gsub "\n" "")]
+          (assert.are.equal 0 code err)
+          (assert.are.equal 2000000 lines)
+          (assert.are.equal "-1 1 1 1 1" (out:match "^[^\n]*"))
+          (when peak (assert.is_true (< peak (* 100 1024)) (.. "peak " peak " KB"))))))))
+
