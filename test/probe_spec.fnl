@@ -142,18 +142,8 @@
             (assert.truthy (out:find "stdin:3: expected three finite numbers `x y z`, got \"4 5 x\"" 1 true)
                            out)))))))
 
-;;; Unbounded input: read in chunks and answered in batches, a long line refused
-;;; before it is read whole.
-
-(fn endless-file [line]
-  "A file that gives `line` over and over, never an end; counts the bytes read."
-  (let [block (string.rep line (math.ceil (/ 200000 (length line))))
-        f {:bytes 0}]
-    (set f.read (fn [self n]
-                  (let [off (% self.bytes (length line))]
-                    (set self.bytes (+ self.bytes n))
-                    (block:sub (+ off 1) (+ off n)))))
-    f))
+;;; Unbounded input through the app (test/probe_input_spec.fnl tests the reader alone):
+;;; an endless stream answered in bounded memory, a long line refused at once.
 
 (fn peak-kb [path]
   ;; /usr/bin/time -o writes "Command exited ..." first when the status is not 0.
@@ -173,44 +163,10 @@ KB (nil without /usr/bin/time) and seconds."
     (values (tonumber (out:match "exit:(%d+)%s*$")) (out:gsub "exit:%d+%s*$" "") err
             (when time? (peak-kb "test/out/probe-peak")) (- (os.time) t0))))
 
-(describe "probe input"
+(describe "probe input through the app"
   (fn []
     (os.execute "mkdir -p test/out")
     (write-file "test/out/probe-sphere.fnl" "{:objects [{:kind :sphere}]}\n")
-
-    (it "an endless stream is answered batch by batch in constant memory"
-      (fn []
-        (let [f (endless-file "0.5 -1 2\n")
-              next-batch (probe.point-reader f "stdin")]
-          (collectgarbage :collect)
-          (var (total growth) (values 0 0))
-          (let [base (collectgarbage :count)]
-            (for [i 1 64]
-              (let [b (assert (next-batch))]
-                (assert.is_true (<= (length b) 16384))
-                (set total (+ total (length b))))
-              ;; What the reader keeps between batches, not garbage not yet swept.
-              (when (= 0 (% i 8))
-                (collectgarbage :collect)
-                (set growth (math.max growth (- (collectgarbage :count) base))))))
-          (assert.are.equal (* 64 16384) total)
-          (assert.are.same [0.5 -1 2] (. (next-batch) 1))
-          (assert.is_true (< growth 1024) (.. "the reader keeps " growth " KB")))))
-
-    (it "a line over 4096 bytes is refused, naming stdin and the line, before it is read whole"
-      (fn []
-        (let [f (endless-file "1")
-              text-head "1 2 3\n\n"
-              g {:bytes 0 :read (fn [self n]
-                                  (if (= self.bytes 0)
-                                      (do (set self.bytes (length text-head)) text-head)
-                                      (f:read n)))}
-              next-batch (probe.point-reader g "stdin")]
-          (assert.are.same [[1 2 3]] (next-batch))
-          (let [(points msg) (next-batch)]
-            (assert.is_nil points)
-            (assert.are.equal "stdin:3: line longer than 4096 bytes; a point is three numbers `x y z`" msg))
-          (assert.is_true (< f.bytes (* 1024 1024)) (.. f.bytes " bytes read")))))
 
     (it "the app refuses a 10 MB line at once, naming stdin, in bounded memory"
       (fn []
