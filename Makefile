@@ -4,7 +4,7 @@
 SCENE ?= scenes/seed.fnl
 HEADLESS = SDL_VIDEODRIVER=offscreen
 
-.PHONY: deps run test bench golden report report-quick dist clean check-states
+.PHONY: deps run test check bench golden report report-quick dist clean check-states
 
 deps:
 	@bash tools/install-deps.sh
@@ -20,6 +20,11 @@ run: deps
 test:
 	@bash tools/install-deps.sh gnuplot-nox zip xvfb xdotool x11-apps bc
 	@$(HEADLESS) bash tools/run-tests.sh
+
+# The fast loop while developing: the specs that need no window or GPU, a sample of the
+# corpus through the app and 2000 fuzz cases (see README, Tests). `make test` is the suite.
+check: deps
+	@$(HEADLESS) bash tools/run-tests.sh --check
 
 bench: deps
 	$(HEADLESS) love . --bench-report --frames $(or $(FRAMES),5)

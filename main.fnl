@@ -45,19 +45,27 @@
                       (_ werr) (fail! werr)))))))))
 
 (fn probe [o]
+  ;; Read and answered a batch at a time (src/verify/probe.fnl): an endless stream
+  ;; runs in constant memory, and each batch's lines are out before the next is read.
   (let [frame (require :src.backend.frame)
         probe-mod (require :src.verify.probe)
-        (scene err) (frame.load-scene o.scene)]
-    (if (not scene) (fail! err)
-        (let [(plan perr) (frame.plan-for scene {:view :glow :probe? true})
-              (points terr) (if plan (probe-mod.parse-points (io.read :*a) "stdin")
-                                (values nil perr))
-              (vals verr) (if (not points) (values nil terr)
-                              o.gpu? ((. (require :src.backend.probe) :gpu-values) scene plan points)
-                              (probe-mod.cpu-values scene plan points))]
-          (if (not vals) (fail! verr)
-              (do (each [_ v (ipairs vals)] (io.write (probe-mod.format-line v) "\n"))
-                  (love.event.quit 0)))))))
+        (scene err) (frame.load-scene o.scene)
+        (plan perr) (if scene (frame.plan-for scene {:view :glow :probe? true})
+                        (values nil err))
+        (evaluate eerr) (if (not plan) (values nil perr)
+                            o.gpu? ((. (require :src.backend.probe) :gpu-evaluator) scene plan)
+                            (probe-mod.cpu-evaluator scene plan))]
+    (if (not evaluate) (fail! eerr)
+        (let [next-batch (probe-mod.point-reader io.stdin "stdin")]
+          (var (done? failure) false)
+          (while (not done?)
+            (let [(points rerr) (next-batch)
+                  (vals verr) (if points (evaluate points) (values nil rerr))]
+              (if vals
+                  (do (each [_ v (ipairs vals)] (io.write (probe-mod.format-line v) "\n"))
+                      (io.stdout:flush))
+                  (set (done? failure) (values true verr)))))
+          (if failure (fail! failure) (love.event.quit 0))))))
 
 (fn tree [o]
   (let [frame (require :src.backend.frame)

@@ -5,6 +5,8 @@
 ;; not fixed yet: its test is pending. Every file is also run through the real app,
 ;; which must exit 1 with the message and without a traceback, and no file may leave
 ;; anything behind in test/out/corpus-trace/ (where the forbidden ones try to write).
+;; CORPUS_SAMPLE=1 (`make check`) runs the app on one file per class only (the name's
+;; first word: anim, forbidden, limit, ...); the loader still sees every file.
 (local scene (require :src.scene.load))
 (local plan (require :src.render.plan))
 
@@ -62,6 +64,18 @@ time; each run's stdout, stderr and exit code land in run-dir/NAME.{out,err,rc}.
 (local all-cases (icollect [_ path (ipairs (corpus-files))] (parse-case path)))
 (local active-cases (icollect [_ c (ipairs all-cases)] (when (not c.pending) c)))
 
+(fn one-per-class [cases]
+  "The first case of each class (the name up to its first dash), in order."
+  (let [seen {}]
+    (icollect [_ c (ipairs cases)]
+      (let [class (c.name:match "^[^-]+")]
+        (when (not (. seen class))
+          (tset seen class true)
+          c)))))
+
+(local sample? (= (os.getenv "CORPUS_SAMPLE") "1"))
+(local app-cases (if sample? (one-per-class active-cases) all-cases))
+
 (describe "the broken-scene corpus"
   (fn []
     (setup
@@ -97,8 +111,8 @@ time; each run's stdout, stderr and exit code land in run-dir/NAME.{out,err,rc}.
         (fn ensure-ran! []
           (when (not ran?)
             (set ran? true)
-            (run-app-on-all! active-cases)))
-        (each [_ c (ipairs all-cases)]
+            (run-app-on-all! (icollect [_ c (ipairs app-cases)] (when (not c.pending) c)))))
+        (each [_ c (ipairs app-cases)]
           (if c.pending
               (pending (.. c.pending " [" c.path ", app]"))
               (it c.name

@@ -141,3 +141,51 @@
             (assert.are.equal 1 code)
             (assert.truthy (out:find "stdin:3: expected three finite numbers `x y z`, got \"4 5 x\"" 1 true)
                            out)))))))
+
+;;; Unbounded input through the app (test/probe_input_spec.fnl tests the reader alone):
+;;; an endless stream answered in bounded memory, a long line refused at once.
+
+(fn peak-kb [path]
+  ;; /usr/bin/time -o writes "Command exited ..." first when the status is not 0.
+  (tonumber (: (or (with-open [f (io.open path)] (f:read :*a)) "") :match "(%d+)%s*$")))
+
+(fn run-probe-stdin [producer scene-path]
+  "`producer | love . --probe scene-path`: exit code, stdout, stderr, peak memory in
+KB (nil without /usr/bin/time) and seconds."
+  (let [time? (os.execute "test -x /usr/bin/time")
+        t0 (os.time)
+        out (with-open [p (io.popen (.. producer " | SDL_VIDEODRIVER=offscreen timeout 120 "
+                                        (if time? "/usr/bin/time -f %M -o test/out/probe-peak " "")
+                                        "love . --probe " scene-path
+                                        " 2>test/out/probe-err; echo \"exit:$?\""))]
+              (p:read :*a))
+        err (with-open [f (io.open "test/out/probe-err")] (f:read :*a))]
+    (values (tonumber (out:match "exit:(%d+)%s*$")) (out:gsub "exit:%d+%s*$" "") err
+            (when time? (peak-kb "test/out/probe-peak")) (- (os.time) t0))))
+
+(describe "probe input through the app"
+  (fn []
+    (os.execute "mkdir -p test/out")
+    (write-file "test/out/probe-sphere.fnl" "{:objects [{:kind :sphere}]}\n")
+
+    (it "the app refuses a 10 MB line at once, naming stdin, in bounded memory"
+      (fn []
+        (let [(code out err peak secs)
+              (run-probe-stdin "head -c 10000000 /dev/zero | tr '\\0' 1" "test/out/probe-sphere.fnl")]
+          (assert.are.equal 1 code err)
+          (assert.are.equal "" out)
+          (assert.truthy (err:find "error: stdin:1: line longer than 4096 bytes; a point is three numbers `x y z`" 1 true) err)
+          (assert.falsy (: (err:lower) :find "traceback" 1 true) err)
+          (assert.is_true (<= secs 10) (.. secs " s"))
+          (when peak (assert.is_true (< peak (* 100 1024)) (.. "peak " peak " KB"))))))
+
+    (it "the app answers 2,000,000 points from a stream in bounded memory"
+      (fn []
+        (let [(code out err peak) (run-probe-stdin "yes '0 0 0' | head -c 12000000"
+                                                   "test/out/probe-sphere.fnl")
+              (_ lines) (out:gsub "\n" "")]
+          (assert.are.equal 0 code err)
+          (assert.are.equal 2000000 lines)
+          (assert.are.equal "-1 1 1 1 1" (out:match "^[^\n]*"))
+          (when peak (assert.is_true (< peak (* 100 1024)) (.. "peak " peak " KB"))))))))
+
