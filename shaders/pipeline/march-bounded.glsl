@@ -26,12 +26,12 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     for (int i = 0; i < uMaxSteps; i++) {
         float d = mapFinite(ro + rd * t);
         startHalf = i == 0 && t == 0.0 && t0 > 0.0 ? startLimit(d) : startHalf;
-        float h = hitThreshold(t0 + t);
+        float threshold = min(hitThreshold(t0 + t), startHalf);
         // @slot count-step
-        if (d < min(h, startHalf) && arriving(d, mapFinite(ro + rd * (t + h)), h, t0 + t)) {
-            return t + d;
-        }
         t += d;
+        if (d < threshold) {
+            return t;
+        }
         if (t >= tEnd) {
             return min(tPlane, tMax);
         }

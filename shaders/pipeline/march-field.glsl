@@ -67,8 +67,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
         if (evaluated) {
             evals++;
             steps = evals;
-            float h = hitThreshold(t0 + t);
-            if (d < min(h, startHalf) && arriving(d, mapFinite(p + rd * h), h, t0 + t)) {
+            if (d < min(hitThreshold(t0 + t), startHalf)) {
                 return t + d;
             }
         }

@@ -31,8 +31,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             omega = 1.0;
             continue;
         }
-        float h = hitThreshold(t0 + t);
-        if (d < min(h, startHalf) && arriving(d, mapFinite(ro + rd * (t + h)), h, t0 + t)) {
+        if (d < min(hitThreshold(t0 + t), startHalf)) {
             t += d;
             return t;
         }

@@ -26,8 +26,7 @@ float raymarch(vec3 ro, vec3 rd, out int steps) {
             omega = 1.0;
             continue;
         }
-        float h = hitThreshold(t0 + t);
-        if (d < min(h, startHalf) && arriving(d, map(ro + rd * (t + h)), h, t0 + t)) {
+        if (d < min(hitThreshold(t0 + t), startHalf)) {
             t += d;
             return t;
         }

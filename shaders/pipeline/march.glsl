@@ -18,11 +18,10 @@ float raymarch(vec3 ro, vec3 rd, out int steps) {
     for (int i = 0; i < uMaxSteps; i++) {
         float d = map(ro + rd * t);
         startHalf = i == 0 && t0 > 0.0 ? startLimit(d) : startHalf;
-        float h = hitThreshold(t0 + t);
-        bool hit = d < min(h, startHalf) && arriving(d, map(ro + rd * (t + h)), h, t0 + t);
+        float threshold = min(hitThreshold(t0 + t), startHalf);
         // @slot count-step
         t += d;
-        if (hit || t >= uDrawDist) {
+        if (d < threshold || t >= uDrawDist) {
             return t;
         }
     }

@@ -476,8 +476,6 @@ only when the plan has it."
                                    {:object-terms (object-terms plan)
                                     :others-terms (others-terms plan)})))
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
-    (when (not= plan.hit-test :fixed)
-      (table.insert sections (fill "shaders/pipeline/arrive.glsl" {})))
     (when plan.bounds
       (table.insert sections (bounded-lines plan)))
     ;; Only the glow and heat views read the step count; elsewhere it is not kept.

@@ -162,13 +162,6 @@ Positions are in world coordinates."
       ;; article's fixed test or from inside a solid.
       (if (or (= hit-test :fixed) (<= d 0)) draw (* 0.5 d)))
 
-    (fn arriving? [d d-ahead h dist]
-      ;; A step under the threshold is a hit only where the ray arrives at the
-      ;; surface (arrive.glsl): the distance one threshold further along the ray no
-      ;; larger, or d under what float32 resolves at dist. A ray passing an edge
-      ;; within the threshold goes on. The article's fixed test takes every step.
-      (or (= hit-test :fixed) (<= d (* 0.000001 (+ 1 dist))) (<= (- d-ahead d) (* 0.05 h))))
-
     (fn distance-from-camera [x y z]
       (let [ex (- x cx) ey (- y cy) ez (- z cz)]
         (sqrt (+ (* ex ex) (* ey ey) (* ez ez)))))
@@ -245,10 +238,7 @@ Positions are in world coordinates."
                       (set result hit))))))
             (when (and evaluated? (not result))
               (set evals (+ evals 1))
-              (when (and (< d (math.min (threshold (+ t0 t)) start-half))
-                         (arriving? d (let [ahead (+ t (threshold (+ t0 t)))]
-                                        (map-finite (+ ox (* dx ahead)) (+ oy (* dy ahead)) (+ oz (* dz ahead))))
-                                    (threshold (+ t0 t)) (+ t0 t)))
+              (when (< d (math.min (threshold (+ t0 t)) start-half))
                 (set result (+ t d))))
             (when (not result)
               (if (< (+ t d) cell-end)
@@ -305,10 +295,7 @@ Positions are in world coordinates."
             (if (and (> omega 1) (< (+ (abs d) r-prev) (- t t-prev)))
                 (do (set t (+ t-prev r-prev))
                     (set omega 1))
-                (and (< d (math.min (threshold (+ t0 t)) start-half))
-                     (arriving? d (let [ahead (+ t (threshold (+ t0 t)))]
-                                    (f (+ ox (* dx ahead)) (+ oy (* dy ahead)) (+ oz (* dz ahead))))
-                                (threshold (+ t0 t)) (+ t0 t)))
+                (< d (math.min (threshold (+ t0 t)) start-half))
                 (do (set t (+ t d))
                     (set done? true))
                 (do (set t-prev t)

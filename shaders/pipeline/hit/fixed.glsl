@@ -9,9 +9,3 @@ float hitThreshold(float dist) {
 float startLimit(float d) {
     return 10000000000.0;
 }
-
-// The article's test takes every step under epsilon as a hit (see arrive.glsl for the
-// others).
-bool arriving(float d, float dAhead, float h, float dist) {
-    return true;
-}
