@@ -44,6 +44,14 @@
           (+ (tonumber native.ts.sec) (* 1e-9 (tonumber native.ts.nsec))))
       (os.time)))
 
+(fn monotonic []
+  "Seconds of a clock that only goes forward (CLOCK_MONOTONIC), for timing; without
+the FFI, os.clock (the process's CPU time)."
+  (if native
+      (do (ffi.C.clock_gettime 1 native.ts)
+          (+ (tonumber native.ts.sec) (* 1e-9 (tonumber native.ts.nsec))))
+      (os.clock)))
+
 (fn native-stat [f path]
   (when (= 0 (f path native.buf))
     (let [b native.buf
@@ -80,4 +88,4 @@ permission bits."
   (if native (native-stat ffi.C.lstat path)
       (and lfs lfs.symlinkattributes) (lfs-stat lfs.symlinkattributes path)))
 
-{: stat : lstat : now :precise? (not= nil native)}
+{: stat : lstat : now : monotonic :precise? (not= nil native)}

@@ -24,6 +24,7 @@
 (local headless (require :src.backend.headless))
 (local reference (require :src.verify.reference))
 (local compare (require :src.verify.compare))
+(local filestat (require :src.util.filestat))
 
 ;;; Settings
 
@@ -229,14 +230,10 @@ time or error is nil are left out. Keys default to :ms and :error."
 
 ;;; Measurement helpers
 
-(pcall ffi.cdef "typedef struct { long tv_sec; long tv_nsec; } report_timespec;
-int clock_gettime(int clk_id, report_timespec *tp);")
-(local timespec (ffi.new "report_timespec"))
-
 (fn now-ms []
-  "Monotonic wall-clock time in milliseconds."
-  (ffi.C.clock_gettime 1 timespec)
-  (+ (* 1000 (tonumber timespec.tv_sec)) (/ (tonumber timespec.tv_nsec) 1e6)))
+  "Monotonic wall-clock time in milliseconds (one declaration of clock_gettime for
+the whole program: src/util/filestat.fnl's)."
+  (* 1000 (filestat.monotonic)))
 
 (local median compare.median)
 
