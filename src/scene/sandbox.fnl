@@ -129,18 +129,20 @@ message when it is too large, not UTF-8 text or nested too deeply."
 
 (local global-forms {:global true :set-forcibly! true})
 
+(fn refusal [file name node]
+  "The message for the refused form `name` at `node` of `file`."
+  (let [src (fennel.ast-source node)]
+    (.. file (if src.line (.. ":" src.line) "") ": (" (text.escape name)
+        " ...) is not allowed: scene files are data and "
+        (if (. global-forms name) "set no globals" "run no compile-time code"))))
+
 (fn check-forms [forms file]
   "A message when the parsed `forms` use a refused form or nest too deeply, else nil."
   (var message nil)
   (each [_ form (ipairs forms) &until message]
     (case (find-forbidden form 1)
       :too-deep (set message (nesting-message file nil))
-      node (let [src (fennel.ast-source node)
-                 name (tostring (. node 1))]
-             (set message (.. file (if src.line (.. ":" src.line) "") ": (" (text.escape name)
-                              " ...) is not allowed: scene files are data and "
-                              (if (. global-forms name) "set no globals"
-                                  "run no compile-time code"))))))
+      node (set message (refusal file (tostring (. node 1)) node))))
   message)
 
 (fn parse [source file]
@@ -151,6 +153,35 @@ reports the parse error with its line)."
     (when ok? forms)))
 
 ;;; Compiling, with the compiler's shared state checked
+
+;; Read once: the step hook calls them, and a module loaded with an :env (the tests,
+;; tools/fnl.lua) reaches every global through a function.
+(local gc collectgarbage)
+(local cpu-clock os.clock)
+
+(fn steps-text [n]
+  (if (>= n 1e6) (.. (math.floor (/ n 1e6)) " million") (tostring (math.floor n))))
+
+
+;; The check above reads the forms as written; a macro can still build a refused form
+;; (-> x eval-compiler) is (eval-compiler x). So the scene is compiled in a scope
+;; where every special form and macro off the allowlist is a special form that
+;; refuses it: the compiler itself stops at whatever the macros expand into.
+
+(fn scene-scope [file]
+  "A compiler scope for `file` in which each special form and macro that is not on
+the allowlist is a special form raising a sandbox error that names it and its line.
+Scopes made inside it inherit that through their metatables."
+  (let [g (global-scope)
+        scope (fennel.scope g)
+        refused (collect [name (pairs g.specials)] (values name true))]
+    (each [name (pairs g.macros)] (tset refused name true))
+    (each [name (pairs refused)]
+      (when (not (. allowed-forms name))
+        ;; false: not a macro here, so the call reaches the special form below.
+        (tset scope.macros name false)
+        (tset scope.specials name (fn [ast] (stop (refusal file name ast))))))
+    scope))
 
 (fn compiler-state []
   (let [g (global-scope)]
@@ -167,17 +198,29 @@ reports the parse error with its line)."
     (when (not= v (rawget live k)) (set changed? true) (tset live k v)))
   changed?)
 
+(local fennel-utils (case (pcall require :fennel.utils) (true utils) utils))
 (fn compile [source file allowed]
-  "Lua code for scene `source`, or nil and Fennel's message. The compiler's special
-forms, macros and module table are the same afterwards, whatever happened."
+  "Lua code for scene `source`, or nil and Fennel's message (or a sandbox error: a
+refused form after macros expand). The compiler's special forms,
+macros and module table are the same afterwards, whatever happened."
   (let [before (compiler-state)
+        root (?. fennel-utils :root)
+        saved-root (when root
+                     {:chunk root.chunk :scope root.scope :options root.options
+                      :reset root.reset})
         (ok? code) (pcall fennel.compile-string source
-                          {:filename file :allowedGlobals allowed :correlate true})
+                          {:filename file :allowedGlobals allowed :correlate true
+                           :scope (scene-scope file)})
         g (global-scope)
         ;; Restore all three: no short-circuit.
         changes [(restore! g.specials before.specials) (restore! g.macros before.macros)
                  (restore! fennel before.fennel)]
         changed? (or (. changes 1) (. changes 2) (. changes 3))]
+    ;; The compiler resets its state on its own errors only; a refused form stops
+    ;; it anywhere, and the next compile must not inherit the scene's
+    ;; options (its allowed globals).
+    (when (and saved-root (not ok?))
+      (each [k v (pairs saved-root)] (tset root k v)))
     (if changed? (values nil (.. file ": the scene changed the Fennel compiler and was refused"))
         ok? code
         (values nil code))))
@@ -243,14 +286,6 @@ the file system, the process, the loader or the compiler."
      :string {:format safe-format :sub string.sub :rep safe-rep}}))
 
 ;;; Running, within limits
-
-;; Read once: the step hook calls them, and a module loaded with an :env (the tests,
-;; tools/fnl.lua) reaches every global through a function.
-(local gc collectgarbage)
-(local cpu-clock os.clock)
-
-(fn steps-text [n]
-  (if (>= n 1e6) (.. (math.floor (/ n 1e6)) " million") (tostring (math.floor n))))
 
 (fn run [chunk file env ?options]
   "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
