@@ -20,6 +20,15 @@
                                   ; vector helpers that leave garbage
    :string-bytes (* 1024 1024)    ; one string made by a library call
    :cpu-seconds 5                 ; a backstop: the step limit trips long before
+   ;; Compiling (the compiler is Lua code too; a macro can copy its arguments
+   ;; without end: nested case-try, 4 KB, took 1.3 GB and more). A 512 KB file of
+   ;; 6310 spheres written out compiles in 39 million steps (0.46 s) and 43 MB at
+   ;; the peak; the scenes in scenes/ take 0.2 million; a loop of 100,000 objects
+   ;; is a short file. 512 KB of dense macros (case, match-try, icollect on every
+   ;; line) takes 223 million and 259 MB, and is refused.
+   :compile-steps 100000000       ; about 1.2 s here
+   :compile-memory-mb 128         ; Lua memory, garbage included
+   :compile-hook-every 1000       ; instructions between the compiler's limit checks
    :hook-every 4})                ; instructions between limit checks
 
 ;; Our own errors carry this table, which no scene can reach, so a scene cannot forge
@@ -199,25 +208,72 @@ Scopes made inside it inherit that through their metatables."
   changed?)
 
 (local fennel-utils (case (pcall require :fennel.utils) (true utils) utils))
+;; This file's chunk name: a hook that fires in it is on the way out of the compiler.
+(local own-source (. (debug.getinfo 1 :S) :source))
+
+(fn within-limits [f file]
+  "Call `f` (the compiler at work on `file`) with the JIT off, so the count hook sees
+every instruction, and stop it past the compile step, memory or time limit. Returns
+true and its value, or false and the error (a sandbox error when a limit stopped it)."
+  (var hooks 0)
+  (var stopped nil)
+  (let [memory-ceiling (+ (gc :count) (* 1024 limits.compile-memory-mb))
+        max-hooks (/ limits.compile-steps limits.compile-hook-every)
+        cpu-start (cpu-clock)
+        stop! (fn [message] (set stopped message) (stop message))
+        hook (fn []
+               (if stopped
+                   ;; Stopped inside a pcall of the compiler's own (a macro's
+                   ;; expansion): raise again until it is out, but never here.
+                   (when (not= own-source (. (debug.getinfo 2 :S) :source))
+                     (stop stopped))
+                   (do (set hooks (+ hooks 1))
+                       (if (> hooks max-hooks)
+                           (stop! (.. file ": compiling took more than "
+                                      (steps-text limits.compile-steps)
+                                      " steps and was stopped (macros that copy their arguments, nested too deep?)"))
+                           (> (gc :count) memory-ceiling)
+                           (stop! (.. file ": compiling took more than "
+                                      limits.compile-memory-mb
+                                      " MB and was stopped (macros that copy their arguments, nested too deep?)"))
+                           (and (= 0 (% hooks 256))
+                                (> (- (cpu-clock) cpu-start) limits.cpu-seconds))
+                           (stop! (.. file ": compiling took more than "
+                                      limits.cpu-seconds " s and was stopped"))))))
+        jit-was-on? (and jit (jit.status))]
+    (when jit (jit.off))
+    (let [(outer-ok? ok? value) (pcall (fn []
+                                         (debug.sethook hook "" limits.compile-hook-every)
+                                         (let [(ok? value) (pcall f)]
+                                           (debug.sethook)
+                                           (values ok? value))))]
+      (debug.sethook)
+      (when jit-was-on? (jit.on))
+      (if stopped (values false {:sandbox marker :message stopped})
+          (not outer-ok?) (values false ok?)
+          (values ok? value)))))
+
 (fn compile [source file allowed]
   "Lua code for scene `source`, or nil and Fennel's message (or a sandbox error: a
-refused form after macros expand). The compiler's special forms,
+refused form after macros expand, a compile limit). The compiler's special forms,
 macros and module table are the same afterwards, whatever happened."
   (let [before (compiler-state)
         root (?. fennel-utils :root)
         saved-root (when root
                      {:chunk root.chunk :scope root.scope :options root.options
                       :reset root.reset})
-        (ok? code) (pcall fennel.compile-string source
-                          {:filename file :allowedGlobals allowed :correlate true
-                           :scope (scene-scope file)})
+        (ok? code) (within-limits
+                    #(fennel.compile-string source
+                                            {:filename file :allowedGlobals allowed
+                                             :correlate true :scope (scene-scope file)})
+                    file)
         g (global-scope)
         ;; Restore all three: no short-circuit.
         changes [(restore! g.specials before.specials) (restore! g.macros before.macros)
                  (restore! fennel before.fennel)]
         changed? (or (. changes 1) (. changes 2) (. changes 3))]
-    ;; The compiler resets its state on its own errors only; a refused form stops
-    ;; it anywhere, and the next compile must not inherit the scene's
+    ;; The compiler resets its state on its own errors only; a refused form or a
+    ;; limit stops it anywhere, and the next compile must not inherit the scene's
     ;; options (its allowed globals).
     (when (and saved-root (not ok?))
       (each [k v (pairs saved-root)] (tset root k v)))
