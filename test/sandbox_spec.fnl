@@ -156,7 +156,12 @@
                                 " stopped (macros that copy their arguments, nested too deep?)")
                             err)
           (assert.is_true (< (- (os.clock) start) 6) (.. (- (os.clock) start) " s"))
-          (when jit (assert.is_true (jit.status) "the JIT is on again")))))
+          (when jit (assert.is_true (jit.status) "the JIT is on again"))
+          ;; Stopped inside a macro's expansion: the compiler's macro scope is back, or
+          ;; the next module compiled would see the scene's locals (type0 for type).
+          (assert.are.equal (global-scope) (. (require :fennel.compiler) :scopes :macro))
+          (assert.truthy (: (fennel.compile-string "(fn f [x] (type x)) f" {:allowedGlobals false})
+                            :find "return type(x)" 1 true)))))
 
     (it "stops a compile past the memory limit, and the next compile works"
       (fn []

@@ -207,7 +207,11 @@ Scopes made inside it inherit that through their metatables."
     (when (not= v (rawget live k)) (set changed? true) (tset live k v)))
   changed?)
 
+;; The compiler's own modules, for the state a stopped compile can leave behind:
+;; utils.root (the options of the compile in progress) and compiler.scopes.macro
+;; (the scope a macro expands in, set around each expansion).
 (local fennel-utils (case (pcall require :fennel.utils) (true utils) utils))
+(local fennel-compiler (case (pcall require :fennel.compiler) (true compiler) compiler))
 ;; This file's chunk name: a hook that fires in it is on the way out of the compiler.
 (local own-source (. (debug.getinfo 1 :S) :source))
 
@@ -262,6 +266,8 @@ macros and module table are the same afterwards, whatever happened."
         saved-root (when root
                      {:chunk root.chunk :scope root.scope :options root.options
                       :reset root.reset})
+        scopes (?. fennel-compiler :scopes)
+        macro-scope (?. scopes :macro)
         (ok? code) (within-limits
                     #(fennel.compile-string source
                                             {:filename file :allowedGlobals allowed
@@ -273,10 +279,11 @@ macros and module table are the same afterwards, whatever happened."
                  (restore! fennel before.fennel)]
         changed? (or (. changes 1) (. changes 2) (. changes 3))]
     ;; The compiler resets its state on its own errors only; a refused form or a
-    ;; limit stops it anywhere, and the next compile must not inherit the scene's
-    ;; options (its allowed globals).
+    ;; limit stops it anywhere (inside a macro's expansion too), and the next compile
+    ;; must not inherit the scene's options (its allowed globals) or scope.
     (when (and saved-root (not ok?))
       (each [k v (pairs saved-root)] (tset root k v)))
+    (when scopes (set scopes.macro macro-scope))
     (if changed? (values nil (.. file ": the scene changed the Fennel compiler and was refused"))
         ok? code
         (values nil code))))
