@@ -114,6 +114,9 @@
           (assert.is_nil (rawget _G :hacked))
           (assert.are.equal local-before (. g.specials :local))
           (assert.is_nil (rawget g.macros :boom))
+          ;; Refused in the middle of a compile: the compiler's record of the compile
+          ;; in progress is cleared (a module loaded next would take its options).
+          (assert.is_nil (. (require :fennel.utils) :root :options))
           ;; The compiler's own state is back: a module compiled now sees every global.
           (assert.are.equal 42 (fennel.eval "(let [t {:x 40}] (+ t.x (math.floor 2.5)))"
                                             {:env _G :allowedGlobals false})))))

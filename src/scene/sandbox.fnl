@@ -263,9 +263,8 @@ refused form after macros expand, a compile limit). The compiler's special forms
 macros and module table are the same afterwards, whatever happened."
   (let [before (compiler-state)
         root (?. fennel-utils :root)
-        saved-root (when root
-                     {:chunk root.chunk :scope root.scope :options root.options
-                      :reset root.reset})
+        ;; A list, not a table with keys: most of these are nil between compiles.
+        saved-root (when root [root.chunk root.scope root.options root.reset])
         scopes (?. fennel-compiler :scopes)
         macro-scope (?. scopes :macro)
         (ok? code) (within-limits
@@ -282,7 +281,8 @@ macros and module table are the same afterwards, whatever happened."
     ;; limit stops it anywhere (inside a macro's expansion too), and the next compile
     ;; must not inherit the scene's options (its allowed globals) or scope.
     (when (and saved-root (not ok?))
-      (each [k v (pairs saved-root)] (tset root k v)))
+      (set (root.chunk root.scope root.options root.reset)
+           (values (. saved-root 1) (. saved-root 2) (. saved-root 3) (. saved-root 4))))
     (when scopes (set scopes.macro macro-scope))
     (if changed? (values nil (.. file ": the scene changed the Fennel compiler and was refused"))
         ok? code
