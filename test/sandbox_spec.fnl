@@ -74,6 +74,129 @@
                              (.. name " in a key: " (tostring err)))))
           (assert.is_true (>= refused 14) (.. refused " forms refused")))))))
 
+(describe "sandbox: after macros expand"
+  (fn []
+    (it "refuses every form off the allowlist that a macro builds, named with its line"
+      (fn []
+        (let [g (global-scope)
+              names (doto (icollect [k (pairs g.specials)] k) table.sort)]
+          (each [k (pairs g.macros)] (table.insert names k))
+          (var refused 0)
+          (each [_ name (ipairs names)]
+            ;; -> makes (name :x): the first word of every form written is ->.
+            (let [(_ err) (scene.load-string (.. "\n{:objects [] :name (-> :x " name ")}")
+                                             "t.fnl")]
+              (when (and err (err:find (.. "t.fnl:2: (" name " ...) is not allowed") 1 true))
+                (set refused (+ refused 1)))))
+          (each [_ name (ipairs [:eval-compiler :macro :macros :lua :include :import-macros
+                                 :require-macros :global :set-forcibly! :quote :macrodebug
+                                 :with-open :pick-args :assert-repl :unquote])]
+            (let [(_ err) (scene.load-string (.. "\n{:objects [] :name (-> :x " name ")}")
+                                             "t.fnl")]
+              (assert.truthy (and err (err:find (.. "t.fnl:2: (" name " ...) is not allowed")
+                                                1 true))
+                             (.. name " through ->: " (tostring err)))))
+          (assert.is_true (>= refused 15) (.. refused " forms refused")))))
+
+    (it "runs no compile-time code whatever builds it, and leaves the compiler as it was"
+      (fn []
+        (let [g (global-scope)
+              local-before (. g.specials :local)]
+          (each [_ src (ipairs ["{:objects [] :name (-> (do (set _G.hacked true) :x) eval-compiler)}"
+                                "{:objects [] :name (->> (while true nil) eval-compiler)}"
+                                "{:objects [] :name (doto \"_G.hacked = true\" (-> lua))}"
+                                "(-> {:boom (fn [] (set _G.hacked true))} macros) {:objects [(boom)]}"
+                                "{:objects [] :name ((partial set-forcibly! hacked) true)}"
+                                "(-> :test.support.fields require-macros) {:objects []}"])]
+            (let [(s err) (scene.load-string src "t.fnl")]
+              (assert.is_nil s)
+              (assert.truthy (err:find "^t%.fnl:1: %([%w!-]+ %.%.%.%) is not allowed") err)))
+          (assert.is_nil (rawget _G :hacked))
+          (assert.are.equal local-before (. g.specials :local))
+          (assert.is_nil (rawget g.macros :boom))
+          ;; Refused in the middle of a compile: the compiler's record of the compile
+          ;; in progress is cleared (a module loaded next would take its options).
+          (assert.is_nil (. (require :fennel.utils) :root :options))
+          ;; The compiler's own state is back: a module compiled now sees every global.
+          (assert.are.equal 42 (fennel.eval "(let [t {:x 40}] (+ t.x (math.floor 2.5)))"
+                                            {:env _G :allowedGlobals false})))))
+
+    (it "still compiles every allowed form and macro"
+      (fn []
+        (let [s (assert (scene.load-string (.. "(local h (partial + 1)) (local k #(+ $1 1))"
+                                               "(local t (doto [] (table.insert 1)))"
+                                               "(local r (case-try 1 a (+ a 1) (catch _ 0)))"
+                                               "(local m (match-try 1 a (+ a 1) (catch _ 0)))"
+                                               "(local c (case [1 2] [x y] (+ x y) _ 0))"
+                                               "(local d (match [1 2] [x y] (+ x y) _ 0))"
+                                               "(local s (accumulate [s 0 _ v (ipairs [1 2])] (+ s v)))"
+                                               "(local fs (faccumulate [s 0 i 1 3] (+ s i)))"
+                                               "(local col (collect [k v (pairs {:a 1})] k v))"
+                                               "(local ic (icollect [_ v (ipairs [1 2])] v))"
+                                               "(local th (-> 1 (+ 2) (->> (* 3)) (-?> (+ 1)) (-?>> (+ 1))))"
+                                               "(var v (?. {:a {:b 1}} :a :b)) (when true (comment x))"
+                                               "(while (< v 3) (set v (+ v 1))) (for [i 1 2] (set v (+ v i)))"
+                                               "(fn tail [n] (if (< n 1) 0 (tail! (tail (- n 1)))))"
+                                               "{:objects [{:kind :sphere :pos [0 0 0] :radius"
+                                               " (+ (h 1) (k 1) (length t) r m c d s fs col.a (length ic)"
+                                               " th v (pick-values 1 (values 1 2)) (tail 3) (# [1]))}]}")
+                                           "t.fnl"))]
+          ;; 2 2 1 2 2 3 3 3 6 1 2 11 6 1 0 1
+          (assert.are.equal 46 (. s.objects 1 :radius)))))))
+
+(describe "sandbox: the compiler within limits"
+  (fn []
+    (fn nested-case-try [depth]
+      (if (= depth 0) "1"
+          (let [inner (nested-case-try (- depth 1))]
+            (.. "(case-try 1 a 2 b 3 c 4 (catch 0 " inner " 9 " inner "))"))))
+
+    (it "stops a compile that copies without end (nested case-try, 1.3 GB unbounded)"
+      (fn []
+        (let [start (os.clock)
+              (_ err) (scene.load-string (.. "{:objects [] :x " (nested-case-try 6) "}") "t.fnl")]
+          (assert.are.equal (.. "t.fnl: compiling took more than 100 million steps and was"
+                                " stopped (macros that copy their arguments, nested too deep?)")
+                            err)
+          (assert.is_true (< (- (os.clock) start) 6) (.. (- (os.clock) start) " s"))
+          (when jit (assert.is_true (jit.status) "the JIT is on again"))
+          ;; Stopped inside a macro's expansion: the compiler's macro scope is back, or
+          ;; the next module compiled would see the scene's locals (type0 for type).
+          (assert.are.equal (global-scope) (. (require :fennel.compiler) :scopes :macro))
+          (assert.truthy (: (fennel.compile-string "(fn f [x] (type x)) f" {:allowedGlobals false})
+                            :find "return type(x)" 1 true)))))
+
+    (it "stops a compile past the memory limit, and the next compile works"
+      (fn []
+        (let [memory sandbox.limits.compile-memory-mb
+              steps sandbox.limits.compile-steps]
+          ;; Depth 6 builds 1.3 GB unbounded: the memory check must trip first.
+          (set sandbox.limits.compile-memory-mb 16)
+          (set sandbox.limits.compile-steps 1e12)
+          (let [(_ err) (scene.load-string (.. "{:objects [] :x " (nested-case-try 6) "}") "t.fnl")]
+            (set sandbox.limits.compile-memory-mb memory)
+            (set sandbox.limits.compile-steps steps)
+            (assert.are.equal (.. "t.fnl: compiling took more than 16 MB and was stopped"
+                                  " (macros that copy their arguments, nested too deep?)")
+                              err))
+          (let [s (assert (scene.load-string (.. "(local x " (nested-case-try 2) ") {:objects []}")
+                                             "t.fnl"))]
+            (assert.are.same [] s.objects))
+          (assert.are.equal 42 (fennel.eval "(let [t {:x 40}] (+ t.x (math.floor 2.5)))"
+                                            {:env _G :allowedGlobals false})))))
+
+    (it "loads a 512 KB file of spheres written out, well within the compile limits"
+      (fn []
+        (let [lines (fcollect [i 1 6000]
+                      (string.format "{:kind :sphere :radius %.3f :pos [%.3f %.3f %.3f] :color [0.5 0.25 0.75]}"
+                                     (+ 0.5 (% i 7)) (* i 0.37) (% (* i 1.7) 50) (% (* i 3.1) 40)))
+              source (.. "{:objects [\n" (table.concat lines "\n") "]}")
+              start (os.clock)
+              s (assert (scene.load-string source "big.fnl"))]
+          (assert.is_true (> (length source) (* 480 1024)) (tostring (length source)))
+          (assert.are.equal 6000 (length s.objects))
+          (assert.is_true (< (- (os.clock) start) 3) (.. (- (os.clock) start) " s")))))))
+
 (describe "sandbox: the file before it is parsed"
   (fn []
     (it "refuses a file over 512 KB, reading no more than the limit"

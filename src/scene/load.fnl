@@ -663,7 +663,10 @@ message."
                (case (and forms (sandbox.check-forms forms file))
                  msg (values nil msg)
                  _ (case (sandbox.compile source file allowed)
-                     (nil msg) (values nil (clean-fennel-message (sandbox.error-message msg) file))
+                     (nil msg) (values nil (if (sandbox.sandbox-error? msg)
+                                               (sandbox.error-message msg)
+                                               (clean-fennel-message
+                                                (sandbox.error-message msg) file)))
                      code (case ((or _G.loadstring load) code (.. "@" file))
                             (nil err) (values nil (clean-fennel-message err file))
                             chunk (let [(ok? value) (sandbox.run chunk file env)]

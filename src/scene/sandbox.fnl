@@ -20,6 +20,15 @@
                                   ; vector helpers that leave garbage
    :string-bytes (* 1024 1024)    ; one string made by a library call
    :cpu-seconds 5                 ; a backstop: the step limit trips long before
+   ;; Compiling (the compiler is Lua code too; a macro can copy its arguments
+   ;; without end: nested case-try, 4 KB, took 1.3 GB and more). A 512 KB file of
+   ;; 6310 spheres written out compiles in 39 million steps (0.46 s) and 43 MB at
+   ;; the peak; the scenes in scenes/ take 0.2 million; a loop of 100,000 objects
+   ;; is a short file. 512 KB of dense macros (case, match-try, icollect on every
+   ;; line) takes 223 million and 259 MB, and is refused.
+   :compile-steps 100000000       ; about 1.2 s here
+   :compile-memory-mb 128         ; Lua memory, garbage included
+   :compile-hook-every 1000       ; instructions between the compiler's limit checks
    :hook-every 4})                ; instructions between limit checks
 
 ;; Our own errors carry this table, which no scene can reach, so a scene cannot forge
@@ -129,18 +138,20 @@ message when it is too large, not UTF-8 text or nested too deeply."
 
 (local global-forms {:global true :set-forcibly! true})
 
+(fn refusal [file name node]
+  "The message for the refused form `name` at `node` of `file`."
+  (let [src (fennel.ast-source node)]
+    (.. file (if src.line (.. ":" src.line) "") ": (" (text.escape name)
+        " ...) is not allowed: scene files are data and "
+        (if (. global-forms name) "set no globals" "run no compile-time code"))))
+
 (fn check-forms [forms file]
   "A message when the parsed `forms` use a refused form or nest too deeply, else nil."
   (var message nil)
   (each [_ form (ipairs forms) &until message]
     (case (find-forbidden form 1)
       :too-deep (set message (nesting-message file nil))
-      node (let [src (fennel.ast-source node)
-                 name (tostring (. node 1))]
-             (set message (.. file (if src.line (.. ":" src.line) "") ": (" (text.escape name)
-                              " ...) is not allowed: scene files are data and "
-                              (if (. global-forms name) "set no globals"
-                                  "run no compile-time code"))))))
+      node (set message (refusal file (tostring (. node 1)) node))))
   message)
 
 (fn parse [source file]
@@ -151,6 +162,35 @@ reports the parse error with its line)."
     (when ok? forms)))
 
 ;;; Compiling, with the compiler's shared state checked
+
+;; Read once: the step hook calls them, and a module loaded with an :env (the tests,
+;; tools/fnl.lua) reaches every global through a function.
+(local gc collectgarbage)
+(local cpu-clock os.clock)
+
+(fn steps-text [n]
+  (if (>= n 1e6) (.. (math.floor (/ n 1e6)) " million") (tostring (math.floor n))))
+
+
+;; The check above reads the forms as written; a macro can still build a refused form
+;; (-> x eval-compiler) is (eval-compiler x). So the scene is compiled in a scope
+;; where every special form and macro off the allowlist is a special form that
+;; refuses it: the compiler itself stops at whatever the macros expand into.
+
+(fn scene-scope [file]
+  "A compiler scope for `file` in which each special form and macro that is not on
+the allowlist is a special form raising a sandbox error that names it and its line.
+Scopes made inside it inherit that through their metatables."
+  (let [g (global-scope)
+        scope (fennel.scope g)
+        refused (collect [name (pairs g.specials)] (values name true))]
+    (each [name (pairs g.macros)] (tset refused name true))
+    (each [name (pairs refused)]
+      (when (not (. allowed-forms name))
+        ;; false: not a macro here, so the call reaches the special form below.
+        (tset scope.macros name false)
+        (tset scope.specials name (fn [ast] (stop (refusal file name ast))))))
+    scope))
 
 (fn compiler-state []
   (let [g (global-scope)]
@@ -167,17 +207,83 @@ reports the parse error with its line)."
     (when (not= v (rawget live k)) (set changed? true) (tset live k v)))
   changed?)
 
+;; The compiler's own modules, for the state a stopped compile can leave behind:
+;; utils.root (the options of the compile in progress) and compiler.scopes.macro
+;; (the scope a macro expands in, set around each expansion).
+(local fennel-utils (case (pcall require :fennel.utils) (true utils) utils))
+(local fennel-compiler (case (pcall require :fennel.compiler) (true compiler) compiler))
+;; This file's chunk name: a hook that fires in it is on the way out of the compiler.
+(local own-source (. (debug.getinfo 1 :S) :source))
+
+(fn within-limits [f file]
+  "Call `f` (the compiler at work on `file`) with the JIT off, so the count hook sees
+every instruction, and stop it past the compile step, memory or time limit. Returns
+true and its value, or false and the error (a sandbox error when a limit stopped it)."
+  (var hooks 0)
+  (var stopped nil)
+  (let [memory-ceiling (+ (gc :count) (* 1024 limits.compile-memory-mb))
+        max-hooks (/ limits.compile-steps limits.compile-hook-every)
+        cpu-start (cpu-clock)
+        stop! (fn [message] (set stopped message) (stop message))
+        hook (fn []
+               (if stopped
+                   ;; Stopped inside a pcall of the compiler's own (a macro's
+                   ;; expansion): raise again until it is out, but never here.
+                   (when (not= own-source (. (debug.getinfo 2 :S) :source))
+                     (stop stopped))
+                   (do (set hooks (+ hooks 1))
+                       (if (> hooks max-hooks)
+                           (stop! (.. file ": compiling took more than "
+                                      (steps-text limits.compile-steps)
+                                      " steps and was stopped (macros that copy their arguments, nested too deep?)"))
+                           (> (gc :count) memory-ceiling)
+                           (stop! (.. file ": compiling took more than "
+                                      limits.compile-memory-mb
+                                      " MB and was stopped (macros that copy their arguments, nested too deep?)"))
+                           (and (= 0 (% hooks 256))
+                                (> (- (cpu-clock) cpu-start) limits.cpu-seconds))
+                           (stop! (.. file ": compiling took more than "
+                                      limits.cpu-seconds " s and was stopped"))))))
+        jit-was-on? (and jit (jit.status))]
+    (when jit (jit.off))
+    (let [(outer-ok? ok? value) (pcall (fn []
+                                         (debug.sethook hook "" limits.compile-hook-every)
+                                         (let [(ok? value) (pcall f)]
+                                           (debug.sethook)
+                                           (values ok? value))))]
+      (debug.sethook)
+      (when jit-was-on? (jit.on))
+      (if stopped (values false {:sandbox marker :message stopped})
+          (not outer-ok?) (values false ok?)
+          (values ok? value)))))
+
 (fn compile [source file allowed]
-  "Lua code for scene `source`, or nil and Fennel's message. The compiler's special
-forms, macros and module table are the same afterwards, whatever happened."
+  "Lua code for scene `source`, or nil and Fennel's message (or a sandbox error: a
+refused form after macros expand, a compile limit). The compiler's special forms,
+macros and module table are the same afterwards, whatever happened."
   (let [before (compiler-state)
-        (ok? code) (pcall fennel.compile-string source
-                          {:filename file :allowedGlobals allowed :correlate true})
+        root (?. fennel-utils :root)
+        ;; A list, not a table with keys: most of these are nil between compiles.
+        saved-root (when root [root.chunk root.scope root.options root.reset])
+        scopes (?. fennel-compiler :scopes)
+        macro-scope (?. scopes :macro)
+        (ok? code) (within-limits
+                    #(fennel.compile-string source
+                                            {:filename file :allowedGlobals allowed
+                                             :correlate true :scope (scene-scope file)})
+                    file)
         g (global-scope)
         ;; Restore all three: no short-circuit.
         changes [(restore! g.specials before.specials) (restore! g.macros before.macros)
                  (restore! fennel before.fennel)]
         changed? (or (. changes 1) (. changes 2) (. changes 3))]
+    ;; The compiler resets its state on its own errors only; a refused form or a
+    ;; limit stops it anywhere (inside a macro's expansion too), and the next compile
+    ;; must not inherit the scene's options (its allowed globals) or scope.
+    (when (and saved-root (not ok?))
+      (set (root.chunk root.scope root.options root.reset)
+           (values (. saved-root 1) (. saved-root 2) (. saved-root 3) (. saved-root 4))))
+    (when scopes (set scopes.macro macro-scope))
     (if changed? (values nil (.. file ": the scene changed the Fennel compiler and was refused"))
         ok? code
         (values nil code))))
@@ -243,14 +349,6 @@ the file system, the process, the loader or the compiler."
      :string {:format safe-format :sub string.sub :rep safe-rep}}))
 
 ;;; Running, within limits
-
-;; Read once: the step hook calls them, and a module loaded with an :env (the tests,
-;; tools/fnl.lua) reaches every global through a function.
-(local gc collectgarbage)
-(local cpu-clock os.clock)
-
-(fn steps-text [n]
-  (if (>= n 1e6) (.. (math.floor (/ n 1e6)) " million") (tostring (math.floor n))))
 
 (fn run [chunk file env ?options]
   "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
