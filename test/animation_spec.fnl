@@ -50,6 +50,27 @@
           (assert.is_nil ok?)
           (assert.truthy (err:find "the function of time failed at t = 2: anim.fnl: the scene ran for more than 100000 steps" 1 true) err))))
 
+    (it "share one budget a frame: past it the frame's values fail, naming where it ran out"
+      (fn []
+        ;; 50 radii whose functions take about 90,000 steps each past t = 0.3 (each
+        ;; under its own 100,000): 4.5 million together, past the 1 million a frame.
+        (let [heavy "{:kind :sphere :radius (fn [t] (if (> t 0.3) (do (var n 0) (for [k 1 45000] (set n (+ n k))) 1) 1))}"
+              s (assert (load-text (.. "{:objects [\n" (table.concat (fcollect [_ 1 50] heavy) "\n") "]}")))
+              (ok? err) (load.animate s 1)]
+          (assert.is_nil ok?)
+          (assert.truthy (err:match "^anim%.fnl:%d+: objects%[%d+%]%.radius: the functions of time took more than 1 million steps together for one frame %(at t = 1%): fewer of them, or cheaper ones$")
+                         err)
+          ;; Each frame has its own budget: a cheap one after it works.
+          (assert.is_true (load.animate s 0.1)))))
+
+    (it "refuse a file whose functions of time take more than a frame's budget at t = 0"
+      (fn []
+        (let [heavy "{:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}"
+              (s err) (load-text (.. "{:objects [\n" (table.concat (fcollect [_ 1 50] heavy) "\n") "]}"))]
+          (assert.is_nil s)
+          (assert.truthy (err:find "the functions of time took more than 1 million steps together for one frame (at t = 0)" 1 true)
+                         err))))
+
     (it "are refused where they would change the shader"
       (fn []
         (let [(s err) (load-text "{:objects [{:kind :polar :count (fn [t] 6) :children [{:kind :sphere}]}]}")]

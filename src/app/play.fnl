@@ -297,13 +297,15 @@ moves it forward instead of waiting)."
 (fn advance-time! [dt]
   "Functions of time in the scene: move the clock (unless paused) and set their values
 for it; the plan is lowered again (values only: no shader compile). A failing function
-shows its message and keeps the last values."
+(or functions past their budget for a frame) shows its message, keeps the last values
+and pauses the clock (space tries again)."
   (when (and state.scene (scene-mod.animated? state.scene) (or (not state.paused?) state.step?))
     (set state.time (+ state.time (if state.step? (/ 1 30) dt)))
     (set state.step? false)
     (case (scene-mod.animate state.scene state.time)
       true (do (set state.plan-memo nil) (changed!))
-      (nil err) (set state.error err))))
+      (nil err) (do (set state.error (.. err " (the animation is paused; space plays)"))
+                    (set state.paused? true)))))
 
 (fn current-plan []
   "The plan of the scene on screen, lowered again only when the scene, the view or

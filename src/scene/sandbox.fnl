@@ -353,9 +353,10 @@ the file system, the process, the loader or the compiler."
 (fn run [chunk file env ?options]
   "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
 message past the step or memory limit. Returns true and the value, or false and an
-error (a string from the scene's code, or a sandbox error). `?options`: :steps (a
-smaller step limit, for the functions of time called every frame) and :collect?
-(false: no full garbage collection afterwards, also for those calls)."
+error (a string from the scene's code, or a sandbox error); third, about how many
+steps it took (counted every limits.hook-every). `?options`: :steps (a smaller step
+limit, for the functions of time called every frame) and :collect? (false: no full
+garbage collection afterwards, also for those calls)."
   (var hooks 0)
   (var stopped nil)
   (let [options (or ?options {})
@@ -400,9 +401,10 @@ smaller step limit, for the functions of time called every frame) and :collect?
       (set string-meta.__index real-index)
       (tset capped-files 1 nil)
       (when (not= false options.collect?) (collectgarbage))
-      (if stopped (values false {:sandbox marker :message stopped})
-          (not outer-ok?) (values false ok?)
-          (values ok? value)))))
+      (let [used (* hooks limits.hook-every)]
+        (if stopped (values false {:sandbox marker :message stopped} used)
+            (not outer-ok?) (values false ok? used)
+            (values ok? value used))))))
 
 (fn error-message [e]
   "The text of an error raised while loading: a sandbox message, a string, or a

@@ -1,0 +1,44 @@
+;; expect: test/corpus/anim-frame-budget.fnl:16: objects[12].radius: the functions of time took more than 1 million steps together for one frame (at t = 0): fewer of them, or cheaper ones
+;; Functions of time share one budget a frame: 40 radii of about 90,000 steps each
+;; (each under its own 100,000) take 3.6 million together at t = 0, past the 1 million.
+{:objects [
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}
+  {:kind :sphere :radius (fn [t] (var n 0) (for [k 1 45000] (set n (+ n k))) 1)}]}
