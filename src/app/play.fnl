@@ -727,18 +727,33 @@ state changed, and how long the refinement took."
                          (* 1000 (- (love.timer.getTime) r.start)))))
   (set state.move-times []))
 
+(fn band-schedule [canvas shader-key]
+  "Bands over the whole of `canvas` for the shader `shader-key`, each sized by what
+the frame-time model says it costs: a band frame's render gets what the frame's
+other work leaves of the budget."
+  (progress.new (canvas:getHeight)
+                (adaptive.render-seconds state.adaptive shader-key
+                                         (* (canvas:getWidth) (canvas:getHeight)))
+                (math.max (* 0.25 progress.budget)
+                          (- progress.budget (or state.adaptive.fixed 0)))))
+
+(fn draw-band! [p canvas scene plan]
+  "Draw the next band of schedule `p` into `canvas` with `plan`: the seconds it took,
+or nil when it failed (the error is shown)."
+  (let [(y0 y1) (progress.rows p)]
+    (case (render-timed! canvas scene plan [y0 y1])
+      seconds (do (progress.drawn! p y0 y1 seconds)
+                  (set state.last-render {:shader plan.key :band? true :seconds seconds
+                                          :pixels (* (canvas:getWidth) (- y1 y0))})
+                  seconds))))
+
 (fn start-refine! [plan key]
   "The state on screen stayed: the full resolution starts from its whole coarse
 picture, scaled up, and is refined in bands of that same state."
   (let [canvas (ensure-canvas!)
         from state.picture.canvas
         whole? (and (= (from:getWidth) (canvas:getWidth)) (= (from:getHeight) (canvas:getHeight)))
-        ;; A band frame's render gets what the frame's other work leaves of the budget.
-        p (progress.new (canvas:getHeight)
-                        (adaptive.render-seconds state.adaptive plan.key
-                                                 (* (canvas:getWidth) (canvas:getHeight)))
-                        (math.max (* 0.25 progress.budget)
-                                  (- progress.budget (or state.adaptive.fixed 0))))]
+        p (band-schedule canvas plan.key)]
     (love.graphics.push :all)
     (love.graphics.setCanvas canvas)
     (love.graphics.setColor 1 1 1 1)
@@ -758,13 +773,9 @@ picture, scaled up, and is refined in bands of that same state."
         p r.progress
         canvas state.canvas]
     (when (not (progress.complete? p))
-      (let [(y0 y1) (progress.rows p)]
-        (case (render-timed! canvas scene plan [y0 y1])
-          seconds (do (progress.drawn! p y0 y1 seconds)
-                      (set state.last-render {:shader plan.key :band? true :seconds seconds
-                                              :pixels (* (canvas:getWidth) (- y1 y0))})))
-        (when (progress.complete? p)
-          (refined! r canvas))))))
+      (draw-band! p canvas scene plan)
+      (when (progress.complete? p)
+        (refined! r canvas)))))
 
 (fn still-of [scene plan]
   "The still's twin of `plan` (the plan on screen), once its shader is compiled or
@@ -796,22 +807,13 @@ anti-aliased still (see still-samples), once the still's shader is ready."
         false (set r.still false)
         still (do (when (not (adaptive.known? state.adaptive still.key)) (probe! scene still))
                   (set r.still {:plan still :start (love.timer.getTime)
-                                :progress (progress.new (canvas:getHeight)
-                                                        (adaptive.render-seconds
-                                                         state.adaptive still.key
-                                                         (* (canvas:getWidth) (canvas:getHeight)))
-                                                        (math.max (* 0.25 progress.budget)
-                                                                  (- progress.budget (or state.adaptive.fixed 0))))}))))
+                                :progress (band-schedule canvas still.key)}))))
     (case r.still
       {:plan still :progress p}
       (when (not (progress.complete? p))
-        (let [(y0 y1) (progress.rows p)]
-          (case (render-timed! canvas scene still [y0 y1])
-            seconds (do (progress.drawn! p y0 y1 seconds)
-                        (set state.last-render {:shader still.key :band? true :seconds seconds
-                                                :pixels (* (canvas:getWidth) (- y1 y0))}))
-            ;; A still that fails to draw is given up; the picture stays whole.
-            _ (set r.still false)))
+        ;; A still that fails to draw is given up; the picture stays whole.
+        (when (not (draw-band! p canvas scene still))
+          (set r.still false))
         (when (and r.still (progress.complete? p))
           (say! (string.format "anti-aliased still: %dx%d in %.1f s" (canvas:getWidth)
                                (canvas:getHeight) (- (love.timer.getTime) r.still.start))))))))
