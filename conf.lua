@@ -44,16 +44,23 @@ function love.conf(t)
   t.modules.video = false
   if has_arg("--print-shader") or has_arg("--kinds") or has_arg("--tree")
      or has_arg("--help") or has_arg("-h") or has_arg("--export-shader")
-     or (has_arg("--probe") and not has_arg("--gpu")) then
+     or (has_arg("--probe") and not has_arg("--gpu")) or has_arg("--scene-worker") then
     t.window = nil
     t.modules.window = false
     t.modules.graphics = false
+  end
+  -- The scene worker needs only the file system (its modules are read through it).
+  if has_arg("--scene-worker") then
+    for name in pairs(t.modules) do t.modules[name] = (name == "filesystem") end
   end
 end
 
 -- The player's compile helper loads only what it needs (see src/app/warm-helper.fnl).
 if has_arg("--warm-shader") or has_arg("--warm-server") then
   require("src.app.warm-helper")["install!"]()
+-- The scene worker (src/scene/worker-main.fnl) loads the scene loader and nothing else.
+elseif has_arg("--scene-worker") then
+  require("src.scene.worker-main")["run-love!"]()
 else
   require("main")
 end

@@ -5,6 +5,7 @@
 (local camera (require :src.render.camera))
 (local frame (require :src.backend.frame))
 (local scene-mod (require :src.scene.load))
+(local worker (require :src.scene.worker))
 (local adaptive (require :src.app.adaptive))
 (local {: median} (require :src.verify.compare))
 (local gpu (require :src.backend.gpu))
@@ -187,7 +188,7 @@ loads the file again once the helper is done, `?since` the time of the first try
                 (set state.reflections reflections)
                 ;; A new file starts its functions of time at 0; an edit keeps the clock.
                 (if fresh? (set state.time 0)
-                    (scene-mod.animated? scene) (scene-mod.animate scene state.time))
+                    (scene-mod.animated? scene) (worker.animate scene state.time))
                 (set state.scene scene)
                 (changed!)
                 (set state.path path)
@@ -209,8 +210,10 @@ loads the file again once the helper is done, `?since` the time of the first try
 (fn load! [path fresh? ?since]
   "Load the scene at `path` (see load-unprotected!); a failure inside the loader
 itself is shown like a broken file, and the last good scene keeps running."
-  ;; A newer load replaces the one waiting for its helper.
+  ;; A newer load replaces the one waiting for its helper, and values asked for the
+  ;; scene before it.
   (set state.pending nil)
+  (set state.time-pending nil)
   (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh? ?since)]
     (when (not ok?)
       (set state.error (.. path ": the scene could not be loaded (an internal error): "
@@ -231,11 +234,12 @@ cache hit in the driver, or a plain compile when the helper failed)."
 (fn apply-parameters! []
   "The panel moved a value: evaluate the scene's text again with the panel's values
 (a value edit compiles nothing; a switch that changes the shader compiles it once)."
-  (let [(scene err) (scene-mod.load-string state.scene.source state.path
-                                           {:overrides state.panel.overrides})]
+  (let [(scene err) (worker.load-source state.scene.source state.path
+                                         {:overrides state.panel.overrides})]
+    (set state.time-pending nil)
     (if (not scene)
         (set state.error err)
-        (do (when (scene-mod.animated? scene) (scene-mod.animate scene state.time))
+        (do (when (scene-mod.animated? scene) (worker.animate scene state.time))
             (set state.scene scene)
             (changed!)
             (set state.error nil)))))
@@ -294,18 +298,39 @@ moves it forward instead of waiting)."
           :unreadable (say! (.. state.path ": " (or state.watch.problem "it cannot be read")
                                 "; the last good scene keeps running")))))))
 
+(fn pause-clock! [err]
+  (set state.time-pending nil)
+  (set state.error (.. err " (the animation is paused; space plays)"))
+  (set state.paused? true))
+
+(fn take-values! [wait]
+  ;; The values asked for at state.time-pending, when the worker has them (waiting
+  ;; at most `wait` seconds; frames go on meanwhile).
+  (case (worker.poll-animate! state.scene wait)
+    :pending nil
+    true (do (set state.time state.time-pending)
+             (set state.time-pending nil)
+             (set state.plan-memo nil)
+             (changed!))
+    (nil err) (pause-clock! err)))
+
 (fn advance-time! [dt]
   "Functions of time in the scene: move the clock (unless paused) and set their values
-for it; the plan is lowered again (values only: no shader compile). A failing function
-(or functions past their budget for a frame) shows its message, keeps the last values
-and pauses the clock (space tries again)."
-  (when (and state.scene (scene-mod.animated? state.scene) (or (not state.paused?) state.step?))
-    (set state.time (+ state.time (if state.step? (/ 1 30) dt)))
-    (set state.step? false)
-    (case (scene-mod.animate state.scene state.time)
-      true (do (set state.plan-memo nil) (changed!))
-      (nil err) (do (set state.error (.. err " (the animation is paused; space plays)"))
-                    (set state.paused? true)))))
+for it; the plan is lowered again (values only: no shader compile). The values come
+from the scene worker: asked for, then taken when they arrive (within the frame, or
+a later one: the clock waits for them meanwhile and the player stays responsive). A
+failing function (or functions past their budget for a frame, or a worker stopped
+past its deadline) shows its message, keeps the last values and pauses the clock
+(space tries again)."
+  (when (and state.scene (scene-mod.animated? state.scene))
+    (if state.time-pending
+        (take-values! 0)
+        (or (not state.paused?) state.step?)
+        (let [t (+ state.time (if state.step? (/ 1 30) dt))]
+          (set state.step? false)
+          (case (worker.request-animate! state.scene t)
+            true (do (set state.time-pending t) (take-values! 0.02))
+            (nil err) (pause-clock! err))))))
 
 (fn current-plan []
   "The plan of the scene on screen, lowered again only when the scene, the view or
@@ -500,7 +525,7 @@ shift+F12: the bare render at render resolution. Saved in LÖVE's save folder."
     (case key
       :f2 (toggle-panel!)
       (where :s ctrl?) (save-parameters!)
-      :escape (love.event.quit 0)
+      :escape (do (worker.kill!) (love.event.quit 0))
       :tab (cycle-view!)
       :m (toggle-model!)
       :h (set state.hud? (not state.hud?))

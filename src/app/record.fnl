@@ -41,14 +41,15 @@ excepted), or a point 10 units in front of the camera when there is none."
             canvas (love.graphics.newCanvas w h)
             cam0 (camera.from-scene scene)
             centre (scene-centre scene)
-            scene-mod (require :src.scene.load)]
+            scene-mod (require :src.scene.load)
+            worker (require :src.scene.worker)]
         (var err (case (output.ensure-dir! o.out {:label (.. "--out " o.out)})
                    (nil e) e))
         (for [i 0 (- o.frames 1) &until err]
           ;; Functions of time take their values at t = i / fps; the plan is lowered
           ;; again for them (values only: the shader stays).
           (let [t (/ i fps)
-                (animated-ok? aerr) (if (scene-mod.animated? scene) (scene-mod.animate scene t) true)
+                (animated-ok? aerr) (if (scene-mod.animated? scene) (worker.animate scene t) true)
                 (plan perr) (if (not animated-ok?) (values nil aerr)
                                 (scene-mod.animated? scene) (frame.plan-for scene)
                                 plan)

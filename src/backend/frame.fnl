@@ -2,6 +2,7 @@
 ;; command-line modes and the benchmark.
 
 (local scene-mod (require :src.scene.load))
+(local worker (require :src.scene.worker))
 (local plan-mod (require :src.render.plan))
 (local uniforms (require :src.render.uniforms))
 (local gpu (require :src.backend.gpu))
@@ -13,9 +14,9 @@ the bundled scenes inside the game folder (see files.read-user)."
   (scene-mod.read-capped path))
 
 (fn load-scene [path ?options]
-  "Load and validate the scene file at `path` (`?options` as scene-mod.load-string
-takes them): scene, or nil and a message."
-  (scene-mod.load-file path read-text ?options))
+  "Load and validate the scene file at `path` in the scene worker (`?options` as
+scene-mod.load-string takes them): scene, or nil and a message."
+  (worker.load-file path read-text ?options))
 
 (fn render-to-canvas! [cache canvas scene plan cam ?rows]
   "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas`; only the rows

@@ -776,4 +776,5 @@ the app can read through love.filesystem."
   sandbox.limits)
 
 {: load-string : load-file : read-capped : animate : animated? : limits-of-files : defaults : limits : default-environment
+ : safe-message : target-of
  : hit-tests : normal-methods}

@@ -1,0 +1,125 @@
+;; The scene worker: the child process that parses, compiles and runs scene files and
+;; their functions of time (src/scene/worker.fnl starts it and talks to it). It loads
+;; its modules, gives up what it does not need (src/util/confine.fnl: address space,
+;; CPU per request, files, new privileges, a seccomp filter), says it is ready, then
+;; answers requests on its standard input, one frame each (src/util/wire.fnl data),
+;; until that input ends:
+;;
+;;   {:op :load :source TEXT :file NAME :overrides {...}}
+;;       -> {:ok true :scene SCENE :animated [PATH ...]} or {:ok false :message M}
+;;   {:op :animate :t SECONDS}
+;;       -> {:ok true :values [V ...]} (one per path, in order) or {:ok false :message M}
+;;
+;; The scene's own sandbox (src/scene/sandbox.fnl) still runs inside: the worker is a
+;; second wall around it, not a replacement.
+
+(local scene-mod (require :src.scene.load))
+(local wire (require :src.util.wire))
+(local confine (require :src.util.confine))
+
+;; Limits of the worker as a whole (the sandbox's are smaller: 96 MB of Lua memory
+;; while a scene runs, 128 MB while it compiles).
+(local limits
+  {;; Address space: LÖVE with no modules and LuaJIT map about 40 MB; a scene of
+   ;; 200,000 objects peaks near 150 MB with its encoded answer.
+   :memory-mb 512
+   ;; CPU a request may take: the sandbox's own backstop is 5 s; a load of 200,000
+   ;; objects takes about 2 s here.
+   :cpu-seconds 8
+   ;; Memory the functions of time may keep between frames (the sandbox's memory
+   ;; limit for a scene's code: what one call may build).
+   :kept-mb 96})
+
+(var current nil)   ; the last scene loaded, with its functions of time
+(var current-mb 0)  ; Lua memory in use once it had loaded (MB)
+
+(fn read-frame [input]
+  ;; One frame from `input` (a file): the payload, or nil at the end.
+  (let [line (input:read "*l")
+        n (and line (line:match "^%d+$") (tonumber line))]
+    (when n
+      (let [payload (if (= n 0) "" (input:read n))]
+        (when (and payload (= (length payload) n)) payload)))))
+
+(fn answer! [output value]
+  (let [(data err) (wire.encode value)
+        data (or data (wire.encode {:ok false :message (.. "the worker could not send its answer: " err)}))]
+    (output:write (wire.frame data))
+    (output:flush)))
+
+(fn sendable [scene]
+  ;; The scene as plain data: its functions of time stay here; their paths go.
+  (let [copy (collect [k v (pairs scene)] (when (not= k :animated) (values k v)))]
+    (values copy (icollect [_ a (ipairs (or scene.animated []))] a.path))))
+
+(fn load! [request]
+  (set current nil)
+  (collectgarbage)
+  (let [(ok? scene err) (pcall scene-mod.load-string request.source request.file
+                               {:overrides request.overrides})]
+    (if (not ok?) {:ok false :message (scene-mod.safe-message (.. request.file ": " (tostring scene)))}
+        (not scene) {:ok false :message err}
+        (let [(data paths) (sendable scene)]
+          (set current scene)
+          (collectgarbage)
+          (set current-mb (/ (collectgarbage :count) 1024))
+          {:ok true :scene data :animated paths}))))
+
+(fn kept-mb []
+  ;; Lua memory in use beyond what the loaded scene had: what its functions of time
+  ;; keep from one frame to the next. A full collection only when the count (garbage
+  ;; included) is past the limit.
+  (let [over #(- (/ (collectgarbage :count) 1024) current-mb)]
+    (if (<= (over) limits.kept-mb) 0
+        (do (collectgarbage) (math.max 0 (over))))))
+
+(fn animate! [request]
+  (if (not current) {:ok false :message "no scene is loaded"}
+      (let [(ok? done err) (pcall scene-mod.animate current request.t)
+            kept (kept-mb)]
+        (if (not ok?) {:ok false :message (scene-mod.safe-message (tostring done))}
+            (not done) {:ok false :message err}
+            (> kept limits.kept-mb)
+            {:ok false
+             :message (scene-mod.safe-message
+                       (string.format "%s: the functions of time keep %.1f MB from frame to frame (at t = %s); at most %d MB"
+                                      current.file kept (tostring request.t) limits.kept-mb))}
+            {:ok true
+             :values (icollect [_ a (ipairs (or current.animated []))]
+                       (let [(target key) (scene-mod.target-of current a.path)]
+                         (. target key)))}))))
+
+(fn handle [request]
+  (if (not= (type request) :table) {:ok false :message "the request is not a table"}
+      (= request.op :load)
+      (if (and (= (type request.source) :string) (= (type request.file) :string)
+               (or (= nil request.overrides) (= (type request.overrides) :table)))
+          (load! request)
+          {:ok false :message "a load needs :source and :file"})
+      (= request.op :animate)
+      (if (= (type request.t) :number) (animate! request)
+          {:ok false :message "an animate needs :t"})
+      {:ok false :message (.. "unknown request " (tostring request.op))}))
+
+(fn serve! [input output]
+  "Confine this process, say so on `output`, then answer the requests on `input` until
+it ends."
+  (let [(applied missing) (confine.confine! limits)]
+    (answer! output {:ready true : applied : missing :limits limits})
+    (var payload (read-frame input))
+    (while payload
+      (confine.limit-cpu! limits.cpu-seconds)
+      (answer! output (case (wire.decode payload)
+                        (nil err) {:ok false :message err}
+                        request (handle request)))
+      (set payload (read-frame input)))))
+
+(fn run-love! []
+  "love.load of the worker: conf.lua calls this with --scene-worker."
+  (set love.errorhandler
+       (fn [message]
+         (io.stderr:write (.. "scene worker: " (tostring message) "\n"))
+         (os.exit 1)))
+  (set love.load (fn [] (serve! io.stdin io.stdout) (os.exit 0))))
+
+{: serve! : run-love! : limits}

@@ -1,0 +1,262 @@
+;; Scene files are evaluated in a worker process (src/scene/worker-main.fnl), never in
+;; the app's: parsing, compiling and running a file and its functions of time. The
+;; worker runs with limits the kernel enforces (src/util/confine.fnl) and a wall-clock
+;; deadline here, past which it is killed: a scene stuck in one C call, or one that
+;; allocates past the worker's address space, ends the worker, not the app. The next
+;; request starts a new one. What comes back is plain data, read by a strict parser
+;; (src/util/wire.fnl), never by `load`.
+;;
+;; A process has one worker, started with its first load (about 0.3 s). A loaded
+;; scene's functions of time stay in the worker; the scene here lists their field
+;; paths under :animated, and `animate` asks the worker for their values. A worker
+;; that was killed is started again and loads the scene's text again when asked.
+;;
+;; Without LuaJIT's FFI on Linux the worker cannot be started, and scenes load in this
+;; process, inside the sandbox only (a line on standard error says so once).
+
+(local process (require :src.util.process))
+(local wire (require :src.util.wire))
+(local filestat (require :src.util.filestat))
+(local scene-mod (require :src.scene.load))
+
+;; Wall-clock seconds before the worker is killed. A start compiles the loader (0.3 s
+;; under LÖVE here); a load of 200,000 objects takes about 2 s (the sandbox stops a
+;; scene's own code at 20 million steps, about a second); one frame of functions of
+;; time is held to 1 million steps (about 11 ms).
+(local deadlines {:start 10 :load 5 :animate 1})
+
+;; The request that loaded each scene, to load it again in a new worker.
+(local requests (setmetatable {} {:__mode :k}))
+
+(local state {:worker nil    ; {:child :info :scene :request :in-flight}
+              :argv nil      ; how to start it (see `command`)
+              :said-fallback? false})
+
+(fn game-root []
+  ;; The folder of this checkout, from this file's path (plain LuaJIT runs from it).
+  (let [source (. (debug.getinfo 1 :S) :source)
+        path (source:match "^@(.*)src/scene/worker%.fnl$")]
+    (if (or (= path nil) (= path "")) "." (path:gsub "/$" ""))))
+
+(fn command []
+  "The command that starts a worker: under LÖVE the same game with --scene-worker
+(conf.lua then loads nothing else), under plain LuaJIT tools/scene-worker.fnl.
+Set another with `set-command!`."
+  (or state.argv
+      (if (and _G.love love.filesystem)
+          [(or (process.self-exe) "love") (love.filesystem.getSource) "--scene-worker"]
+          (let [root (game-root)]
+            [(or (process.self-exe) "luajit") (.. root "/tools/fnl.lua") (.. root "/tools/scene-worker.fnl")]))))
+
+(fn set-command! [argv]
+  "Start workers with `argv` from now on (tests); nil for the default."
+  (set state.argv argv))
+
+(fn kill! []
+  "End the worker now (the next request starts another)."
+  (case state.worker
+    w (do (process.kill! w.child) (set state.worker nil))))
+
+(fn stop! []
+  "Let the worker end: its input closes and it quits (killed after half a second)."
+  (case state.worker
+    w (do (process.close! w.child 0.5) (set state.worker nil))))
+
+(fn request! [w value]
+  (let [(data err) (wire.encode value)]
+    (if (not data) (values nil err)
+        (process.send! w.child data (+ (filestat.monotonic) deadlines.load)))))
+
+(fn answer [w deadline]
+  ;; The worker's next answer: a table, or nil and :timeout, :closed or a message.
+  (case (process.receive! w.child deadline)
+    data (case (wire.decode data)
+           (nil err) (values nil err)
+           value (if (= (type value) :table) value
+                     (values nil "malformed data: the answer is not a table")))
+    (nil why) (values nil why)))
+
+(fn start []
+  ;; A running worker, or nil and a message.
+  (case state.worker
+    w w
+    _ (let [argv (command)]
+        (case (process.spawn argv)
+          (nil err) (values nil err)
+          child (let [w {: child}]
+                  (case (answer w (+ (filestat.monotonic) deadlines.start))
+                    (where info info.ready) (do (set w.info info) (set state.worker w) w)
+                    (_ why) (do (process.kill! child)
+                                (values nil (.. "the scene worker did not start ("
+                                                (table.concat argv " ") "): "
+                                                (if (= why :timeout) (.. "no answer within " deadlines.start " s")
+                                                    (= why :closed) "it ended at once"
+                                                    (tostring why)))))))))))
+
+(fn info []
+  "What the running worker gave up ({:applied [...] :missing [...] :limits {...}}), or
+nil when none is running."
+  (?. state.worker :info))
+
+(fn failure [w why file what seconds]
+  ;; The message for a request that got no answer; the worker is gone after it.
+  (process.kill! w.child)
+  (set state.worker nil)
+  (let [limits (?. w.info :limits)]
+    (scene-mod.safe-message
+     (.. file ": " (if (= why :timeout)
+                       (.. what " took longer than " seconds " s (a library call that never returns?); the scene worker was stopped")
+                       (= why :closed)
+                       (.. "the scene worker ended while " what " (past its limits: "
+                           (or (?. limits :memory-mb) "?") " MB of memory or "
+                           (or (?. limits :cpu-seconds) "?") " s of CPU)")
+                       (.. "the scene worker's answer was refused: " (tostring why)))))))
+
+(fn settle! [w]
+  ;; Wait out an animate still in flight (its answer is dropped). True, or nil when
+  ;; the worker had to be killed.
+  (case w.in-flight
+    f (do (set w.in-flight nil)
+          (case (answer w f.deadline)
+            (nil why) (do (failure w why "" "" 0) nil)
+            _ true))
+    _ true))
+
+(fn from-worker [value]
+  ;; The scene as the app uses it: :animated lists the paths of the values the
+  ;; worker keeps functions for.
+  (let [scene value.scene]
+    (when (and (= (type value.animated) :table) (> (length value.animated) 0))
+      (set scene.animated (icollect [_ p (ipairs value.animated)] {:path p})))
+    scene))
+
+(fn valid-answer? [value]
+  (and (= (type value) :table)
+       (or (and (= value.ok false) (= (type value.message) :string))
+           (and (= value.ok true) (= (type value.scene) :table)
+                (= (type value.scene.objects) :table)
+                (or (= nil value.animated) (= (type value.animated) :table))))))
+
+(fn in-process [source file ?options]
+  (when (not state.said-fallback?)
+    (set state.said-fallback? true)
+    (io.stderr:write "note: the scene worker cannot run here; scene files run inside the sandbox in this process\n"))
+  (scene-mod.load-string source file ?options))
+
+(fn load-source [source file ?options]
+  "Evaluate scene `source` (named `file` in messages) in the worker and validate it,
+as scene-mod.load-string does (same `?options`, same results): the scene, or nil and
+a message. A scene the worker had to stop is refused with a message that says why."
+  (if (not (process.supported?))
+      (in-process source file ?options)
+      (case (start)
+        (nil err) (values nil (scene-mod.safe-message (.. file ": " err)))
+        w (let [request {:op :load : source : file :overrides (?. ?options :overrides)}]
+            (if (not (settle! w))
+                (load-source source file ?options)
+                (do (set w.scene nil)
+                    (case (request! w request)
+                      (nil why) (values nil (failure w why file "sending the scene" deadlines.load))
+                      _ (case (answer w (+ (filestat.monotonic) deadlines.load))
+                          (nil why) (values nil (failure w why file "loading the scene" deadlines.load))
+                          value (if (not (valid-answer? value))
+                                    (values nil (failure w "the answer is not a scene" file "" 0))
+                                    (= value.ok false) (values nil value.message)
+                                    (let [scene (from-worker value)]
+                                      (set w.scene scene)
+                                      (tset requests scene request)
+                                      scene))))))))))
+
+(fn load-file [path ?read ?options]
+  "Read the scene file at `path` (with `?read`, default scene-mod.read-capped) and load
+it in the worker (see load-source)."
+  (let [(source err) ((or ?read scene-mod.read-capped) path)]
+    (if source
+        (load-source source path ?options)
+        (values nil (scene-mod.safe-message (.. path ": cannot read the scene file: "
+                                                (tostring (or err "no such file"))))))))
+
+(fn own? [scene]
+  ;; Whether the worker's functions of time belong to `scene` (a scene loaded in
+  ;; this process has its functions under :animated).
+  (and scene.animated (= nil (?. scene.animated 1 :f))))
+
+(fn ensure-loaded [scene]
+  ;; The worker, holding `scene`'s functions of time (loading its text again after a
+  ;; restart or another load); or nil and a message.
+  (case (start)
+    (nil err) (values nil err)
+    w (if (= w.scene scene) w
+          (let [req (. requests scene)]
+            (if (not (and req (= req.file scene.file)))
+                (values nil (.. scene.file ": the scene worker no longer has this scene's functions of time"))
+                (case (request! w req)
+                  (nil why) (values nil (failure w why scene.file "loading the scene again" deadlines.load))
+                  _ (case (answer w (+ (filestat.monotonic) deadlines.load))
+                      (nil why) (values nil (failure w why scene.file "loading the scene again" deadlines.load))
+                      {:ok true} (do (set w.scene scene) w)
+                      {: message} (values nil message)
+                      _ (values nil (failure w "the answer is not a scene" scene.file "" 0)))))))))
+
+(fn apply-values! [scene value]
+  (if (not (and (= value.ok true) (= (type value.values) :table)
+                (= (length value.values) (length scene.animated))))
+      (values nil (if (= (type value.message) :string) value.message
+                      (.. scene.file ": the scene worker's values do not match the scene")))
+      (do (each [i a (ipairs scene.animated)]
+            (let [(target key) (scene-mod.target-of scene a.path)]
+              (tset target key (. value.values i))))
+          true)))
+
+(fn request-animate! [scene t]
+  "Ask the worker for the values of `scene`'s functions of time at `t` seconds without
+waiting (see poll-animate!). True, or nil and a message. (A scene loaded in this
+process is animated here and now.)"
+  (if (not (own? scene))
+      (do (set state.local [scene (scene-mod.animate scene t)]) true)
+      (case (ensure-loaded scene)
+        (nil err) (values nil err)
+        w (if (not (settle! w)) (request-animate! scene t)
+              (case (request! w {:op :animate : t})
+                (nil why) (values nil (failure w why scene.file (.. "the functions of time (t = " t ")") deadlines.animate))
+                _ (do (set w.in-flight {: scene : t :deadline (+ (filestat.monotonic) deadlines.animate)})
+                      true))))))
+
+(fn poll-animate! [scene ?wait]
+  "The answer to request-animate!, waiting at most `?wait` seconds (default 0): true
+once `scene` has its values for that time, :pending while the worker is still at it,
+or nil and a message (the worker was killed when past its deadline of a second)."
+  (case (?. state.worker :in-flight)
+    (where nil (= (?. state.local 1) scene))
+    (let [[_ ok? err] state.local]
+      (set state.local nil)
+      (values ok? err))
+    nil (values nil "no values were asked for")
+    f (let [w state.worker
+            now (filestat.monotonic)]
+        (case (answer w (math.min f.deadline (+ now (or ?wait 0))))
+          (nil :timeout) (if (>= (filestat.monotonic) f.deadline)
+                             (do (set w.in-flight nil)
+                                 (values nil (failure w :timeout scene.file
+                                                      (.. "the functions of time (t = " f.t ")")
+                                                      deadlines.animate)))
+                             :pending)
+          (nil why) (do (set w.in-flight nil)
+                        (values nil (failure w why scene.file (.. "the functions of time (t = " f.t ")") deadlines.animate)))
+          value (do (set w.in-flight nil)
+                    (if (not= f.scene scene) (values nil "the values are for another scene")
+                        (apply-values! scene value)))))))
+
+(fn animate [scene t]
+  "Set `scene`'s functions of time to their values at `t` (waiting for the worker, at
+most a second): true, or nil and a message. A scene loaded in this process (by
+scene-mod) is animated here, as scene-mod.animate does."
+  (if (not (own? scene)) (scene-mod.animate scene t)
+      (case (request-animate! scene t)
+        (nil err) (values nil err)
+        _ (let [(done err) (poll-animate! scene deadlines.animate)]
+            (if (= done :pending) (poll-animate! scene deadlines.animate)
+                (values done err))))))
+
+{: load-source : load-file : animate : request-animate! : poll-animate! : kill! : stop!
+ : info : set-command! : command : deadlines}

@@ -1,0 +1,201 @@
+;; Child processes that talk in frames, through LuaJIT's FFI on Linux: a child is
+;; started with posix_spawnp, its standard input and output both one end of a Unix
+;; socket pair (so the parent sends with MSG_NOSIGNAL: a child that died never kills
+;; the parent with SIGPIPE, and receives with MSG_DONTWAIT: the parent never blocks
+;; past its own deadline). A frame is "<length>\n" and that many bytes.
+;;
+;; Used by the scene worker (src/scene/worker.fnl): the child may hang in one C call,
+;; so every wait here has a deadline, after which the caller kills the child.
+
+(local filestat (require :src.util.filestat))
+
+(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
+
+(local cdefs
+  ["int socketpair(int domain, int type, int protocol, int sv[2]);"
+   "int posix_spawn_file_actions_init(void *fa);"
+   "int posix_spawn_file_actions_destroy(void *fa);"
+   "int posix_spawn_file_actions_adddup2(void *fa, int fd, int newfd);"
+   "int posix_spawnp(int *pid, const char *file, const void *fa, const void *attr,
+                     char *const argv[], char *const envp[]);"
+   "long send(int fd, const void *buf, unsigned long n, int flags);"
+   "long recv(int fd, void *buf, unsigned long n, int flags);"
+   "int close(int fd);"
+   "int kill(int pid, int sig);"
+   "int waitpid(int pid, int *status, int options);"
+   "typedef struct { int fd; short events; short revents; } rm_pollfd_t;"
+   "int poll(rm_pollfd_t *fds, unsigned long n, int timeout);"
+   "extern char **environ;"
+   "char *strerror(int errnum);"
+   "long readlink(const char *path, char *buf, unsigned long size);"])
+
+(local native
+  (when (and ffi (= ffi.os :Linux))
+    ;; Another module may already have declared the same function.
+    (each [_ decl (ipairs cdefs)] (pcall ffi.cdef decl))
+    (when (pcall #(and ffi.C.socketpair ffi.C.posix_spawnp ffi.C.posix_spawn_file_actions_adddup2
+                       ffi.C.poll ffi.C.send ffi.C.recv ffi.C.waitpid ffi.C.kill ffi.C.environ))
+      ffi.C)))
+
+;; Linux constants (the same on x86-64 and arm64).
+(local af-unix 1)
+(local sock-stream 1)
+(local sock-cloexec 0x80000)
+(local msg-dontwait 0x40)
+(local msg-nosignal 0x4000)
+(local pollin 0x1)
+(local pollout 0x4)
+(local wnohang 1)
+(local sigkill 9)
+(local eintr 4)
+(local eagain 11)
+
+;; The longest frame a parent accepts (a scene of 200,000 objects is about 30 MB).
+(local max-frame (* 256 1024 1024))
+(local chunk 65536)
+
+(fn supported? []
+  "Whether child processes can be started here (Linux, LuaJIT's FFI)."
+  (not= nil native))
+
+(fn errno-text []
+  (ffi.string (native.strerror (ffi.errno))))
+
+(fn self-exe []
+  "The path of the program this process runs (/proc/self/exe), or nil."
+  (when native
+    (let [buf (ffi.new "char[4096]")
+          n (tonumber (native.readlink "/proc/self/exe" buf 4096))]
+      (when (< 0 n 4096) (ffi.string buf n)))))
+
+(fn spawn [argv]
+  "Start the program `argv`[1] (looked up on PATH) with the arguments that follow, its
+standard input and output a socket to this process, its standard error this one's.
+Returns a child {:pid :fd}, or nil and a message."
+  (if (not native)
+      (values nil "child processes need LuaJIT's FFI on Linux")
+      (let [sv (ffi.new "int[2]")]
+        (if (not= 0 (native.socketpair af-unix (+ sock-stream sock-cloexec) 0 sv))
+            (values nil (.. "cannot make a socket pair: " (errno-text)))
+            (let [fa (ffi.new "uint8_t[256]")   ; posix_spawn_file_actions_t is 80 bytes
+                  pid (ffi.new "int[1]")
+                  args (icollect [_ a (ipairs argv)] (tostring a))
+                  c-argv (ffi.new "char *[?]" (+ (length args) 1))
+                  keep []]
+              (each [i a (ipairs args)]
+                (let [s (ffi.new "char[?]" (+ (length a) 1) a)]
+                  (table.insert keep s)
+                  (tset c-argv (- i 1) s)))
+              (native.posix_spawn_file_actions_init fa)
+              (native.posix_spawn_file_actions_adddup2 fa (. sv 1) 0)
+              (native.posix_spawn_file_actions_adddup2 fa (. sv 1) 1)
+              (let [rc (native.posix_spawnp pid (. args 1) fa nil c-argv native.environ)]
+                (native.posix_spawn_file_actions_destroy fa)
+                (native.close (. sv 1))
+                (if (= rc 0)
+                    {:pid (. pid 0) :fd (. sv 0) :buffer "" :keep keep}
+                    (do (native.close (. sv 0))
+                        (values nil (.. "cannot start " (. args 1) ": "
+                                        (ffi.string (native.strerror rc))))))))))))
+
+(fn wait-for [child events deadline]
+  ;; Poll the child's socket for `events` until `deadline` (monotonic seconds): true
+  ;; when ready, false when the deadline passed.
+  (let [p (ffi.new "rm_pollfd_t[1]")]
+    (tset p 0 :fd child.fd)
+    (tset p 0 :events events)
+    (var ready nil)
+    (while (= nil ready)
+      (let [left (- deadline (filestat.monotonic))]
+        (if (< left 0) (set ready false)
+            (let [n (native.poll p 1 (math.max 0 (math.min 100 (math.ceil (* left 1000)))))]
+              (when (> n 0) (set ready true))
+              (when (and (< n 0) (not= (ffi.errno) eintr)) (set ready true))))))
+    ready))
+
+(fn send! [child payload deadline]
+  "Send `payload` as one frame to `child` by `deadline` (monotonic seconds). True, or
+nil and :timeout or :closed."
+  (let [data (.. (length payload) "\n" payload)
+        total (length data)]
+    (var sent 0)
+    (var result nil)
+    (while (= nil result)
+      (if (>= sent total) (set result true)
+          (not (wait-for child pollout deadline)) (set result :timeout)
+          (let [n (tonumber (native.send child.fd (+ (ffi.cast "const char *" data) sent)
+                                         (- total sent) (+ msg-dontwait msg-nosignal)))]
+            (if (> n 0) (set sent (+ sent n))
+                (and (< n 0) (or (= (ffi.errno) eagain) (= (ffi.errno) eintr))) nil
+                (set result :closed)))))
+    (if (= result true) true (values nil result))))
+
+(fn take-frame [child]
+  ;; A whole frame from the child's buffer (its payload), false when the buffer does
+  ;; not start with one, or nil when more is needed.
+  (let [buf child.buffer
+        nl (buf:find "\n" 1 true)]
+    (if (not nl) (if (> (length buf) 20) false nil)
+        (let [digits (buf:sub 1 (- nl 1))
+              n (and (digits:match "^%d+$") (tonumber digits))]
+          (if (or (not n) (> n max-frame)) false
+              (>= (length buf) (+ nl n))
+              (do (set child.buffer (buf:sub (+ nl n 1)))
+                  (buf:sub (+ nl 1) (+ nl n)))
+              nil)))))
+
+(fn receive! [child deadline]
+  "The next frame from `child`, waiting until `deadline` (monotonic seconds); or nil
+and :timeout (nothing whole yet: call again later, the part read is kept), :closed
+(the child ended or closed its output) or :malformed (not a frame)."
+  (let [buf (ffi.new "char[?]" chunk)]
+    (var frame (take-frame child))
+    (var why nil)
+    (while (and (= nil frame) (= nil why))
+      (if (not (wait-for child pollin deadline)) (set why :timeout)
+          (let [n (tonumber (native.recv child.fd buf chunk msg-dontwait))]
+            (if (> n 0)
+                (do (set child.buffer (.. child.buffer (ffi.string buf n)))
+                    (set frame (take-frame child)))
+                (and (< n 0) (or (= (ffi.errno) eagain) (= (ffi.errno) eintr))) nil
+                (set why :closed)))))
+    (if (= frame false) (values nil :malformed)
+        frame frame
+        (values nil why))))
+
+(fn pending? [child]
+  "Whether `child` has sent something not read yet (without waiting)."
+  (or (not= child.buffer "")
+      (wait-for child pollin (filestat.monotonic))))
+
+(fn exited? [child]
+  "Whether `child` has ended (reaping it when it has)."
+  (or child.reaped?
+      (let [status (ffi.new "int[1]")
+            r (native.waitpid child.pid status wnohang)]
+        (when (not= r 0) (set child.reaped? true))
+        (not= r 0))))
+
+(fn kill! [child]
+  "End `child` at once (SIGKILL), wait for it and close its socket."
+  (when (not child.reaped?)
+    (native.kill child.pid sigkill)
+    (native.waitpid child.pid (ffi.new "int[1]") 0)
+    (set child.reaped? true))
+  (when child.fd
+    (native.close child.fd)
+    (set child.fd nil)))
+
+(fn close! [child ?grace]
+  "Close the socket to `child` (it reads the end of its input and should quit); kill
+it when it has not ended within `?grace` seconds (default 0.5)."
+  (when child.fd
+    (native.close child.fd)
+    (set child.fd nil))
+  (let [deadline (+ (filestat.monotonic) (or ?grace 0.5))]
+    (while (and (not (exited? child)) (< (filestat.monotonic) deadline))
+      (native.poll nil 0 10)))
+  (kill! child))
+
+{: supported? : self-exe : spawn : send! : receive! : pending? : exited? : kill! : close!
+ : max-frame}
