@@ -7,7 +7,9 @@
 ;; anything behind in test/out/corpus-trace/ (where the forbidden ones try to write).
 ;; CORPUS_SAMPLE=1 (`make check`) runs the app on one file per class only (the name's
 ;; first word: anim, forbidden, limit, ...); the loader still sees every file.
-(local scene (require :src.scene.load))
+;; The loader runs in one scene worker (src/scene/worker.fnl) for all the files, as
+;; the app's does: some files are refused only by the worker's limits.
+(local worker (require :src.scene.worker))
 (local plan (require :src.render.plan))
 
 (local corpus-dir "test/corpus")
@@ -45,7 +47,7 @@
 
 (fn loader-message [path]
   "The loader's message for the scene file at `path`, or nil when it loads and fits."
-  (let [(s err) (scene.load-file path)]
+  (let [(s err) (worker.load-file path)]
     (if s
         (let [(p perr) (plan.scene->plan s)]
           (when (not p) perr))

@@ -301,6 +301,7 @@ moves it forward instead of waiting)."
 (fn pause-clock! [err]
   (set state.time-pending nil)
   (set state.error (.. err " (the animation is paused; space plays)"))
+  (when (not state.quiet?) (io.stderr:write (.. state.error "\n")))
   (set state.paused? true))
 
 (fn take-values! [wait]

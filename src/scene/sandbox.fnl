@@ -301,19 +301,39 @@ macros and module table are the same afterwards, whatever happened."
       info (when (= info.source (.. "@" file)) (set line info.currentline))))
   line)
 
+(fn refuse [what why]
+  ;; A library call refused before it runs, naming the scene's line.
+  (let [file (. capped-files 1)
+        line (and file (scene-line file))]
+    (error (.. (if line (.. file ":" line ": ") (if file (.. file ": ") "")) what ": " why)
+           0)))
+
 (fn capped [what size]
   (when (> size limits.string-bytes)
-    (let [file (. capped-files 1)
-          line (and file (scene-line file))]
-      (error (.. (if line (.. file ":" line ": ") (if file (.. file ": ") ""))
-                 what ": the result would be over 1 MB")
-             0))))
+    (refuse what "the result would be over 1 MB")))
+
+(fn as-text [v]
+  ;; What string.rep makes of a number it is given as a string.
+  (if (= (type v) :number) (tostring v) v))
 
 (fn safe-rep [str n ?sep]
-  (let [count (or (tonumber n) 0)]
-    (when (and (= (type str) :string) (or (= ?sep nil) (= (type ?sep) :string)))
-      (capped "string.rep" (* (+ (length str) (length (or ?sep ""))) count)))
-    (string.rep str n ?sep)))
+  (let [count (or (tonumber n) 0)
+        str (as-text str)
+        sep (as-text ?sep)]
+    (when (and (= (type str) :string) (or (= sep nil) (= (type sep) :string)))
+      (capped "string.rep" (* (+ (length str) (length (or sep ""))) count)))
+    (string.rep str n sep)))
+
+(fn safe-insert [t ...]
+  ;; table.insert at a position moves the elements after it one by one, in C: a
+  ;; position far below 1 is a loop of billions of steps that no hook sees. As in Lua
+  ;; 5.3, the position is a whole number from 1 to the list's length plus one.
+  (when (and (= (type t) :table) (= (select :# ...) 2))
+    (let [pos (select 1 ...)
+          top (+ (length t) 1)]
+      (when (not (and (= (type pos) :number) (= pos (math.floor pos)) (<= 1 pos top)))
+        (refuse "table.insert" (.. "position " (tostring pos) " is out of bounds (1 to " top ")")))))
+  (table.insert t ...))
 
 (fn safe-format [fmt ...]
   ;; Each argument is at most its own length twice (%q escapes), a number 99 digits
@@ -345,7 +365,7 @@ the file system, the process, the loader or the compiler."
         unpack (or table.unpack _G.unpack)]
     {:math m :ipairs ipairs :pairs pairs :tonumber tonumber :tostring tostring
      :type type :select select :unpack unpack
-     :table {:insert table.insert :concat safe-concat :unpack unpack}
+     :table {:insert safe-insert :concat safe-concat :unpack unpack}
      :string {:format safe-format :sub string.sub :rep safe-rep}}))
 
 ;;; Running, within limits

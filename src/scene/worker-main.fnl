@@ -52,12 +52,22 @@
   (let [copy (collect [k v (pairs scene)] (when (not= k :animated) (values k v)))]
     (values copy (icollect [_ a (ipairs (or scene.animated []))] a.path))))
 
+(fn out-of-memory? [message]
+  ;; LuaJIT's message when an allocation fails: here, past the address space.
+  (not= nil (string.find (tostring message) "not enough memory" 1 true)))
+
+(fn memory-message [file what]
+  (scene-mod.safe-message
+   (.. file ": " what " more memory than the scene worker has (" limits.memory-mb " MB)")))
+
 (fn load! [request]
   (set current nil)
   (collectgarbage)
   (let [(ok? scene err) (pcall scene-mod.load-string request.source request.file
                                {:overrides request.overrides})]
-    (if (not ok?) {:ok false :message (scene-mod.safe-message (.. request.file ": " (tostring scene)))}
+    (if (out-of-memory? (if ok? err scene))
+        {:ok false :message (memory-message request.file "the scene needs")}
+        (not ok?) {:ok false :message (scene-mod.safe-message (.. request.file ": " (tostring scene)))}
         (not scene) {:ok false :message err}
         (let [(data paths) (sendable scene)]
           (set current scene)
@@ -77,7 +87,9 @@
   (if (not current) {:ok false :message "no scene is loaded"}
       (let [(ok? done err) (pcall scene-mod.animate current request.t)
             kept (kept-mb)]
-        (if (not ok?) {:ok false :message (scene-mod.safe-message (tostring done))}
+        (if (out-of-memory? (if ok? err done))
+            {:ok false :message (memory-message current.file "the functions of time need")}
+            (not ok?) {:ok false :message (scene-mod.safe-message (tostring done))}
             (not done) {:ok false :message err}
             (> kept limits.kept-mb)
             {:ok false

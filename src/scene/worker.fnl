@@ -38,11 +38,17 @@
         path (source:match "^@(.*)src/scene/worker%.fnl$")]
     (if (or (= path nil) (= path "")) "." (path:gsub "/$" ""))))
 
+(fn words [s]
+  (icollect [w (s:gmatch "%S+")] w))
+
 (fn command []
   "The command that starts a worker: under LÖVE the same game with --scene-worker
 (conf.lua then loads nothing else), under plain LuaJIT tools/scene-worker.fnl.
-Set another with `set-command!`."
+Another is set with `set-command!` or the environment's RAYMARCHER_SCENE_WORKER
+(words split at spaces; tests stand in a worker that hangs)."
   (or state.argv
+      (case (os.getenv "RAYMARCHER_SCENE_WORKER")
+        (where s (s:match "%S")) (words s))
       (if (and _G.love love.filesystem)
           [(or (process.self-exe) "love") (love.filesystem.getSource) "--scene-worker"]
           (let [root (game-root)]

@@ -7,7 +7,9 @@
 ;; - CPU time (RLIMIT_CPU), set again before each request to the time used so far plus
 ;;   that request's allowance: past it the kernel ends the process (SIGXCPU), even in a
 ;;   C call the step counter never sees; no core file (RLIMIT_CORE 0);
-;; - files: none can be opened or created (RLIMIT_NOFILE 0; RLIMIT_FSIZE 0);
+;; - files: none can be opened or created (RLIMIT_NOFILE 0). Not RLIMIT_FSIZE: it
+;;   also holds for the standard error the worker shares with the app, and a Fennel
+;;   warning written there, when it is a file, would end the worker (SIGXFSZ);
 ;; - no new privileges (PR_SET_NO_NEW_PRIVS), then a seccomp filter (x86-64) that
 ;;   answers EPERM to every call that opens, creates, renames, removes or changes a
 ;;   file, starts a program or a process, makes a socket, signals another process or
@@ -138,7 +140,6 @@ what could not be, with why."
                (set-limit! :as (* options.memory-mb 1024 1024)))
           (try (.. "CPU " options.cpu-seconds " s a request") (limit-cpu! options.cpu-seconds))
           (try "no core files" (set-limit! :core 0 0))
-          (try "no files written" (set-limit! :fsize 0 0))
           (try "no new files" (set-limit! :nofile 0 0))
           ;; PR_SET_NO_NEW_PRIVS
           (try "no new privileges" (= 0 (native.prctl 38 1 0 0 0)) (errno-text))

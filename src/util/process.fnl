@@ -52,7 +52,7 @@
 
 ;; The longest frame a parent accepts (a scene of 200,000 objects is about 30 MB).
 (local max-frame (* 256 1024 1024))
-(local chunk 65536)
+(local chunk (* 1024 1024))
 
 (fn supported? []
   "Whether child processes can be started here (Linux, LuaJIT's FFI)."
@@ -93,7 +93,7 @@ Returns a child {:pid :fd}, or nil and a message."
                 (native.posix_spawn_file_actions_destroy fa)
                 (native.close (. sv 1))
                 (if (= rc 0)
-                    {:pid (. pid 0) :fd (. sv 0) :buffer "" :keep keep}
+                    {:pid (. pid 0) :fd (. sv 0) :parts [] :have 0 :keep keep}
                     (do (native.close (. sv 0))
                         (values nil (.. "cannot start " (. args 1) ": "
                                         (ffi.string (native.strerror rc))))))))))))
@@ -130,19 +130,35 @@ nil and :timeout or :closed."
                 (set result :closed)))))
     (if (= result true) true (values nil result))))
 
-(fn take-frame [child]
-  ;; A whole frame from the child's buffer (its payload), false when the buffer does
-  ;; not start with one, or nil when more is needed.
-  (let [buf child.buffer
-        nl (buf:find "\n" 1 true)]
-    (if (not nl) (if (> (length buf) 20) false nil)
-        (let [digits (buf:sub 1 (- nl 1))
+(fn frame-size [head]
+  ;; The whole size of the frame that `head` starts ("<length>\n" and the payload),
+  ;; false when it does not start with one, nil when the length is not all there.
+  (let [nl (head:find "\n" 1 true)]
+    (if (not nl) (if (> (length head) 20) false nil)
+        (let [digits (head:sub 1 (- nl 1))
               n (and (digits:match "^%d+$") (tonumber digits))]
           (if (or (not n) (> n max-frame)) false
-              (>= (length buf) (+ nl n))
-              (do (set child.buffer (buf:sub (+ nl n 1)))
-                  (buf:sub (+ nl 1) (+ nl n)))
-              nil)))))
+              (+ nl n))))))
+
+(fn take-frame [child]
+  ;; A whole frame's payload from what was received (child.parts, child.have bytes),
+  ;; false when it is not a frame, nil when more is needed. The parts are joined once
+  ;; a frame is whole (joining at every chunk would copy a 13 MB answer 200 times).
+  (when (and (= nil child.need) (> child.have 0))
+    (let [head (table.concat child.parts)]
+      (set child.parts [head])
+      (set child.need (frame-size (head:sub 1 32)))))
+  (if (= child.need false) false
+      (and child.need (>= child.have child.need))
+      (let [all (table.concat child.parts)
+            need child.need
+            nl (all:find "\n" 1 true)
+            rest (all:sub (+ need 1))]
+        (set child.parts [rest])
+        (set child.have (length rest))
+        (set child.need nil)
+        (all:sub (+ nl 1) need))
+      nil))
 
 (fn receive! [child deadline]
   "The next frame from `child`, waiting until `deadline` (monotonic seconds); or nil
@@ -155,7 +171,8 @@ and :timeout (nothing whole yet: call again later, the part read is kept), :clos
       (if (not (wait-for child pollin deadline)) (set why :timeout)
           (let [n (tonumber (native.recv child.fd buf chunk msg-dontwait))]
             (if (> n 0)
-                (do (set child.buffer (.. child.buffer (ffi.string buf n)))
+                (do (table.insert child.parts (ffi.string buf n))
+                    (set child.have (+ child.have n))
                     (set frame (take-frame child)))
                 (and (< n 0) (or (= (ffi.errno) eagain) (= (ffi.errno) eintr))) nil
                 (set why :closed)))))
@@ -165,7 +182,7 @@ and :timeout (nothing whole yet: call again later, the part read is kept), :clos
 
 (fn pending? [child]
   "Whether `child` has sent something not read yet (without waiting)."
-  (or (not= child.buffer "")
+  (or (> child.have 0)
       (wait-for child pollin (filestat.monotonic))))
 
 (fn exited? [child]
