@@ -1,7 +1,8 @@
 ;; The player itself, in a real window under Xvfb (tools/check-states.sh): a slider
 ;; drag, a value edit, a structural edit and an animated scene, each grabbed about six
 ;; times a second; no grabbed picture may mix two scene states. Left alone, the
-;; picture gets its anti-aliased still. About a minute.
+;; picture gets its anti-aliased still. About a minute. And a scene worker that hangs
+;; in a function of time: the player pauses with a message and quits on escape.
 ;; `make test` installs Xvfb, xdotool, xwd and bc.
 
 (fn run [command]
@@ -33,4 +34,14 @@
                   ;; Any other exit 2 (no window, the player exited) fails.
                   (if (and (= code 2) (out:find "NOT EXERCISED" 1 true))
                       (print "check-states: a scenario was not exercised on this machine: see above")
-                      (assert.are.equal 0 code out))))))))))
+                      (assert.are.equal 0 code out)))))
+          (it "pauses the clock with a message when the worker hangs in a function of time, and quits on escape"
+            (fn []
+              ;; The worker is a stand-in that never answers an animate
+              ;; (tools/check-stuck-worker.sh); the player kills it after a second.
+              ;; Escape took 0.07 s here; 10 s would mean the player was stuck.
+              (let [(code out) (run "OUT=test/out/check-stuck-worker bash tools/check-stuck-worker.sh")]
+                (print out)
+                (assert.are.equal 0 code out)
+                (assert.truthy (out:find "took longer than 1 s (a library call that never returns?); the scene worker was stopped (the animation is paused; space plays)" 1 true) out)
+                (assert.truthy (out:match "quit [%d.]+ s after escape") out)))))))))

@@ -257,9 +257,24 @@
       (fn []
         (each [src msg (pairs {"\n{:objects [] :name (string.rep \"ab\" 600000)}" "t.fnl:2: string.rep"
                                "\n{:objects [] :name (table.concat [(string.rep \"a\" 600000) (string.rep \"b\" 600000)])}" "t.fnl:2: table.concat"
-                               "\n{:objects [] :name (string.format \"%s%s\" (string.rep \"a\" 600000) \"b\")}" "t.fnl:2: string.format"})]
+                               "\n{:objects [] :name (string.format \"%s%s\" (string.rep \"a\" 600000) \"b\")}" "t.fnl:2: string.format"
+                               ;; Numbers stand for their text in string.rep.
+                               "\n{:objects [] :name (string.rep 7 2000000000)}" "t.fnl:2: string.rep"
+                               "\n{:objects [] :name (string.rep \"x\" 700000 12345)}" "t.fnl:2: string.rep"})]
           (let [(_ err) (scene.load-string src "t.fnl")]
             (assert.are.equal (.. msg ": the result would be over 1 MB") err)))))
+
+    (it "refuses table.insert at a position outside the list before its C loop runs"
+      (fn []
+        ;; -2147483647 was one C loop of two billion steps that no hook sees.
+        (each [src msg (pairs {"\n{:objects [] :name (do (table.insert [] -2147483647 1) :x)}" "position -2147483647 is out of bounds (1 to 1)"
+                               "\n{:objects [] :name (do (table.insert [1 2] 4 1) :x)}" "position 4 is out of bounds (1 to 3)"
+                               "\n{:objects [] :name (do (table.insert [1 2] 1.5 1) :x)}" "position 1.5 is out of bounds (1 to 3)"})]
+          (let [(_ err) (scene.load-string src "t.fnl")]
+            (assert.are.equal (.. "t.fnl:2: table.insert: " msg) err)))
+        (let [s (assert (scene.load-string "(local t [1 2]) (table.insert t 1 0) (table.insert t 4 3) (table.insert t 9)
+{:objects [] :name (table.concat t \",\")}" "t.fnl"))]
+          (assert.are.equal "0,1,2,3,9" s.name))))
 
     (it "gives its own errors a marker no scene can forge"
       (fn []

@@ -132,7 +132,7 @@
         (with-deadline :animate 0.3
           #(with-command (fake :hang-animate)
              (fn []
-               (let [s (assert (worker.load-file "scenes/seed.fnl"))]
+               (let [s (assert (worker.load-source "{:objects [{:kind :sphere :radius (fn [t] (+ 1 t))}]}" "seed.fnl"))]
                  (assert.are.same [[:objects 1 :radius]] (paths s))
                  (assert.is_true (worker.request-animate! s 1))
                  ;; Each poll returns at once while the answer is not there.
@@ -142,7 +142,7 @@
                  (var result [:pending])
                  (while (= :pending (. result 1))
                    (set result [(worker.poll-animate! s 0.05)]))
-                 (assert.are.same [nil "scenes/seed.fnl: the functions of time (t = 1) took longer than 0.3 s (a library call that never returns?); the scene worker was stopped"]
+                 (assert.are.same [nil "seed.fnl: the functions of time (t = 1) took longer than 0.3 s (a library call that never returns?); the scene worker was stopped"]
                                   result)))))))
 
     (it "refuses answers that are not wire data, and workers that never start"

@@ -102,6 +102,7 @@
                          (. target key)))}))))
 
 (fn handle [request]
+  "The answer to one request (a table read from the wire)."
   (if (not= (type request) :table) {:ok false :message "the request is not a table"}
       (= request.op :load)
       (if (and (= (type request.source) :string) (= (type request.file) :string)
@@ -134,4 +135,4 @@ it ends."
          (os.exit 1)))
   (set love.load (fn [] (serve! io.stdin io.stdout) (os.exit 0))))
 
-{: serve! : run-love! : limits}
+{: serve! : run-love! : handle : limits}
