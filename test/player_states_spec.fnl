@@ -35,7 +35,7 @@
                   (if (and (= code 2) (out:find "NOT EXERCISED" 1 true))
                       (print "check-states: a scenario was not exercised on this machine: see above")
                       (assert.are.equal 0 code out)))))
-          (it "pauses the clock with a message when the worker hangs in a function of time, and quits on escape"
+          (it "pauses the clock with a message when the worker hangs in a function of time; escape quits, during a load too"
             (fn []
               ;; The worker is a stand-in that never answers an animate
               ;; (tools/check-stuck-worker.sh); the player kills it after a second.
@@ -44,4 +44,5 @@
                 (print out)
                 (assert.are.equal 0 code out)
                 (assert.truthy (out:find "took longer than 1 s (a library call that never returns?); the scene worker was stopped (the animation is paused; space plays)" 1 true) out)
-                (assert.truthy (out:match "quit [%d.]+ s after escape") out)))))))))
+                (assert.truthy (out:match "quit [%d.]+ s after escape\n") out)
+                (assert.truthy (out:match "quit [%d.]+ s after escape during a load") out)))))))))

@@ -5,7 +5,8 @@
 # for the player to pause the clock with its message (the worker is killed after a
 # second), presses escape and times how long the player takes to quit.
 # Prints 'paused after S s', 'quit S s after escape' and the message (the screen while
-# paused: OUT/paused.png); exit 0 when both
+# paused: OUT/paused.png). Then a worker that never answers the load: escape while the
+# player waits for it ('quit S s after escape during a load'). Exit 0 when all
 # happened, 1 when not, 2 when it could not run (a missing tool).
 set -uo pipefail
 REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -47,6 +48,21 @@ xvfb-run -a -s "-screen 0 1280x720x24" bash -c '
   done
   if kill -0 $pid 2>/dev/null; then echo "still running 10 s after escape"; kill -9 $pid; exit 1; fi
   echo "quit $(echo "$(date +%s.%N) - $pressed" | bc) s after escape"
+  wait $pid; rc=$?; [ $rc -eq 0 ] || { echo "the player exited $rc"; exit 1; }
   grep "the animation is paused" "$OUT/stderr" | head -1
-  [ -n "$paused" ]
+  [ -n "$paused" ] || exit 1
+  # A worker that never answers the load: escape while the player waits for it.
+  RAYMARCHER_SCENE_WORKER="${RAYMARCHER_SCENE_WORKER% *} hang-load" love . "$OUT/spin.fnl" >"$OUT/stdout-load" 2>"$OUT/stderr-load" &
+  pid=$!
+  win=$(timeout 20 xdotool search --sync --name "Fennel raymarcher" 2>/dev/null | head -1)
+  sleep 1
+  pressed=$(date +%s.%N)
+  timeout 10 xdotool windowactivate --sync "$win" key Escape 2>/dev/null || timeout 10 xdotool key Escape
+  for i in $(seq 1 200); do
+    kill -0 $pid 2>/dev/null || break
+    sleep 0.05
+  done
+  if kill -0 $pid 2>/dev/null; then echo "still running 10 s after escape during a load"; kill -9 $pid; exit 1; fi
+  echo "quit $(echo "$(date +%s.%N) - $pressed" | bc) s after escape during a load"
+  wait $pid; rc=$?; [ $rc -eq 0 ] || { echo "the player exited $rc after escape during a load"; exit 1; }
 ' _ "$OUT"

@@ -943,8 +943,20 @@ reached the screen."
   (prepare-font!)
   (set state.warm (when options.warm? (warm.new)))
   (set state.interactive-fps (or options.target-fps default-interactive-fps))
+  ;; A load waits for the scene worker (up to its deadline of 5 s): escape and the
+  ;; window's close button still quit meanwhile (other input is dropped).
+  (worker.set-waiting! (fn []
+                         (love.event.pump)
+                         (var quit? false)
+                         (each [name a (love.event.poll)]
+                           (when (or (= name :quit) (and (= name :keypressed) (= a :escape)))
+                             (set quit? true)))
+                         (when quit? (set state.quitting? true) (love.event.quit 0))
+                         quit?))
   (load! options.scene true)
-  (when state.warm (warm.prepare! state.warm))
+  ;; Not when quitting: LÖVE exiting a few ms after the helper's thread started
+  ;; crashed (exit 139, 2 runs of 2 in tools/check-stuck-worker.sh).
+  (when (and state.warm (not state.quitting?)) (warm.prepare! state.warm))
   (when (and options.shot (not state.scene))
     ;; Nothing to shoot: a script waits on this run, so fail like --render does.
     (io.stderr:write (.. "error: " (or state.error (.. options.scene ": no scene")) "\n"))

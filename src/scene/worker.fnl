@@ -73,9 +73,30 @@ Another is set with `set-command!` or the environment's RAYMARCHER_SCENE_WORKER
     (if (not data) (values nil err)
         (process.send! w.child data (+ (filestat.monotonic) deadlines.load)))))
 
+(fn receive-waiting! [w deadline]
+  ;; process.receive!, calling state.on-wait every 50 ms while it waits: when that
+  ;; returns true (the user asked to quit), nil and :cancelled.
+  (if (not state.on-wait) (process.receive! w.child deadline)
+      (do (var result nil)
+          (while (= nil result)
+            (let [slice (math.min deadline (+ (filestat.monotonic) 0.05))
+                  (data why) (process.receive! w.child slice)]
+              (if data (set result [data])
+                  (and (= why :timeout) (< slice deadline))
+                  (when (state.on-wait) (set result [nil :cancelled]))
+                  (set result [nil why]))))
+          (values (. result 1) (. result 2)))))
+
+(fn set-waiting! [f]
+  "Call `f` every 50 ms while a load waits for the worker (the player handles its
+events there); when it returns true the load is given up and the worker killed.
+nil: wait without calling anything."
+  (set state.on-wait f))
+
 (fn answer [w deadline]
-  ;; The worker's next answer: a table, or nil and :timeout, :closed or a message.
-  (case (process.receive! w.child deadline)
+  ;; The worker's next answer: a table, or nil and :timeout, :closed, :cancelled or
+  ;; a message.
+  (case (receive-waiting! w deadline)
     data (case (wire.decode data)
            (nil err) (values nil err)
            value (if (= (type value) :table) value
@@ -96,7 +117,9 @@ Another is set with `set-command!` or the environment's RAYMARCHER_SCENE_WORKER
                                 (values nil (.. "the scene worker did not start ("
                                                 (table.concat argv " ") "): "
                                                 (if (= why :timeout) (.. "no answer within " deadlines.start " s")
-                                                    (= why :closed) "it ended at once"
+                                                    (= why :cancelled)
+                       (.. what " was cancelled; the scene worker was stopped")
+                       (= why :closed) "it ended at once"
                                                     (tostring why)))))))))))
 
 (fn info []
@@ -112,6 +135,8 @@ nil when none is running."
     (scene-mod.safe-message
      (.. file ": " (if (= why :timeout)
                        (.. what " took longer than " seconds " s (a library call that never returns?); the scene worker was stopped")
+                       (= why :cancelled)
+                       (.. what " was cancelled; the scene worker was stopped")
                        (= why :closed)
                        (.. "the scene worker ended while " what " (past its limits: "
                            (or (?. limits :memory-mb) "?") " MB of memory or "
@@ -265,4 +290,4 @@ scene-mod) is animated here, as scene-mod.animate does."
                 (values done err))))))
 
 {: load-source : load-file : animate : request-animate! : poll-animate! : kill! : stop!
- : info : set-command! : command : deadlines}
+ : info : set-command! : set-waiting! : command : deadlines}
