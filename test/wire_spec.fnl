@@ -210,6 +210,17 @@
           (refused "duplicate key \"2\" at op 4" (build [] [2 1 2 1] "{nnnn}"))
           (assert.are.same {:k 1 2 true} (wire.decode (build ["k"] [1 1 2] "{snnt}")))))
 
+      (it "reads a list of numbers in one op, and refuses a count past the numbers sent"
+        (fn []
+          (assert.are.same {:pos [1 2 3] :empty []} (wire.decode (wire.encode {:pos [1 2 3] :empty []})))
+          (assert.are.same [[0.5 -1] [true 2]] (wire.decode (wire.encode [[0.5 -1] [true 2]])))
+          (assert.are.same [1 2] (wire.decode (build [] [2 1 2] "v")))
+          (assert.are.same [] (wire.decode (build [] [0] "v")))
+          (refused "a list of 3 numbers, with 2 left, at op 1" (build [] [3 1 2] "v"))
+          (refused "a list of 1%.5 numbers" (build [] [1.5 1 2] "v"))
+          (refused "a list of %-1 numbers" (build [] [-1] "v"))
+          (refused "trailing bytes after the value, from op 2" (build [] [1 7] "vt"))))
+
       (it "refuses string indexes out of range or not integers"
         (fn []
           (refused "string index 2 is not one of 1%.%.1" (build ["a"] [2] "s"))

@@ -31,7 +31,7 @@
    :kept-mb 96})
 
 (var current nil)   ; the last scene loaded, with its functions of time
-(var current-mb 0)  ; Lua memory in use once it had loaded (MB)
+(var current-mb nil)  ; Lua memory in use with it loaded (MB), from its first frame
 
 (fn read-frame [input]
   ;; One frame from `input` (a file): the payload, or nil at the end.
@@ -62,7 +62,7 @@
 
 (fn load! [request]
   (set current nil)
-  (collectgarbage)
+  (set current-mb nil)
   (let [(ok? scene err) (pcall scene-mod.load-string request.source request.file
                                {:overrides request.overrides})]
     (if (out-of-memory? (if ok? err scene))
@@ -71,8 +71,6 @@
         (not scene) {:ok false :message err}
         (let [(data paths) (sendable scene)]
           (set current scene)
-          (collectgarbage)
-          (set current-mb (/ (collectgarbage :count) 1024))
           {:ok true :scene data :animated paths}))))
 
 (fn kept-mb []
@@ -84,6 +82,11 @@
         (do (collectgarbage) (math.max 0 (over))))))
 
 (fn animate! [request]
+  ;; What the scene holds without garbage, measured at its first frame (a full
+  ;; collection of a large scene takes several ms, which a load need not pay).
+  (when (and current (not current-mb))
+    (collectgarbage)
+    (set current-mb (/ (collectgarbage :count) 1024)))
   (if (not current) {:ok false :message "no scene is loaded"}
       (let [(ok? done err) (pcall scene-mod.animate current request.t)
             kept (kept-mb)]

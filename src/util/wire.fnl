@@ -9,7 +9,8 @@
 ;;   the numbers, nnumbers doubles of 8 bytes in native byte order
 ;;   the ops, one byte each: `[` list, `{` map, `}` end of the innermost list or map,
 ;;   `n` the next number, `s` a string (the next number is its 1-based index),
-;;   `t` true, `f` false.
+;;   `v` a list of numbers (the next number is how many, the numbers follow: a
+;;   position or a colour in one op, not five), `t` true, `f` false.
 ;; One value, nothing after it. In a map, ops alternate key and value; keys are strings
 ;; or integers. Pure LuaJIT (needs the FFI). Failures are `nil, message`; decode
 ;; never raises, whatever the bytes.
@@ -45,6 +46,7 @@
 (local op-string (sbyte "s"))
 (local op-true (sbyte "t"))
 (local op-false (sbyte "f"))
+(local op-vector (sbyte "v"))
 (local colon (sbyte ":"))
 (local newline (sbyte "\n"))
 (local space (sbyte " "))
@@ -87,13 +89,35 @@ at <path>' or 'nested deeper than <max-depth> at <path>' (path: keys joined by d
   (let [max-depth (or (and ?limits (. ?limits :max-depth)) limits.max-depth)
         strings []
         index {}
-        nums []
-        ops []
         path []]
     (var ns 0)
     (var nn 0)
     (var no 0)
     (var err nil)
+    ;; Numbers and ops go straight into buffers that double when full.
+    (var num-cap 1024)
+    (var nums (ffi.new "double[?]" num-cap))
+    (var op-cap 1024)
+    (var ops (ffi.new "uint8_t[?]" op-cap))
+
+    (fn put-num [x]
+      ;; One more double, with no op of its own.
+      (when (>= nn num-cap)
+        (let [bigger (ffi.new "double[?]" (* 2 num-cap))]
+          (ffi.copy bigger nums (* 8 nn))
+          (set nums bigger)
+          (set num-cap (* 2 num-cap))))
+      (tset nums nn x)
+      (set nn (+ nn 1)))
+
+    (fn put-op [op]
+      (when (>= no op-cap)
+        (let [bigger (ffi.new "uint8_t[?]" (* 2 op-cap))]
+          (ffi.copy bigger ops no)
+          (set ops bigger)
+          (set op-cap (* 2 op-cap))))
+      (tset ops no op)
+      (set no (+ no 1)))
 
     (fn put-string [s]
       (var i (. index s))
@@ -102,28 +126,20 @@ at <path>' or 'nested deeper than <max-depth> at <path>' (path: keys joined by d
         (set i ns)
         (tset index s i)
         (tset strings ns (.. (length s) ":" s)))
-      (set nn (+ nn 1))
-      (tset nums nn i)
-      (set no (+ no 1))
-      (tset ops no "s"))
+      (put-num i)
+      (put-op op-string))
 
     (fn put-number [x]
-      (set nn (+ nn 1))
-      (tset nums nn x)
-      (set no (+ no 1))
-      (tset ops no "n"))
-
-    (fn put-op [op]
-      (set no (+ no 1))
-      (tset ops no op))
+      (put-num x)
+      (put-op op-number))
 
     (fn walk [v depth]
       ;; `depth`: how many tables hold `v`; path[1..depth] leads to it.
       (let [t (type v)]
         (if (= t :number) (put-number v)
             (= t :string) (put-string v)
-            (= v true) (put-op "t")
-            (= v false) (put-op "f")
+            (= v true) (put-op op-true)
+            (= v false) (put-op op-false)
             (= t :table)
             (if (>= depth max-depth)
                 (set err (.. "nested deeper than " max-depth " at " (path-text path depth)))
@@ -135,36 +151,46 @@ at <path>' or 'nested deeper than <max-depth> at <path>' (path: keys joined by d
                     (set count (+ count 1))
                     (when (not (and (= (type k) :number) (>= k 1) (<= k n) (= k (floor k))))
                       (set list? false)))
-                  (if (and list? (= count n))
-                      (do (put-op "[")
+                  (var numbers? (and list? (= count n) (> n 0)))
+                  (for [i 1 n &until (not numbers?)]
+                    (when (not= (type (. v i)) :number) (set numbers? false)))
+                  (if numbers?
+                      (do (put-op op-vector)
+                          (put-num n)
+                          (for [i 1 n] (put-num (. v i))))
+                      (and list? (= count n))
+                      (do (put-op op-list)
                           (for [i 1 n &until err]
                             (tset path inner i)
                             (walk (. v i) inner))
-                          (put-op "}"))
+                          (put-op op-end))
                       (let [keys []]
+                        (var strings? true)
+                        (var nk 0)
                         (each [k (pairs v) &until err]
-                          (if (or (= (type k) :string) (integer? k))
-                              (insert keys k)
+                          (if (= (type k) :string) (do (set nk (+ nk 1)) (tset keys nk k))
+                              (integer? k) (do (set nk (+ nk 1)) (tset keys nk k) (set strings? false))
                               (set err (.. "cannot send " (key-text k) " at "
                                            (path-text path depth)
                                            " (keys are strings or integers)"))))
                         (when (not err)
-                          (sort keys key-before?)
-                          (put-op "{")
-                          (each [_ k (ipairs keys) &until err]
-                            (if (= (type k) :string) (put-string k) (put-number k))
-                            (tset path inner k)
-                            (walk (. v k) inner))
-                          (put-op "}"))))))
+                          ;; String keys alone (the usual map) sort without a
+                          ;; comparator function, which is faster.
+                          (if strings? (sort keys) (sort keys key-before?))
+                          (put-op op-map)
+                          (for [j 1 nk &until err]
+                            (let [k (. keys j)]
+                              (if (= (type k) :string) (put-string k) (put-number k))
+                              (tset path inner k)
+                              (walk (. v k) inner)))
+                          (put-op op-end))))))
             (set err (.. "cannot send a " t " at " (path-text path depth))))))
 
     (walk value 0)
     (if err
         (values nil err)
-        (let [arr (ffi.new "double[?]" nn)]
-          (for [i 1 nn] (tset arr (- i 1) (. nums i)))
-          (.. "SDW1 " ns " " nn " " no "\n" (concat strings)
-              (ffi.string arr (* 8 nn)) (concat ops))))))
+        (.. "SDW1 " ns " " nn " " no "\n" (concat strings)
+            (ffi.string nums (* 8 nn)) (ffi.string ops no)))))
 
 ;;; Decoding
 
@@ -257,6 +283,19 @@ at <path>' or 'nested deeper than <max-depth> at <path>' (path: keys joined by d
                 (do (tset stack depth nil)
                     (set depth (- depth 1))
                     (when (= depth 0) (set done? true))))
+            (= c op-vector)
+            (let [n (next-number)]
+              (when (not err)
+                (if (not (and (integer? n) (<= 0 n (- nn ni))))
+                    (set err (.. "a list of " (tostring n) " numbers, with "
+                                 (- nn ni) " left, at op " (- i ops-at -1)))
+                    (let [t {}]
+                      (for [k 1 n]
+                        (tset t k (. numbers ni))
+                        (set ni (+ ni 1)))
+                      (put t)
+                      ;; A whole value: at the top, nothing may follow it.
+                      (when (= depth 0) (set done? true))))))
             (= c op-true) (put true)
             (= c op-false) (put false)
             (set err (.. "unknown op byte " c " at op " (- i ops-at -1)
