@@ -44,6 +44,15 @@
                                (love.event.quit 0))
                       (_ werr) (fail! werr)))))))))
 
+(fn quit-asked? []
+  "Whether a quit event (a signal, the window closed) is waiting in LÖVE's queue."
+  (var quit? false)
+  (when love.event
+    (love.event.pump)
+    (each [name (love.event.poll)]
+      (when (= name :quit) (set quit? true))))
+  quit?)
+
 (fn probe [o]
   ;; Read and answered a batch at a time (src/verify/probe.fnl): an endless stream
   ;; runs in constant memory, and each batch's lines are out before the next is read.
@@ -59,7 +68,10 @@
         (let [next-batch (probe-mod.point-reader io.stdin "stdin")]
           (var (done? failure) false)
           (while (not done?)
-            (let [(points rerr) (next-batch)
+            ;; SIGINT and SIGTERM reach LÖVE as a quit event: with input always
+            ;; arriving, the loop would never see it otherwise.
+            (when (quit-asked?) (set done? true))
+            (let [(points rerr) (if done? (values nil "--probe: stopped (SIGINT or SIGTERM)") (next-batch))
                   (vals verr) (if points (evaluate points) (values nil rerr))]
               (if vals
                   (do (each [_ v (ipairs vals)] (io.write (probe-mod.format-line v) "\n"))

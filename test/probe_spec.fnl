@@ -188,5 +188,16 @@ KB (nil without /usr/bin/time) and seconds."
           (assert.are.equal 0 code err)
           (assert.are.equal 2000000 lines)
           (assert.are.equal "-1 1 1 1 1" (out:match "^[^\n]*"))
-          (when peak (assert.is_true (< peak (* 100 1024)) (.. "peak " peak " KB"))))))))
+          (when peak (assert.is_true (< peak (* 100 1024)) (.. "peak " peak " KB"))))))
+
+    (it "the app stops on SIGTERM while input keeps arriving"
+      (fn []
+        ;; Before, only SIGKILL stopped it: LÖVE turns SIGTERM into a quit event,
+        ;; which the loop never looked at. timeout's 124: ended by the TERM; 137
+        ;; would be the KILL it sends 20 s later.
+        (with-open [p (io.popen (.. "yes '0 0 0' | SDL_VIDEODRIVER=offscreen timeout -k 20 3 love . --probe "
+                                    "test/out/probe-sphere.fnl >/dev/null 2>test/out/probe-term; echo $?"))]
+          (assert.are.equal "124" (p:read "*l")))
+        (let [err (with-open [f (io.open "test/out/probe-term")] (f:read :*a))]
+          (assert.truthy (err:find "error: --probe: stopped (SIGINT or SIGTERM)" 1 true) err))))))
 

@@ -227,6 +227,14 @@
           (assert.is_nil s)
           (assert.are.equal "scenes: cannot read the scene file: it is a directory" err))))
 
+    (it "refuses a FIFO without opening it (a FIFO with no writer would wait forever)"
+      (fn []
+        (os.execute "mkdir -p test/out && rm -f test/out/scene-fifo.fnl && mkfifo test/out/scene-fifo.fnl")
+        (let [(s err) (scene.load-file "test/out/scene-fifo.fnl")]
+          (os.remove "test/out/scene-fifo.fnl")
+          (assert.is_nil s)
+          (assert.are.equal "test/out/scene-fifo.fnl: cannot read the scene file: it is a FIFO (a named pipe), not a file" err))))
+
     (it "reads a file with a UTF-8 byte order mark"
       (fn []
         (let [s (assert (scene.load-string "\239\187\191{:objects [{:kind :sphere}]}" "bom.fnl"))]
@@ -260,7 +268,8 @@
                                "\n{:objects [] :name (string.format \"%s%s\" (string.rep \"a\" 600000) \"b\")}" "t.fnl:2: string.format"
                                ;; Numbers stand for their text in string.rep.
                                "\n{:objects [] :name (string.rep 7 2000000000)}" "t.fnl:2: string.rep"
-                               "\n{:objects [] :name (string.rep \"x\" 700000 12345)}" "t.fnl:2: string.rep"})]
+                               "\n{:objects [] :name (string.rep \"x\" 700000 12345)}" "t.fnl:2: string.rep"
+                               "\n{:objects [] :name (table.concat (fcollect [i 1 400000] \"\") 1.25)}" "t.fnl:2: table.concat"})]
           (let [(_ err) (scene.load-string src "t.fnl")]
             (assert.are.equal (.. msg ": the result would be over 1 MB") err)))))
 

@@ -164,7 +164,7 @@
     (it "gives up writing, reading and starting programs, memory past its limit and CPU past its allowance"
       (fn []
         (os.execute "rm -rf test/out/confined && mkdir -p test/out/confined && touch test/out/confined/existing")
-        (let [lines (sh-lines "luajit tools/fnl.lua test/fixtures/worker/confined.fnl test/out/confined write read rename remove mkdir execute memory small-memory cpu; echo \"exit $?\"")]
+        (let [lines (sh-lines "luajit tools/fnl.lua test/fixtures/worker/confined.fnl test/out/confined write read rename remove mkdir execute memory small-memory raise-memory cpu; echo \"exit $?\"")]
           (assert.are.same
            ["applied address space 512 MB, CPU 1 s a request, no core files, no new files, no new privileges, seccomp filter"
             "missing "
@@ -176,6 +176,7 @@
             "execute refused: nil"
             "memory refused: not enough memory"
             "small-memory ok"
+            "raise-memory refused: nil"
             ;; 128 + SIGXCPU (24): the kernel ended it in its endless loop.
             "exit 152"]
            lines)

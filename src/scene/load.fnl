@@ -343,6 +343,10 @@ verdict. Large scenes are mostly such values."
 ;; functions just under their own limit took 12 s a frame (and 14 s to load) before.
 (local frame-steps 1000000)
 
+(fn time-text [t]
+  "A time `t` (seconds) for a message, to the millisecond: 0.332, not 0.332117609."
+  (tostring (/ (math.floor (+ (* t 1000) 0.5)) 1000)))
+
 (fn time-call [ctx path f t]
   ;; ctx.time-budget: the steps the functions of time have left for this frame.
   (let [budget ctx.time-budget
@@ -352,9 +356,9 @@ verdict. Large scenes are mostly such values."
     (if ok? v
         (and budget (< allowed time-steps) (>= used allowed) (sandbox.sandbox-error? v))
         (fail ctx path (.. "the functions of time took more than " (/ frame-steps 1000000)
-                           " million steps together for one frame (at t = " t
+                           " million steps together for one frame (at t = " (time-text t)
                            "): fewer of them, or cheaper ones"))
-        (fail ctx path (.. "the function of time failed at t = " t ": "
+        (fail ctx path (.. "the function of time failed at t = " (time-text t) ": "
                            (sandbox.error-message v))))))
 
 (fn check-animated [ctx path f kind checker]
@@ -776,5 +780,5 @@ the app can read through love.filesystem."
   sandbox.limits)
 
 {: load-string : load-file : read-capped : animate : animated? : limits-of-files : defaults : limits : default-environment
- : safe-message : target-of
+ : safe-message : target-of : time-text
  : hit-tests : normal-methods}

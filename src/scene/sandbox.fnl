@@ -350,7 +350,7 @@ macros and module table are the same afterwards, whatever happened."
   (when (= (type t) :table)
     (let [i (or (tonumber ?i) 1)
           j (or (tonumber ?j) (length t))
-          sep (if (= (type ?sep) :string) (length ?sep) 0)]
+          sep (let [sep (as-text ?sep)] (if (= (type sep) :string) (length sep) 0))]
       (var size 0)
       (for [k i j &until (> size limits.string-bytes)]
         (let [v (. t k)]

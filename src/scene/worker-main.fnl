@@ -98,7 +98,7 @@
             {:ok false
              :message (scene-mod.safe-message
                        (string.format "%s: the functions of time keep %.1f MB from frame to frame (at t = %s); at most %d MB"
-                                      current.file kept (tostring request.t) limits.kept-mb))}
+                                      current.file kept (scene-mod.time-text request.t) limits.kept-mb))}
             {:ok true
              :values (icollect [_ a (ipairs (or current.animated []))]
                        (let [(target key) (scene-mod.target-of current a.path)]

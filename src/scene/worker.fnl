@@ -249,7 +249,7 @@ process is animated here and now.)"
         (nil err) (values nil err)
         w (if (not (settle! w)) (request-animate! scene t)
               (case (request! w {:op :animate : t})
-                (nil why) (values nil (failure w why scene.file (.. "the functions of time (t = " t ")") deadlines.animate))
+                (nil why) (values nil (failure w why scene.file (.. "the functions of time (t = " (scene-mod.time-text t) ")") deadlines.animate))
                 _ (do (set w.in-flight {: scene : t :deadline (+ (filestat.monotonic) deadlines.animate)})
                       true))))))
 
@@ -269,11 +269,11 @@ or nil and a message (the worker was killed when past its deadline of a second).
           (nil :timeout) (if (>= (filestat.monotonic) f.deadline)
                              (do (set w.in-flight nil)
                                  (values nil (failure w :timeout scene.file
-                                                      (.. "the functions of time (t = " f.t ")")
+                                                      (.. "the functions of time (t = " (scene-mod.time-text f.t) ")")
                                                       deadlines.animate)))
                              :pending)
           (nil why) (do (set w.in-flight nil)
-                        (values nil (failure w why scene.file (.. "the functions of time (t = " f.t ")") deadlines.animate)))
+                        (values nil (failure w why scene.file (.. "the functions of time (t = " (scene-mod.time-text f.t) ")") deadlines.animate)))
           value (do (set w.in-flight nil)
                     (if (not= f.scene scene) (values nil "the values are for another scene")
                         (apply-values! scene value)))))))

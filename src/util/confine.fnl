@@ -136,8 +136,10 @@ what could not be, with why."
     (if (not native)
         (table.insert missing "all: no LuaJIT FFI on Linux")
         (do
-          (try (.. "address space " options.memory-mb " MB")
-               (set-limit! :as (* options.memory-mb 1024 1024)))
+          ;; Hard limit too: the worker never needs more. (CPU keeps its hard limit,
+          ;; as the soft one moves up before each request.)
+          (let [bytes (* options.memory-mb 1024 1024)]
+            (try (.. "address space " options.memory-mb " MB") (set-limit! :as bytes bytes)))
           (try (.. "CPU " options.cpu-seconds " s a request") (limit-cpu! options.cpu-seconds))
           (try "no core files" (set-limit! :core 0 0))
           (try "no new files" (set-limit! :nofile 0 0))

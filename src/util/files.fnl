@@ -19,7 +19,14 @@
 
 (local root (module-root))
 
-(fn read-io [path ?max-bytes]
+(local filestat (require :src.util.filestat))
+
+;; Files that io.open would wait on (a FIFO with no writer blocks forever) or that
+;; hold no text: refused before they are opened.
+(local unreadable {:fifo "it is a FIFO (a named pipe), not a file"
+                   :socket "it is a socket, not a file"})
+
+(fn read-opened [path ?max-bytes]
   (case (io.open path :rb)
     f (let [(s err) (f:read (or ?max-bytes :*a))]
         (f:close)
@@ -28,6 +35,11 @@
             err (values nil err)
             ""))
     (nil err) (values nil err)))
+
+(fn read-io [path ?max-bytes]
+  (case (. unreadable (?. (filestat.stat path) :type))
+    why (values nil why)
+    _ (read-opened path ?max-bytes)))
 
 (fn read-project [path]
   "The text of project file `path` (relative to the project root, e.g.
