@@ -6,7 +6,7 @@ vec3 primaryRay(vec2 pixel) {
     return normalize(uCamForward * uProjDist + uCamRight * uv.x + uCamUp * uv.y);
 }
 
-vec3 render(vec2 pixel) {
+vec3 @{render}(vec2 pixel) {
     vec3 ro = vec3(0.0);
     vec3 rd = primaryRay(pixel);
     int steps;

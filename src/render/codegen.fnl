@@ -38,16 +38,29 @@ and forget cached ones."
         (flatten-into out indent line)
         (table.insert out (if (= line "") "" (.. indent line))))))
 
+(fn fill-names [path line slots]
+  ;; `line` of chunk `path` with each `@{NAME}` written as the name `slots` gives it
+  ;; (a string: the function a chunk defines or calls, chosen by the plan).
+  (if (not (line:find "@{" 1 true)) line
+      (pick-values 1 (line:gsub "@{([%w%-]+)}"
+                                (fn [name]
+                                  (let [v (. slots name)]
+                                    (assert (= (type v) :string)
+                                            (.. path ": no name given for @{" name "}"))
+                                    v))))))
+
 (fn fill [path slots]
-  "Lines of chunk `path` with its slots filled from `slots` (name -> lines)."
+  "Lines of chunk `path` with its slots filled from `slots`: a `// @slot NAME` line
+by the lines `slots` gives for NAME, an `@{NAME}` in a line by the name (a string)
+it gives. The chunk's own text declares both; nothing generated is rewritten."
   (let [out []]
     (each [line (: (.. (chunk path) "\n") :gmatch "([^\n]*)\n")]
       (let [(indent name) (line:match "^(%s*)// @slot ([%w%-]+)%s*$")]
         (if name
             (let [lines (. slots name)]
-              (assert lines (.. path ": no lines given for slot " name))
+              (assert (= (type lines) :table) (.. path ": no lines given for slot " name))
               (flatten-into out indent lines))
-            (table.insert out line))))
+            (table.insert out (fill-names path line slots)))))
     ;; A chunk file ends with a newline; do not keep the empty last line.
     (when (= (. out (length out)) "") (table.remove out))
     out))
@@ -462,15 +475,10 @@ only when the plan has it."
                                          [(.. "t = min(t, a.w > 0.0 ? fieldSphereEntry(q0, rd, a) : " box ");")]
                                          spheres? ["t = min(t, fieldSphereEntry(q0, rd, a));"]
                                          [(.. "t = min(t, " box ");")]))})]))
-    (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms plan)
-                                                     :color-terms (color-terms plan)}))
-    (when (not colors?)
-      ;; mapColor is the second function of map.glsl; drop it when the view has no use
-      ;; for colours.
-      (let [lines (. sections (length sections))
-            cut (accumulate [at nil i line (ipairs lines) &until at]
-                  (when (line:find "^// The same minimum") i))]
-        (for [i (length lines) (- cut 1) -1] (table.remove lines i))))
+    (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms plan)}))
+    ;; mapColor only where the view has a use for colours.
+    (when colors?
+      (table.insert sections (fill "shaders/pipeline/map-color.glsl" {:color-terms (color-terms plan)})))
     (when (and (object-normals? plan) (not plan.exact-normals?))
       (table.insert sections (fill "shaders/pipeline/map-object.glsl"
                                    {:object-terms (object-terms plan)
@@ -492,14 +500,13 @@ only when the plan has it."
                                     :out-of-steps (out-of-steps-lines plan)})))
     (when normals?
       (table.insert sections (fill "shaders/pipeline/normal.glsl"
-                                   {:method (let [lines (if plan.exact-normals? []
-                                                            (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl") {}))]
-                                              (if (object-normals? plan)
-                                                  (icollect [_ l (ipairs lines)]
-                                                    (pick-values 1 (-> l
-                                                                       (: :gsub "%f[%w_]map%(" "mapObject(")
-                                                                       (: :gsub "^vec3 calcNormal%(" "vec3 objectNormal("))))
-                                                  lines))}))
+                                   ;; The method differentiates the scene's map, or with
+                                   ;; object normals the nearest object's (mapObject).
+                                   {:method (if plan.exact-normals? []
+                                                (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl")
+                                                      (if (object-normals? plan)
+                                                          {:normal "objectNormal" :map "mapObject"}
+                                                          {:normal "calcNormal" :map "map"})))}))
       (when (and (object-normals? plan) plan.exact-normals?)
         (table.insert sections (fill "shaders/pipeline/normal-exact.glsl"
                                      {:gradients [(gradient-terms plan "n = ")
@@ -540,19 +547,17 @@ only when the plan has it."
         (table.insert sections
                       (icollect [_ line (ipairs (. (parts "shaders/pipeline/adaptive.glsl") :tests))]
                         (if (= line "// @slot constants") constants line)))))
+    ;; With supersampling render() is one sample (renderSample); the entry point's
+    ;; render() averages N x N of them.
     (table.insert sections (fill "shaders/pipeline/render.glsl"
-                                 {:view (view-lines plan)
+                                 {:render (if (> plan.samples 1) "renderSample" "render")
+                                  :view (view-lines plan)
                                   :adaptive (if plan.adaptive?
                                                 ["if (gCentre) {"
                                                  "    gNeedsSamples = needsSamples(rd, t);"
                                                  "}"]
                                                 [])}))
     (when (> plan.samples 1)
-      ;; render() becomes one sample; the entry point's render() averages N x N.
-      (let [lines (. sections (length sections))]
-        (each [i line (ipairs lines)]
-          (when (= line "vec3 render(vec2 pixel) {")
-            (tset lines i "vec3 renderSample(vec2 pixel) {"))))
       (let [grid (parts "shaders/pipeline/supersample.glsl")]
         (table.insert sections
                       [(if plan.adaptive? [] [(.. "const int kSamples = " plan.samples ";")])
