@@ -49,18 +49,24 @@ and forget cached ones."
                                             (.. path ": no name given for @{" name "}"))
                                     v))))))
 
+(fn fill-lines [path lines slots]
+  ;; `lines` (of chunk `path`) with their slots filled: see `fill`.
+  (let [out []]
+    (each [_ line (ipairs lines)]
+      (let [(indent name) (line:match "^(%s*)// @slot ([%w%-]+)%s*$")]
+        (if name
+            (let [given (. slots name)]
+              (assert (= (type given) :table) (.. path ": no lines given for slot " name))
+              (flatten-into out indent given))
+            (table.insert out (fill-names path line slots)))))
+    out))
+
 (fn fill [path slots]
   "Lines of chunk `path` with its slots filled from `slots`: a `// @slot NAME` line
 by the lines `slots` gives for NAME, an `@{NAME}` in a line by the name (a string)
 it gives. The chunk's own text declares both; nothing generated is rewritten."
-  (let [out []]
-    (each [line (: (.. (chunk path) "\n") :gmatch "([^\n]*)\n")]
-      (let [(indent name) (line:match "^(%s*)// @slot ([%w%-]+)%s*$")]
-        (if name
-            (let [lines (. slots name)]
-              (assert (= (type lines) :table) (.. path ": no lines given for slot " name))
-              (flatten-into out indent lines))
-            (table.insert out (fill-names path line slots)))))
+  (let [out (fill-lines path (icollect [line (: (.. (chunk path) "\n") :gmatch "([^\n]*)\n")] line)
+                        slots)]
     ;; A chunk file ends with a newline; do not keep the empty last line.
     (when (= (. out (length out)) "") (table.remove out))
     out))
@@ -377,6 +383,35 @@ comment lines before the first part are the chunk's own documentation)."
       (while (= (. lines (length lines)) "") (table.remove lines)))
     out))
 
+(fn fill-part [path name slots]
+  "Lines of part `name` of chunk `path` (see `parts`), slots filled as `fill` does."
+  (let [lines (. (parts path) name)]
+    (assert lines (.. path ": no part " name))
+    (fill-lines path lines slots)))
+
+(fn march-lines [plan count-step out-of-steps]
+  ;; The primary march (shaders/pipeline/march.glsl) in the form the plan needs:
+  ;; plain or over-relaxed, over the whole scene or bounded (mapFinite over the
+  ;; bounding spheres' span, planes in closed form).
+  (let [path "shaders/pipeline/march.glsl"
+        bounded? (not= nil plan.bounds)
+        part #(fill-part path $1 (or $2 {}))
+        step (if plan.relaxed?
+                 (part :step-relaxed {:count-step count-step
+                                      :relaxed-end (part (if bounded? :relaxed-end-bounded
+                                                             :relaxed-end-unbounded))})
+                 (part (if bounded? :step-plain-bounded :step-plain) {:count-step count-step}))]
+    [(part :march {:march (if bounded? "raymarchTo" "raymarch")
+                   :range (if bounded? "float tMax, " "")
+                   :map (if bounded? "mapFinite" "map")
+                   :first (if bounded? "t == 0.0 && " "")
+                   :start [(part (if bounded? :start-bounded :start-unbounded))
+                           (if plan.relaxed? (part :relaxed-state {:t-prev (if bounded? "t" "0.0")}) [])]
+                   :before-loop (if bounded? (part :before-bounded) [])
+                   : step
+                   :out-of-steps out-of-steps})
+     (if bounded? ["" (part :to-draw-distance)] [])]))
+
 (fn mirror-slots [plan]
   ;; Part-mirror materials add a few lines to the bounce loop; other scenes get none,
   ;; so their shaders stay as they were.
@@ -489,15 +524,16 @@ only when the plan has it."
     ;; Only the glow and heat views read the step count; elsewhere it is not kept.
     (let [count-step (if (or plan.glow? (= view :glow) (= view :heat))
                          ["steps = i + 1;"] [])]
-      (table.insert sections (fill (if (and plan.field (= 0 plan.bounds.count) plan.field.walk?)
-                                       "shaders/pipeline/march-field-spheres.glsl"
-                                       (and plan.field (= 0 plan.bounds.count))
-                                       "shaders/pipeline/march-field-alone.glsl"
-                                       plan.field "shaders/pipeline/march-field.glsl"
-                                       (.. "shaders/pipeline/march" (if plan.relaxed? "-relaxed" "")
-                                           (if plan.bounds "-bounded" "") ".glsl"))
-                                   {:count-step count-step
-                                    :out-of-steps (out-of-steps-lines plan)})))
+      (table.insert sections
+                    (if plan.field
+                        (fill (if (and (= 0 plan.bounds.count) plan.field.walk?)
+                                  "shaders/pipeline/march-field-spheres.glsl"
+                                  (= 0 plan.bounds.count)
+                                  "shaders/pipeline/march-field-alone.glsl"
+                                  "shaders/pipeline/march-field.glsl")
+                              {:count-step count-step
+                               :out-of-steps (out-of-steps-lines plan)})
+                        (march-lines plan count-step (out-of-steps-lines plan)))))
     (when normals?
       (table.insert sections (fill "shaders/pipeline/normal.glsl"
                                    ;; The method differentiates the scene's map, or with
