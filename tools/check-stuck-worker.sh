@@ -25,6 +25,24 @@ unset SDL_VIDEODRIVER
 export RAYMARCHER_SCENE_WORKER="luajit $REPO/tools/fnl.lua $REPO/test/fixtures/worker/fake.fnl hang-animate"
 xvfb-run -a -s "-screen 0 1280x720x24" bash -c '
   OUT=$1
+  # escape PID WINDOW WHEN: press escape in the window, wait up to 10 s for the
+  # player to quit, say how long it took; fails when it did not quit or exited
+  # other than 0.
+  escape() {
+    local pid=$1 win=$2 when=$3 pressed rc
+    pressed=$(date +%s.%N)
+    timeout 10 xdotool windowactivate --sync "$win" key Escape 2>/dev/null || timeout 10 xdotool key Escape
+    for i in $(seq 1 200); do
+      kill -0 "$pid" 2>/dev/null || break
+      sleep 0.05
+    done
+    if kill -0 "$pid" 2>/dev/null; then echo "still running 10 s after escape$when"; kill -9 "$pid"; return 1; fi
+    echo "quit $(echo "$(date +%s.%N) - $pressed" | bc) s after escape$when"
+    wait "$pid"; rc=$?
+    [ $rc -eq 0 ] || { echo "the player exited $rc after escape$when"; return 1; }
+  }
+  # No message of an earlier run may be read as one of this run.
+  rm -f "$OUT/stdout" "$OUT/stderr" "$OUT/stdout-load" "$OUT/stderr-load"
   love . "$OUT/spin.fnl" >"$OUT/stdout" 2>"$OUT/stderr" &
   pid=$!
   start=$(date +%s.%N)
@@ -40,15 +58,7 @@ xvfb-run -a -s "-screen 0 1280x720x24" bash -c '
   # What a person sees while paused (convert: imagemagick, when installed).
   command -v xwd >/dev/null && command -v convert >/dev/null &&
     xwd -root -silent | convert xwd:- "$OUT/paused.png" 2>/dev/null
-  pressed=$(date +%s.%N)
-  timeout 10 xdotool windowactivate --sync "$win" key Escape 2>/dev/null || timeout 10 xdotool key Escape
-  for i in $(seq 1 200); do
-    kill -0 $pid 2>/dev/null || break
-    sleep 0.05
-  done
-  if kill -0 $pid 2>/dev/null; then echo "still running 10 s after escape"; kill -9 $pid; exit 1; fi
-  echo "quit $(echo "$(date +%s.%N) - $pressed" | bc) s after escape"
-  wait $pid; rc=$?; [ $rc -eq 0 ] || { echo "the player exited $rc"; exit 1; }
+  escape "$pid" "$win" "" || exit 1
   grep "the animation is paused" "$OUT/stderr" | head -1
   [ -n "$paused" ] || exit 1
   # A worker that never answers the load: escape while the player waits for it.
@@ -56,13 +66,5 @@ xvfb-run -a -s "-screen 0 1280x720x24" bash -c '
   pid=$!
   win=$(timeout 20 xdotool search --sync --name "Fennel raymarcher" 2>/dev/null | head -1)
   sleep 1
-  pressed=$(date +%s.%N)
-  timeout 10 xdotool windowactivate --sync "$win" key Escape 2>/dev/null || timeout 10 xdotool key Escape
-  for i in $(seq 1 200); do
-    kill -0 $pid 2>/dev/null || break
-    sleep 0.05
-  done
-  if kill -0 $pid 2>/dev/null; then echo "still running 10 s after escape during a load"; kill -9 $pid; exit 1; fi
-  echo "quit $(echo "$(date +%s.%N) - $pressed" | bc) s after escape during a load"
-  wait $pid; rc=$?; [ $rc -eq 0 ] || { echo "the player exited $rc after escape during a load"; exit 1; }
+  escape "$pid" "$win" " during a load" || exit 1
 ' _ "$OUT"
