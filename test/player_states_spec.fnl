@@ -43,6 +43,6 @@
               (let [(code out) (run "OUT=test/out/check-stuck-worker bash tools/check-stuck-worker.sh")]
                 (print out)
                 (assert.are.equal 0 code out)
-                (assert.truthy (out:find "took longer than 1 s (a library call that never returns?); the scene worker was stopped (the animation is paused; space plays)" 1 true) out)
+                (assert.truthy (out:find "took more than 1 s of CPU (a library call that never returns?); the scene worker was stopped (the animation is paused; space plays)" 1 true) out)
                 (assert.truthy (out:match "quit [%d.]+ s after escape\n") out)
                 (assert.truthy (out:match "quit [%d.]+ s after escape during a load") out)))))))))

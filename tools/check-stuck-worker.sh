@@ -25,6 +25,8 @@ unset SDL_VIDEODRIVER
 export RAYMARCHER_SCENE_WORKER="luajit $REPO/tools/fnl.lua $REPO/test/fixtures/worker/fake.fnl hang-animate"
 xvfb-run -a -s "-screen 0 1280x720x24" bash -c '
   OUT=$1
+  # Whatever happens, no player is left running after the check.
+  trap "kill \$(jobs -p) 2>/dev/null" EXIT
   # escape PID WINDOW WHEN: press escape in the window, wait up to 10 s for the
   # player to quit, say how long it took; fails when it did not quit or exited
   # other than 0.

@@ -1,7 +1,7 @@
 ;; Scene files are evaluated in a worker process (src/scene/worker-main.fnl), never in
 ;; the app's: parsing, compiling and running a file and its functions of time. The
-;; worker runs with limits the kernel enforces (src/util/confine.fnl) and a wall-clock
-;; deadline here, past which it is killed: a scene stuck in one C call, or one that
+;; worker runs with limits the kernel enforces (src/util/confine.fnl) and deadlines
+;; here, in its CPU time, past which it is killed: a scene stuck in one C call, or one that
 ;; allocates past the worker's address space, ends the worker, not the app. The next
 ;; request starts a new one. What comes back is plain data, read by a strict parser
 ;; (src/util/wire.fnl), never by `load`.
@@ -19,11 +19,17 @@
 (local filestat (require :src.util.filestat))
 (local scene-mod (require :src.scene.load))
 
-;; Wall-clock seconds before the worker is killed. A start compiles the loader (0.3 s
+;; Seconds of the worker's CPU before it is killed. A start compiles the loader (0.3 s
 ;; under LÖVE here); a load of 200,000 objects takes about 2 s (the sandbox stops a
 ;; scene's own code at 20 million steps, about a second); one frame of functions of
 ;; time is held to 1 million steps (about 11 ms).
 (local deadlines {:start 10 :load 5 :animate 1})
+;; The deadlines count the worker's CPU time (from /proc), not the wall clock: on a
+;; machine shared with other work a load may wait for a core without being stuck,
+;; and a call that never returns spends CPU all the same. A worker that spends
+;; neither and answers nothing is stopped after this many times its deadline in
+;; wall-clock time.
+(local wall-factor 6)
 
 ;; The request that loaded each scene, to load it again in a new worker.
 (local requests (setmetatable {} {:__mode :k}))
@@ -71,21 +77,36 @@ Another is set with `set-command!` or the environment's RAYMARCHER_SCENE_WORKER
 (fn request! [w value]
   (let [(data err) (wire.encode value)]
     (if (not data) (values nil err)
-        (process.send! w.child data (+ (filestat.monotonic) deadlines.load)))))
+        (process.send! w.child data (+ (filestat.monotonic) (* wall-factor deadlines.load))))))
 
-(fn receive-waiting! [w deadline]
-  ;; process.receive!, calling state.on-wait every 50 ms while it waits: when that
-  ;; returns true (the user asked to quit), nil and :cancelled.
-  (if (not state.on-wait) (process.receive! w.child deadline)
-      (do (var result nil)
-          (while (= nil result)
-            (let [slice (math.min deadline (+ (filestat.monotonic) 0.05))
-                  (data why) (process.receive! w.child slice)]
-              (if data (set result [data])
-                  (and (= why :timeout) (< slice deadline))
-                  (when (state.on-wait) (set result [nil :cancelled]))
-                  (set result [nil why]))))
-          (values (. result 1) (. result 2)))))
+(fn budget [w seconds]
+  ;; What one request may spend: `seconds` of the worker's CPU from now, and
+  ;; wall-factor times that on the clock.
+  {: seconds :cpu0 (or (process.cpu-seconds w.child) 0)
+   :wall-end (+ (filestat.monotonic) (* wall-factor seconds))})
+
+(fn spent [w b]
+  ;; :timeout when the request has spent its CPU, :stalled its wall-clock time.
+  (if (> (- (or (process.cpu-seconds w.child) b.cpu0) b.cpu0) b.seconds) :timeout
+      (> (filestat.monotonic) b.wall-end) :stalled))
+
+(fn receive-waiting! [w b ?until]
+  ;; The next frame from the worker, looking every 50 ms whether the request has
+  ;; spent its budget `b` (nil and :timeout or :stalled). With `?until` (a time on
+  ;; the monotonic clock), nil and :waiting once it passes; without, state.on-wait
+  ;; is called every 50 ms, and when it returns true (the user asked to quit), nil
+  ;; and :cancelled.
+  (var result nil)
+  (while (= nil result)
+    (let [slice (math.min (+ (filestat.monotonic) 0.05) b.wall-end (or ?until math.huge))
+          (data why) (process.receive! w.child slice)]
+      (if data (set result [data])
+          (not= why :timeout) (set result [nil why])
+          (let [over (spent w b)]
+            (if over (set result [nil over])
+                (and ?until (>= (filestat.monotonic) ?until)) (set result [nil :waiting])
+                (and (not ?until) state.on-wait (state.on-wait)) (set result [nil :cancelled]))))))
+  (values (. result 1) (. result 2)))
 
 (fn set-waiting! [f]
   "Call `f` every 50 ms while a load waits for the worker (the player handles its
@@ -93,10 +114,10 @@ events there); when it returns true the load is given up and the worker killed.
 nil: wait without calling anything."
   (set state.on-wait f))
 
-(fn answer [w deadline]
-  ;; The worker's next answer: a table, or nil and :timeout, :closed, :cancelled or
-  ;; a message.
-  (case (receive-waiting! w deadline)
+(fn answer [w b ?until]
+  ;; The worker's next answer within budget `b` (see receive-waiting!): a table, or
+  ;; nil and :timeout, :stalled, :waiting, :closed, :cancelled or a message.
+  (case (receive-waiting! w b ?until)
     data (case (wire.decode data)
            (nil err) (values nil err)
            value (if (= (type value) :table) value
@@ -111,15 +132,15 @@ nil: wait without calling anything."
         (case (process.spawn argv)
           (nil err) (values nil err)
           child (let [w {: child}]
-                  (case (answer w (+ (filestat.monotonic) deadlines.start))
+                  (case (answer w (budget w deadlines.start))
                     (where info info.ready) (do (set w.info info) (set state.worker w) w)
                     (_ why) (do (process.kill! child)
                                 (values nil (.. "the scene worker did not start ("
                                                 (table.concat argv " ") "): "
-                                                (if (= why :timeout) (.. "no answer within " deadlines.start " s")
-                                                    (= why :cancelled)
-                       (.. what " was cancelled; the scene worker was stopped")
-                       (= why :closed) "it ended at once"
+                                                (if (= why :timeout) (.. "no answer after " deadlines.start " s of CPU")
+                                                    (= why :stalled) (.. "no answer within " (* wall-factor deadlines.start) " s")
+                                                    (= why :cancelled) "cancelled"
+                                                    (= why :closed) "it ended at once"
                                                     (tostring why)))))))))))
 
 (fn info []
@@ -134,7 +155,9 @@ nil when none is running."
   (let [limits (?. w.info :limits)]
     (scene-mod.safe-message
      (.. file ": " (if (= why :timeout)
-                       (.. what " took longer than " seconds " s (a library call that never returns?); the scene worker was stopped")
+                       (.. what " took more than " seconds " s of CPU (a library call that never returns?); the scene worker was stopped")
+                       (= why :stalled)
+                       (.. what " got no answer within " (* wall-factor seconds) " s; the scene worker was stopped")
                        (= why :cancelled)
                        (.. what " was cancelled; the scene worker was stopped")
                        (= why :closed)
@@ -148,7 +171,7 @@ nil when none is running."
   ;; the worker had to be killed.
   (case w.in-flight
     f (do (set w.in-flight nil)
-          (case (answer w f.deadline)
+          (case (answer w f.budget)
             (nil why) (do (failure w why "" "" 0) nil)
             _ true))
     _ true))
@@ -188,7 +211,7 @@ a message. A scene the worker had to stop is refused with a message that says wh
                 (do (set w.scene nil)
                     (case (request! w request)
                       (nil why) (values nil (failure w why file "sending the scene" deadlines.load))
-                      _ (case (answer w (+ (filestat.monotonic) deadlines.load))
+                      _ (case (answer w (budget w deadlines.load))
                           (nil why) (values nil (failure w why file "loading the scene" deadlines.load))
                           value (if (not (valid-answer? value))
                                     (values nil (failure w "the answer is not a scene" file "" 0))
@@ -223,7 +246,7 @@ it in the worker (see load-source)."
                 (values nil (.. scene.file ": the scene worker no longer has this scene's functions of time"))
                 (case (request! w req)
                   (nil why) (values nil (failure w why scene.file "loading the scene again" deadlines.load))
-                  _ (case (answer w (+ (filestat.monotonic) deadlines.load))
+                  _ (case (answer w (budget w deadlines.load))
                       (nil why) (values nil (failure w why scene.file "loading the scene again" deadlines.load))
                       {:ok true} (do (set w.scene scene) w)
                       {: message} (values nil message)
@@ -250,28 +273,23 @@ process is animated here and now.)"
         w (if (not (settle! w)) (request-animate! scene t)
               (case (request! w {:op :animate : t})
                 (nil why) (values nil (failure w why scene.file (.. "the functions of time (t = " (scene-mod.time-text t) ")") deadlines.animate))
-                _ (do (set w.in-flight {: scene : t :deadline (+ (filestat.monotonic) deadlines.animate)})
+                _ (do (set w.in-flight {: scene : t :budget (budget w deadlines.animate)})
                       true))))))
 
 (fn poll-animate! [scene ?wait]
   "The answer to request-animate!, waiting at most `?wait` seconds (default 0): true
 once `scene` has its values for that time, :pending while the worker is still at it,
-or nil and a message (the worker was killed when past its deadline of a second)."
+or nil and a message (the worker was killed when past its deadline: a second of
+its CPU)."
   (case (?. state.worker :in-flight)
     (where nil (= (?. state.local 1) scene))
     (let [[_ ok? err] state.local]
       (set state.local nil)
       (values ok? err))
     nil (values nil "no values were asked for")
-    f (let [w state.worker
-            now (filestat.monotonic)]
-        (case (answer w (math.min f.deadline (+ now (or ?wait 0))))
-          (nil :timeout) (if (>= (filestat.monotonic) f.deadline)
-                             (do (set w.in-flight nil)
-                                 (values nil (failure w :timeout scene.file
-                                                      (.. "the functions of time (t = " (scene-mod.time-text f.t) ")")
-                                                      deadlines.animate)))
-                             :pending)
+    f (let [w state.worker]
+        (case (answer w f.budget (+ (filestat.monotonic) (or ?wait 0)))
+          (nil :waiting) :pending
           (nil why) (do (set w.in-flight nil)
                         (values nil (failure w why scene.file (.. "the functions of time (t = " (scene-mod.time-text f.t) ")") deadlines.animate)))
           value (do (set w.in-flight nil)
@@ -280,14 +298,12 @@ or nil and a message (the worker was killed when past its deadline of a second).
 
 (fn animate [scene t]
   "Set `scene`'s functions of time to their values at `t` (waiting for the worker, at
-most a second): true, or nil and a message. A scene loaded in this process (by
+most a second of its CPU): true, or nil and a message. A scene loaded in this process (by
 scene-mod) is animated here, as scene-mod.animate does."
   (if (not (own? scene)) (scene-mod.animate scene t)
       (case (request-animate! scene t)
         (nil err) (values nil err)
-        _ (let [(done err) (poll-animate! scene deadlines.animate)]
-            (if (= done :pending) (poll-animate! scene deadlines.animate)
-                (values done err))))))
+        _ (poll-animate! scene (* wall-factor deadlines.animate)))))
 
 {: load-source : load-file : animate : request-animate! : poll-animate! : kill! : stop!
  : info : set-command! : set-waiting! : command : deadlines}

@@ -27,7 +27,8 @@
    "int poll(rm_pollfd_t *fds, unsigned long n, int timeout);"
    "extern char **environ;"
    "char *strerror(int errnum);"
-   "long readlink(const char *path, char *buf, unsigned long size);"])
+   "long readlink(const char *path, char *buf, unsigned long size);"
+   "long sysconf(int name);"])
 
 (local native
   (when (and ffi (= ffi.os :Linux))
@@ -180,6 +181,25 @@ and :timeout (nothing whole yet: call again later, the part read is kept), :clos
         frame frame
         (values nil why))))
 
+(local clock-ticks
+  ;; Units of the CPU times in /proc/PID/stat (sysconf(_SC_CLK_TCK), 100 on Linux).
+  (let [(ok? n) (pcall #(tonumber (native.sysconf 2)))]
+    (if (and ok? n (> n 0)) n 100)))
+
+(fn cpu-seconds [child]
+  "Seconds of CPU `child` has used (user and system, from /proc), or nil when it
+cannot be read (the child has ended)."
+  (case (io.open (.. "/proc/" child.pid "/stat") :rb)
+    f (let [text (f:read "*a")
+            _ (f:close)
+            ;; After the command name in parentheses (which may hold anything):
+            ;; state is field 3, utime 14, stime 15.
+            fields (icollect [w (: (or (text:match "%) (.*)$") "") :gmatch "%S+")] w)
+            user (tonumber (. fields 12))
+            system (tonumber (. fields 13))]
+        (when (and user system) (/ (+ user system) clock-ticks)))
+    _ nil))
+
 (fn pending? [child]
   "Whether `child` has sent something not read yet (without waiting)."
   (or (> child.have 0)
@@ -214,5 +234,5 @@ it when it has not ended within `?grace` seconds (default 0.5)."
       (native.poll nil 0 10)))
   (kill! child))
 
-{: supported? : self-exe : spawn : send! : receive! : pending? : exited? : kill! : close!
+{: supported? : self-exe : cpu-seconds : spawn : send! : receive! : pending? : exited? : kill! : close!
  : max-frame}
