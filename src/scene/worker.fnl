@@ -69,11 +69,6 @@ Another is set with `set-command!` or the environment's RAYMARCHER_SCENE_WORKER
   (case state.worker
     w (do (process.kill! w.child) (set state.worker nil))))
 
-(fn stop! []
-  "Let the worker end: its input closes and it quits (killed after half a second)."
-  (case state.worker
-    w (do (process.close! w.child 0.5) (set state.worker nil))))
-
 (fn request! [w value]
   (let [(data err) (wire.encode value)]
     (if (not data) (values nil err)
@@ -305,5 +300,5 @@ scene-mod) is animated here, as scene-mod.animate does."
         (nil err) (values nil err)
         _ (poll-animate! scene (* wall-factor deadlines.animate)))))
 
-{: load-source : load-file : animate : request-animate! : poll-animate! : kill! : stop!
+{: load-source : load-file : animate : request-animate! : poll-animate! : kill!
  : info : set-command! : set-waiting! : command : deadlines}

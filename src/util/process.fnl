@@ -46,7 +46,6 @@
 (local msg-nosignal 0x4000)
 (local pollin 0x1)
 (local pollout 0x4)
-(local wnohang 1)
 (local sigkill 9)
 (local eintr 4)
 (local eagain 11)
@@ -200,19 +199,6 @@ cannot be read (the child has ended)."
         (when (and user system) (/ (+ user system) clock-ticks)))
     _ nil))
 
-(fn pending? [child]
-  "Whether `child` has sent something not read yet (without waiting)."
-  (or (> child.have 0)
-      (wait-for child pollin (filestat.monotonic))))
-
-(fn exited? [child]
-  "Whether `child` has ended (reaping it when it has)."
-  (or child.reaped?
-      (let [status (ffi.new "int[1]")
-            r (native.waitpid child.pid status wnohang)]
-        (when (not= r 0) (set child.reaped? true))
-        (not= r 0))))
-
 (fn kill! [child]
   "End `child` at once (SIGKILL), wait for it and close its socket."
   (when (not child.reaped?)
@@ -223,16 +209,5 @@ cannot be read (the child has ended)."
     (native.close child.fd)
     (set child.fd nil)))
 
-(fn close! [child ?grace]
-  "Close the socket to `child` (it reads the end of its input and should quit); kill
-it when it has not ended within `?grace` seconds (default 0.5)."
-  (when child.fd
-    (native.close child.fd)
-    (set child.fd nil))
-  (let [deadline (+ (filestat.monotonic) (or ?grace 0.5))]
-    (while (and (not (exited? child)) (< (filestat.monotonic) deadline))
-      (native.poll nil 0 10)))
-  (kill! child))
-
-{: supported? : self-exe : cpu-seconds : spawn : send! : receive! : pending? : exited? : kill! : close!
+{: supported? : self-exe : cpu-seconds : spawn : send! : receive! : kill!
  : max-frame}
