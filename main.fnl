@@ -86,13 +86,7 @@
     (if (not scene) (fail! err)
         (case (frame.plan-for scene)
           (nil perr) (fail! perr)
-          plan (do (each [_ g (ipairs plan.kinds)]
-                     (io.write (.. g.kind " x" g.count "  exact  (kind-grouped: "
-                                   (table.concat (icollect [_ ob (ipairs g.objects)]
-                                                   (.. "objects[" ob.index "]")) " ")
-                                   ")\n")))
-                   (when plan.tape
-                     (each [_ l (ipairs (lower.describe plan.tape))] (io.write l "\n")))
+          plan (do (each [_ l (ipairs (lower.describe plan.tape))] (io.write l "\n"))
                    (love.event.quit 0))))))
 
 (fn export-shader [o]

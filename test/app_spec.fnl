@@ -98,7 +98,7 @@
       (fn []
         (let [(code out) (run "--tree scenes/twisted-tower.fnl")]
           (assert.are.equal 0 code out)
-          (assert.truthy (out:find "plane x1  exact  (kind-grouped: objects[1])" 1 true) out)
+          (assert.truthy (out:find "translate (shorthand)  exact  unbounded  objects[1]\n  plane  exact  unbounded  objects[1]" 1 true) out)
           (assert.truthy (out:find "twist  bound, Lipschitz" 1 true) out)
           (assert.truthy (out:find "objects[2].children[2]" 1 true) out))))
 

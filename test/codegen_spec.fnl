@@ -60,7 +60,7 @@
       (fn []
         (let [a "{:objects [{:kind :sphere :pos [1 2 3]} {:kind :box :size [1 2 3]}]
                   :render {:reflections 2}}"
-              b "{:objects [{:kind :box :pos [9 9 9] :color [0 0 1]} {:kind :sphere :radius 4}]
+              b "{:objects [{:kind :sphere :radius 4 :pos [9 9 9] :color [0 0 1]} {:kind :box}]
                   :light {:pos [0 0 100]} :render {:reflections 7 :epsilon 0.5}}"]
           (assert.are.equal (shader-of a) (shader-of b))
           (assert.are.equal (shader-of a {:view :heat} :core) (shader-of b {:view :heat} :core)))))
@@ -82,20 +82,17 @@
     (it "declares the seed's uniforms with the plan's array sizes"
       (fn []
         (let [text (codegen.shader seed-plan)]
-          (each [_ line (ipairs ["uniform vec4 uSphere[2];" "uniform vec3 uSphereColor[2];"
-                                 "uniform vec3 uBoxCenter[3];" "uniform vec3 uBoxHalfSize[3];"
-                                 "uniform vec3 uBoxColor[3];" "uniform float uPlaneHeight[1];"
-                                 "uniform vec3 uPlaneColor[1];" "uniform int uReflections;"
-                                 ;; A few objects of a kind are written out one by one,
-                                 ;; reading the copies made once per pixel.
-                                 "    d = min(d, sdSphere(p - gSphere[1].xyz, gSphere[1].w));"
-                                 "    d = min(d, sdBox(p - gBoxCenter[2], gBoxHalfSize[2]));"
-                                 "    d = min(d, sdPlane(p, vec3(0.0, 0.0, 1.0), gPlaneHeight[0]));"
-                                 "    if (di < d) { d = di; color = gBoxColor[2]; }"])]
+          (each [_ line (ipairs ["uniform vec4 uTape[16];" "uniform int uReflections;"
+                                 ;; A few objects are written out one by one, reading the
+                                 ;; copies made once per pixel.
+                                 "    // objects[5]: sphere\n    {\n        vec3 p1 = opTranslate(p, gTape[11].xyz);\n        float d2 = sdSphere(p1, gTape[11].w);\n        d = min(d, d2);\n    }"
+                                 "        float d2 = sdBox(p1, gTape[7].xyz);"
+                                 "        float d2 = sdPlane(p, gTape[14].xyz, gTape[14].w);"
+                                 "        vec4 m3 = gTape[8];\n        if (d2 < d) { d = d2; color = m3.rgb; }"])]
             (assert-has text line))
           (assert-lacks text "for (int i = 0; i < 2;")
           (assert-lacks text "for (int i = 0; i < 3;")
-          (assert-lacks text "uCountSphere")
+          (assert-lacks text "uInstances")
           (assert-lacks text "uniform bool uShadows;"))))
 
     (it "leaves out the kinds a scene does not use"
@@ -103,17 +100,17 @@
         (let [text (shader-of "{:objects [{:kind :sphere} {:kind :sphere}]}")]
           (assert-has text "sdSphere")
           (assert-lacks text "sdBox")
-          (assert-lacks text "sdPlane")
-          (assert-lacks text "uBox")
-          (assert-lacks text "uPlane"))
+          (assert-lacks text "sdPlane"))
         (let [text (shader-of "{:objects [{:kind :plane}]}")]
           (assert-lacks text "sdSphere")
           (assert-lacks text "sdBox")
-          (assert-has text "sdPlane(p, vec3(0.0, 0.0, 1.0), gPlaneHeight[0])"))
-        ;; More than eight of a kind: a loop over the arrays.
-        (let [text (shader-of (.. "{:objects [" (string.rep "{:kind :sphere} " 9) "]}"))]
-          (assert-has text "for (int i = 0; i < 9; i++) {")
-          (assert-has text "        d = min(d, sdSphere(p - uSphere[i].xyz, uSphere[i].w));"))))
+          ;; An unplaced plane reads the shader's point: its height takes the camera
+          ;; off (see lower.fnl's hand-in).
+          (assert-has text "sdPlane(p, gTape[1].xyz, gTape[1].w)"))
+        ;; Nine or more of one structure: a loop over their rows.
+        (let [text (shader-of (.. "{:objects [" (string.rep "{:kind :sphere :pos [1 0 0]} " 9) "]}"))]
+          (assert-has text "    for (int i = 0; i < 9; i++) {")
+          (assert-has text "            float d2 = sdSphere(p1, uInstances[i * 2].w);"))))
 
     (it "has no reflection code when reflections are 0"
       (fn []
@@ -145,22 +142,17 @@
     (it "switches features by uniforms in the uber shader"
       (fn []
         (let [text (codegen.shader (assert (plan.scene->plan seed {:uber? true})))]
-          (each [_ line (ipairs ["uniform int uCountSphere;" "uniform int uCountBox;"
-                                 "uniform int uCountPlane;" "uniform bool uShadows;"
+          (each [_ line (ipairs ["uniform bool uShadows;"
                                  "uniform bool uGlow;" "uniform int uReflections;"
-                                 "if (gShadows) {" "if (gGlow) {"
-                                 "for (int i = 0; i < gCountSphere; i++) {"
-                                 "for (int i = 0; i < gCountPlane; i++) {"
-                                 "// sphere: 2 slots"])]
-            (assert-has text line))
-          (assert-lacks text "const int i"))))
+                                 "if (gShadows) {" "if (gGlow) {"])]
+            (assert-has text line)))))
 
     (it "reads each uniform once per pixel, into a global copy, but arrays indexed in a loop"
       (fn []
         (let [text (shader-of "{:objects [{:kind :sphere} {:kind :sphere :pos [1 0 0]} {:kind :box}]}" nil :core)
-              many (shader-of (.. "{:objects [" (string.rep "{:kind :sphere} " 9) "]}") nil :core)]
-          (each [_ line (ipairs ["vec4 gSphere[2];" "float gDrawDist;" "void loadUniforms() {"
-                                 "    gSphere[0] = (uSphere[0] + nothing);" "    gSphere[1] = (uSphere[1] + nothing);"
+              many (shader-of (.. "{:objects [" (string.rep "{:kind :sphere :pos [1 0 0]} " 9) "]}") nil :core)]
+          (each [_ line (ipairs ["vec4 gTape[7];" "float gDrawDist;" "void loadUniforms() {"
+                                 "    gTape[0] = (uTape[0] + nothing);" "    gTape[6] = (uTape[6] + nothing);"
                                  "    gDrawDist = (uDrawDist + nothing);" "    gMaxSteps = min(uMaxSteps, opaque);"
                                  "    float nothing = 0.0 / gl_FragCoord.x;"
                                  "void main() {\n    loadUniforms();"])]
@@ -171,16 +163,16 @@
             ;; (and the bounding spheres, read once per ray in a loop).
             (each [name (body:gmatch "%f[%w_](u%u[%w_]*)")]
               (assert.is_true (or (= name "uResolution") (= name "uBounds")) name)))
-          ;; Nine spheres are a loop over uSphere[i]: that array stays a uniform.
-          (assert-has many "        d = min(d, sdSphere(p - uSphere[i].xyz, uSphere[i].w));")
-          (assert-lacks many "gSphere"))))
+          ;; Nine spheres are a loop over uInstances: that array stays a uniform.
+          (assert-has many "            float d2 = sdSphere(p1, uInstances[i * 2].w);")
+          (assert-lacks many "gInstances"))))
 
     (it "hands LÖVE's pixels the copies in flat varyings a vertex stage fills, as many as fit"
       (fn []
         (let [text (codegen.shader seed-plan :love)
               plain (codegen.shader seed-plan :love-uniforms)
               many (assert (plan.scene->plan
-                            (load (.. "{:objects [" (string.rep "{:kind :box} " 8) "]}"))))
+                            (load (.. "{:objects [" (string.rep "{:kind :box :pos [1 0 0]} " 8) "]}"))))
               many-text (codegen.shader many :love)]
           ;; The seed: every copy fits (20 vec4s), each read from its varying.
           (assert-has text "#ifdef VERTEX")
@@ -196,25 +188,25 @@
           ;; Too many for the varyings: the first 28 vec4s, the rest from uniforms.
           (assert-has many-text "flat out vec4 vLoad27;")
           (assert-lacks many-text "vLoad28")
-          (assert-has many-text "(uBoxColor[7] + nothing)")
+          (assert-has many-text "(uTape[23] + nothing)")
           ;; :love-uniforms reads the uniforms, with no vertex stage.
           (assert-lacks plain "vLoad")
           (assert-lacks plain "#ifdef VERTEX")
           (assert-has plain "    gCamForward = (uCamForward + nothing);"))))
 
-    (it "gives every grouped object its exact normal when no tree needs differences"
+    (it "gives every leaf its exact normal when no object needs differences"
       (fn []
         (let [text (shader-of "{:objects [{:kind :sphere} {:kind :box :pos [3 0 0]} {:kind :plane}]}" nil :core)
               trees (shader-of "{:objects [{:kind :sphere} {:kind :plane} {:kind :torus :radius 1 :thickness 0.2 :pos [4 0 0]}]}" nil :core)
               scene-normals (shader-of "{:render {:normals-of :scene} :objects [{:kind :sphere} {:kind :box}]}" nil :core)]
           (assert-has text "vec3 gradBox(vec3 p, vec3 h) {")
-          (assert-has text "    if (gObject == 0) n = gradSphere(p - gSphere[0].xyz, gSphere[0].w);")
-          (assert-has text "    if (gObject == 1) n = gradBox(p - gBoxCenter[0], gBoxHalfSize[0]);")
-          (assert-has text "    if (gObject == 2) n = gradPlane(p, vec3(0.0, 0.0, 1.0), gPlaneHeight[0]);")
+          (assert-has text "    if (gObject == 0) {  // objects[1]: sphere\n        vec3 p1 = opTranslate(p, gTape[0].xyz);\n        n = gradSphere(p1, gTape[0].w);\n    }")
+          (assert-has text "    if (gObject == 1) {  // objects[2]: box\n        vec3 p1 = opTranslate(p, gTape[2].xyz);\n        n = gradBox(p1, gTape[3].xyz);\n    }")
+          (assert-has text "    if (gObject == 2) {  // objects[3]: plane\n        n = gradPlane(p, gTape[6].xyz, gTape[6].w);\n    }")
           (assert-lacks text "mapObject")
           (assert-lacks text "mapOthers")
-          ;; A tree takes differences and the crease; the grouped objects return first.
-          (assert-has trees "    if (gObject == 0) return gradSphere(p - gSphere[0].xyz, gSphere[0].w);")
+          ;; A tree takes differences and the crease; the leaves return first.
+          (assert-has trees "        return gradSphere(p1, gTape[0].w);")
           (assert-has trees "float d = mapOthers(p + s * e);")
           ;; One call of each in the crease normal: loops from gZero, not unrolled.
           (let [normal (trees:match "vec3 objectNormal.-\n}.-vec3 calcNormal.-\n}")]

@@ -87,11 +87,12 @@
           (let [p (assert (plan.scene->plan many))]
             (assert.are.equal field.min-objects p.field.count)
             (assert.is_truthy (p.key:find "field" 1 true))
-            ;; Only the floor is left to the uniform arrays.
-            (assert.are.same [:plane] (icollect [_ k (ipairs p.kinds)] k.kind))
-            ;; plan.objects: the kinds', then the field's, in scene order.
-            (assert.are.equal (. many.objects 1) (. p.objects 1))
-            (assert.are.equal (. many.objects 2) (. p.objects 2))))
+            ;; Only the floor is left to the tape.
+            (assert.are.same [:plane] (icollect [_ o (ipairs p.tape.objects)] (. o.info.children 1 :kind)))
+            ;; plan.objects: the field's, in scene order, then the tape's.
+            (assert.are.equal (. many.objects 2) (. p.objects 1))
+            (assert.are.equal (. many.objects 3) (. p.objects 2))
+            (assert.are.equal (. many.objects 1) (. p.objects (+ 1 field.min-objects)))))
         ;; Trees and planet-sized spheres stay out of a field.
         (assert.is_false (field.member? {:kind :sphere :pos [0 0 0] :radius 5000}))
         ;; A giant box (a floor made of a box) stays in the uniform arrays: in the
@@ -283,8 +284,9 @@
           ;; Nothing but the field and the floor: the lean walk.
           (assert.is_truthy (text:find "nothing is sphere-traced" 1 true))
           ;; Every object's normal in closed form: the plane's, the field's.
-          (assert.is_truthy (text:find "if (gObject == 0) n = gradPlane(" 1 true))
-          (assert.is_truthy (text:find "if (gObject >= 1 && gObject < 101) n = fieldNormal(p, gObject - 1);" 1 true))
+          (assert.is_truthy (text:find "if (gObject >= 0 && gObject < 100) n = fieldNormal(p, gObject);" 1 true))
+          (assert.is_truthy (text:find "if (gObject == 100) {  // objects[1]: plane" 1 true))
+          (assert.is_truthy (text:find "n = gradPlane(p, " 1 true))
           (assert.is_nil (text:find "mapObject" 1 true))
           (assert.is_truthy (text:find "const bool kFieldOthers = false;" 1 true))
           (let [(out err) (export.shadertoy s p)]

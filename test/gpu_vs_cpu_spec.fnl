@@ -145,11 +145,11 @@
                         st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "seed, broken -min" st))
                     (assert.is_false (passes? st budget)))
-                  ;; A sign flipped in the boxes' offset: sdBox(p - c, h) becomes
-                  ;; sdBox(p + c, h) in every call (three boxes, in map and mapColor).
+                  ;; A sign flipped in the translation every object is placed by:
+                  ;; opTranslate(p, c) gives p + c, and each object moves to -c.
                   (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
-                                      "sdBox%(p %- gBoxCenter" "sdBox(p + gBoxCenter")
-                        _ (assert.are.equal 6 n)
+                                      "return p %- t;" "return p + t;")
+                        _ (assert.are.equal 1 n)
                         st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "seed, broken p+c" st))
                     (assert.is_false (passes? st budget))))))
@@ -161,7 +161,7 @@
                 (let [prepared (prepared-for "scenes/flat.fnl" :shaded)
                       budget (budget-for :flat :shaded)
                       shader (codegen.shader prepared.plan :core)]
-                  (assert.is_truthy (shader:find "n = gradBox(p - gBoxCenter[0]" 1 true))
+                  (assert.is_truthy (shader:find "n = gradBox(p1, " 1 true))
                   (each [_ [label pattern replacement]
                          (ipairs [;; Outside, the sign of the offset lost: faces toward
                                   ;; -x, -y or -z point the other way. (Hit points lie on
@@ -180,21 +180,22 @@
               (fn []
                 (let [prepared (prepared-for "scenes/seed.fnl" :shaded)
                       budget (budget-for :seed :shaded)
-                      reverse-box-colors
+                      ;; The objects' rows (placements, sizes, materials) last first.
+                      reverse-rows
                       (fn [us]
                         (icollect [_ u (ipairs us)]
-                          (if (= u.name "uBoxColor")
+                          (if (= u.name "uTape")
                               (let [vals []
-                                    n (/ (length u.values) 3)]
+                                    n (/ (length u.values) 4)]
                                 (assert.is_true (> n 1))
                                 (for [i (- n 1) 0 -1]
-                                  (for [c 1 3]
-                                    (table.insert vals (. u.values (+ (* i 3) c)))))
+                                  (for [c 1 4]
+                                    (table.insert vals (. u.values (+ (* i 4) c)))))
                                 {:name u.name :type u.type :count u.count :values vals})
                               u)))
                       st (compare-image prepared (gpu-render ctx prepared
-                                                             {:uniforms reverse-box-colors}))]
-                  (print (report-line "seed, boxes reversed" st))
+                                                             {:uniforms reverse-rows}))]
+                  (print (report-line "seed, rows reversed" st))
                   (assert.is_false (passes? st budget)))))
 
             (it "fails a bounded scene when the shader's bounds or planes are broken"
@@ -210,8 +211,8 @@
                                    "float disc = uBounds%[i%]%.w %* uBounds%[i%]%.w"
                                    "float disc = 0.25 * uBounds[i].w * uBounds[i].w"]
                                   ["the plane met 10% too far"
-                                   "t = min%(t, %(gPlaneHeight%[0%] %- ro%.z%) / rd%.z%);"
-                                   "t = min(t, 1.1 * (gPlaneHeight[0] - ro.z) / rd.z);"]])]
+                                   "t = min%(t, %-s / v%);"
+                                   "t = min(t, 1.1 * -s / v);"]])]
                     (let [(source n) (shader:gsub pattern replacement)
                           _ (assert.are.equal 1 n)
                           st (compare-image prepared (gpu-render ctx prepared {:source #source}))]

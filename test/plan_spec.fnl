@@ -21,60 +21,73 @@
 
 (local seed (assert (scene.load-file "scenes/seed.fnl")))
 
-(describe "plan: kinds and objects"
+(describe "plan: objects and the tape"
   (fn []
-    (it "holds the seed's kinds in registry order with their counts"
+    (it "lowers every object of the seed into the tape, in file order"
       (fn []
         (let [p (assert (plan.scene->plan seed))]
-          (assert.are.same [:sphere :box :plane] (icollect [_ k (ipairs p.kinds)] k.kind))
-          (assert.are.same [2 3 1] (icollect [_ k (ipairs p.kinds)] k.count))
-          (assert.are.same [2 3 1] (icollect [_ k (ipairs p.kinds)] k.capacity))
+          (assert.are.same [1 2 3 4 5 6] (icollect [_ o (ipairs p.objects)] o.index))
+          (assert.are.same [:box :box :box :sphere :sphere :plane]
+                           (icollect [_ o (ipairs p.tape.objects)] (. o.info.children 1 :kind)))
+          (assert.are.equal 6 p.tape.count)
           (assert.are.equal :shaded p.view)
           (assert.are.equal false p.uber?)
           (assert.are.equal true p.shadows?)
           (assert.are.equal true p.reflections?)
           (assert.are.equal false p.glow?)
           (assert.are.equal 3 p.reflections)
+          ;; 32 reserved, 16 rows: a box takes 3 (its place, its half size, its
+          ;; material), a sphere 2 (its radius beside its place), the plane 3 (an
+          ;; unused place, its normal and height, its material).
+          (assert.are.equal 48 p.uniform-vectors)
           ;; The seed keeps the article's march: no bounds.
-          (assert.are.equal 47 p.uniform-vectors)
           (assert.is_nil p.bounds)
-          (assert.are.equal "sphere:2 box:3 plane:1 shadows reflections hit:fixed normals:one-sided normals-of:scene out-of-steps:surface view:shaded" p.key))))
+          (assert.are.equal (.. "shadows reflections hit:fixed normals:one-sided normals-of:scene "
+                                "out-of-steps:surface view:shaded tape:translate( box ) ; "
+                                "translate( box ) ; translate( box ) ; translate( sphere ) ; "
+                                "translate( sphere ) ; translate( plane ) identity ; rows:16")
+                            p.key))))
 
-    (it "orders objects by kind, keeping file order within a kind"
+    (it "draws the article's flat objects as the same leaves as tree nodes"
       (fn []
-        (let [p (assert (plan.scene->plan seed))]
-          (assert.are.same [4 5 1 2 3 6] (icollect [_ o (ipairs p.objects)] o.index))
-          (assert.are.same [4 5] (icollect [_ o (ipairs (. p.kinds 1 :objects))] o.index)))))
+        ;; A sphere with :mirror is a tree node; without, a flat object: one code.
+        (let [flat (plan-of "{:objects [{:kind :sphere :radius 2 :pos [1 2 3] :color [1 0 0]}]}")
+              tree (plan-of "{:objects [{:kind :sphere :radius 2 :pos [1 2 3] :color [1 0 0] :mirror 1}]}")]
+          (assert.are.equal flat.key tree.key)
+          (assert.are.same flat.tape.rows tree.tape.rows))))
 
-    (it "holds only the kinds present"
+    (it "groups nine or more objects of one structure into a loop over their rows"
       (fn []
-        (let [p (plan-of "{:objects [{:kind :sphere} {:kind :sphere}]}")]
-          (assert.are.same [:sphere] (icollect [_ k (ipairs p.kinds)] k.kind))
-          (assert.are.equal 2 (. p.kinds 1 :count)))
-        (let [p (plan-of "{:objects [{:kind :plane} {:kind :box}]}")]
-          (assert.are.same [:box :plane] (icollect [_ k (ipairs p.kinds)] k.kind)))
+        (let [p (assert (plan.scene->plan (spheres 12)))
+              [o] p.tape.objects]
+          (assert.are.equal 1 (length p.tape.objects))
+          (assert.are.same {:count 12 :base 0 :stride 2} o.instances)
+          (assert.are.equal 12 p.tape.count)
+          (assert.are.equal 24 (length p.tape.instances.rows))
+          (assert.are.same (fcollect [i 1 12] i) (icollect [_ ob (ipairs p.objects)] ob.index))
+          (assert.is_truthy (p.key:find "group:12[translate( sphere ) ;]" 1 true)))
+        ;; Eight are written out one by one.
+        (let [p (assert (plan.scene->plan (spheres 8)))]
+          (assert.are.equal 8 (length p.tape.objects))
+          (assert.are.equal 0 (length p.tape.instances.rows)))))
+
+    (it "holds an empty tape for an empty scene"
+      (fn []
         (let [p (plan-of "{:objects []}")]
-          (assert.are.same [] p.kinds)
+          (assert.are.same [] p.tape.objects)
           (assert.are.same [] p.objects)
           (assert.are.equal 32 p.uniform-vectors)
-          (assert.are.equal "shadows reflections relaxed hit:relative normals:tetrahedron bounds:0 view:shaded" p.key))))
+          (assert.are.equal "shadows reflections relaxed hit:relative normals:tetrahedron bounds:0 view:shaded tape:rows:0" p.key))))
 
-    (it "includes every kind in an uber plan, with at least one slot each"
+    (it "compiles every feature in an uber plan"
       (fn []
         (let [p (plan-of "{:objects [{:kind :sphere} {:kind :sphere}]}" {:uber? true})]
-          ;; Every registry kind, the internal large-sphere lowering included.
-          (assert.are.same [:sphere :large-sphere :box :plane] (icollect [_ k (ipairs p.kinds)] k.kind))
-          (assert.are.same [2 0 0 0] (icollect [_ k (ipairs p.kinds)] k.count))
-          (assert.are.same [2 1 1 1] (icollect [_ k (ipairs p.kinds)] k.capacity))
           (assert.are.equal true p.uber?)
           (assert.are.equal true p.shadows?)
           (assert.are.equal true p.reflections?)
           (assert.are.equal true p.glow?)
-          (assert.are.equal (+ 32 (* 2 2) 3 3 2) p.uniform-vectors)
-          (assert.are.equal "sphere:2 large-sphere:1 box:1 plane:1 shadows reflections glow relaxed hit:relative normals:tetrahedron uber view:shaded" p.key))
-        (let [p (assert (plan.scene->plan seed {:uber? true}))]
-          (assert.are.equal "sphere:2 large-sphere:1 box:3 plane:1 shadows reflections glow relaxed hit:fixed normals:one-sided normals-of:scene uber out-of-steps:surface view:shaded"
-                            p.key))))))
+          (assert.are.equal (+ 32 4) p.uniform-vectors)
+          (assert.are.equal "shadows reflections glow relaxed hit:relative normals:tetrahedron uber view:shaded tape:translate( sphere ) ; translate( sphere ) ; rows:4" p.key))))))
 
 (describe "plan: features and views"
   (fn []
@@ -103,7 +116,11 @@
             (assert.are.equal false p.shadows?)
             (assert.are.equal false p.reflections?)
             (assert.are.equal false p.glow?)
-            (assert.are.equal (.. "sphere:2 box:3 plane:1 hit:fixed" (if (= view :normals) " normals:one-sided normals-of:scene" "") " out-of-steps:surface view:" view) p.key)))))
+            (assert.are.equal (.. "hit:fixed" (if (= view :normals) " normals:one-sided normals-of:scene" "")
+                                  " out-of-steps:surface view:" view " tape:translate( box ) ; "
+                                  "translate( box ) ; translate( box ) ; translate( sphere ) ; "
+                                  "translate( sphere ) ; translate( plane ) identity ; rows:16")
+                              p.key)))))
 
     (it "knows its views and rejects others"
       (fn []
@@ -123,7 +140,7 @@
     (local base-key (key-of base))
 
     (it "is the expected text"
-      (fn [] (assert.are.equal "sphere:1 box:1 shadows reflections relaxed hit:relative normals:tetrahedron bounds:2 view:shaded" base-key)))
+      (fn [] (assert.are.equal "shadows reflections relaxed hit:relative normals:tetrahedron bounds:2 view:shaded tape:translate( sphere ) ; translate( box ) ; rows:5" base-key)))
 
     (it "changes with structure"
       (fn []
@@ -133,6 +150,8 @@
                              :render {:reflections 2}}"]
                   ["kind" "{:objects [{:kind :sphere} {:kind :plane}] :render {:reflections 2}}"]
                   ["missing kind" "{:objects [{:kind :sphere}] :render {:reflections 2}}"]
+                  ;; The tape's code follows the file's order.
+                  ["order" "{:objects [{:kind :box} {:kind :sphere}] :render {:reflections 2}}"]
                   ["shadows" "{:objects [{:kind :sphere} {:kind :box}]
                                :render {:reflections 2 :shadows false}}"]
                   ["reflections" "{:objects [{:kind :sphere} {:kind :box}]
@@ -153,7 +172,6 @@
                     :render {:reflections 2}}"
                   "{:objects [{:kind :sphere} {:kind :box}]
                     :light {:pos [100 -5 3]} :render {:reflections 2 :epsilon 0.01}}"
-                  "{:objects [{:kind :box} {:kind :sphere}] :render {:reflections 2}}"
                   "{:objects [{:kind :sphere} {:kind :box}]
                     :render {:reflections 16 :max-steps 20 :draw-distance 5}
                     :camera {:pos [1 2 3] :yaw 3 :fov 20}
@@ -167,9 +185,10 @@
 
 (describe "plan: uniform budget"
   (fn []
-    ;; A sphere takes 2 vectors and 32 are reserved: (4096 - 32) / 2 = 2032 spheres fit
-    ;; in uniform arrays. (From 64 on they form a field in textures, which has no such
-    ;; budget: :field? false keeps them in uniforms here; see field_spec.)
+    ;; A sphere takes 2 vectors (its place and radius, its material) and 32 are
+    ;; reserved: (4096 - 32) / 2 = 2032 spheres fit in uniform arrays. (From 16 on
+    ;; they form a field in textures, which has no such budget: :field? false keeps
+    ;; them in uniforms here; see field_spec.)
     (local most (math.floor (/ (- plan.default-uniform-limit plan.fixed-uniform-vectors) 2)))
 
     (it "has the documented limits"
@@ -182,8 +201,10 @@
       (fn []
         (let [p (assert (plan.scene->plan (spheres most) {:field? false}))]
           (assert.are.equal 4096 p.uniform-vectors)
-          (assert.are.equal most (. p.kinds 1 :count))
-          (assert.are.equal (.. "sphere:" most " shadows reflections relaxed hit:relative normals:tetrahedron view:shaded") p.key))))
+          (assert.are.equal most (. p.tape.objects 1 :instances :count))
+          (assert.are.equal (.. "shadows reflections relaxed hit:relative normals:tetrahedron view:shaded tape:group:"
+                                most "[translate( sphere ) ;] rows:0")
+                            p.key))))
 
     (it "refuses one more sphere with a message naming the file and the budget"
       (fn []
@@ -199,26 +220,26 @@
 
     (it "honours the :uniform-limit option"
       (fn []
-        ;; The seed needs 47 vectors.
-        (assert.truthy (plan.scene->plan seed {:uniform-limit 47}))
-        (let [(p err) (plan.scene->plan seed {:uniform-limit 46})]
+        ;; The seed needs 48 vectors.
+        (assert.truthy (plan.scene->plan seed {:uniform-limit 48}))
+        (let [(p err) (plan.scene->plan seed {:uniform-limit 47})]
           (assert.is_nil p)
           (assert.are.equal
-            (.. "scenes/seed.fnl: objects: the scene needs 47 uniform vectors but the driver "
-                "allows 46 (32 are reserved); remove objects worth 1 vectors "
-                "(a sphere takes 2, a box takes 3, a plane takes 2)")
+            (.. "scenes/seed.fnl: objects: the scene needs 48 uniform vectors but the driver "
+                "allows 47 (32 are reserved); remove objects worth 1 vectors "
+                "(a box takes 3, a sphere takes 2, a plane takes 3)")
             err))
         (let [(p err) (plan.scene->plan (spheres 10) {:uniform-limit 40})]
           (assert.is_nil p)
           (assert.truthy (err:find "needs 52 uniform vectors" 1 true)))))
 
-    (it "counts uber capacity, not objects"
+    (it "counts an uber plan's objects as a specialized one's"
       (fn []
-        (let [p (plan-of "{:objects []}" {:uber? true})]
-          (assert.are.equal (+ 32 2 3 3 2) p.uniform-vectors))
-        (let [(p err) (plan.scene->plan (load "{:objects []}") {:uber? true :uniform-limit 41})]
+        (let [p (plan-of "{:objects [{:kind :sphere}]}" {:uber? true})]
+          (assert.are.equal (+ 32 2) p.uniform-vectors))
+        (let [(p err) (plan.scene->plan (load "{:objects [{:kind :sphere}]}") {:uber? true :uniform-limit 33})]
           (assert.is_nil p)
-          (assert.truthy (err:find "needs 42 uniform vectors" 1 true)))))))
+          (assert.truthy (err:find "needs 34 uniform vectors" 1 true)))))))
 
 (describe "plan: renderer options"
   (fn []

@@ -252,8 +252,8 @@
 
     (it "gives ties to the earlier object and reports scene indices"
       (fn []
-        ;; The plan orders kinds as the registry does (sphere, box, plane), so scene
-        ;; index and plan order differ here.
+        ;; A plane drawn first: the tape keeps the file's order, and object numbers
+        ;; count from it.
         (let [w (setup "{:camera {:pos [0 0 0] :yaw 0 :pitch 0 :fov 60}
                          :render {:reflections 0}
                          :objects [{:kind :plane :height -50}

@@ -104,7 +104,7 @@
           (assert.are.equal false s.render.shadows)
           (assert.are.equal 500 s.render.max-steps))))
 
-    (it "fills object parameters from the registry defaults"
+    (it "fills the article's flat objects' parameters from the primitives' defaults"
       (fn []
         (let [s (assert (scene.load-string
                          "{:objects [{:kind :sphere} {:kind :box} {:kind :plane}]}" "t.fnl"))]

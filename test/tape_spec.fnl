@@ -32,14 +32,16 @@
           (assert.truthy (text:find "float opTwistDistance(" 1 true))
           (assert.falsy (text:find "opUnion" 1 true)))))
 
-    (it "leaves scenes of the original kinds on the kind-grouped path, without a tape"
+    (it "draws the article's flat objects as tree leaves: one path, whatever their fields"
       (fn []
-        (let [p (plan-of "{:kind :sphere :pos [1 2 3] :radius 2} {:kind :plane :height 1}")]
-          (assert.is_nil p.tape)
-          (assert.falsy (: (codegen.shader p :core) :find "uTape" 1 true)))
-        ;; A rotation or a material's mirror amount moves an object onto the tape.
-        (assert.truthy (. (plan-of "{:kind :box :rotate [0 0 10]}") :tape))
-        (assert.truthy (. (plan-of "{:kind :sphere :mirror 0.5}") :tape))))
+        (let [flat (plan-of "{:kind :sphere :pos [1 2 3] :radius 2} {:kind :plane :height 1}")
+              tree (plan-of "{:kind :sphere :pos [1 2 3] :radius 2 :mirror 1} {:kind :plane :height 1 :normal [0 0 1]}")]
+          (assert.are.equal 2 (length flat.tape.objects))
+          (assert.are.equal flat.key tree.key)
+          (assert.are.equal (codegen.shader flat :core) (codegen.shader tree :core)))
+        ;; A mirror amount is a value: the same code.
+        (assert.are.equal (. (plan-of "{:kind :sphere :mirror 0.5}") :tape :key)
+                          (. (plan-of "{:kind :sphere}") :tape :key))))
 
     (it "lowers nested twists in work that grows with their depth, not 2^depth"
       (fn []
@@ -74,11 +76,12 @@
               us (uniforms.pack s p cam 64 48)
               tape (accumulate [found nil _ u (ipairs us)] (or found (and (= u.name "uTape") u)))]
           (assert.truthy tape)
-          ;; Row 0: the translation, minus the camera; then the radius, the material.
-          (assert.are.same [10 10 10] [(. tape.values 1) (. tape.values 2) (. tape.values 3)])
-          (assert.are.equal 2 (. tape.values 5))
-          (assert.are.same [1 1 1 0.5] [(. tape.values 9) (. tape.values 10) (. tape.values 11)
-                                        (. tape.values 12)]))))
+          ;; Row 0: the translation, minus the camera, and the radius; then the
+          ;; material.
+          (assert.are.same [10 10 10 2] [(. tape.values 1) (. tape.values 2) (. tape.values 3)
+                                         (. tape.values 4)])
+          (assert.are.same [1 1 1 0.5] [(. tape.values 5) (. tape.values 6) (. tape.values 7)
+                                        (. tape.values 8)]))))
 
     (it "knows each node's class, Lipschitz factor and bounds"
       (fn []

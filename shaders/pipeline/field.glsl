@@ -21,11 +21,10 @@ vec4 fieldRead(sampler2D s, float rows, int i) {
     return texture(s, (vec2(float(i & 1023), float(i >> 10)) + 0.5) * vec2(1.0 / 1024.0, rows));
 }
 
-// The one distance of every field object, a rounded box (exact): a sphere has no
-// half extents, a box no radius.
+// The one distance of every field object, the round-box primitive's (exact): a
+// sphere has no half extents, a box no radius.
 float sdFieldShape(vec3 q, vec4 centre, vec3 halfSize) {
-    vec3 e = abs(q - centre.xyz) - halfSize;
-    return length(max(e, 0.0)) + min(max(e.x, max(e.y, e.z)), 0.0) - centre.w;
+    return sdRoundBox(q - centre.xyz, halfSize, centre.w);
 }
 
 // A ray direction whose tiny components are replaced by kFieldTiny: its reciprocal

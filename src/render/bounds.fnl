@@ -1,67 +1,61 @@
 ;; Bounds the marcher tests a ray against before it marches (issue 11): a bounding
-;; sphere for every finite object, and the kind-grouped ground planes met in closed
+;; sphere for every finite object, and the half-spaces (ground planes) met in closed
 ;; form. A ray then marches only the finite objects, only over the span where it is
 ;; inside some object's bound, and stops at the nearest plane. Pure: runs under plain
 ;; LuaJIT; the GLSL (shaders/pipeline/march-bounded.glsl) and the CPU reference
 ;; (src/verify/reference.fnl) follow the same rules.
 
 ;; From this radius on a sphere loses float32 precision near its surface.
-(local {: large-radius} (require :src.sdf.registry))
+(local large-radius (. (require :src.sdf.large-sphere) :radius))
 
 (fn length3 [[x y z]] (math.sqrt (+ (* x x) (* y y) (* z z))))
 
-(fn tree-infos [plan]
-  "Each tree object's lowered root info, by the object's index in the scene."
-  (collect [_ t (ipairs (or (?. plan :tape :objects) []))] t.index t.info))
+(fn object-sphere [o info]
+  "World centre and radius of a sphere holding scene object `o`, whose lowered root
+info (see src/sdf/lower.fnl) is `info`, or nil when it has none: an infinite node, or
+a large sphere (src/sdf/large-sphere.fnl), whose bound would lose float32 precision
+near its surface."
+  ;; The root is the translation of the object's placement (its :pos, or the node
+  ;; itself when it is a translation); its child's bounds are half extents about that
+  ;; point. Their sphere grows with the distance from the root to what it holds: a
+  ;; group without a :pos whose children stand 1e6 out gets one 1e6 wide about the
+  ;; origin, whose ray test loses its span in float32 (as a sphere of radius 1000 or
+  ;; more loses its surface). From that radius on, the sphere about the child's box
+  ;; ({:lo :hi} about the root) holds it instead.
+  (let [node (or o.tree o)
+        child (when (not info.large?) (. info.children 1))
+        [px py pz] (or node.pos (and (= node.kind :translate) node.offset) [0 0 0])
+        b (and child child.bounds)
+        box (and child child.box)]
+    (if (and b box (>= (length3 b) large-radius))
+        (let [{: lo : hi} box]
+          [[(+ px (* 0.5 (+ (. lo 1) (. hi 1))))
+            (+ py (* 0.5 (+ (. lo 2) (. hi 2))))
+            (+ pz (* 0.5 (+ (. lo 3) (. hi 3))))]
+           (length3 (fcollect [i 1 3] (* 0.5 (- (. hi i) (. lo i)))))])
+        b [[px py pz] (or child.radius (length3 b))])))
 
-(fn object-sphere [o infos]
-  "World centre and radius of a sphere holding object `o`, or nil when it has none
-(an infinite tree node, or a sphere of radius 1000 or more, whose bound would lose
-float32 precision near its surface). `infos`: see tree-infos."
-  (if o.tree
-      ;; A tree object's root is the translation of its placement (its :pos, or the
-      ;; node itself when it is a translation); its child's bounds are half extents
-      ;; about that point. Their sphere grows with the distance from the root to
-      ;; what it holds: a group without a :pos whose children stand 1e6 out gets one
-      ;; 1e6 wide about the origin, whose ray test loses its span in float32 (as a
-      ;; sphere of radius 1000 or more loses its surface). From that radius on, the
-      ;; sphere about the child's box ({:lo :hi} about the root) holds it instead.
-      (let [child (?. infos o.index :children 1)
-            [px py pz] (or o.tree.pos (and (= o.tree.kind :translate) o.tree.offset) [0 0 0])
-            b (and child child.bounds)
-            box (and child child.box)]
-        (if (and b box (>= (length3 b) large-radius))
-            (let [{: lo : hi} box]
-              [[(+ px (* 0.5 (+ (. lo 1) (. hi 1))))
-                (+ py (* 0.5 (+ (. lo 2) (. hi 2))))
-                (+ pz (* 0.5 (+ (. lo 3) (. hi 3))))]
-               (length3 (fcollect [i 1 3] (* 0.5 (- (. hi i) (. lo i)))))])
-            b [[px py pz] (length3 b)]))
-      (= o.kind :sphere) (when (< o.radius large-radius) [o.pos o.radius])
-      (= o.kind :box) (let [[x y z] o.size] [o.pos (* 0.5 (length3 [x y z]))])
-      nil))
-
-(fn grouped-plane? [o]
-  (and (not o.tree) (= o.kind :plane)))
-
-(fn finite-objects [plan]
-  "The objects a bounded plan marches by their bounding spheres: every one but the
-kind-grouped ground planes (a plane inside a scene tree has no bound, so the plan has
-none) and a field's (its grid bounds them; see src/render/field.fnl)."
-  (let [in-field (or plan.in-field {})]
-    (icollect [_ o (ipairs plan.objects)]
-      (when (not (or (grouped-plane? o) (. in-field o))) o))))
+(fn finite-objects [plan scene-objects]
+  "The objects a bounded plan marches by their bounding spheres, as [object info]
+pairs: every tape object's (an instance group's members each) but the half-spaces
+(met in closed form; see lower.fnl); not a field's (its grid bounds them; see
+src/render/field.fnl). `scene-objects`: the scene's object list."
+  (let [out []]
+    (each [_ o (ipairs plan.tape.objects)]
+      (when (not o.half-space?)
+        (each [m index (ipairs (or o.indices [o.index]))]
+          (table.insert out [(. scene-objects index) (if o.infos (. o.infos m) o.info)]))))
+    out))
 
 (fn plan-bounds [plan scene options]
-  "{:count n} when every object of `plan` but the grouped planes has a bounding
-sphere (`n` of them), else nil: then the marcher marches everything everywhere, as
-the article's does. The scene's :render :bounds false, or `options.bounds?` false
-(the benchmark's before), switch it off."
+  "{:count n} when every object of `plan` but the half-spaces has a bounding sphere
+(`n` of them), else nil: then the marcher marches everything everywhere, as the
+article's does. The scene's :render :bounds false, or `options.bounds?` false (the
+benchmark's before), switch it off."
   (when (and (not= false options.bounds?) scene.render.bounds (not plan.uber?))
-    (let [finite (finite-objects plan)
-          infos (tree-infos plan)
-          all? (accumulate [ok? true _ o (ipairs finite) &until (not ok?)]
-                 (not= nil (object-sphere o infos)))]
+    (let [finite (finite-objects plan scene.objects)
+          all? (accumulate [ok? true _ [o info] (ipairs finite) &until (not ok?)]
+                 (not= nil (object-sphere o info)))]
       (when all? {:count (length finite)}))))
 
 (fn margin [radius centre-distance hit-threshold]
@@ -70,16 +64,15 @@ the article's does. The scene's :render :bounds false, or `options.bounds?` fals
   ;; its radius for float32 rounding in the GPU's test.
   (+ (* 2 (hit-threshold (+ centre-distance radius))) (* 0.001 radius)))
 
-(fn spheres [plan cam-pos hit-threshold ?world?]
-  "The bounding spheres of the finite objects of `plan`, camera-relative (in double;
-in world coordinates with `?world?`) and grown by `margin`, as one flat list x y z r
-per object."
+(fn spheres [plan scene-objects cam-pos hit-threshold ?world?]
+  "The bounding spheres of the finite objects of `plan` (of the scene whose objects
+are `scene-objects`), camera-relative (in double; in world coordinates with
+`?world?`) and grown by `margin`, as one flat list x y z r per object."
   (let [[cx cy cz] (if ?world? [0 0 0] cam-pos)
         [kx ky kz] cam-pos
-        infos (tree-infos plan)
         out []]
-    (each [_ o (ipairs (finite-objects plan))]
-      (let [[[x y z] r] (object-sphere o infos)
+    (each [_ [o info] (ipairs (finite-objects plan scene-objects))]
+      (let [[[x y z] r] (object-sphere o info)
             rel [(- x cx) (- y cy) (- z cz)]
             grown (+ r (margin r (length3 [(- x kx) (- y ky) (- z kz)]) hit-threshold))]
         (each [_ v (ipairs [(. rel 1) (. rel 2) (. rel 3) grown])] (table.insert out v))))

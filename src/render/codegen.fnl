@@ -2,7 +2,6 @@
 ;; shaders/ and holding only what the plan needs. Output is deterministic: the same plan
 ;; always gives the same text.
 
-(local registry (require :src.sdf.registry))
 (local files (require :src.util.files))
 (local emit-glsl (require :src.sdf.emit-glsl))
 (local primitives (require :src.sdf.primitives))
@@ -71,66 +70,24 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
     (when (= (. out (length out)) "") (table.remove out))
     out))
 
-;;; Per-kind code
-
-(fn count-bound [k plan]
-  (if plan.uber?
-      (registry.count-uniform k.kind)
-      (tostring k.capacity)))
-
-;; Up to this many objects of a kind are written out one by one, as a person would by
-;; hand: the driver then has no loop to unroll (llvmpipe leaves some unrolled).
-(local max-unrolled 8)
-
-(fn kind-loop [k plan body]
-  ;; A few objects: one block each, with the array index written in. More: a loop
-  ;; over the kind's uniform arrays. `body` uses `[i]` for the index.
-  (if (and (not plan.uber?) (<= k.capacity max-unrolled))
-      (fcollect [index 0 (- k.capacity 1)]
-        (icollect [_ line (ipairs body)]
-          (pick-values 1 (-> line
-                             (: :gsub "^    " "")
-                             (: :gsub "%[i%]" (.. "[" index "]"))
-                             (: :gsub "(%d+) %+ @index" #(tostring (+ (tonumber $1) index)))))))
-      [(.. "for (int i = 0; i < " (count-bound k plan) "; i++) {") body "}"]))
+;;; Objects: the field's, numbered first, then the tape's (src/sdf/emit-glsl.fnl).
 
 (fn object-normals? [plan]
   ;; Normals from the nearest object's own distance (see map-object.glsl).
   (and (not= nil plan.normals) (= plan.normals-of :object)))
 
-(fn object-bases [plan]
-  ;; The number gObject gives each kind's first slot (kind -> number), the tree
-  ;; objects' first and the field's first: slots in shader order, as plan.objects
-  ;; (kinds, field, trees).
-  (var next 0)
-  (let [bases (collect [_ k (ipairs plan.kinds)]
-                (let [b next] (set next (+ next k.capacity)) (values k.kind b)))
-        field-base next]
-    (values bases (+ next (if plan.field plan.field.count 0)) field-base)))
-
-(fn object-id [k plan line]
-  ;; `line` with @id written as the object's number: the slot's own in a written-out
-  ;; block, `base + i` in a loop (see kind-loop).
-  (let [base (. (object-bases plan) k.kind)]
-    (if (and (not plan.uber?) (<= k.capacity max-unrolled))
-        (pick-values 1 (line:gsub "@id" (.. base " + @index")))
-        (pick-values 1 (line:gsub "@id" (if (= base 0) "i" (.. base " + i")))))))
+(fn tape-first [plan]
+  ;; The number gObject gives the tape's first object: after the field's.
+  (if plan.field plan.field.count 0))
 
 (fn modern-materials? [plan]
   (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8))))
 
 (fn uniform-declarations [plan]
   (let [lines []]
-    (each [_ k (ipairs plan.kinds)]
-      (table.insert lines (.. "// " k.kind ": " k.capacity
-                              (if plan.uber? " slots" (= k.capacity 1) " object" " objects")))
-      (when plan.uber?
-        (table.insert lines (.. "uniform int " (count-bound k plan) ";")))
-      (each [_ u (ipairs k.entry.uniforms)]
-        (table.insert lines (.. "uniform " u.type " " u.name "[" k.capacity "];"))))
-    (when plan.tape
-      (table.insert lines (.. "// scene trees: " (length plan.tape.objects) " objects"))
-      (each [_ l (ipairs (emit-glsl.declarations plan.tape))] (table.insert lines l)))
+    (when (> plan.tape.count 0)
+      (table.insert lines (.. "// objects: " plan.tape.count))
+      (flatten-into lines "" (emit-glsl.declarations plan.tape)))
     (when (and plan.bounds (> plan.bounds.count 0))
       (table.insert lines (.. "uniform vec4 uBounds[" plan.bounds.count
                               "];  // bounding spheres of the finite objects (camera-relative)")))
@@ -169,10 +126,7 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
       []))
 
 (fn distance-terms [plan]
-  [(icollect [_ k (ipairs plan.kinds)]
-     (kind-loop k plan [(.. "    d = min(d, " k.entry.distance-glsl ");")]))
-   (field-term plan "-1")
-   (if plan.tape (emit-glsl.distance-terms plan.tape) [])])
+  [(field-term plan "-1") (emit-glsl.distance-terms plan.tape)])
 
 (fn soft-bounded? [plan]
   ;; See plan.lighting.soft-bounded? in src/render/plan.fnl.
@@ -229,31 +183,24 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
    "}"])
 
 (fn bounded-lines [plan]
-  "mapFinite, planesHit and boundsSpan: what march-bounded.glsl reads (see
+  "mapFinite, planesHit and boundsSpan: what the bounded march reads (see
 src/render/bounds.fnl)."
-  (let [finite (icollect [_ k (ipairs plan.kinds)] (when (not= k.kind :plane) k))
-        planes (icollect [_ k (ipairs plan.kinds)] (when (= k.kind :plane) k))
-        n plan.bounds.count
-        indented (fn [lines] (doto [] (flatten-into "    " lines)))]
-    ["// The finite objects only: the planes are met in closed form by planesHit."
+  (let [n plan.bounds.count]
+    ["// The finite objects only: the half-spaces are met in closed form by planesHit."
      "float mapFinite(vec3 p) {"
      "    float d = uDrawDist;"
      ;; (and not the field's objects: march-field.glsl walks its grid)
-     (indented (distance-terms (doto (collect [k v (pairs plan)] k v)
-                                 (tset :kinds finite) (tset :field nil))))
+     (doto [] (flatten-into "    " (emit-glsl.distance-terms plan.tape #(not $.half-space?))))
      "    return d;"
      "}"
      ""
-     "// The nearest ground plane along the ray (a plane is the solid half-space below its"
-     "// height): 0 from inside it, the draw distance when the ray meets none."
+     "// The nearest half-space (a ground plane, solid below) along the ray: 0 from inside"
+     "// it, the draw distance when the ray meets none."
      "float planesHit(vec3 ro, vec3 rd) {"
      "    float t = uDrawDist;"
-     (indented (icollect [_ k (ipairs planes)]
-                 (kind-loop k plan ["    if (ro.z <= uPlaneHeight[i]) {"
-                                    "        t = 0.0;"
-                                    "    } else if (rd.z < 0.0) {"
-                                    "        t = min(t, (uPlaneHeight[i] - ro.z) / rd.z);"
-                                    "    }"])))
+     (if (accumulate [any? false _ o (ipairs plan.tape.objects)] (or any? o.half-space?))
+         ["    vec3 p = ro;" (doto [] (flatten-into "    " (emit-glsl.plane-terms plan.tape)))]
+         [])
      "    return t;"
      "}"
      ""
@@ -261,95 +208,42 @@ src/render/bounds.fnl)."
      (if (soft-bounded? plan) ["" (span-lines n true)] [])]))
 
 (fn color-terms [plan]
-  ;; One `di` for the whole function: unrolled blocks share it.
   [(if (modern-materials? plan) "gMirror = 0.0; gMaterial = vec4(0.5, 0.0, 0.0, 0.0);"
        plan.mirrors? "gMirror = 1.0;"
        [])
    (if (object-normals? plan) "gObject = -1;" [])
-   (if (or plan.field (> (length plan.kinds) 0)) "float di;" [])
-   (icollect [_ k (ipairs plan.kinds)]
-     (kind-loop k plan [(.. "    di = " k.entry.distance-glsl ";")
-                        (.. "    if (di < d) { d = di; color = " k.entry.color-glsl ";"
-                            (if (object-normals? plan) (object-id k plan " gObject = @id;") "")
-                            " }")]))
    (if plan.field
-       (let [(_ _ base) (object-bases plan)]
-         ["{"
-          "    int best;"
-          "    di = fieldMap(p, -1, best);"
-          "    if (di < d) {"
-          "        d = di;"
-          "        color = best >= 0 ? fieldColor(best) : vec3(0.0);"
-          (if (object-normals? plan)
-              (.. "        gObject = best >= 0 ? " (if (= base 0) "best" (.. base " + best")) " : -1;")
-              [])
-          "    }"
-          "}"])
+       ["{"
+        "    int best;"
+        "    float di = fieldMap(p, -1, best);"
+        "    if (di < d) {"
+        "        d = di;"
+        "        color = best >= 0 ? fieldColor(best) : vec3(0.0);"
+        (if (object-normals? plan) "        gObject = best >= 0 ? best : -1;" [])
+        "    }"
+        "}"]
        [])
-   (if plan.tape
-       (emit-glsl.color-terms plan.tape plan.mirrors?
-                              (when (object-normals? plan) (select 2 (object-bases plan))))
-       [])])
+   (emit-glsl.color-terms plan.tape plan.mirrors? (when (object-normals? plan) (tape-first plan)))])
 
 (fn others-terms [plan]
   ;; mapOthers' terms: map's, each but gObject's.
-  (let [(_ tree-base field-base) (object-bases plan)]
-    [(icollect [_ k (ipairs plan.kinds)]
-       (kind-loop k plan [(object-id k plan (.. "    if (gObject != @id) d = min(d, "
-                                                k.entry.distance-glsl ");"))]))
-     (field-term plan (if (= field-base 0) "gObject" (.. "gObject - " field-base)))
-     (if plan.tape (emit-glsl.distance-terms plan.tape tree-base) [])]))
-
-(fn object-cases [plan statement]
-  ;; One case per grouped object, run when gObject is its number: `statement` (a
-  ;; string using `[i]`, as kind entries do) by a written-out slot's number, or by
-  ;; range for a loop's slots.
-  (let [bases (object-bases plan)]
-    (icollect [_ k (ipairs plan.kinds)]
-      (if (and (not plan.uber?) (<= k.capacity max-unrolled))
-          (kind-loop k plan [(object-id k plan (.. "    if (gObject == @id) " (statement k)))])
-          (let [base (. bases k.kind)]
-            [(.. "if (gObject >= " base " && gObject < " (+ base k.capacity) ") {")
-             (.. "    int i = gObject" (if (= base 0) "" (.. " - " base)) ";")
-             (.. "    " (statement k))
-             "}"])))))
+  [(field-term plan "gObject") (emit-glsl.others-terms plan.tape (tape-first plan))])
 
 (fn gradient-terms [plan action]
-  ;; Each grouped object's exact normal in closed form (its kind's :gradient-glsl), for
-  ;; calcNormal: `action` is "n = " (normal-exact.glsl) or "return " (the exact slot of
-  ;; normal-crease.glsl).
-  (object-cases plan #(.. action $.entry.gradient-glsl ";")))
-
-(fn field-gradient-term [plan action]
-  ;; A field object's exact normal (fieldNormal), by its number.
-  (if plan.field
-      (let [(_ tree-base field-base) (object-bases plan)]
-        [(.. "if (gObject >= " field-base " && gObject < " tree-base ") " action
-             "fieldNormal(p, gObject" (if (= field-base 0) "" (.. " - " field-base)) ");")])
-      []))
-
-(fn gradient-functions [plan defined]
-  ;; The descriptors' gradient functions the exact normals call, each once: every
-  ;; grouped kind's, and the box's for a field (fieldNormal).
-  (let [names (icollect [_ k (ipairs plan.kinds)] (or k.entry.gradient-of k.entry.primitive))]
-    (when plan.field (table.insert names :box))
-    (icollect [_ name (ipairs names)]
-      (let [d (primitives.lookup name)
-            fn-name (pick-values 1 (d.glsl-name:gsub "^sd" "grad"))]
-        (when (and d.gradient-glsl (not (. defined fn-name)))
-          (tset defined fn-name true)
-          (emit-glsl.text-lines d.gradient-glsl))))))
+  ;; Each object's exact normal in closed form, when gObject is its number: a field
+  ;; object's (fieldNormal), a leaf's its primitive's gradient; `action` is "n = "
+  ;; (normal-exact.glsl) or "return " (the exact slot of normal-crease.glsl).
+  [(if plan.field
+       [(.. "if (gObject >= 0 && gObject < " plan.field.count ") " action "fieldNormal(p, gObject);")]
+       [])
+   (emit-glsl.gradient-terms plan.tape (tape-first plan) action)])
 
 (fn object-terms [plan]
-  ;; mapObject's cases: each grouped object's distance (object-cases), then the
-  ;; field's and each tree object's by number (earlier numbers have returned).
-  (let [(_ tree-base field-base) (object-bases plan)]
-    [(object-cases plan #(.. "return " $.entry.distance-glsl ";"))
-     (if plan.field
-         [(.. "if (gObject < " tree-base ") return fieldObject(p, gObject"
-              (if (= field-base 0) "" (.. " - " field-base)) ");")]
-         [])
-     (if plan.tape (emit-glsl.object-terms plan.tape tree-base) [])]))
+  ;; mapObject's cases: the field's object and each tape object by number.
+  [(if plan.field
+       [(.. "if (gObject >= 0 && gObject < " plan.field.count ") return fieldObject(p, gObject);")]
+       [])
+   (emit-glsl.object-terms plan.tape (tape-first plan))])
 
 ;;; Features
 
@@ -484,19 +378,26 @@ only when the plan has it."
         colors? (or (= view :shaded) (= view :glow) (and (= view :normals) (object-normals? plan)))
         sections [(fill "shaders/pipeline/prelude.glsl" {:feature-uniforms (feature-uniforms plan)})
                   (uniform-declarations plan)]]
-    ;; Distance functions: the grouped kinds' (a descriptor's, or the large sphere's
-    ;; own chunk), then the tape's; each function once.
+    ;; Distance functions: the tape's, each once, and the exact gradients its leaves
+    ;; and a field's objects (fieldNormal: the box's) take.
     (let [defined {}]
-      (each [_ k (ipairs plan.kinds)]
-        (if k.entry.chunk
-            (table.insert sections (fill k.entry.chunk {}))
-            (let [d (primitives.lookup k.entry.primitive)]
-              (tset defined d.glsl-name true)
-              (table.insert sections (emit-glsl.text-lines d.glsl)))))
-      (when (or plan.field (and normals? (object-normals? plan)))
-        (table.insert sections (gradient-functions plan defined)))
-      (when plan.tape
-        (table.insert sections (emit-glsl.functions plan.tape defined))))
+      (table.insert sections (emit-glsl.functions plan.tape defined))
+      ;; A field's objects are round boxes (shaders/pipeline/field.glsl).
+      (when (and plan.field (not (. defined "sdRoundBox")))
+        (tset defined "sdRoundBox" true)
+        (table.insert sections (emit-glsl.text-lines (. (primitives.lookup :round-box) :glsl))))
+      ;; Exact normals take every leaf's gradient; planesHit, the half-spaces'.
+      (when (or plan.field (and normals? (object-normals? plan)) plan.bounds)
+        (let [normals? (and normals? (object-normals? plan))
+              gradients (emit-glsl.gradient-functions
+                         plan.tape #(or normals? (and (not= nil plan.bounds) $.half-space?))
+                         defined)
+              box (primitives.lookup :box)]
+          (when (and plan.field (not (. defined "gradBox")))
+            (tset defined "gradBox" true)
+            (when (> (length gradients) 0) (table.insert gradients ""))
+            (flatten-into gradients "" (emit-glsl.text-lines box.gradient-glsl)))
+          (table.insert sections gradients))))
     (when plan.field
       (table.insert sections
                     [(.. "const bool kFieldOthers = " (tostring (> plan.bounds.count 0))
@@ -545,15 +446,13 @@ only when the plan has it."
                                                           {:normal "calcNormal" :map "map"})))}))
       (when (and (object-normals? plan) plan.exact-normals?)
         (table.insert sections (fill "shaders/pipeline/normal-exact.glsl"
-                                     {:gradients [(gradient-terms plan "n = ")
-                                                  (field-gradient-term plan "n = ")]})))
+                                     {:gradients (gradient-terms plan "n = ")})))
       (when (and (object-normals? plan) (not plan.exact-normals?))
         ;; The grouped and field objects have their exact gradient; the trees' take
         ;; differences.
         (table.insert sections
                       (fill "shaders/pipeline/normal-crease.glsl"
-                            {:exact [(gradient-terms plan "return ")
-                                     (field-gradient-term plan "return ")]}))))
+                            {:exact (gradient-terms plan "return ")}))))
     (when (and (= view :shaded) (not plan.lighting))
       (table.insert sections
                     (fill "shaders/shading/light.glsl"

@@ -14,7 +14,7 @@
 ;; do not change when the camera moves: the shader is sent the corner camera-relative,
 ;; computed in double.
 
-(local registry (require :src.sdf.registry))
+(local large-radius (. (require :src.sdf.large-sphere) :radius))
 (local box-gradient (. ((. (require :src.sdf.primitives) :lookup) :box) :gradient))
 
 (local sqrt math.sqrt)
@@ -67,8 +67,8 @@ the field's coordinates are relative to its grid's corner, not to the camera, so
 giant box would stretch the grid and cost small objects their float precision.)"
   (and (not o.tree)
        (or (and (= o.kind :box)
-                (let [[sx sy sz] o.size] (< (math.max sx sy sz) registry.large-radius)))
-           (and (= o.kind :sphere) (< o.radius registry.large-radius)))))
+                (let [[sx sy sz] o.size] (< (math.max sx sy sz) large-radius)))
+           (and (= o.kind :sphere) (< o.radius large-radius)))))
 
 (fn members [objects]
   "The objects of the list `objects` that go into a field, in order, or nil when
@@ -84,14 +84,12 @@ there are fewer than min-objects of them."
         (let [[sx sy sz] o.size]
           (values x y z (* 0.5 sx) (* 0.5 sy) (* 0.5 sz) 0)))))
 
+(local round-box-cpu (. ((. (require :src.sdf.primitives) :lookup) :round-box) :cpu))
+
 (fn rounded-box [qx qy qz cx cy cz hx hy hz r]
-  ;; The shared distance: |max(e, 0)| + min(max component of e, 0) - r, with
-  ;; e = |q - c| - h. A sphere when h = 0, a box when r = 0; both exact.
-  (let [ex (- (abs (- qx cx)) hx)
-        ey (- (abs (- qy cy)) hy)
-        ez (- (abs (- qz cz)) hz)
-        ox (max ex 0) oy (max ey 0) oz (max ez 0)]
-    (- (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz))) (min (max ex (max ey ez)) 0)) r)))
+  ;; The shared distance, the round-box primitive's about centre c: a sphere when
+  ;; h = 0, a box when r = 0; both exact.
+  (round-box-cpu (- qx cx) (- qy cy) (- qz cz) hx hy hz r))
 
 (fn grid-dims [ex ey ez n per-object]
   ;; Cells along each axis for extents ex ey ez and n objects: about

@@ -2,10 +2,10 @@
 ;; the scene needs (which kinds, how many of each, which features, which view), plus the
 ;; objects in the order the shader stores them. Equal plans mean the same shader.
 
-(local registry (require :src.sdf.registry))
 (local lower (require :src.sdf.lower))
 (local bounds (require :src.render.bounds))
 (local field (require :src.render.field))
+(local emit-glsl (require :src.sdf.emit-glsl))
 
 (local views [:shaded :normals :glow :heat])
 
@@ -39,18 +39,8 @@
   (each [_ name (ipairs views)] (when (= name v) (set found? true)))
   found?)
 
-(fn group-objects [scene in-field]
-  (icollect [_ entry (ipairs registry.kinds)]
-    {:kind entry.kind
-     :entry entry
-     :objects (icollect [_ o (ipairs scene.objects)]
-                (when (and (not o.tree) (not (. in-field o))
-                           (= (registry.lowered-kind o) entry.kind))
-                  o))}))
-
 (fn structure-key [plan]
-  (let [parts (icollect [_ k (ipairs plan.kinds)]
-                (.. k.kind ":" k.capacity))]
+  (let [parts []]
     (when plan.shadows? (table.insert parts "shadows"))
     (when plan.reflections? (table.insert parts "reflections"))
     (when plan.glow? (table.insert parts "glow"))
@@ -76,17 +66,23 @@
                               (if plan.field.kinds.boxes? "boxes" "")
                               (if plan.field.walk? " walk" ""))))
     (table.insert parts (.. "view:" plan.view))
-    (when plan.tape
-      (table.insert parts (.. "tape:" plan.tape.key))
-      (when plan.mirrors? (table.insert parts "mirrors")))
+    (table.insert parts (.. "tape:" plan.tape.key))
+    (when plan.mirrors? (table.insert parts "mirrors"))
     (table.concat parts " ")))
 
+(fn object-label [o]
+  ;; What a tape object draws, for a message: its placed node's kind.
+  (let [info (if (and o.info.implicit? (. o.info.children 1)) (. o.info.children 1) o.info)]
+    (if o.info.large? "sphere of radius 1000 or more" info.kind)))
+
 (fn budget-message [scene plan limit]
-  (let [costs (icollect [_ k (ipairs plan.kinds)]
-                (.. "a " (or k.entry.shown-as k.kind) " takes "
-                    (registry.slots-per-object k.entry)))
-        _ (when plan.tape
-            (table.insert costs (.. "the scene trees take " (length plan.tape.rows))))
+  (let [seen {}
+        costs []
+        _ (each [_ o (ipairs plan.tape.objects)]
+            (let [text (.. "a " (object-label o) " takes " o.size)]
+              (when (not (. seen text))
+                (tset seen text true)
+                (table.insert costs text))))
         over (- plan.uniform-vectors limit)]
     (.. scene.file ": objects: the scene needs " plan.uniform-vectors
         " uniform vectors but the driver allows " limit " (" fixed-uniform-vectors
@@ -155,33 +151,23 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                            scene.render.bounds)
                   (field.members scene.objects))
         in-field (collect [_ o (ipairs (or members []))] o true)
-        groups (group-objects scene in-field)
-        trees (icollect [_ o (ipairs scene.objects)] (when o.tree o))
-        (tape lower-error) (if (> (length trees) 0)
-                               (lower.lower (icollect [_ o (ipairs trees)]
-                                              (doto (collect [k v (pairs o.tree)] k v)
-                                                (tset :index o.index)))
-                                            {:modern? (not= nil scene.lighting)
-                                             :far-field? options.far-field?
-                                             :fold? options.fold?})
-                               (values nil nil))
-        kinds (icollect [_ g (ipairs groups)]
-                (let [n (length g.objects)]
-                  (when (or uber? (> n 0))
-                    {:kind g.kind :entry g.entry :objects g.objects
-                     :count n :capacity (if uber? (math.max n 1) n)})))
+        ;; Every other object is lowered into the tape.
+        (tape lower-error) (lower.lower (icollect [_ o (ipairs scene.objects)]
+                                          (when (not (. in-field o)) (lower.node-of o)))
+                                        {:modern? (not= nil scene.lighting)
+                                         :far-field? options.far-field?
+                                         :fold? options.fold?})
         shaded? (= view :shaded)
-        plan {: kinds : view : uber? : in-field
+        plan {: view : uber? : in-field
               :load-once? (not= false options.load-once?)
-              ;; The kind-grouped objects in shader order, the field's, then the
-              ;; tree objects.
-              :objects (let [out []]
-                         (each [_ k (ipairs kinds)]
-                           (each [_ o (ipairs k.objects)] (table.insert out o)))
-                         (each [_ o (ipairs (or members []))] (table.insert out o))
-                         (each [_ o (ipairs trees)] (table.insert out o))
+              ;; The objects in shader order (the numbers gObject gives them): the
+              ;; field's, then the tape's (an instance group's members in turn).
+              :objects (let [out (icollect [_ o (ipairs (or members []))] o)]
+                         (each [_ o (ipairs (if tape tape.objects []))]
+                           (each [_ index (ipairs (or o.indices [o.index]))]
+                             (table.insert out (. scene.objects index))))
                          out)
-              : tape
+              :tape (or tape (lower.lower []))
               :mirrors? (and tape tape.mirrors?
                              (or options.probe? (and shaded? (or uber? (> reflections 0)))))
               :shadows? (and shaded? (or uber? scene.render.shadows))
@@ -202,9 +188,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               : reflections}
         limit (or options.uniform-limit default-uniform-limit)]
     (assert (view? view) (.. "unknown view " (tostring view)))
-    (set plan.uniform-vectors
-         (accumulate [n (+ fixed-uniform-vectors (if tape (length tape.rows) 0)) _ k (ipairs kinds)]
-           (+ n (* k.capacity (registry.slots-per-object k.entry)))))
+    (set plan.uniform-vectors (+ fixed-uniform-vectors (length plan.tape.rows)
+                                 (length plan.tape.instances.rows)))
     ;; Bounds take a vector each: a scene that fits only without them goes without.
     (let [b (bounds.plan-bounds plan scene options)]
       (when (and b (<= (+ plan.uniform-vectors b.count) limit))
@@ -254,12 +239,12 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
     (when plan.lighting
       (set plan.lighting.soft-bounded? (and plan.lighting.soft? plan.lighting.shadow-bounds?
                                             (not= nil plan.bounds) (= nil plan.field))))
-    ;; When every object has its exact normal in closed form (no scene trees; the
-    ;; grouped kinds' gradients and a field's), normals need no differences
+    ;; When every object has its exact normal in closed form (a field's, and the
+    ;; tape's leaves whose primitive has its gradient), normals need no differences
     ;; (shaders/pipeline/normal-exact.glsl).
-    (set plan.exact-normals? (and (= nil tape) (= plan.normals-of :object)
-                                  (accumulate [all? true _ k (ipairs kinds)]
-                                    (and all? (not= nil k.entry.gradient-glsl)))))
+    (set plan.exact-normals? (and (= plan.normals-of :object)
+                                  (accumulate [all? true _ o (ipairs plan.tape.objects)]
+                                    (and all? (emit-glsl.exact? o)))))
     (set plan.key (structure-key plan))
     (if field-error (values nil field-error)
         (and members (not plan.bounds))

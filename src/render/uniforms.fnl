@@ -3,7 +3,7 @@
 ;; before they are rounded to float32 on upload.
 
 (local camera (require :src.render.camera))
-(local registry (require :src.sdf.registry))
+(local large-sphere (require :src.sdf.large-sphere))
 (local bounds (require :src.render.bounds))
 (local field (require :src.render.field))
 
@@ -26,30 +26,17 @@ is a hit (see shaders/pipeline/hit/)."
   (each [_ v (ipairs vs)] (table.insert out v))
   out)
 
-(fn kind-uniforms [plan cam-pos]
-  (let [out []]
-    (each [_ k (ipairs plan.kinds)]
-      (when plan.uber?
-        (table.insert out {:name (registry.count-uniform k.kind)
-                           :type :int :values [k.count]}))
-      (each [_ u (ipairs k.entry.uniforms)]
-        (let [vals []]
-          (each [_ o (ipairs k.objects)]
-            (append! vals (u.pack o cam-pos)))
-          ;; Unused slots (the uber shader's empty kinds) are zero.
-          (for [_ (+ (length vals) 1) (* k.capacity (. components u.type))]
-            (table.insert vals 0))
-          (table.insert out {:name u.name :type u.type :values vals :count k.capacity}))))
-    out))
-
-(fn tape-values [tape [cx cy cz]]
-  "The tape's rows as one flat list; rows holding a world position (each tree
-object's outermost translation) are made camera-relative here, in double. An object
-that takes the camera off one level in (the tape's :inner, see src/sdf/lower.fnl's
-hand-in) gets a translation of 0, each translation reading it T + t - camera and
-each plane reading it the height h + dot(n, T - camera): the shader's point stays
-near the camera, not the world point rounded to float32."
-  (let [relative (collect [_ r (ipairs tape.relative)] r true)
+(fn tape-values [tape cam]
+  "The rows of `tape` (or of its instance groups' bank, which has the same fields) as
+one flat list; rows holding a world position (each object's outermost translation)
+are made camera-relative here, in double. An object that takes the camera off one
+level in (:inner, see src/sdf/lower.fnl's hand-in) gets a translation of 0, each
+translation reading it T + t - camera and each plane reading it the height
+h + dot(n, T - camera): the shader's point stays near the camera, not the world
+point rounded to float32. A derived row (a large sphere's k) is computed from its
+centre's row and the camera."
+  (let [[cx cy cz] cam
+        relative (collect [_ r (ipairs tape.relative)] r true)
         ;; Row index (0-based) -> the values sent for it.
         instead {}
         _ (each [_ {: root : translations : planes} (ipairs (or tape.inner []))]
@@ -62,6 +49,9 @@ near the camera, not the world point rounded to float32."
               (each [_ {: row} (ipairs planes)]
                 (let [[x y z w] (. tape.rows (+ row 1))]
                   (tset instead row [x y z (+ w (* x dx) (* y dy) (* z dz))])))))
+        _ (each [_ {: row : centre} (ipairs (or tape.derived []))]
+            (let [[x y z r] (. tape.rows (+ centre 1))]
+              (tset instead row [(large-sphere.k [x y z] r cam) 0 0 0])))
         out []]
     (each [i row (ipairs tape.rows)]
       (let [[x y z w] row]
@@ -152,17 +142,18 @@ by name. Booleans are sent as 0 or 1 with :type :bool. A field's textures come a
     (when plan.uber?
       (table.insert out {:name "uShadows" :type :bool :values [(if render.shadows 1 0)]})
       (table.insert out {:name "uGlow" :type :bool :values [(if render.glow 1 0)]}))
-    (append! out (kind-uniforms plan cam.pos))
     (when plan.lighting
       (append! out (lighting-uniforms scene.lighting plan cam.pos)))
     (when plan.field
       (append! out (field-uniforms plan.field cam.pos)))
-    (when plan.tape
-      (table.insert out {:name "uTape" :type :vec4 :values (tape-values plan.tape cam.pos)
-                         :count (length plan.tape.rows)}))
+    (each [_ [name bank] (ipairs [["uTape" plan.tape] ["uInstances" plan.tape.instances]])]
+      (when (> (length bank.rows) 0)
+        (table.insert out {: name :type :vec4 :values (tape-values bank cam.pos)
+                           :count (length bank.rows)})))
     (when (and plan.bounds (> plan.bounds.count 0))
       (table.insert out {:name "uBounds" :type :vec4 :count plan.bounds.count
-                         :values (bounds.spheres plan cam.pos (hit-threshold scene plan cam height))}))
+                         :values (bounds.spheres plan scene.objects cam.pos
+                                                 (hit-threshold scene plan cam height))}))
     (table.sort out (fn [a b] (< a.name b.name)))
     out))
 

@@ -17,10 +17,22 @@ with a decimal point or an exponent."
       (.. "vec" (length vals) "(" (table.concat (icollect [_ v (ipairs vals)] (float-literal v)) ", ")
           ")")))
 
+
+;; Where the arguments being emitted live: nil for the tape's own rows (uTape), or an
+;; instance group's bank (see lower.fnl's :instances), whose rows are read at
+;; base + row + stride * i in the group's loop.
+(var group nil)
+
+(fn row-expr [row]
+  (if group
+      (let [at (+ group.base row)]
+        (.. "uInstances[i * " group.stride (if (= at 0) "" (.. " + " at)) "]"))
+      (.. "uTape[" row "]")))
+
 (fn arg-expr [ref]
   (if ref.literal (literal ref.literal)
       (let [s (fcollect [i 1 ref.size] (. swizzles (+ ref.offset i)))]
-        (.. "uTape[" ref.row "]." (table.concat s)))))
+        (.. (row-expr ref.row) "." (table.concat s)))))
 
 (fn args-list [args]
   (icollect [_ a (ipairs args)] (arg-expr a)))
@@ -53,7 +65,7 @@ with a decimal point or an exponent."
     :material (when materials?
                 (let [lit ins.literal
                       row (fn [k] (if lit (literal (fcollect [i 1 4] (. lit (+ (* 4 k) i))))
-                                      (.. "uTape[" (+ ins.row k) "]")))]
+                                      (row-expr (+ ins.row k))))]
                   (table.insert out (if (= mt.type "vec4")
                                         (.. "vec4 " ins.mout " = " (row 0) ";")
                                         (.. "mat2x4 " ins.mout " = mat2x4(" (row 0) ", " (row 1)
@@ -101,9 +113,11 @@ with a decimal point or an exponent."
   "The lines of `text`."
   (icollect [line (: (.. text "\n") :gmatch "([^\n]*)\n")] line))
 
+
 (fn functions [tape ?defined]
   "GLSL definitions of every helper and function the tape uses, in first-use order,
-but those named in `?defined` (GLSL name -> true: already in the shader)."
+but those named in `?defined` (GLSL name -> true: already in the shader; those
+written here are added to it)."
   (let [out []
         defined (or ?defined {})]
     (each [_ u (ipairs tape.used)]
@@ -111,6 +125,7 @@ but those named in `?defined` (GLSL name -> true: already in the shader)."
         (table.insert out (. primitives.helpers u.desc))))
     (each [_ u (ipairs tape.used)]
       (when (and (not (u.name:find "^helper:")) (not (. defined u.name)))
+        (tset defined u.name true)
         (table.insert out u.desc.glsl)))
     (when (= tape.material-size 8)
       (table.insert out (.. "// Blends two-row materials as mix() blends vec4 ones.\n"
@@ -122,17 +137,53 @@ but those named in `?defined` (GLSL name -> true: already in the shader)."
         (each [_ line (ipairs (text-lines text))] (table.insert lines line)))
       lines)))
 
+(fn gradient-name [desc]
+  (pick-values 1 (desc.glsl-name:gsub "^sd" "grad")))
+
+(fn gradient-functions [tape which ?defined]
+  "The exact gradients (:gradient-glsl) of the descriptors that leaf objects (see
+lower.fnl's :leaf) for which `which` is true draw with, each once, and what they call
+(:gradient-needs names another descriptor's), but those in `?defined` (added to
+it)."
+  (let [defined (or ?defined {})
+        out []]
+    (fn add [desc]
+      (let [name (gradient-name desc)]
+        (when (not (. defined name))
+          (when desc.gradient-needs
+            (add (assert (accumulate [found nil _ d (ipairs primitives.all) &until found]
+                           (when (= (gradient-name d) desc.gradient-needs) d)))))
+          (tset defined name true)
+          (when (> (length out) 0) (table.insert out ""))
+          (each [_ l (ipairs (text-lines desc.gradient-glsl))] (table.insert out l)))))
+    (each [_ o (ipairs tape.objects)]
+      (let [prim (?. o :leaf :prim)]
+        (when (and prim prim.desc.gradient-glsl (which o)) (add prim.desc))))
+    out))
+
 (fn declarations [tape]
-  "The parameter array's declaration (nothing for an empty tape)."
-  (if (> (length tape.rows) 0)
-      [(.. "uniform vec4 uTape[" (length tape.rows) "];  // tree parameters and materials")]
-      []))
+  "The parameter arrays' declarations: the tape's rows, and the instance groups'."
+  [(if (> (length tape.rows) 0)
+       [(.. "uniform vec4 uTape[" (length tape.rows) "];  // tree parameters and materials")]
+       [])
+   (if (> (length tape.instances.rows) 0)
+       [(.. "uniform vec4 uInstances[" (length tape.instances.rows)
+            "];  // instance groups' parameters and materials, one stride each")]
+       [])])
 
 (fn object-comment [o]
-  (.. "// " o.info.path ": " o.info.kind))
+  ;; The object's path and what it draws (under the translation its :pos makes).
+  (.. "// " o.info.path ": "
+      (if (and o.info.implicit? (. o.info.children 1)) (. o.info.children 1 :kind) o.info.kind)
+      (if o.instances (.. " and " (- o.instances.count 1) " more like it") "")))
 
 (fn indented [lines]
-  (icollect [_ l (ipairs lines)] (.. "    " l)))
+  (let [out []]
+    (fn add [ls]
+      (each [_ l (ipairs ls)]
+        (if (= (type l) :table) (add l) (table.insert out (if (= l "") "" (.. "    " l))))))
+    (add lines)
+    out))
 
 (fn guarded-lines [o materials? tail]
   "Lines of object `o`'s code, then the lines `tail` (which use its distance). With a
@@ -152,42 +203,124 @@ could not lower d."
         (each [_ l (ipairs tail)] (table.insert lines l))
         lines)))
 
-(fn distance-terms [tape ?first-id]
-  "Lines for map(): each tree object's distance, folded into d. With `?first-id`, for
-mapOthers(): each but the one gObject numbers (see color-terms)."
-  (icollect [i o (ipairs tape.objects)]
-    [(object-comment o)
-     (if ?first-id (.. "if (gObject != " (+ ?first-id i -1) ") {") "{")
-     (indented (guarded-lines o false [(.. "d = min(d, " o.dout ");")]))
-     "}"]))
+(fn id-expr [o first]
+  ;; The GLSL number of object `o` (of its member i in a group), objects counted
+  ;; from `first`.
+  (if o.instances (.. (+ first o.id) " + i") (tostring (+ first o.id))))
 
-(fn color-terms [tape mirrors? ?first-id]
+(fn in-group [o lines-fn]
+  ;; `(lines-fn)` emitted with `o`'s rows (an instance group's bank while it runs).
+  (set group o.instances)
+  (let [(ok? lines) (pcall lines-fn)]
+    (set group nil)
+    (if ok? lines (error lines 0))))
+
+(fn looped [o block-fn]
+  ;; `(block-fn)`'s lines for object `o` after its comment: once, or for an instance
+  ;; group in a loop over its members, read from its bank.
+  (let [block (in-group o block-fn)]
+    [(object-comment o)
+     (if o.instances
+         [(.. "for (int i = 0; i < " o.instances.count "; i++) {") (indented block) "}"]
+         block)]))
+
+(fn object-block [o first materials? open tail]
+  "Lines for one object of a minimum: its code and then `(tail id)` (lines using its
+distance), in a block opened by `(open id)`; an instance group's in a loop over its
+members. `id`: the object's number as GLSL (see id-expr)."
+  (let [id (id-expr o first)]
+    (looped o #[(open id) (indented (guarded-lines o materials? (tail id))) "}"])))
+
+(fn open-block [] "{")
+
+(fn objects-of [tape ?which]
+  (icollect [_ o (ipairs tape.objects)] (when (or (not ?which) (?which o)) o)))
+
+(fn distance-terms [tape ?which]
+  "Lines for map(): each tree object's distance (each for which `?which` is true),
+folded into d."
+  (icollect [_ o (ipairs (objects-of tape ?which))]
+    (object-block o 0 false open-block #[(.. "d = min(d, " o.dout ");")])))
+
+(fn others-terms [tape first]
+  "Lines for mapOthers(): map's minimum, each object but the one gObject numbers
+(objects counted from `first`, as color-terms does)."
+  (icollect [_ o (ipairs tape.objects)]
+    (object-block o first false #(.. "if (gObject != " $ ") {") #[(.. "d = min(d, " o.dout ");")])))
+
+(fn color-terms [tape mirrors? ?first]
   "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
 its mirror amount in gMirror when `mirrors?`; with two-row materials, always, and
-the second row in gMaterial). With `?first-id`, also its number in gObject: the
-tree objects are numbered from it in tape order (see object-terms)."
+the second row in gMaterial). With `?first`, also its number in gObject: the
+objects are numbered from it in tape order, an instance group's members one each."
   (set mt (. material-types tape.material-size))
   (let [modern? (= tape.material-size 8)]
-    (icollect [i o (ipairs tape.objects)]
+    (icollect [_ o (ipairs tape.objects)]
       (let [row (if modern? (.. o.mout "[0]") o.mout)]
-        [(object-comment o) "{"
-         (indented
-          (guarded-lines
-           o true
-           [(.. "if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
-                (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
-                (if modern? (.. " gMaterial = " o.mout "[1];") "")
-                (if ?first-id (.. " gObject = " (+ ?first-id i -1) ";") "") " }")]))
-         "}"]))))
+        (object-block o (or ?first 0) true open-block
+                      #[(.. "if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
+                            (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
+                            (if modern? (.. " gMaterial = " o.mout "[1];") "")
+                            (if ?first (.. " gObject = " $ ";") "") " }")])))))
 
-(fn object-terms [tape first-id]
+(fn selected [o first lines-fn]
+  ;; Lines run when gObject is object `o`'s number (one of its group's: then with
+  ;; `i` its member's), objects counted from `first`.
+  (let [id (+ first o.id)]
+    (if o.instances
+        [(.. "if (gObject >= " id " && gObject < " (+ id o.instances.count) ") {  "
+             (object-comment o))
+         (indented [(.. "int i = gObject" (if (= id 0) "" (.. " - " id)) ";")
+                    (in-group o lines-fn)])
+         "}"]
+        [(.. "if (gObject == " id ") {  " (object-comment o))
+         (indented (lines-fn))
+         "}"])))
+
+(fn object-terms [tape first]
   "Lines for mapObject(): each tree object's distance alone, returned when gObject
-holds its number (numbered from `first-id` in tape order, as color-terms does)."
-  (icollect [i o (ipairs tape.objects)]
-    [(.. "if (gObject == " (+ first-id i -1) ") {  " (object-comment o))
-     (icollect [_ l (ipairs (emit-code [] o.code false))] (.. "    " l))
-     (.. "    return " o.dout ";")
-     "}"]))
+holds its number (numbered from `first` as color-terms does)."
+  (icollect [_ o (ipairs tape.objects)]
+    (selected o first #[(emit-code [] o.code false) (.. "return " o.dout ";")])))
 
-{: functions : declarations : distance-terms : color-terms : object-terms : text-lines
+(fn leaf-gradient [o action]
+  ;; A leaf object's exact normal: its translations, then its primitive's gradient
+  ;; (see lower.fnl's :leaf); `action` is "n = " or "return ".
+  (let [{: points : prim} o.leaf]
+    [(emit-code [] points false)
+     (.. action (call (gradient-name prim.desc) (reg prim.pin) prim.args) ";")]))
+
+(fn exact? [o]
+  "Whether object `o` has its exact normal in closed form: a leaf whose primitive has
+a gradient."
+  (not= nil (?. o :leaf :prim :desc :gradient-glsl)))
+
+(fn gradient-terms [tape first action]
+  "Lines for calcNormal: each object with an exact normal (exact?) gives it when
+gObject is its number (counted from `first`); `action` is \"n = \" or \"return \"."
+  (icollect [_ o (ipairs tape.objects)]
+    (when (exact? o) (selected o first #(leaf-gradient o action)))))
+
+(fn plane-terms [tape]
+  "Lines for planesHit(ro, rd): each half-space object (lower.fnl's :half-space?: a
+leaf whose primitive is solid below a plane, met in closed form) lowers t to where
+the ray enters it: 0 from inside, t = -s / v for s its distance at the origin and v
+the ray's rate along its normal (the gradient). `p` is the ray's origin."
+  (icollect [_ o (ipairs tape.objects)]
+    (when o.half-space?
+      (let [{: points : prim} o.leaf]
+        (looped o #["{"
+                    (indented [(emit-code [] points false)
+                               (.. "float s = " (call prim.desc.glsl-name (reg prim.pin) prim.args) ";")
+                               (.. "float v = dot(rd, " (call (gradient-name prim.desc) (reg prim.pin)
+                                                                prim.args) ");")
+                               "if (s <= 0.0) {"
+                               "    t = 0.0;"
+                               "} else if (v < 0.0) {"
+                               "    t = min(t, -s / v);"
+                               "}"])
+                    "}"])))))
+
+{: functions : gradient-functions : declarations : distance-terms : others-terms
+ : color-terms : object-terms : gradient-terms : plane-terms : exact? : text-lines
  : float-literal}

@@ -9,8 +9,8 @@
 ;; emission and two spare (see :material-size in src/sdf/lower.fnl).
 (local material-components {4 ["r" "g" "b" "a"] 8 ["r" "g" "b" "a" "k" "e" "u" "v"]})
 
-(fn new-emitter [table-mode? material-size]
-  (let [e {:lines [] :fns [] :fn-index {} : table-mode?
+(fn new-emitter [table-mode? material-size group?]
+  (let [e {:lines [] :fns [] :fn-index {} : table-mode? : group?
            :comps (. material-components (or material-size 4))}]
     (fn e.fn-ref [f]
       (when (not (. e.fn-index f))
@@ -22,12 +22,16 @@
     (fn e.line [indent s] (table.insert e.lines (.. (string.rep "  " indent) s)))
     e))
 
-(fn arg-values [args]
-  ;; S is 1-based and flat: row r, offset o, component k is S[r * 4 + o + k].
+(fn slot [e n]
+  ;; S is 1-based and flat: row r, offset o, component k is S[r * 4 + o + k]; in an
+  ;; instance group's function, S[B + ...] with B its member's first (see compile).
+  (if e.group? (.. "S[B + " n "]") (.. "S[" n "]")))
+
+(fn arg-values [e args]
   (let [out []]
     (each [_ a (ipairs args)]
       (for [k 1 a.size]
-        (table.insert out (.. "S[" (+ (* a.row 4) a.offset k) "]"))))
+        (table.insert out (slot e (+ (* a.row 4) a.offset k)))))
     out))
 
 (fn point [e name]
@@ -49,7 +53,7 @@
 
 (fn call [e f first args ?rest]
   (let [parts [first]]
-    (each [_ v (ipairs (arg-values args))] (table.insert parts v))
+    (each [_ v (ipairs (arg-values e args))] (table.insert parts v))
     (when ?rest (table.insert parts ?rest))
     (.. (e.fn-ref f) "(" (table.concat parts ", ") ")")))
 
@@ -62,7 +66,7 @@
                 (let [base (* ins.row 4)]
                   (e.line indent (.. (material-decl e ins.mout) " = "
                                      (table.concat (fcollect [k 1 (length e.comps)]
-                                                     (.. "S[" (+ base k) "]"))
+                                                     (slot e (+ base k)))
                                                    ", ")))))
     :point (e.line indent (.. (point-decl e ins.pout) " = "
                               (call e ins.desc.cpu (point e ins.pin) ins.args)))
@@ -114,34 +118,56 @@
   (accumulate [n 0 _ ins (ipairs code)]
     (+ n per (if ins.body (count-registers ins.body per) 0))))
 
-(fn object-source [e o materials?]
-  (e.line 0 (.. "FN[#FN + 1] = function(x, y, z)"))
+(fn function-lines [e o what]
+  ;; The function of object `o` that returns its distance (:distance), that and its
+  ;; material (:material), or its exact normal (:gradient, a leaf's; see lower.fnl).
+  (e.line 0 "FN[#FN + 1] = function(x, y, z)")
   (when e.table-mode? (e.line 1 "local R = {}"))
-  (emit-code e o.code materials? 1)
-  (e.line 1 (.. "return " (e.r o.dout) (if materials? (.. ", " (material e o.mout)) "")))
+  (if (= what :gradient)
+      (let [{: points : prim} o.leaf]
+        (emit-code e points false 1)
+        (e.line 1 (.. "return " (call e prim.desc.gradient (point e prim.pin) prim.args))))
+      (let [materials? (= what :material)]
+        (emit-code e o.code materials? 1)
+        (e.line 1 (.. "return " (e.r o.dout) (if materials? (.. ", " (material e o.mout)) "")))))
   (e.line 0 "end"))
 
-(fn flat-rows [tape]
+(fn flat-rows [rows]
   (let [out []]
-    (each [_ row (ipairs tape.rows)]
+    (each [_ row (ipairs rows)]
       (each [_ v (ipairs row)] (table.insert out v)))
     out))
 
 (fn compile [tape]
-  "CPU evaluators for `tape`'s objects, in world coordinates and double precision:
-{:distance [(fn [x y z]) -> d per object] :material [(fn [x y z]) -> d r g b mirror
-(and with :material-size 8: roughness emission and two spare) per object] :source text}."
+  "CPU evaluators for `tape`'s objects, in world coordinates and double precision, one
+per object number (an instance group's members one each, in order): {:distance
+[(fn [x y z]) -> d] :material [(fn [x y z]) -> d r g b mirror (and with
+:material-size 8: roughness emission and two spare)] :gradient [(fn [x y z]) -> nx ny
+nz, or false where the object has no exact normal] :source text}."
   (let [sources []
-        out {:distance [] :material []}]
-    (each [_ materials? (ipairs [false true])]
+        banks {:tape (flat-rows tape.rows) :instances (flat-rows tape.instances.rows)}
+        out {:distance [] :material [] :gradient []}]
+    (each [_ what (ipairs [:distance :material :gradient])]
       (each [_ o (ipairs tape.objects)]
-        (let [e (new-emitter (> (count-registers o.code (or tape.material-size 4)) max-locals) tape.material-size)]
-          (e.line 0 "local S, F, FN = ...")
-          (object-source e o materials?)
-          (let [source (table.concat e.lines "\n")
-                chunk (assert ((or _G.loadstring load) source (.. "=tape:" o.info.path)))]
-            (table.insert sources source)
-            (chunk (flat-rows tape) e.fns (if materials? out.material out.distance))))))
+        (let [group o.instances
+              e (new-emitter (> (count-registers o.code (or tape.material-size 4)) max-locals)
+                             tape.material-size (not= nil group))
+              into (. out what)]
+          (if (and (= what :gradient) (not (?. o :leaf :prim :desc :gradient)))
+              (for [_ 1 (if group group.count 1)] (table.insert into false))
+              (do
+                (e.line 0 "local S, F, FN, first, stride, count = ...")
+                (when group
+                  (e.line 0 "for member = 0, count - 1 do")
+                  (e.line 0 "local B = (first + member * stride) * 4"))
+                (function-lines e o what)
+                (when group (e.line 0 "end"))
+                (let [source (table.concat e.lines "\n")
+                      chunk (assert ((or _G.loadstring load) source (.. "=tape:" o.info.path)))]
+                  (table.insert sources source)
+                  (if group
+                      (chunk banks.instances e.fns into group.base group.stride group.count)
+                      (chunk banks.tape e.fns into))))))))
     (set out.source (table.concat sources "\n"))
     out))
 

@@ -43,6 +43,7 @@
 
 (local primitives (require :src.sdf.primitives))
 (local operations (require :src.sdf.operations))
+(local large-sphere (require :src.sdf.large-sphere))
 
 (local sizes primitives.glsl-types)
 (local box-desc (primitives.lookup :box))
@@ -54,8 +55,8 @@
 (local modern-material [1 1 1 0 0.5 0 0 0])
 
 (fn new-state [?modern? ?far-field? ?infos]
-  {:rows [] :relative [] :inner [] :used {} :used-list [] :counter 0 :key [] :modern? ?modern?
-   :far-field? (not= false ?far-field?) :infos (or ?infos {})})
+  {:rows [] :relative [] :inner [] :derived [] :used {} :used-list [] :counter 0 :key []
+   :modern? ?modern? :far-field? (not= false ?far-field?) :infos (or ?infos {})})
 
 (fn fresh! [st prefix]
   (set st.counter (+ st.counter 1))
@@ -67,18 +68,23 @@
     (table.insert st.used-list name)))
 
 (fn alloc-args! [st desc vals]
-  "Pack `vals` for `desc`'s :args into new rows; returns arg references
-{:row :offset :size :type}. An argument never straddles two rows."
+  "Pack `vals` for `desc`'s :args into rows; returns arg references
+{:row :offset :size :type}. An argument never straddles two rows. A float may take
+the free end of the row the previous instruction left open (a sphere's radius beside
+its translation); a vector starts a row of its own (a translation is always at
+offset 0, where the camera is taken off it; see `hand-in`)."
   (let [refs []]
-    (var row nil)
-    (var offset 4)
+    (var row st.open-row)
+    (var offset (if st.open-row st.open-offset 4))
+    (var own? false)
     (var i 1)
     (each [_ a (ipairs desc.args)]
       (let [n (. sizes a.type)]
-        (when (> (+ offset n) 4)
+        (when (or (> (+ offset n) 4) (and (not own?) (> n 1)))
           (table.insert st.rows [0 0 0 0])
           (set row (- (length st.rows) 1))
           (set offset 0))
+        (set own? true)
         (for [k 1 n]
           (tset (. st.rows (+ row 1)) (+ offset k) (. vals i))
           (set i (+ i 1)))
@@ -87,9 +93,12 @@
     (assert (= (- i 1) (length vals))
             (.. (tostring desc.kind) ": packed " (length vals) " numbers for "
                 (- i 1) " argument components"))
+    (set st.open-row (when (< offset 4) row))
+    (set st.open-offset offset)
     refs))
 
 (fn material-row! [st material]
+  (set st.open-row nil)
   (when (not= (. material 4) 1) (set st.mirrors? true))
   (table.insert st.rows [(. material 1) (. material 2) (. material 3) (. material 4)])
   (when st.modern?
@@ -140,7 +149,8 @@ translate(rotate(scale(node)))."
     {: dout : mout
      :info (let [bounds (and desc.bounds (desc.bounds node))]
              {:kind node.kind :path node.path :class desc.class :lipschitz desc.lipschitz
-              : bounds :box (symmetric-box bounds) :children []})}))
+              : bounds :box (symmetric-box bounds) :children []
+              :radius (when desc.bounding-radius (desc.bounding-radius node))})}))
 
 (fn box-of [node desc info children]
   "The box {:lo :hi} holding `node` in its own frame, tighter than its symmetric
@@ -359,7 +369,10 @@ is a translation or a plane; else nil."
         ;; ends with its box's max on that point: its box becomes the guard's.
         own? (and placed placed.far? (= :far (?. code n :op))
                   (= (?. code (- n 1) :pin) (?. code 1 :pout)))
-        guard (when (and placed placed.box (= :point (?. code 1 :op)) st.far-field?)
+        ;; Only an operation gets a guard: it skips a subtree. A primitive's own
+        ;; distance costs about what its box's does, and holds it.
+        guard (when (and placed placed.box (> (length placed.children) 0)
+                         (= :point (?. code 1 :op)) st.far-field?)
                 (table.insert st.key "guard")
                 (if own?
                     (let [box (table.remove code (- n 1))]
@@ -377,16 +390,69 @@ is a translation or a plane; else nil."
     (table.insert st.relative before)
     (case (hand-in code)
       (where inner (or unplaced? (= 0 (length inner.translations))))
-      (table.insert st.inner (doto inner (tset :root before))))
+      (do (table.insert st.inner (doto inner (tset :root before)))
+          ;; An unplaced object's translation by zero is then the identity: its
+          ;; readers read the shader's point itself.
+          (when unplaced?
+            (let [p (. (table.remove code 1) :pout)]
+              (fn rename [instructions]
+                (each [_ ins (ipairs instructions)]
+                  (when (= ins.pin p) (set ins.pin "p0"))
+                  (when ins.body (rename ins.body))))
+              (rename code)
+              (when guard (set guard.head (- guard.head 1)))
+              (table.insert st.key "identity")))))
     (table.insert st.key ";")
     {:index node.index : code : dout :mout result.mout :info result.info : guard}))
 
+(fn lower-large-sphere [st node]
+  ;; A sphere of radius 1000 or more, placed by :pos: its cancellation-free form (see
+  ;; src/sdf/large-sphere.fnl) on the camera-relative point itself. Its first row
+  ;; (centre, radius) is made camera-relative on upload, its second (k) derived.
+  (let [desc large-sphere.descriptor
+        [x y z] (or node.pos [0 0 0])
+        r node.radius
+        dout (fresh! st "d")
+        mout (fresh! st "m")
+        args (alloc-args! st desc [x y z r 0])
+        code [{:op :prim : desc : args :pin "p0" : dout}
+              {:op :material :row (material-row! st (node-material node (if st.modern? modern-material
+                                                                             default-material)))
+               : mout}]]
+    (use! st desc.glsl-name desc)
+    (table.insert st.relative (. args 1 :row))
+    ;; (Its material row closed the derived row: nothing else shares it.)
+    (table.insert st.derived {:row (. args 2 :row) :centre (. args 1 :row)})
+    (table.insert st.key "large-sphere;")
+    {:index node.index : code : dout : mout
+     :info {:kind :sphere :path node.path :class :exact :lipschitz 1 :bounds [r r r] :radius r
+            :box (symmetric-box [r r r]) :children [] :large? true}}))
+
+(fn leaf-of [code dout]
+  "{:points [translations] :prim instruction} when `code` is translations and then one
+primitive whose distance is the object's (`dout`), else nil: the object's exact
+normal is then its primitive's gradient at the translated point, and a half-space is
+met in closed form."
+  (let [points []]
+    (var prim nil)
+    (var ok? true)
+    (each [_ ins (ipairs code)]
+      (case ins.op
+        :point (if (and (not prim) (= ins.desc.kind :translate)) (table.insert points ins)
+                   (set ok? false))
+        :prim (if prim (set ok? false) (set prim ins))
+        :material nil
+        _ (set ok? false)))
+    (when (and ok? prim (= prim.dout dout))
+      {: points : prim})))
 (fn fold! [st objects]
   "Give every argument and material of `objects`' code that does not sit in a
 camera-relative row (nor takes the camera off, see hand-in) its numbers as :literal,
 and the key those numbers: the GLSL emitter then writes them as constants (see the
 tape's :fold? in `lower`)."
   (let [relative (collect [_ r (ipairs st.relative)] r true)
+        ;; Derived rows (a large sphere's k) follow the camera too.
+        _ (each [_ dv (ipairs st.derived)] (tset relative dv.row true))
         ;; Rows that take the camera off one level in (see hand-in) stay uniforms; of
         ;; a plane's row only the height does (its normal is folded).
         heights {}
@@ -415,29 +481,137 @@ tape's :fold? in `lower`)."
           (table.insert st.key (table.concat (icollect [_ v (ipairs folded)] (string.format "%.9g" v))
                                              ",")))))))
 
+(fn node-of [o]
+  "The scene-tree node that draws scene object `o` (with its :index): its tree, or
+for one of the article's flat objects (a sphere, box or plane written with only its
+own fields) the same leaf as a node, placed by :pos and coloured by :color."
+  (if o.tree
+      (doto (collect [k v (pairs o.tree)] k v) (tset :index o.index))
+      (let [node (collect [k v (pairs o)] k v)]
+        (set node.path (.. "objects[" o.index "]"))
+        (when (= o.kind :plane) (set node.normal [0 0 1]))
+        node)))
+
+;; From this many objects of one structure on (equal keys: the same code but for their
+;; values), they are drawn as one instance group, a loop over their rows. Fewer are
+;; written out one by one, as a person would by hand: the driver then has no loop to
+;; unroll (llvmpipe leaves some unrolled).
+(local min-group 9)
+
+(fn relocate! [code offset seen]
+  ;; Every row `code` reads, `offset` further on (a :post shares its :point's args).
+  (each [_ ins (ipairs code)]
+    (each [_ ref (ipairs (or ins.args []))]
+      (when (not (. seen ref))
+        (tset seen ref true)
+        (set ref.row (+ ref.row offset))))
+    (when (= ins.op :material) (set ins.row (+ ins.row offset)))
+    (when ins.body (relocate! ins.body offset seen))))
+
+(fn new-bank [] {:rows [] :relative [] :inner [] :derived []})
+
+(fn append-rows! [bank ost]
+  ;; The rows of object state `ost`, and what its rows are (relative, handed in,
+  ;; derived), appended to `bank`; returns the offset they got.
+  (let [offset (length bank.rows)
+        at #(+ $ offset)]
+    (each [_ row (ipairs ost.rows)] (table.insert bank.rows row))
+    (each [_ r (ipairs ost.relative)] (table.insert bank.relative (at r)))
+    (each [_ {: root : translations : planes} (ipairs ost.inner)]
+      (table.insert bank.inner {:root (at root)
+                                :translations (icollect [_ r (ipairs translations)] (at r))
+                                :planes (icollect [_ pl (ipairs planes)]
+                                          {:row (at pl.row) :height pl.height})}))
+    (each [_ dv (ipairs ost.derived)]
+      (table.insert bank.derived {:row (at dv.row) :centre (at dv.centre)}))
+    offset))
+
+(fn lower-one [options infos node]
+  ;; Object `node` lowered alone: its state (rows from 0) and its tape object.
+  (let [st (new-state options.modern? options.far-field? infos)
+        large? (and (large-sphere.large? node) (= nil node.scale))
+        o (if large? (lower-large-sphere st node) (lower-object st node))]
+    (set o.leaf (leaf-of o.code o.dout))
+    (set o.size (length st.rows))
+    (set o.half-space? (= true (?. o :leaf :prim :desc :half-space?)))
+    (values st o)))
+
 (fn lower [objects ?options]
-  "Lower the validated tree objects `objects` (each with :index, its scene index and
-:path) into a tape (see the top of this file), or nil and a message naming the node
-when a node cannot be lowered (a twist of an unbounded child), then that node and the
-reason alone. Option :modern? gives every material two rows (:material-size 8);
-:far-field? false leaves out far fields and guards (the benchmark's before);
-:fold? true writes every value but the camera-relative rows (and those of `hand-in`)
-into the code as constants (:literal on arguments and materials), and into the key."
+  "Lower the validated tree objects `objects` (each a node with :index, its scene
+index, and :path; see node-of) into a tape (see the top of this file), or nil and a
+message naming the node when a node cannot be lowered (a twist of an unbounded
+child), then that node and the reason alone. Option :modern? gives every material two
+rows (:material-size 8); :far-field? false leaves out far fields and guards (the
+benchmark's before); :fold? true writes every value but the camera-relative rows (and
+those of `hand-in`) into the code as constants (:literal on arguments and materials),
+and into the key; an instance group's values stay in its bank."
   (let [options (or ?options {})
-        st (new-state options.modern? options.far-field?)
-        (ok? objs) (pcall #(icollect [_ o (ipairs objects)] (lower-object st o)))]
-    (if ok?
-        (do (when options.fold? (fold! st objs))
-            (table.insert st.key (.. "rows:" (length st.rows)))
-            (when st.modern? (table.insert st.key "materials:8"))
-            {:objects objs :rows st.rows :relative st.relative :inner st.inner
-             :mirrors? st.mirrors?
-             :material-size (if st.modern? 8 4)
-             :used (icollect [_ name (ipairs st.used-list)] {: name :desc (. st.used name)})
-             :key (table.concat st.key " ")})
-        (and (= (type objs) :table) objs.lower-error) (values nil objs.lower-error objs.node
-                                                              objs.reason)
-        (error objs 0))))
+        infos {}
+        (ok? lowered) (pcall #(icollect [_ node (ipairs objects)]
+                                (let [(st o) (lower-one options infos node)]
+                                  {: st : o :key (table.concat st.key " ")})))]
+    (if (not ok?)
+        (if (and (= (type lowered) :table) lowered.lower-error)
+            (values nil lowered.lower-error lowered.node lowered.reason)
+            (error lowered 0))
+        (let [counts {}
+              _ (each [_ l (ipairs lowered)] (tset counts l.key (+ 1 (or (. counts l.key) 0))))
+              tape-bank (new-bank)
+              group-bank (new-bank)
+              groups {}
+              group-order []
+              out []
+              used {}
+              used-list []
+              key []]
+          (var mirrors? false)
+          (var id 0)
+          (each [_ {: st : o :key k} (ipairs lowered)]
+            (when st.mirrors? (set mirrors? true))
+            (each [_ name (ipairs st.used-list)]
+              (when (not (. used name))
+                (tset used name (. st.used name))
+                (table.insert used-list name)))
+            (if (< (. counts k) min-group)
+                (do (relocate! o.code (append-rows! tape-bank st) {})
+                    (set o.id id)
+                    (set id (+ id 1))
+                    (table.insert out o)
+                    (table.insert key k))
+                (. groups k)
+                (let [g (. groups k)]
+                  (table.insert g.states st)
+                  (table.insert g.o.indices o.index)
+                  (table.insert g.o.infos o.info))
+                (do (set o.indices [o.index])
+                    (set o.infos [o.info])
+                    (set o.id id)
+                    (set id (+ id (. counts k)))
+                    (tset groups k {: o :states [st]})
+                    (table.insert group-order (. groups k))
+                    (table.insert out o)
+                    (table.insert key (.. "group:" (. counts k) "[" k "]")))))
+          ;; A group's members' rows one after another (at base + member * stride),
+          ;; groups in order.
+          (each [_ {: o : states} (ipairs group-order)]
+            (let [base (append-rows! group-bank (. states 1))]
+              (for [m 2 (length states)] (append-rows! group-bank (. states m)))
+              (set o.instances {:count (length states) : base
+                                :stride (length (. states 1 :rows))})))
+          (let [st (doto (new-state options.modern?)
+                     (tset :rows tape-bank.rows) (tset :relative tape-bank.relative)
+                     (tset :inner tape-bank.inner) (tset :derived tape-bank.derived)
+                     (tset :key key))]
+            (when options.fold?
+              (fold! st (icollect [_ o (ipairs out)] (when (not o.instances) o))))
+            (table.insert key (.. "rows:" (length tape-bank.rows)))
+            (when options.modern? (table.insert key "materials:8"))
+            {:objects out :count id :rows tape-bank.rows :relative tape-bank.relative
+             :inner tape-bank.inner :derived tape-bank.derived :instances group-bank
+             : mirrors?
+             :material-size (if options.modern? 8 4)
+             :used (icollect [_ name (ipairs used-list)] {: name :desc (. used name)})
+             :key (table.concat key " ")})))))
 
 (fn class-label [info]
   (.. (if (> info.lipschitz 1)
@@ -450,15 +624,16 @@ into the code as constants (:literal on arguments and materials), and into the k
   "Lines describing every node of `tape`'s objects, indented by depth, with its class:
 what `--tree` prints."
   (let [lines []]
-    (fn walk [info depth]
+    (fn walk [info depth ?group]
       (let [b info.bounds
             bounds (if b (string.format "bounds ±%.3g ±%.3g ±%.3g" (. b 1) (. b 2) (. b 3))
                        "unbounded")]
         (table.insert lines (.. (string.rep "  " depth) info.kind
                                 (if info.implicit? " (shorthand)" "")
+                                (if ?group (.. " x" ?group.count " (instance group: a loop)") "")
                                 "  " (class-label info) "  " bounds "  " info.path)))
       (each [_ c (ipairs info.children)] (walk c (+ depth 1))))
-    (each [_ o (ipairs tape.objects)] (walk o.info 0))
+    (each [_ o (ipairs tape.objects)] (walk o.info 0 o.instances))
     lines))
 
-{: lower : describe}
+{: lower : describe : node-of : min-group}

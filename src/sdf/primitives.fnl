@@ -24,6 +24,11 @@
 ;;   :bounds      optional (fn [o]) -> [hx hy hz] half extents of a box centred at
 ;;                the origin that holds the shape; absent when it is unbounded
 ;;   :placed?     false for primitives placed by their own parameters (the plane)
+;;   :half-space? true for a primitive solid on one side of a plane (the plane): its
+;;                distance over its gradient's rate along a ray gives where the ray
+;;                meets it, so bounded marches meet it in closed form
+;;   :bounding-radius  optional (fn [o]) -> the radius of a sphere about the origin
+;;                that holds the shape, where tighter than the :bounds box's
 ;;   :gradient-glsl  optional: the exact normal in closed form, the distance's gradient,
 ;;                `vec3 gradX(vec3 p, <args>)` (X as in sdX), with
 ;;   :gradient    (fn [x y z ...args]) -> nx ny nz, in double; objects whose kind has

@@ -85,7 +85,7 @@ the sky, and the surface points met ([x y z] each)."
         (var result nil)
         (var limit reach)
         (when T.soft-span
-          (if (< (T.planes-hit oz lz) reach)
+          (if (< (T.planes-hit ox oy oz lx ly lz) reach)
               (set result 0)
               (let [(enter exit) (if (< softness 0.5)
                                      (T.soft-span ox oy oz lx ly lz (/ softness (- 1 softness)))

@@ -1,12 +1,10 @@
 ;; The CPU reference marcher: the shader's semantics in plain LuaJIT, double precision,
 ;; written independently of the GLSL. Its distances come from the same descriptions as
-;; the shader's (the registry's CPU distances for the kind-grouped objects, the tape's
-;; CPU evaluator for scene trees), so a GPU image can be checked pixel by pixel.
+;; the shader's (the tape's CPU evaluator, src/sdf/emit-lua.fnl, and a field's grid), so a GPU image can be checked pixel by pixel.
 ;;
 ;; Vectors travel as multiple values (x y z) and the inner loops allocate nothing.
 
 (local camera (require :src.render.camera))
-(local registry (require :src.sdf.registry))
 (local emit-lua (require :src.sdf.emit-lua))
 (local bounds (require :src.render.bounds))
 (local field (require :src.render.field))
@@ -67,83 +65,77 @@ Positions are in world coordinates."
         glow? (and shaded? plan.glow?)
         reflections (if (and shaded? plan.reflections?) plan.reflections 0)
         modern? (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8)))
-        objs plan.objects
-        ;; Grouped objects come first in plan.objects, then a field's, then the tree
-        ;; objects.
+        ;; A field's objects come first in plan.objects, then the tape's.
         fd plan.field
-        in-field (or plan.in-field {})
-        grouped (icollect [_ o (ipairs objs)] (when (not (or o.tree (. in-field o))) o))
-        n (length grouped)
         nf (if fd fd.count 0)
-        fns (icollect [_ o (ipairs grouped)] (. (registry.lookup o.kind) :distance))
-        ;; Their exact normals (every grouped kind has one).
-        gradients (icollect [_ o (ipairs grouped)] (. (registry.lookup o.kind) :gradient))
-        trees (if plan.tape (emit-lua.compile plan.tape) {:distance [] :material []})
-        tree-distance trees.distance
-        tree-material trees.material
-        m (length tree-distance)]
+        tape (emit-lua.compile plan.tape)
+        tape-distance tape.distance
+        tape-material tape.material
+        tape-gradient tape.gradient
+        m (length tape-distance)
+        ;; The tape's half-spaces (by tape number), met in closed form with bounds.
+        half-space (let [out {}]
+                     (var j 0)
+                     (each [_ o (ipairs plan.tape.objects)]
+                       (for [_ 1 (if o.instances o.instances.count 1)]
+                         (set j (+ j 1))
+                         (tset out j o.half-space?)))
+                     out)]
 
     (fn map [x y z]
       (var d draw)
-      (for [i 1 n]
-        (let [di ((. fns i) (. objs i) x y z)]
-          (when (< di d) (set d di))))
       (when fd
         (let [df (field.distance fd x y z)]
           (when (< df d) (set d df))))
       (for [i 1 m]
-        (let [di ((. tree-distance i) x y z)]
+        (let [di ((. tape-distance i) x y z)]
           (when (< di d) (set d di))))
       d)
 
-    ;; With bounds (src/render/bounds.fnl), as the shader: the grouped planes met in
+    ;; With bounds (src/render/bounds.fnl), as the shader: the half-spaces met in
     ;; closed form, the other objects marched over the span of their bounding spheres.
-    (local finite (icollect [i o (ipairs grouped)] (when (not= o.kind :plane) i)))
-    (local plane-heights (icollect [_ o (ipairs grouped)] (when (= o.kind :plane) o.height)))
+    (local finite (fcollect [i 1 m] (when (not (. half-space i)) (. tape-distance i))))
+    (local planes (fcollect [i 1 m] (when (. half-space i) i)))
 
     (fn map-finite [x y z]
       (var d draw)
-      (each [_ i (ipairs finite)]
-        (let [di ((. fns i) (. objs i) x y z)]
-          (when (< di d) (set d di))))
-      (for [i 1 m]
-        (let [di ((. tree-distance i) x y z)]
+      (each [_ f (ipairs finite)]
+        (let [di (f x y z)]
           (when (< di d) (set d di))))
       d)
 
-    (fn planes-hit [oz dz]
-      ;; A plane is the solid half-space below its height.
-      (accumulate [t draw _ h (ipairs plane-heights)]
-        (if (<= oz h) 0
-            (< dz 0) (math.min t (/ (- h oz) dz))
-            t)))
+    (fn planes-hit [ox oy oz dx dy dz]
+      ;; A half-space's distance s at the origin over the ray's rate v along its
+      ;; normal (its gradient): 0 from inside, -s / v ahead (planesHit).
+      (accumulate [t draw _ i (ipairs planes)]
+        (let [s ((. tape-distance i) ox oy oz)
+              (nx ny nz) ((. tape-gradient i) ox oy oz)
+              v (+ (* dx nx) (* dy ny) (* dz nz))]
+          (if (<= s 0) 0
+              (< v 0) (math.min t (/ (- s) v))
+              t))))
 
     (fn map-color [x y z]
       ;; Strictly smaller wins, so ties go to the earlier object in plan order.
       ;; Returns the distance, the index into plan.objects (or nil) and the colour and
       ;; mirror amount of the material found.
-      ;; In the modern model also its roughness and emission (grouped objects: matte,
-      ;; 0.5 and none; the classic model's are full mirrors).
+      ;; In the modern model also its roughness and emission (a field's objects:
+      ;; matte, 0.5 and none; the classic model's are full mirrors).
       (var d draw)
       (var best nil)
       (var (r g b mirror rough emit) (values 0 0 0 (if modern? 0 1) 0.5 0))
-      (for [i 1 n]
-        (let [di ((. fns i) (. objs i) x y z)]
-          (when (< di d) (set d di) (set best i))))
-      (when best
-        (let [[cr cg cb] (. objs best :color)] (set (r g b) (values cr cg cb))))
       ;; A field's nearest (black, and no object, outside its grid).
       (when fd
         (let [(df fb) (field.distance fd x y z)]
           (when (< df d)
             (set d df)
-            (set best (when fb (+ n fb)))
+            (set best fb)
             (let [[cr cg cb] (if fb (. fd.colors fb) [0 0 0])] (set (r g b) (values cr cg cb))))))
       (for [i 1 m]
-        (let [(di mr mg mb ma mk me) ((. tree-material i) x y z)]
+        (let [(di mr mg mb ma mk me) ((. tape-material i) x y z)]
           (when (< di d)
             (set d di)
-            (set best (+ n nf i))
+            (set best (+ nf i))
             (set (r g b mirror) (values mr mg mb ma))
             (when modern? (set (rough emit) (values mk me))))))
       (values d best r g b mirror rough emit))
@@ -172,16 +164,16 @@ Positions are in world coordinates."
         (math.max (threshold dist) (* 0.000001 (+ 1 dist)))))
 
     (local bound-spheres (when plan.bounds
-                           (bounds.spheres plan [cx cy cz] threshold true)))
+                           (bounds.spheres plan scene.objects [cx cy cz] threshold true)))
 
     (fn march-field [ox oy oz dx dy dz ?t-max]
       ;; march-field.glsl: the grid's cells in order, each cell's objects met in
       ;; closed form and the other finite objects sphere-traced, a step never past
       ;; the cell's far wall.
       (let [t0 (distance-from-camera ox oy oz)
-            t-plane (planes-hit oz dz)
+            t-plane (planes-hit ox oy oz dx dy dz)
             (enter exit) (bounds.span bound-spheres ox oy oz dx dy dz draw)
-            ;; kFieldOthers: finite objects beside the field (grouped or trees).
+            ;; kFieldOthers: finite objects beside the field.
             others? (> plan.bounds.count 0)
             ;; A field of spheres alone walks lists of its own (march-field-spheres.glsl).
             walk (when (and fd.walk? (not others?)) fd.walk)
@@ -269,7 +261,7 @@ Positions are in world coordinates."
       ;; the plane's distance when the ray passes the end.
       (let [t0 (distance-from-camera ox oy oz)
             f (if bound-spheres map-finite map)
-            t-plane (if bound-spheres (planes-hit oz dz) draw)
+            t-plane (if bound-spheres (planes-hit ox oy oz dx dy dz) draw)
             (enter exit) (if bound-spheres (bounds.span bound-spheres ox oy oz dx dy dz draw)
                              (values 0 draw))
             t-end (math.min t-plane exit (or ?t-max draw))]
@@ -327,16 +319,15 @@ Positions are in world coordinates."
 
     (fn object-map [i]
       ;; The distance function of plan.objects[i] alone.
-      (if (<= i n) (let [f (. fns i) o (. objs i)] (fn [x y z] (f o x y z)))
-          (<= i (+ n nf)) (fn [x y z] (field.object-distance fd (- i n) x y z))
-          (. tree-distance (- i n nf))))
+      (if (<= i nf) (fn [x y z] (field.object-distance fd i x y z))
+          (. tape-distance (- i nf))))
 
     (fn crease? [x y z]
       ;; Two objects meet within the normal's finite-difference reach of the point:
       ;; a whole-scene normal there points between their surfaces.
       (let [reach (* 2 (normal-delta x y z))]
         (var near 0)
-        (for [i 1 (+ n nf m)]
+        (for [i 1 (+ nf m)]
           (when (< ((object-map i) x y z) reach) (set near (+ near 1))))
         (>= near 2)))
 
@@ -345,12 +336,9 @@ Positions are in world coordinates."
       ;; A field's objects through its grid, as the shader's (skipping i's number).
       (fn [x y z]
         (var d draw)
-        (for [j 1 n]
-          (when (not= j i)
-            (let [dj ((object-map j) x y z)] (when (< dj d) (set d dj)))))
         (when fd
-          (let [df (field.distance fd x y z (- i n))] (when (< df d) (set d df))))
-        (for [j (+ n nf 1) (+ n nf m)]
+          (let [df (field.distance fd x y z i)] (when (< df d) (set d df))))
+        (for [j (+ nf 1) (+ nf m)]
           (when (not= j i)
             (let [dj ((object-map j) x y z)] (when (< dj d) (set d dj)))))
         d))
@@ -375,8 +363,8 @@ Positions are in world coordinates."
 
     (fn normal [x y z]
       ;; The whole scene's differences with :normals-of :scene (or when no object is
-      ;; near); else the nearest object's exact gradient when it has one (a grouped
-      ;; or field object: normal-exact.glsl), or its own differences (mapObject),
+      ;; near); else the nearest object's exact gradient when it has one (a field's
+      ;; object or a leaf's: normal-exact.glsl), or its own differences (mapObject),
       ;; taken where another object comes within 2h at the point pushed out of its
       ;; reach (normal-crease.glsl).
       (let [h (normal-delta x y z)
@@ -385,10 +373,10 @@ Positions are in world coordinates."
             (values 0 0 1)
             (or (= plan.normals-of :scene) (not i))
             (differences map x y z h)
-            (<= i n)
-            ((. gradients i) (. objs i) x y z)
-            (<= i (+ n nf))
-            (field.normal fd (- i n) x y z)
+            (<= i nf)
+            (field.normal fd i x y z)
+            (. tape-gradient (- i nf))
+            ((. tape-gradient (- i nf)) x y z)
             (let [others (others-map i)
                   other (others x y z)]
               (tally :normal (if (< other (* 2 h)) 7 1))
@@ -418,7 +406,7 @@ Positions are in world coordinates."
             (values lambert false))))
 
     (fn object-index [i]
-      (when i (. objs i :index)))
+      (when i (. plan.objects i :index)))
 
     (var modern-shade nil)
 

@@ -6,6 +6,9 @@
           {:name :normal :type :direction :default [0 0 1]}]
  :class :exact
  :placed? false
+ ;; Solid on one side of a plane: a ray meets it in closed form, distance over the
+ ;; gradient's rate (src/render/bounds.fnl's planes).
+ :half-space? true
  :args [{:name :n :type :vec3} {:name :h :type :float}]
  :pack (fn [o] (let [[x y z] o.normal] [x y z o.height]))
  :glsl-name "sdPlane"

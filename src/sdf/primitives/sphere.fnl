@@ -19,4 +19,6 @@
  :gradient (fn [x y z _r]
              (let [len (math.sqrt (+ (* x x) (* y y) (* z z)))]
                (if (> len 0) (values (/ x len) (/ y len) (/ z len)) (values 0 0 1))))
- :bounds (fn [o] [o.radius o.radius o.radius])}
+ :bounds (fn [o] [o.radius o.radius o.radius])
+ ;; A tighter bounding sphere than the box's (see src/render/bounds.fnl).
+ :bounding-radius (fn [o] o.radius)}
