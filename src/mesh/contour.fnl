@@ -88,15 +88,18 @@
   (let [ra (find parent a) rb (find parent b)]
     (when (not= ra rb) (tset parent ra rb))))
 
-(fn patches [v]
+(fn patches [v ?flipped]
   "The patches of a cell with corner values `v` (1-based by corner c + 1; inside is
-below 0): a table from each crossing edge (0-11) to its patch's representative."
-  (let [parent {}]
+below 0): a table from each crossing edge (0-11) to its patch's representative, and
+a list of the cell's ambiguous faces (1-6) whose two segments belong to one patch.
+`?flipped` (a table of faces 1-6) reverses the asymptotic decider on those faces."
+  (let [parent {}
+        joined []]
     (for [e 0 11]
       (let [[a b] (. edge-corners (+ e 1))]
         (when (not= (< (. v (+ a 1)) 0) (< (. v (+ b 1)) 0))
           (tset parent e e))))
-    (each [_ f (ipairs faces)]
+    (each [fi f (ipairs faces)]
       (let [[c0 c1 c2 c3] f.corners
             [e01 e12 e23 e30] f.edges
             n (+ (if (. parent e01) 1 0) (if (. parent e12) 1 0)
@@ -110,10 +113,16 @@ below 0): a table from each crossing edge (0-11) to its patch's representative."
             ;; their sign; then the face's two segments cut off corners 1 and 3.
             (let [a (. v (+ c0 1)) b (. v (+ c1 1)) c (. v (+ c2 1)) d (. v (+ c3 1))
                   saddle (/ (- (* a c) (* b d)) (- (+ a c) b d))]
-              (if (= (< saddle 0) (< a 0))
+              (if (not= (= (< saddle 0) (< a 0)) (not= nil (and ?flipped (. ?flipped fi))))
                   (do (join! parent e01 e12) (join! parent e23 e30))
                   (do (join! parent e30 e01) (join! parent e12 e23)))))))
-    (collect [e _ (pairs parent)] e (find parent e))))
+    ;; e01 and e23 are on different segments either way.
+    (each [fi f (ipairs faces)]
+      (let [[e01 e12 e23 e30] f.edges]
+        (when (and (. parent e01) (. parent e12) (. parent e23) (. parent e30)
+                   (= (find parent e01) (find parent e23)))
+          (table.insert joined fi))))
+    (values (collect [e _ (pairs parent)] e (find parent e)) joined)))
 
 ;;; The QEF: the point nearest (in the least-squares sense) to the crossings' tangent
 ;;; planes, pulled slightly toward their mean.
@@ -164,10 +173,12 @@ the cell whose low corner is lo and side h."
         ox (max qx 0) oy (max qy 0) oz (max qz 0)]
     (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz))) (min (max qx qy qz) 0))))
 
-(fn evaluator [field cut counts]
-  "A function from a flat list of points x y z ... to their distances (the field
-cut by the box `cut`), in batches of batch-size points."
-  (fn [flat]
+(fn evaluator [field cut counts progress]
+  "A function from a phase name and a flat list of points x y z ... to their
+distances (the field cut by the box `cut`), in batches of batch-size points; after
+each batch `progress` hears the phase, the points evaluated so far and the estimate
+of all the points the mesh will take (counts.estimate, nil while unknown)."
+  (fn [phase flat]
     (let [n (/ (length flat) 3)
           out []]
       (for [start 0 (- n 1) batch-size]
@@ -178,8 +189,9 @@ cut by the box `cut`), in batches of batch-size points."
             (let [j (* 3 (- k 1))
                   d (. ds k)
                   b (box-distance cut (. chunk (+ j 1)) (. chunk (+ j 2)) (. chunk (+ j 3)))]
-              (tset out (+ start k) (max d b))))))
-      (set counts.points (+ counts.points n))
+              (tset out (+ start k) (max d b))))
+          (set counts.points (+ counts.points count))
+          (progress phase counts.points counts.estimate)))
       out)))
 
 ;;; The mesher.
@@ -190,14 +202,16 @@ distances at the points of the flat list x1 y1 z1 x2 ...; :step the gradient's
 difference step as a share of a cell}. The grid: {:lo [x y z] (its low corner) :h
 (the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a box inside the grid
 by at least one cell: the field is cut by it, which closes the mesh)}.
-`?progress` (fn [phase done total]) hears of each batch.
+`?progress` (fn [phase points estimate]) hears of each batch of points: the phase
+(:blocks, :corners, :crossings or :normals), the points evaluated so far and an
+estimate of the points the whole mesh takes (nil until the blocks are known).
 Returns {:positions [x y z ...] :triangles [a b c ...] (1-based vertex indices,
 counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
 (leaf blocks sampled) :skipped (leaf blocks' worth of volume skipped) :cells
 (cells with surface) :crossings}}."
   (let [progress (or ?progress (fn []))
         counts {:points 0}
-        evaluate (evaluator field grid.cut counts)
+        evaluate (evaluator field grid.cut counts progress)
         [ox oy oz] grid.lo
         h grid.h
         [nx ny nz] grid.dims
@@ -220,8 +234,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
           (table.insert flat (+ ox (* i h) half))
           (table.insert flat (+ oy (* j h) half))
           (table.insert flat (+ oz (* k h) half)))
-        (progress :blocks 0 (length blocks))
-        (let [ds (evaluate flat)
+        (let [ds (evaluate :blocks flat)
               kept (icollect [b [i j k] (ipairs blocks)]
                      (if (<= (abs (. ds b)) radius) [i j k]
                          (do (set skipped (+ skipped (/ (^ size 3) (^ leaf 3)))) nil)))]
@@ -246,8 +259,12 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
               (table.insert flat (+ ox (* (min nx (+ i a)) h)))
               (table.insert flat (+ oy (* (min ny (+ j b)) h)))
               (table.insert flat (+ oz (* (min nz (+ k c)) h)))))))
-      (progress :corners 0 (/ (length flat) 3))
-      (let [corner-values (evaluate flat)
+      ;; The crossings and normals take about as many points again as the corners:
+      ;; a leaf of 64 cells holds some 13 crossings where a surface crosses it (a
+      ;; sphere at 32 cells), each taking 10 points (measured: 3990 crossings in 308
+      ;; leaves); the estimate is made exact once the crossings are counted.
+      (set counts.estimate (+ counts.points (* 2 (/ (length flat) 3))))
+      (let [corner-values (evaluate :corners flat)
             px [] py [] pz [] nrx [] nry [] nrz []
             ;; Crossing edges: global key -> index; their ends and values.
             edge-index {}
@@ -288,6 +305,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                                   (tset eaxis idx axis) (tset ekey idx key)
                                   (tset ed0 idx da) (tset ed1 idx db))
                                 (tset cell.edges e idx)))))))))))))
+        (set counts.estimate (+ counts.points (* crossings (+ refine-steps 6))))
         ;; 4. Crossing points: the linear guess from the corner values, then regula
         ;; falsi (the Illinois variant) on the field along each edge.
         (let [ta (fcollect [e 1 crossings] 0)
@@ -305,12 +323,11 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                                 (+ oz (* h (+ (. ez0 e) (if (= axis 2) t 0)))))))
               ts (fcollect [e 1 crossings] (guess e))]
           (for [s 1 refine-steps]
-            (progress :crossings (- s 1) refine-steps)
             (let [flat []]
               (for [e 1 crossings]
                 (let [(x y z) (point e (. ts e))]
                   (table.insert flat x) (table.insert flat y) (table.insert flat z)))
-              (let [ds (evaluate flat)]
+              (let [ds (evaluate :crossings flat)]
                 (for [e 1 crossings]
                   (let [t (. ts e) d (. ds e)]
                     (if (= (< d 0) (< (. fa e) 0))
@@ -325,7 +342,6 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
             (let [(x y z) (point e (. ts e))]
               (tset px e x) (tset py e y) (tset pz e z))))
         ;; 5. Normals: central differences of the field at each crossing.
-        (progress :normals 0 1)
         (let [flat []]
           (for [e 1 crossings]
             (let [x (. px e) y (. py e) z (. pz e)]
@@ -333,7 +349,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                                            [0 (- step) 0] [0 0 step] [0 0 (- step)]])]
                 (table.insert flat (+ x dx)) (table.insert flat (+ y dy))
                 (table.insert flat (+ z dz)))))
-          (let [ds (evaluate flat)]
+          (let [ds (evaluate :normals flat)]
             (for [e 1 crossings]
               (let [b (* 6 (- e 1))
                     gx (- (. ds (+ b 1)) (. ds (+ b 2)))
@@ -346,13 +362,52 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                     (let [axis (. eaxis e) sgn (if (< (. ed0 e) 0) 1 -1)]
                       (tset nrx e (if (= axis 0) sgn 0)) (tset nry e (if (= axis 1) sgn 0))
                       (tset nrz e (if (= axis 2) sgn 0))))))))
-        ;; 6. One vertex per patch of each cell.
-        (progress :vertices 0 (length cells))
+        ;; 6. Patches. Where both cells of an ambiguous face have one patch through
+        ;; both of the face's segments, the quads of the two segments would share
+        ;; their edge across the face (four triangles on one edge): reversing the
+        ;; face's decision in both cells splits each patch in two. Repeated until no
+        ;; face is left so (each reversal only splits patches, so it ends).
+        (let [cell-at {}
+              face-key (fn [cell fi]
+                         (let [axis (floor (/ (- fi 1) 2)) side (% (- fi 1) 2)]
+                           (+ axis (* 3 (+ cell.i (if (= axis 0) side 0)
+                                           (* stride-x (+ cell.j (if (= axis 1) side 0)))
+                                           (* stride-y (+ cell.k (if (= axis 2) side 0))))))))
+              ;; The same face seen from the cell across it.
+              across (fn [cell fi]
+                       (let [axis (floor (/ (- fi 1) 2)) sgn (if (= 0 (% (- fi 1) 2)) -1 1)]
+                         (values (. cell-at (+ cell.i (if (= axis 0) sgn 0)
+                                               (* stride-x (+ cell.j (if (= axis 1) sgn 0)))
+                                               (* stride-y (+ cell.k (if (= axis 2) sgn 0)))))
+                                 (if (= sgn 1) (- fi 1) (+ fi 1)))))
+              flipped {}]
+          (each [_ cell (ipairs cells)]
+            (tset cell-at (+ cell.i (* stride-x cell.j) (* stride-y cell.k)) cell)
+            (set cell.flips {})
+            (set (cell.rep cell.joined) (patches cell.v)))
+          (var todo cells)
+          (for [_ 1 16 &until (= 0 (length todo))]
+            (let [again []]
+              (each [_ cell (ipairs todo)]
+                (each [_ fi (ipairs cell.joined)]
+                  (let [(other ofi) (across cell fi)]
+                    (when (and other (not (. flipped (face-key cell fi)))
+                               (accumulate [j? false _ g (ipairs other.joined)]
+                                 (or j? (= g ofi))))
+                      (tset flipped (face-key cell fi) true)
+                      (tset cell.flips fi (not (. cell.flips fi)))
+                      (tset other.flips ofi (not (. other.flips ofi)))
+                      (table.insert again cell)
+                      (table.insert again other)))))
+              (each [_ cell (ipairs again)]
+                (set (cell.rep cell.joined) (patches cell.v cell.flips)))
+              (set todo again))))
+        ;; 7. One vertex per patch of each cell.
         (let [positions []
               cell-vertices {}]
           (var vertex-count 0)
           (each [_ cell (ipairs cells)]
-            (let [rep (patches cell.v)
+            (let [rep cell.rep
                   groups {}
                   order []
                   local-vertex {}]
@@ -373,9 +428,8 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                   (tset local-vertex r vertex-count)))
               (tset cell-vertices (+ cell.i (* stride-x cell.j) (* stride-y cell.k))
                     (collect [e r (pairs rep)] e (. local-vertex r)))))
-          ;; 7. A quad of the four cells around each crossing edge, split into two
+          ;; 8. A quad of the four cells around each crossing edge, split into two
           ;; triangles along the diagonal that bends it least.
-          (progress :faces 0 crossings)
           (let [triangles []
                 vertex-of (fn [i j k e]
                             (let [vs (. cell-vertices (+ i (* stride-x j) (* stride-y k)))]
@@ -411,7 +465,6 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                 (if (>= (flatness a b c d) (flatness b c d a))
                     (each [_ v (ipairs [a b c a c d])] (table.insert triangles v))
                     (each [_ v (ipairs [b c d b d a])] (table.insert triangles v)))))
-            (progress :faces crossings crossings)
             {: positions : triangles
              :stats {:points counts.points :blocks (length leaves) : skipped
                      :cells (length cells) : crossings}}))))))
