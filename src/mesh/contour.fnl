@@ -32,6 +32,11 @@
 (local top 32)
 ;; Points per call of the field's batch functions.
 (local batch-size 32768)
+;; A vertex farther than this (in cells) from the surface is moved onto it. The QEF
+;; puts the vertex of a sharp edge or corner on the surface, so this leaves them be;
+;; what it moves are vertices clamped to their cell and those of features thinner
+;; than a cell, whose tangent planes meet far away.
+(local off-surface 0.25)
 ;; Regula falsi steps refining each crossing after the linear guess from the corners.
 (local refine-steps 4)
 ;; The QEF's pull toward the mean of the crossings, per crossing (normals are unit,
@@ -144,7 +149,7 @@ a list of the cell's ambiguous faces (1-6) whose two segments belong to one patc
 
 (fn qef-vertex [ids px py pz nx ny nz lo-x lo-y lo-z h]
   "The vertex of the crossings `ids` (indices into the crossing arrays), clamped to
-the cell whose low corner is lo and side h."
+the cell whose low corner is lo and side h, then the crossings' mean."
   (var (cx cy cz) (values 0 0 0))
   (let [m (length ids)]
     (each [_ k (ipairs ids)]
@@ -160,7 +165,8 @@ the cell whose low corner is lo and side h."
     (let [l (* pull m)
           (dx dy dz) (solve3 (+ a11 l) a12 a13 (+ a22 l) a23 (+ a33 l) b1 b2 b3)
           clamp (fn [v lo] (if (< v lo) lo (> v (+ lo h)) (+ lo h) v))]
-      (values (clamp (+ cx dx) lo-x) (clamp (+ cy dy) lo-y) (clamp (+ cz dz) lo-z)))))
+      (values (clamp (+ cx dx) lo-x) (clamp (+ cy dy) lo-y) (clamp (+ cz dz) lo-z)
+              cx cy cz))))
 
 ;;; Evaluating the field in batches.
 
@@ -404,6 +410,8 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
               (set todo again))))
         ;; 7. One vertex per patch of each cell.
         (let [positions []
+              ;; Per vertex: its cell's low corner and its crossings' mean.
+              vertex-info []
               cell-vertices {}]
           (var vertex-count 0)
           (each [_ cell (ipairs cells)]
@@ -419,16 +427,59 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                       (table.insert order r))
                     (table.insert (. groups r) (. cell.edges e)))))
               (each [_ r (ipairs order)]
-                (let [(x y z) (qef-vertex (. groups r) px py pz nrx nry nrz
-                                          (+ ox (* cell.i h)) (+ oy (* cell.j h))
-                                          (+ oz (* cell.k h)) h)]
+                (let [lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
+                      (x y z mx my mz) (qef-vertex (. groups r) px py pz nrx nry nrz
+                                                   lx ly lz h)]
                   (set vertex-count (+ vertex-count 1))
+                  (each [_ v (ipairs [lx ly lz mx my mz])] (table.insert vertex-info v))
                   (table.insert positions x) (table.insert positions y)
                   (table.insert positions z)
                   (tset local-vertex r vertex-count)))
               (tset cell-vertices (+ cell.i (* stride-x cell.j) (* stride-y cell.k))
                     (collect [e r (pairs rep)] e (. local-vertex r)))))
-          ;; 8. A quad of the four cells around each crossing edge, split into two
+          ;; 8. Vertices off the surface (see off-surface): each moved to the best
+          ;; of a Newton step along the field's gradient (kept in its cell) and its
+          ;; crossings' mean (which may leave the cell, but a crossing is on the
+          ;; surface), where it stays unless that is nearer the surface.
+          (let [flat (icollect [_ v (ipairs positions)] v)
+                ds (evaluate :vertices flat)
+                bad (icollect [v d (ipairs ds)] (when (> (abs d) (* off-surface h)) v))
+                grad []]
+            (each [_ v (ipairs bad)]
+              (let [b (* 3 (- v 1))
+                    x (. positions (+ b 1)) y (. positions (+ b 2)) z (. positions (+ b 3))]
+                (each [_ [dx dy dz] (ipairs [[step 0 0] [(- step) 0 0] [0 step 0]
+                                             [0 (- step) 0] [0 0 step] [0 0 (- step)]])]
+                  (table.insert grad (+ x dx)) (table.insert grad (+ y dy))
+                  (table.insert grad (+ z dz)))))
+            (let [gs (evaluate :vertices grad)
+                  candidates []]
+              (each [n v (ipairs bad)]
+                (let [b (* 3 (- v 1)) g (* 6 (- n 1))
+                      gx (- (. gs (+ g 1)) (. gs (+ g 2)))
+                      gy (- (. gs (+ g 3)) (. gs (+ g 4)))
+                      gz (- (. gs (+ g 5)) (. gs (+ g 6)))
+                      len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))
+                      d (. ds v)
+                      s (if (> len 0) (/ d len) 0)
+                      clamp (fn [q lo] (if (< q lo) lo (> q (+ lo h)) (+ lo h) q))
+                      i (* 6 (- v 1))]
+                  (table.insert candidates (clamp (- (. positions (+ b 1)) (* s gx)) (. vertex-info (+ i 1))))
+                  (table.insert candidates (clamp (- (. positions (+ b 2)) (* s gy)) (. vertex-info (+ i 2))))
+                  (table.insert candidates (clamp (- (. positions (+ b 3)) (* s gz)) (. vertex-info (+ i 3))))
+                  (for [q 4 6] (table.insert candidates (. vertex-info (+ i q))))))
+              (let [cds (evaluate :vertices candidates)]
+                (each [n v (ipairs bad)]
+                  (var best (abs (. ds v)))
+                  (for [c 0 1]
+                    (let [at (+ (* 2 (- n 1)) c 1)]
+                      (when (< (abs (. cds at)) best)
+                        (set best (abs (. cds at)))
+                        (for [q 1 3]
+                          (tset positions (+ (* 3 (- v 1)) q)
+                                (. candidates (+ (* 3 (- at 1)) q)))))))))
+              (set counts.moved (length bad))))
+          ;; 9. A quad of the four cells around each crossing edge, split into two
           ;; triangles along the diagonal that bends it least.
           (let [triangles []
                 vertex-of (fn [i j k e]
@@ -467,6 +518,6 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                     (each [_ v (ipairs [b c d b d a])] (table.insert triangles v)))))
             {: positions : triangles
              :stats {:points counts.points :blocks (length leaves) : skipped
-                     :cells (length cells) : crossings}}))))))
+                     :cells (length cells) : crossings :moved counts.moved}}))))))
 
 {: mesh : patches : box-distance : leaf}
