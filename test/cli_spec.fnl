@@ -49,7 +49,7 @@
         (assert.are.equal :kinds (. (cli.parse ["--kinds"]) :mode))
         (let [(o err) (cli.parse ["--tree" "a.fnl" "--gpu"])]
           (assert.is_nil o)
-          (assert.are.equal "--gpu only goes with --probe" err))))
+          (assert.are.equal "--gpu only goes with --probe or --mesh" err))))
 
     (it "parses --export-shader, which writes a .glsl file"
       (fn []
