@@ -311,7 +311,10 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                                   (tset eaxis idx axis) (tset ekey idx key)
                                   (tset ed0 idx da) (tset ed1 idx db))
                                 (tset cell.edges e idx)))))))))))))
-        (set counts.estimate (+ counts.points (* crossings (+ refine-steps 6))))
+        ;; Each crossing: refine-steps points, 6 for its normal, and about one vertex
+        ;; (a cell has about as many crossing edges as a cell has vertices: 3990 and
+        ;; 3992 on a sphere), whose distance is checked.
+        (set counts.estimate (+ counts.points (* crossings (+ refine-steps 7))))
         ;; 4. Crossing points: the linear guess from the corner values, then regula
         ;; falsi (the Illinois variant) on the field along each edge.
         (let [ta (fcollect [e 1 crossings] 0)
