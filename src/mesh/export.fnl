@@ -17,21 +17,24 @@
       (tostring n)))
 
 (fn reporter [clock ?quiet?]
-  "A progress function for contour.mesh that shows, at most twice a second, the
-phase, the points evaluated and the time left at the rate so far."
+  "A progress function for contour.mesh that shows, as each phase starts and at
+most twice a second within it, the phase, the points evaluated and the time left at
+the rate so far."
   (let [start (clock)]
     (var last start)
+    (var last-phase nil)
     (fn [phase points estimate]
       (let [now (clock)]
-        (when (and (not ?quiet?) (>= (- now last) 0.5))
-          (set last now)
+        (when (and (not ?quiet?) (or (not= phase last-phase) (>= (- now last) 0.5)))
+          (set (last last-phase) (values now phase))
           (let [elapsed (- now start)
                 left (when (and estimate (> points 0))
                        (* elapsed (/ (math.max 0 (- estimate points)) points)))]
             (status.update!
              (if left
-                 (string.format "mesh: %s, %s of about %s points, %.1f s, about %.0f s left"
-                                phase (millions points) (millions estimate) elapsed left)
+                 (string.format "mesh: %s, %s of about %s points, %.1f s, %s left"
+                                phase (millions points) (millions estimate) elapsed
+                                (if (< left 1) "under 1 s" (string.format "about %.0f s" left)))
                  (string.format "mesh: %s, %s points, %.1f s (finding the surface)"
                                 phase (millions points) elapsed)))))))))
 
