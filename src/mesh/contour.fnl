@@ -129,6 +129,18 @@ a list of the cell's ambiguous faces (1-6) whose two segments belong to one patc
           (table.insert joined fi))))
     (values (collect [e _ (pairs parent)] e (find parent e)) joined)))
 
+;; Vertices keep this share of a cell inside their cell's walls, so that vertices of
+;; neighbouring cells never meet: a surface lying on a cell wall (a box face on a grid
+;; plane) would otherwise put vertices of both cells on the same point, and a file
+;; without shared vertices (STL), welded by position, would pinch there. Two patches
+;; of one cell whose vertices meet (boxes touching along an edge) are moved apart by
+;; ten times this.
+(local inset 1e-3)
+
+(fn clamp-cell [v lo h]
+  (let [a (+ lo (* inset h)) b (- (+ lo h) (* inset h))]
+    (if (< v a) a (> v b) b v)))
+
 ;;; The QEF: the point nearest (in the least-squares sense) to the crossings' tangent
 ;;; planes, pulled slightly toward their mean.
 
@@ -163,10 +175,10 @@ the cell whose low corner is lo and side h, then the crossings' mean."
         (set (a22 a23 a33) (values (+ a22 (* y y)) (+ a23 (* y z)) (+ a33 (* z z))))
         (set (b1 b2 b3) (values (+ b1 (* x r)) (+ b2 (* y r)) (+ b3 (* z r))))))
     (let [l (* pull m)
-          (dx dy dz) (solve3 (+ a11 l) a12 a13 (+ a22 l) a23 (+ a33 l) b1 b2 b3)
-          clamp (fn [v lo] (if (< v lo) lo (> v (+ lo h)) (+ lo h) v))]
-      (values (clamp (+ cx dx) lo-x) (clamp (+ cy dy) lo-y) (clamp (+ cz dz) lo-z)
-              cx cy cz))))
+          (dx dy dz) (solve3 (+ a11 l) a12 a13 (+ a22 l) a23 (+ a33 l) b1 b2 b3)]
+      (values (clamp-cell (+ cx dx) lo-x h) (clamp-cell (+ cy dy) lo-y h)
+              (clamp-cell (+ cz dz) lo-z h)
+              (clamp-cell cx lo-x h) (clamp-cell cy lo-y h) (clamp-cell cz lo-z h)))))
 
 ;;; Evaluating the field in batches.
 
@@ -429,15 +441,34 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                       (tset groups r [])
                       (table.insert order r))
                     (table.insert (. groups r) (. cell.edges e)))))
-              (each [_ r (ipairs order)]
-                (let [lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
-                      (x y z mx my mz) (qef-vertex (. groups r) px py pz nrx nry nrz
-                                                   lx ly lz h)]
-                  (set vertex-count (+ vertex-count 1))
-                  (each [_ v (ipairs [lx ly lz mx my mz])] (table.insert vertex-info v))
-                  (table.insert positions x) (table.insert positions y)
-                  (table.insert positions z)
-                  (tset local-vertex r vertex-count)))
+              (let [lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
+                    placed (icollect [_ r (ipairs order)]
+                             [(qef-vertex (. groups r) px py pz nrx nry nrz lx ly lz h)])]
+                ;; Patches of this cell whose vertices meet: each moves toward its
+                ;; crossings' mean (or, when that is the same point, apart along x).
+                (for [a 1 (length placed)]
+                  (for [b (+ a 1) (length placed)]
+                    (let [[ax ay az] (. placed a) [bx by bz] (. placed b)]
+                      (when (< (sqrt (+ (* (- ax bx) (- ax bx)) (* (- ay by) (- ay by))
+                                        (* (- az bz) (- az bz))))
+                               (* inset h))
+                        (each [k q (ipairs [(. placed a) (. placed b)])]
+                          (let [[x y z mx my mz] q
+                                dx (- mx x) dy (- my y) dz (- mz z)
+                                len (sqrt (+ (* dx dx) (* dy dy) (* dz dz)))
+                                push (* 10 inset h)
+                                (ux uy uz) (if (> len (* inset h)) (values (/ dx len) (/ dy len) (/ dz len))
+                                               (values (if (= k 1) -1 1) 0 0))]
+                            (tset q 1 (clamp-cell (+ x (* push ux)) lx h))
+                            (tset q 2 (clamp-cell (+ y (* push uy)) ly h))
+                            (tset q 3 (clamp-cell (+ z (* push uz)) lz h))))))))
+                (each [n r (ipairs order)]
+                  (let [[x y z mx my mz] (. placed n)]
+                    (set vertex-count (+ vertex-count 1))
+                    (each [_ v (ipairs [lx ly lz mx my mz])] (table.insert vertex-info v))
+                    (table.insert positions x) (table.insert positions y)
+                    (table.insert positions z)
+                    (tset local-vertex r vertex-count))))
               (tset cell-vertices (+ cell.i (* stride-x cell.j) (* stride-y cell.k))
                     (collect [e r (pairs rep)] e (. local-vertex r)))))
           ;; 8. Vertices off the surface (see off-surface): each moved to the best
@@ -465,7 +496,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                       len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))
                       d (. ds v)
                       s (if (> len 0) (/ d len) 0)
-                      clamp (fn [q lo] (if (< q lo) lo (> q (+ lo h)) (+ lo h) q))
+                      clamp (fn [q lo] (clamp-cell q lo h))
                       i (* 6 (- v 1))]
                   (table.insert candidates (clamp (- (. positions (+ b 1)) (* s gx)) (. vertex-info (+ i 1))))
                   (table.insert candidates (clamp (- (. positions (+ b 2)) (* s gy)) (. vertex-info (+ i 2))))
