@@ -33,4 +33,20 @@
                      (nil err) (values nil err)
                      _ (do (print (summary o.out result)) true)))))))
 
-{: run : summary}
+(fn export-shown [scene scene-path ?resolution]
+  "F9 in the player: mesh `scene` as it is shown (its parameters' values, its
+functions of time at the shown time) with the GPU field, `?resolution` cells (128),
+into a PLY beside the scene file, named after it and the time. Returns true and the
+line to show, or nil and a message."
+  (let [dir (or (scene-path:match "^(.*)/[^/]*$") ".")
+        base (or (scene-path:match "([^/]+)%.fnl$") "scene")
+        path (.. dir "/" base "-mesh-" (os.date "%Y%m%d-%H%M%S") ".ply")]
+    (case (export.build scene {:resolution ?resolution :clock love.timer.getTime :quiet? true
+                               :field (. (require :src.mesh.gpu) :gpu-field)})
+      (nil err) (values nil err)
+      result (case (export.write! result.mesh path {:name scene-path :protect [scene-path]
+                                                    :label path})
+               (nil err) (values nil err)
+               _ (values true (summary path result))))))
+
+{: run : summary : export-shown}
