@@ -11,6 +11,7 @@
 (local mesh-scene (require :src.mesh.scene))
 (local formats (require :src.mesh.formats))
 (local options (require :src.mesh.options))
+(local raster (require :src.mesh.raster))
 
 (local showcase ["seed" "gallery" "organic" "colonnade" "twisted-tower" "flower"
                  "machined-part" "platonic-shelf" "lighting" "spheres" "flat"])
@@ -251,6 +252,18 @@
         (assert.are.equal "PLY: no end_header line" (select 2 (formats.decode "ply\n" :ply)))
         (assert.are.equal "OBJ:2: a face that is not a triangle"
                           (select 2 (formats.decode "v 0 0 0\nf 1 1 1 1\n" :obj)))))
+
+    (it "draws a picture of a mesh: the mesh's colour where it is, the background around"
+      (fn []
+        (let [r (build (scene-of "{:kind :sphere :radius 1 :color [1 0 0]}") 16)
+              img (raster.picture r.mesh {:width 64 :height 48})
+              at (fn [x y] (let [i (* 4 (+ x (* y 64)))]
+                             [(. img.pixels i) (. img.pixels (+ i 1)) (. img.pixels (+ i 2))]))
+              [cr cg cb] (at 32 24)
+              [br bg bb] (at 1 1)]
+          ;; Red, lit (a camera-facing triangle is drawn), and grey-blue sky behind.
+          (assert.is_true (and (> cr 100) (= cg 0) (= cb 0)) (.. cr " " cg " " cb))
+          (assert.is_true (and (> br 200) (> bb br)) (.. br " " bg " " bb)))))
 
     (it "finds an open or pinched mesh"
       (fn []
