@@ -37,6 +37,13 @@
 ;; what it moves are vertices clamped to their cell and those of features thinner
 ;; than a cell, whose tangent planes meet far away.
 (local off-surface 0.25)
+;; The work of the steps that evaluate nothing (finding the cells, their patches,
+;; vertices and quads), counted in field evaluations per crossing for the time-left
+;; estimate: machined-part at 256 cells took 1.2 s for them and 79k crossings, about
+;; 15 microseconds each, while its evaluations took 0.8 microseconds each (organic's
+;; three times that): about 10 evaluations' worth. The caller may add its own work
+;; per vertex (:after-work of the grid: the export's colours).
+(local geometry-work 10)
 ;; Regula falsi steps refining each crossing after the linear guess from the corners.
 (local refine-steps 4)
 ;; The QEF's pull toward the mean of the crossings, per crossing (normals are unit,
@@ -193,9 +200,8 @@ the cell whose low corner is lo and side h, then the crossings' mean."
 
 (fn evaluator [field cut counts progress]
   "A function from a phase name and a flat list of points x y z ... to their
-distances (the field cut by the box `cut`), in batches of batch-size points; after
-each batch `progress` hears the phase, the points evaluated so far and the estimate
-of all the points the mesh will take (counts.estimate, nil while unknown)."
+distances (the field cut by the box `cut`), in batches of batch-size points; each
+batch counts as work done (see mesh) and `progress` hears of it."
   (fn [phase flat]
     (let [n (/ (length flat) 3)
           out []]
@@ -209,7 +215,8 @@ of all the points the mesh will take (counts.estimate, nil while unknown)."
                   b (box-distance cut (. chunk (+ j 1)) (. chunk (+ j 2)) (. chunk (+ j 3)))]
               (tset out (+ start k) (max d b))))
           (set counts.points (+ counts.points count))
-          (progress phase counts.points counts.estimate)))
+          (set counts.work (+ counts.work count))
+          (progress phase counts.work counts.estimate counts.points)))
       out)))
 
 ;;; The mesher.
@@ -220,20 +227,37 @@ distances at the points of the flat list x1 y1 z1 x2 ...; :step the gradient's
 difference step as a share of a cell}. The grid: {:lo [x y z] (its low corner) :h
 (the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a box inside the grid
 by at least one cell: the field is cut by it, which closes the mesh)}.
-`?progress` (fn [phase points estimate]) hears of each batch of points: the phase
-(:blocks, :corners, :crossings or :normals), the points evaluated so far and an
-estimate of the points the whole mesh takes (nil until the blocks are known).
+`?progress` (fn [phase work estimate points]) hears of each batch of points and
+each step: the phase (:blocks, :corners, :crossings, :normals, :cells, :patches,
+:vertices, :faces), the work done so far (in field evaluations: see geometry-work),
+an estimate of all the work (nil until the blocks are known; the grid's :after-work
+per vertex included) and the points evaluated.
 Returns {:positions [x y z ...] :triangles [a b c ...] (1-based vertex indices,
 counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
 (leaf blocks sampled) :skipped (leaf blocks' worth of volume skipped) :cells
 (cells with surface) :crossings}}."
   (let [progress (or ?progress (fn []))
-        counts {:points 0}
+        counts {:points 0 :work 0}
+        after (+ geometry-work (or grid.after-work 0))
+        ;; Work not done by evaluating: counted, and heard by progress.
+        worked! (fn [phase units]
+                  (set counts.work (+ counts.work units))
+                  (progress phase counts.work counts.estimate counts.points))
         evaluate (evaluator field grid.cut counts progress)
         [ox oy oz] grid.lo
         h grid.h
         [nx ny nz] grid.dims
-        step (* h (or field.step 1e-3))]
+        step (* h (or field.step 1e-3))
+        ;; CPU seconds of each step, for the figures (os.clock: a GPU field's waits
+        ;; are not counted).
+        times {}
+        mark! (let [state {:at (os.clock) :step nil}]
+                (fn [step]
+                  (let [now (os.clock)]
+                    (when state.step
+                      (tset times state.step (- now state.at)))
+                    (set (state.at state.step) (values now step)))))]
+    (mark! :blocks)
     ;; 1. The octree of blocks: keep those whose centre's |d| does not prove them
     ;; clear of the surface; subdivide down to leaves.
     (var blocks [])
@@ -267,6 +291,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                       (when (and (< a nx) (< b ny) (< d nz))
                         (table.insert blocks [a b d])))))
                 (set size s))))))
+    (mark! :corners)
     ;; 2. The corners of the leaves, (leaf + 1)^3 each (clamped to the grid).
     (let [side (+ leaf 1)
           flat []]
@@ -281,7 +306,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
       ;; a leaf of 64 cells holds some 13 crossings where a surface crosses it (a
       ;; sphere at 32 cells), each taking 10 points (measured: 3990 crossings in 308
       ;; leaves); the estimate is made exact once the crossings are counted.
-      (set counts.estimate (+ counts.points (* 2 (/ (length flat) 3))))
+      (set counts.estimate (+ counts.work (* (+ 2 (/ after 10)) (/ (length flat) 3))))
       (let [corner-values (evaluate :corners flat)
             px [] py [] pz [] nrx [] nry [] nrz []
             ;; Crossing edges: global key -> index; their ends and values.
@@ -291,6 +316,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
             stride-x (+ nx 1)
             stride-y (* (+ nx 1) (+ ny 1))]
         (var crossings 0)
+        (mark! :cells)
         ;; 3. Cells with surface, and their crossing edges (each edge once).
         (each [l [i0 j0 k0] (ipairs leaves)]
           (let [base (* (- l 1) side side side)]
@@ -326,7 +352,8 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
         ;; Each crossing: refine-steps points, 6 for its normal, and about one vertex
         ;; (a cell has about as many crossing edges as a cell has vertices: 3990 and
         ;; 3992 on a sphere), whose distance is checked.
-        (set counts.estimate (+ counts.points (* crossings (+ refine-steps 7))))
+        (set counts.estimate (+ counts.work (* crossings (+ refine-steps 7 after))))
+        (mark! :crossings)
         ;; 4. Crossing points: the linear guess from the corner values, then regula
         ;; falsi (the Illinois variant) on the field along each edge.
         (let [ta (fcollect [e 1 crossings] 0)
@@ -362,6 +389,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
           (for [e 1 crossings]
             (let [(x y z) (point e (. ts e))]
               (tset px e x) (tset py e y) (tset pz e z))))
+        (mark! :normals)
         ;; 5. Normals: central differences of the field at each crossing.
         (let [flat []]
           (for [e 1 crossings]
@@ -383,6 +411,8 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                     (let [axis (. eaxis e) sgn (if (< (. ed0 e) 0) 1 -1)]
                       (tset nrx e (if (= axis 0) sgn 0)) (tset nry e (if (= axis 1) sgn 0))
                       (tset nrz e (if (= axis 2) sgn 0))))))))
+        (worked! :patches (* 0.25 geometry-work crossings))
+        (mark! :patches)
         ;; 6. Patches. Where both cells of an ambiguous face have one patch through
         ;; both of the face's segments, the quads of the two segments would share
         ;; their edge across the face (four triangles on one edge): reversing the
@@ -423,6 +453,8 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
               (each [_ cell (ipairs again)]
                 (set (cell.rep cell.joined) (patches cell.v cell.flips)))
               (set todo again))))
+        (worked! :vertices (* 0.25 geometry-work crossings))
+        (mark! :vertices)
         ;; 7. One vertex per patch of each cell.
         (let [positions []
               ;; Per vertex: its cell's low corner and its crossings' mean.
@@ -471,12 +503,14 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                     (tset local-vertex r vertex-count))))
               (tset cell-vertices (+ cell.i (* stride-x cell.j) (* stride-y cell.k))
                     (collect [e r (pairs rep)] e (. local-vertex r)))))
+          (worked! :projection (* 0.2 geometry-work crossings))
+          (mark! :projection)
           ;; 8. Vertices off the surface (see off-surface): each moved to the best
           ;; of a Newton step along the field's gradient (kept in its cell) and its
           ;; crossings' mean (which may leave the cell, but a crossing is on the
           ;; surface), where it stays unless that is nearer the surface.
           (let [flat (icollect [_ v (ipairs positions)] v)
-                ds (evaluate :vertices flat)
+                ds (evaluate :projection flat)
                 bad (icollect [v d (ipairs ds)] (when (> (abs d) (* off-surface h)) v))
                 grad []]
             (each [_ v (ipairs bad)]
@@ -486,7 +520,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                                              [0 (- step) 0] [0 0 step] [0 0 (- step)]])]
                   (table.insert grad (+ x dx)) (table.insert grad (+ y dy))
                   (table.insert grad (+ z dz)))))
-            (let [gs (evaluate :vertices grad)
+            (let [gs (evaluate :projection grad)
                   candidates []]
               (each [n v (ipairs bad)]
                 (let [b (* 3 (- v 1)) g (* 6 (- n 1))
@@ -502,7 +536,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                   (table.insert candidates (clamp (- (. positions (+ b 2)) (* s gy)) (. vertex-info (+ i 2))))
                   (table.insert candidates (clamp (- (. positions (+ b 3)) (* s gz)) (. vertex-info (+ i 3))))
                   (for [q 4 6] (table.insert candidates (. vertex-info (+ i q))))))
-              (let [cds (evaluate :vertices candidates)]
+              (let [cds (evaluate :projection candidates)]
                 (each [n v (ipairs bad)]
                   (var best (abs (. ds v)))
                   (for [c 0 1]
@@ -513,6 +547,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                           (tset positions (+ (* 3 (- v 1)) q)
                                 (. candidates (+ (* 3 (- at 1)) q)))))))))
               (set counts.moved (length bad))))
+          (mark! :faces)
           ;; 9. A quad of the four cells around each crossing edge, split into two
           ;; triangles along the diagonal that bends it least.
           (let [triangles []
@@ -550,8 +585,11 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                 (if (>= (flatness a b c d) (flatness b c d a))
                     (each [_ v (ipairs [a b c a c d])] (table.insert triangles v))
                     (each [_ v (ipairs [b c d b d a])] (table.insert triangles v)))))
+            (worked! :faces (* 0.3 geometry-work crossings))
+            (mark! nil)
             {: positions : triangles
              :stats {:points counts.points :blocks (length leaves) : skipped
-                     :cells (length cells) : crossings :moved counts.moved}}))))))
+                     :cells (length cells) : crossings :moved counts.moved : times
+                     :work counts.work :estimate counts.estimate}}))))))
 
 {: mesh : patches : box-distance : leaf}
