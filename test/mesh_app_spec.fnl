@@ -78,7 +78,7 @@
                          "error: --out must name a .stl, .ply or .obj file, got x.off"]
                         ["--mesh scenes/seed.fnl" "error: --mesh needs --out FILE.stl, FILE.ply or FILE.obj"]
                         ["--mesh scenes/seed.fnl --out x.stl --resolution 2000"
-                         "error: --resolution must be a whole number from 8 to 1024, got 2000"]
+                         "error: --resolution must be a whole number from 8 to 512, got 2000"]
                         ["--mesh scenes/seed.fnl --out x.stl --region 1,2,3"
                          "error: --region must be six numbers x0,y0,z0,x1,y1,z1, got 1,2,3"]
                         ["--render scenes/seed.fnl --out x.png --resolution 64"
