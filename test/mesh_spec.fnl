@@ -151,7 +151,7 @@
     (it "skips blocks far from the surface: the work grows with the area, not the volume"
       (fn []
         ;; Doubling the resolution quadruples a surface's cells and octuples the
-        ;; volume's; the points evaluated grow about 4x (measured 4.1x).
+        ;; volume's; the points evaluated grow about 4x (measured 4.0x).
         (let [s (scene-of "{:kind :sphere :radius 1}")
               a (build s 32)
               b (build s 64)
@@ -230,6 +230,11 @@
         (let [(r err) (export.build (scene-of "{:kind :plane :height 0}") {:quiet? true})]
           (assert.is_nil r)
           (assert.are.equal "the scene has no finite objects to mesh (objects[1] (plane) infinite); give --region x0,y0,z0,x1,y1,z1 to mesh them cut by a box"
+                            err))
+        (let [(r err) (export.build (scene-of "{:kind :sphere}")
+                                    {:quiet? true :region (options.parse-region "5,5,5,6,6,6")})]
+          (assert.is_nil r)
+          (assert.are.equal "no surface to mesh: left out, outside the region: objects[1] (sphere) (is the region clear of every object?)"
                             err))
         (assert.are.equal "--resolution must be a whole number from 8 to 512, got 4"
                           (select 2 (options.parse-resolution "4")))

@@ -83,10 +83,16 @@ Returns {:mesh {:positions :triangles :colors} :message (what was left out or cu
               start (clock)
               progress (reporter clock options.quiet?)
               m (contour.mesh field grid progress)]
-          (colour! m field progress m.stats)
-          (when (not options.quiet?) (status.done!))
-          {:mesh m :message selection.message : grid :stats m.stats
-           :seconds (- (clock) start)})))))
+          (if (= 0 (length m.triangles))
+              (do (when (not options.quiet?) (status.done!))
+                  (values nil (.. "no surface to mesh: " selection.message
+                                  (if options.region
+                                      " (is the region clear of every object?)"
+                                      " (every object thinner than a cell? raise --resolution)"))))
+              (do (colour! m field progress m.stats)
+                  (when (not options.quiet?) (status.done!))
+                  {:mesh m :message selection.message : grid :stats m.stats
+                   :seconds (- (clock) start)})))))))
 
 (fn write! [m path ?options]
   "Write mesh `m` to `path` in the format its extension names. Options: :name (for

@@ -42,13 +42,31 @@ those reaching out of the box cut by it."
           finite (icollect [_ o (ipairs ordered)] (when (. boxes o.index) o))
           infinite (icollect [_ o (ipairs ordered)] (when (not (. boxes o.index)) o))]
       (if ?region
-          (let [cut-objects (icollect [_ o (ipairs ordered)]
+          (let [outside? (fn [b] (accumulate [out? false i (ipairs [1 2 3])]
+                                   (or out? (< (. b.hi i) (. ?region.lo i))
+                                       (> (. b.lo i) (. ?region.hi i)))))
+                cut-objects (icollect [_ o (ipairs ordered)]
                               (let [b (. boxes o.index)]
-                                (when (or (not b) (not (inside? b ?region))) (object-name o))))]
-            {: scene :region ?region :cut ?region :left-out [] : cut-objects
-             :message (if (= 0 (length cut-objects))
+                                (when (or (not b) (and (not (inside? b ?region))
+                                                       (not (outside? b))))
+                                  (object-name o))))
+                away (icollect [_ o (ipairs ordered)]
+                       (let [b (. boxes o.index)] (when (and b (outside? b)) o)))
+                gone (collect [_ o (ipairs away)] o.index true)
+                sub (collect [k v (pairs scene)] k v)
+                parts []]
+            (when (< 0 (length cut-objects))
+              (table.insert parts (.. "cut by the region: " (table.concat cut-objects ", "))))
+            (when (< 0 (length away))
+              (table.insert parts (.. "left out, outside the region: "
+                                      (table.concat (icollect [_ o (ipairs away)] (object-name o))
+                                                    ", "))))
+            (set sub.objects (icollect [i o (ipairs scene.objects)] (when (not (. gone i)) o)))
+            {:scene sub :region ?region :cut ?region
+             :left-out (icollect [_ o (ipairs away)] (object-name o)) : cut-objects
+             :message (if (= 0 (length parts))
                           "every object lies within the region"
-                          (.. "cut by the region: " (table.concat cut-objects ", ")))})
+                          (table.concat parts "; "))})
           (= 0 (length finite))
           (values nil (.. "the scene has no finite objects to mesh ("
                           (table.concat (icollect [_ o (ipairs infinite)] (object-name o)) ", ")
