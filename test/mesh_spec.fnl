@@ -148,6 +148,27 @@
               (assert.is_true (<= worst (* 0.5 r.grid.h))
                               (string.format "at %d: a vertex %.3f cells off" n (/ worst r.grid.h))))))))
 
+    (it "stays 2-manifold along a row of twisted cells (every face's decision flips)"
+      (fn []
+        ;; Two sheets crossing along a line through a row of cell centres, the
+        ;; bilinear saddle on each cell wall alternating in sign: every cell's two
+        ;; walls across the row disagree, so its crossings make one twisted patch
+        ;; through both walls. Reversing two walls of one cell in one pass (as the
+        ;; first version did) twisted it back: colonnade at 128 cells had an edge of
+        ;; four triangles. The field is tiny, so no block is skipped (it is not a
+        ;; distance; only its signs matter here).
+        (let [field {:distances (fn [flat n]
+                                  (fcollect [k 1 n]
+                                    (let [x (. flat (- (* 3 k) 2)) y (. flat (- (* 3 k) 1))
+                                          z (. flat (* 3 k))]
+                                      (* 0.01 (+ (* (- y 2.5) (- z 2.5))
+                                                 (* 0.1 (math.cos (* math.pi x))))))))}
+              m (contour.mesh field {:lo [0 0 0] :h 1 :dims [12 6 6]
+                                     :cut {:lo [1 1 1] :hi [11 5 5]}})
+              t (check.topology m)]
+          (assert.is_true (> t.triangles 100))
+          (assert.is_true t.manifold? (check.describe t)))))
+
     (it "skips blocks far from the surface: the work grows with the area, not the volume"
       (fn []
         ;; Doubling the resolution quadruples a surface's cells and octuples the

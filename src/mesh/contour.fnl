@@ -436,22 +436,24 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
             (tset cell-at (+ cell.i (* stride-x cell.j) (* stride-y cell.k)) cell)
             (set cell.flips {})
             (set (cell.rep cell.joined) (patches cell.v)))
+          ;; Each reversal takes effect at once: a cell between two such faces
+          ;; (a twisted row of cells) must not have both reversed in one pass.
           (var todo cells)
           (for [_ 1 16 &until (= 0 (length todo))]
-            (let [again []]
+            (let [again []
+                  joined? (fn [c fi] (accumulate [j? false _ g (ipairs c.joined)] (or j? (= g fi))))]
               (each [_ cell (ipairs todo)]
-                (each [_ fi (ipairs cell.joined)]
+                (each [_ fi (ipairs (icollect [_ g (ipairs cell.joined)] g))]
                   (let [(other ofi) (across cell fi)]
-                    (when (and other (not (. flipped (face-key cell fi)))
-                               (accumulate [j? false _ g (ipairs other.joined)]
-                                 (or j? (= g ofi))))
+                    (when (and other (joined? cell fi) (joined? other ofi)
+                               (not (. flipped (face-key cell fi))))
                       (tset flipped (face-key cell fi) true)
                       (tset cell.flips fi (not (. cell.flips fi)))
                       (tset other.flips ofi (not (. other.flips ofi)))
+                      (set (cell.rep cell.joined) (patches cell.v cell.flips))
+                      (set (other.rep other.joined) (patches other.v other.flips))
                       (table.insert again cell)
                       (table.insert again other)))))
-              (each [_ cell (ipairs again)]
-                (set (cell.rep cell.joined) (patches cell.v cell.flips)))
               (set todo again))))
         (worked! :vertices (* 0.25 geometry-work crossings))
         (mark! :vertices)

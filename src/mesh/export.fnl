@@ -23,6 +23,9 @@ left at the rate so far."
   (let [start (clock)]
     (var last start)
     (var last-phase nil)
+    ;; The estimate grows when the crossings are counted: the share shown never
+    ;; goes back.
+    (var shown 0)
     (fn [phase work estimate points]
       (let [now (clock)]
         (when (and (not ?quiet?) (or (not= phase last-phase) (>= (- now last) 0.5)))
@@ -33,7 +36,9 @@ left at the rate so far."
             (status.update!
              (if left
                  (string.format "mesh: %s, %d%% (%s points), %.1f s, %s left"
-                                phase (math.min 99 (math.floor (/ (* 100 work) estimate)))
+                                phase
+                                (do (set shown (math.max shown (math.min 99 (math.floor (/ (* 100 work) estimate)))))
+                                    shown)
                                 (millions points) elapsed
                                 (if (< left 1) "under 1 s" (string.format "about %.0f s" left)))
                  (string.format "mesh: %s, %s points, %.1f s (finding the surface)"
