@@ -12,6 +12,7 @@
 (local formats (require :src.mesh.formats))
 (local options (require :src.mesh.options))
 (local raster (require :src.mesh.raster))
+(local {: lcg} (require :test.support.fields))
 
 (local showcase ["seed" "gallery" "organic" "colonnade" "twisted-tower" "flower"
                  "machined-part" "platonic-shelf" "lighting" "spheres" "flat"])
@@ -168,6 +169,32 @@
               t (check.topology m)]
           (assert.is_true (> t.triangles 100))
           (assert.is_true t.manifold? (check.describe t)))))
+
+    (it "stays 2-manifold on seeded random fields full of ambiguous faces"
+      (fn []
+        ;; Sums of waves shorter than a cell: saddles on many cell walls (30 fields
+        ;; reverse 138 faces). Tiny values, so no block is skipped.
+        (let [rand (lcg 31)]
+          (var flipped 0)
+          (for [i 1 30]
+            (let [n (+ 6 (math.floor (* 10 (rand))))
+                  w (fcollect [_ 1 12] (- (rand) 0.5))
+                  period (+ 1.5 (* 4 (rand)))
+                  f (fn [x y z]
+                      (+ (* (. w 1) (math.sin (+ (* x (+ 1 (. w 2)) period) (* y (. w 3) 2) (. w 4))))
+                         (* (. w 5) (math.sin (+ (* y (+ 1 (. w 6)) period) (* z (. w 7) 2) (. w 8))))
+                         (* (. w 9) (math.sin (+ (* z (+ 1 (. w 10)) period) (* x (. w 11) 2) (. w 12))))))
+                  field {:distances (fn [flat k]
+                                      (fcollect [q 1 k]
+                                        (* 0.001 (f (. flat (- (* 3 q) 2)) (. flat (- (* 3 q) 1))
+                                                    (. flat (* 3 q))))))}
+                  m (contour.mesh field {:lo [0 0 0] :h 1 :dims [(+ n 2) (+ n 2) (+ n 2)]
+                                         :cut {:lo [1 1 1] :hi [(+ n 1) (+ n 1) (+ n 1)]}})
+                  t (check.topology m)]
+              (set flipped (+ flipped m.stats.flipped))
+              (assert.is_true t.manifold? (.. "field " i ": " (check.describe t)))))
+          ;; The fields did reach the reversal.
+          (assert.is_true (> flipped 50) (tostring flipped)))))
 
     (it "skips blocks far from the surface: the work grows with the area, not the volume"
       (fn []

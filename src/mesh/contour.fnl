@@ -235,7 +235,8 @@ per vertex included) and the points evaluated.
 Returns {:positions [x y z ...] :triangles [a b c ...] (1-based vertex indices,
 counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
 (leaf blocks sampled) :skipped (leaf blocks' worth of volume skipped) :cells
-(cells with surface) :crossings}}."
+(cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
+moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
   (let [progress (or ?progress (fn []))
         counts {:points 0 :work 0}
         after (+ geometry-work (or grid.after-work 0))
@@ -448,6 +449,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
                     (when (and other (joined? cell fi) (joined? other ofi)
                                (not (. flipped (face-key cell fi))))
                       (tset flipped (face-key cell fi) true)
+                      (set counts.flipped (+ 1 (or counts.flipped 0)))
                       (tset cell.flips fi (not (. cell.flips fi)))
                       (tset other.flips ofi (not (. other.flips ofi)))
                       (set (cell.rep cell.joined) (patches cell.v cell.flips))
@@ -592,6 +594,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
             {: positions : triangles
              :stats {:points counts.points :blocks (length leaves) : skipped
                      :cells (length cells) : crossings :moved counts.moved : times
+                     :flipped (or counts.flipped 0)
                      :work counts.work :estimate counts.estimate}}))))))
 
 {: mesh : patches : box-distance : leaf}
