@@ -228,8 +228,8 @@ difference step as a share of a cell}. The grid: {:lo [x y z] (its low corner) :
 (the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a box inside the grid
 by at least one cell: the field is cut by it, which closes the mesh)}.
 `?progress` (fn [phase work estimate points]) hears of each batch of points and
-each step: the phase (:blocks, :corners, :crossings, :normals, :cells, :patches,
-:vertices, :faces), the work done so far (in field evaluations: see geometry-work),
+each step: the phase (:blocks, :corners, :crossings, :normals, :patches, :vertices,
+:projection, :faces), the work done so far (in field evaluations: see geometry-work),
 an estimate of all the work (nil until the blocks are known; the grid's :after-work
 per vertex included) and the points evaluated.
 Returns {:positions [x y z ...] :triangles [a b c ...] (1-based vertex indices,
@@ -312,7 +312,7 @@ moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
             px [] py [] pz [] nrx [] nry [] nrz []
             ;; Crossing edges: global key -> index; their ends and values.
             edge-index {}
-            ex0 [] ey0 [] ez0 [] ed0 [] ed1 [] eaxis [] ekey []
+            ex0 [] ey0 [] ez0 [] ed0 [] ed1 [] eaxis []
             cells []
             stride-x (+ nx 1)
             stride-y (* (+ nx 1) (+ ny 1))]
@@ -347,7 +347,7 @@ moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
                                   (set idx crossings)
                                   (tset edge-index key idx)
                                   (tset ex0 idx gi) (tset ey0 idx gj) (tset ez0 idx gk)
-                                  (tset eaxis idx axis) (tset ekey idx key)
+                                  (tset eaxis idx axis)
                                   (tset ed0 idx da) (tset ed1 idx db))
                                 (tset cell.edges e idx)))))))))))))
         ;; Each crossing: refine-steps points, 6 for its normal, and about one vertex
