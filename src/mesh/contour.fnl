@@ -100,13 +100,16 @@
   (let [ra (find parent a) rb (find parent b)]
     (when (not= ra rb) (tset parent ra rb))))
 
+;; The faces of most cells: none (shared, never written).
+(local no-faces [])
+
 (fn patches [v ?flipped]
   "The patches of a cell with corner values `v` (1-based by corner c + 1; inside is
 below 0): a table from each crossing edge (0-11) to its patch's representative, and
 a list of the cell's ambiguous faces (1-6) whose two segments belong to one patch.
 `?flipped` (a table of faces 1-6) reverses the asymptotic decider on those faces."
-  (let [parent {}
-        joined []]
+  (let [parent {}]
+    (var joined nil)
     (for [e 0 11]
       (let [[a b] (. edge-corners (+ e 1))]
         (when (not= (< (. v (+ a 1)) 0) (< (. v (+ b 1)) 0))
@@ -133,8 +136,9 @@ a list of the cell's ambiguous faces (1-6) whose two segments belong to one patc
       (let [[e01 e12 e23 e30] f.edges]
         (when (and (. parent e01) (. parent e12) (. parent e23) (. parent e30)
                    (= (find parent e01) (find parent e23)))
+          (when (not joined) (set joined []))
           (table.insert joined fi))))
-    (values (collect [e _ (pairs parent)] e (find parent e)) joined)))
+    (values (collect [e _ (pairs parent)] e (find parent e)) (or joined no-faces))))
 
 ;; Vertices keep this share of a cell inside their cell's walls, so that vertices of
 ;; neighbouring cells never meet: a surface lying on a cell wall (a box face on a grid
@@ -435,11 +439,10 @@ moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
               flipped {}]
           (each [_ cell (ipairs cells)]
             (tset cell-at (+ cell.i (* stride-x cell.j) (* stride-y cell.k)) cell)
-            (set cell.flips {})
             (set (cell.rep cell.joined) (patches cell.v)))
           ;; Each reversal takes effect at once: a cell between two such faces
           ;; (a twisted row of cells) must not have both reversed in one pass.
-          (var todo cells)
+          (var todo (icollect [_ cell (ipairs cells)] (when (< 0 (length cell.joined)) cell)))
           (for [_ 1 16 &until (= 0 (length todo))]
             (let [again []
                   joined? (fn [c fi] (accumulate [j? false _ g (ipairs c.joined)] (or j? (= g fi))))]
@@ -450,6 +453,8 @@ moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
                                (not (. flipped (face-key cell fi))))
                       (tset flipped (face-key cell fi) true)
                       (set counts.flipped (+ 1 (or counts.flipped 0)))
+                      (when (not cell.flips) (set cell.flips {}))
+                      (when (not other.flips) (set other.flips {}))
                       (tset cell.flips fi (not (. cell.flips fi)))
                       (tset other.flips ofi (not (. other.flips ofi)))
                       (set (cell.rep cell.joined) (patches cell.v cell.flips))
@@ -506,7 +511,9 @@ moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
                     (table.insert positions z)
                     (tset local-vertex r vertex-count))))
               (tset cell-vertices (+ cell.i (* stride-x cell.j) (* stride-y cell.k))
-                    (collect [e r (pairs rep)] e (. local-vertex r)))))
+                    (collect [e r (pairs rep)] e (. local-vertex r)))
+              ;; Done with this cell but for its vertices: the rest may go.
+              (set (cell.v cell.edges cell.rep cell.joined cell.flips) nil)))
           (worked! :projection (* 0.2 geometry-work crossings))
           (mark! :projection)
           ;; 8. Vertices off the surface (see off-surface): each moved to the best
