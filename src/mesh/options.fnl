@@ -2,7 +2,7 @@
 ;; the resolution and the region. Pure: no requires.
 
 (local min-resolution 8)
-;; 1.8 GB at 512 (machined-part, 632k triangles): the mesher keeps a Lua table per
+;; 1.5 GB at 512 (machined-part, 632k triangles): the mesher keeps Lua tables per
 ;; surface cell, so memory grows with the area, four times a doubling.
 (local max-resolution 512)
 (local default-resolution 128)
