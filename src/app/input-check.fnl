@@ -1,7 +1,8 @@
 ;; `love . --input-check`: drives the player through LÖVE's own event queue, as a
 ;; person at a slow machine would: a key tapped between two frames, a click after the
-;; pointer moved with no button held, - before ] (another scene), F12, and the
-;; parameter panel (drag a slider, tick a switch, save into the file). Every event is
+;; pointer moved with no button held, - before ] (another scene), F12, the
+;; parameter panel (drag a slider, tick a switch, save into the file) and F9 (a mesh
+;; of the scene as shown). Every event is
 ;; pushed with love.event.push and reaches the player through love.run, exactly like
 ;; real input; keyboard state (isDown) stays empty, as for a tap too short to be seen.
 
