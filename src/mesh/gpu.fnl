@@ -9,14 +9,15 @@
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
 (local gpu (require :src.backend.gpu))
-(local plan-mod (require :src.render.plan))
+(local frame (require :src.backend.frame))
 
 (local row-length 1024)
 
 (fn gpu-field [scene]
   "The generated GLSL of `scene` as a field for contour.mesh (:distances and
 :colors, float32), or nil and a message when its shader does not compile."
-  (case (plan-mod.scene->plan scene {:view :glow :probe? true})
+  ;; As --probe --gpu plans it: with what suits this renderer (frame.plan-for).
+  (case (frame.plan-for scene {:view :glow :probe? true})
     (nil err) (values nil err)
     plan
     (let [(source serr) (codegen.shader plan :probe)
