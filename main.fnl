@@ -108,6 +108,11 @@
     true (love.event.quit 0)
     (_ err) (fail! err)))
 
+(fn mesh [o]
+  (case ((. (require :src.app.mesh) :run) o)
+    true (love.event.quit 0)
+    (_ err) (fail! err)))
+
 (fn help []
   (io.write cli.usage "\n")
   (love.event.quit 0))
@@ -149,7 +154,7 @@
 
 (local modes {:print-shader print-shader :render render :bench bench
               :probe probe :tree tree :kinds kinds :help help :export-shader export-shader
-              :record record :edit-latency edit-latency
+              :record record :mesh mesh :edit-latency edit-latency
               :bench-report bench-report :soak soak :input-check input-check :play play})
 
 (fn headless-error-handler [message]

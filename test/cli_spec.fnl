@@ -49,7 +49,7 @@
         (assert.are.equal :kinds (. (cli.parse ["--kinds"]) :mode))
         (let [(o err) (cli.parse ["--tree" "a.fnl" "--gpu"])]
           (assert.is_nil o)
-          (assert.are.equal "--gpu only goes with --probe" err))))
+          (assert.are.equal "--gpu only goes with --probe or --mesh" err))))
 
     (it "parses --export-shader, which writes a .glsl file"
       (fn []
@@ -71,6 +71,25 @@
                           (select 2 (cli.parse ["--render" "a.fnl" "--out" "a.png" "--turntable"])))
         (assert.are.equal "--fps must be a whole number >= 1, got 0"
                           (select 2 (cli.parse ["--record" "a.fnl" "--out" "d" "--fps" "0"])))))
+
+    (it "parses --mesh with --out FILE.stl|.ply|.obj, --resolution, --region and --gpu"
+      (fn []
+        (assert.are.same {:mode :mesh :scene "a.fnl" :out "a.PLY" :resolution 200 :gpu? true
+                          :region {:lo [-1 -2 -3] :hi [1 2 3.5]} :frames 5 :cycles 300}
+                         (cli.parse ["--mesh" "a.fnl" "--out" "a.PLY" "--resolution" "200"
+                                     "--region" "-1,-2,-3,1,2,3.5" "--gpu"]))
+        (assert.are.equal "--mesh needs --out FILE.stl, FILE.ply or FILE.obj"
+                          (select 2 (cli.parse ["--mesh" "a.fnl"])))
+        (assert.are.equal "--out must name a .stl, .ply or .obj file, got a.png"
+                          (select 2 (cli.parse ["--mesh" "a.fnl" "--out" "a.png"])))
+        (assert.are.equal "--resolution must be a whole number from 8 to 512, got 7"
+                          (select 2 (cli.parse ["--mesh" "a.fnl" "--out" "a.stl" "--resolution" "7"])))
+        (assert.are.equal "--region: z1 must be greater than z0, got 0,0,1,1,1,1"
+                          (select 2 (cli.parse ["--mesh" "a.fnl" "--out" "a.stl" "--region" "0,0,1,1,1,1"])))
+        (assert.are.equal "--region only goes with --mesh"
+                          (select 2 (cli.parse ["--render" "a.fnl" "--out" "a.png" "--region" "0,0,0,1,1,1"])))
+        (assert.are.equal "the output file is the scene file a.stl; choose another name"
+                          (select 2 (cli.parse ["--mesh" "a.stl" "--out" "./a.stl"])))))
 
     (it "plays a scene given as the only argument"
       (fn []

@@ -2,6 +2,7 @@
 ;; anything opens. Pure: a list of strings in, an options table or an error out.
 
 (local plan (require :src.render.plan))
+(local mesh-options (require :src.mesh.options))
 
 (local default-scene "scenes/seed.fnl")
 
@@ -21,6 +22,9 @@
        love . --kinds                        every primitive and operation, with parameters
        love . --export-shader SCENE --out FILE.glsl   a Shadertoy shader with the values baked in
        love . --record SCENE --out DIR --frames N [--fps F] [--size WxH] [--turntable]
+       love . --mesh SCENE --out FILE.stl|.ply|.obj [--resolution N] [--region x0,y0,z0,x1,y1,z1] [--gpu]
+                                             a mesh of the scene's finite objects (N cells along
+                                             the longest side, 128), or of all of them cut by a box
        love . --edit-latency SCENE [--sync-compile]   the player's delay in showing an edit
        love . --warm-shader FILE.glsl        compile a shader and draw it once (the player's helper;
                                              conf.lua runs it before anything else)
@@ -29,10 +33,10 @@ VIEW is one of shaded, normals, glow, heat.")
 
 (local value-flags {:--out :out :--size :size :--frames :frames :--view :view
                     :--target :target :--shot :shot :--cycles :cycles :--fps :fps
-                    :--target-fps :target-fps})
+                    :--target-fps :target-fps :--resolution :resolution :--region :region})
 (local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench
                    :--probe :probe :--tree :tree :--export-shader :export-shader
-                   :--record :record :--edit-latency :edit-latency})
+                   :--record :record :--edit-latency :edit-latency :--mesh :mesh})
 
 (fn parse-size [s]
   (let [(w h) (s:match "^(%d+)[xX](%d+)$")
@@ -70,7 +74,15 @@ VIEW is one of shaded, normals, glow, heat.")
       (values nil "--export-shader needs --out FILE.glsl")
       (and o.out (= o.mode :export-shader) (not (o.out:match "%.glsl$")))
       (values nil (.. "--out must name a .glsl file, got " o.out))
-      (and o.out (not= o.mode :export-shader) (not= o.mode :record) (not (o.out:match "%.png$")))
+      (and (= o.mode :mesh) (not o.out))
+      (values nil "--mesh needs --out FILE.stl, FILE.ply or FILE.obj")
+      (and (= o.mode :mesh) (not (let [e (: (or (o.out:match "%.(%w+)$") "") :lower)]
+                                   (or (= e "stl") (= e "ply") (= e "obj")))))
+      (values nil (.. "--out must name a .stl, .ply or .obj file, got " o.out))
+      (and (or o.resolution o.region) (not= o.mode :mesh))
+      (values nil (.. (if o.resolution "--resolution" "--region") " only goes with --mesh"))
+      (and o.out (not= o.mode :export-shader) (not= o.mode :record) (not= o.mode :mesh)
+           (not (o.out:match "%.png$")))
       (values nil (.. "--out must name a .png file, got " o.out))
       (and o.shot (not (o.shot:match "%.png$")))
       (values nil (.. "--shot must name a .png file, got " o.shot))
@@ -80,8 +92,8 @@ VIEW is one of shaded, normals, glow, heat.")
       (values nil "--sync-compile only goes with playing a scene or --edit-latency")
       (and o.shot (not= o.mode :play))
       (values nil "--shot only goes with playing a scene")
-      (and o.gpu? (not= o.mode :probe))
-      (values nil "--gpu only goes with --probe")
+      (and o.gpu? (not= o.mode :probe) (not= o.mode :mesh))
+      (values nil "--gpu only goes with --probe or --mesh")
       (and o.view (not (plan.view? o.view)))
       (values nil (.. "--view must be one of " (table.concat plan.views ", ") ", got " o.view))
       (and o.target (not= o.target "love") (not= o.target "core"))
@@ -91,8 +103,9 @@ VIEW is one of shaded, normals, glow, heat.")
 (fn parse [args]
   "Parse the game's arguments (after LÖVE's own). Returns an options table
 {:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:input-check|:probe|:tree|:kinds|:help
- |:export-shader|:record|:edit-latency
- :scene :out :size [w h] :frames n :view v :target t :gpu? (probe on the GPU)} or nil and a message (the usage text follows it)."
+ |:export-shader|:record|:edit-latency|:mesh
+ :scene :out :size [w h] :frames n :view v :target t :gpu? (probe or mesh on the GPU)
+ :resolution n :region {:lo :hi} (--mesh)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]
     (var i 1)
     (var err nil)
@@ -132,6 +145,14 @@ VIEW is one of shaded, normals, glow, heat.")
         (let [n (tonumber (. o field))]
           (if (and n (>= n 1) (< n math.huge) (= n (math.floor n))) (tset o field n)
               (set err (.. "--" field " must be a whole number >= 1, got " (. o field)))))))
+    (when (and (not err) o.resolution)
+      (case (mesh-options.parse-resolution o.resolution)
+        n (set o.resolution n)
+        (nil e) (set err e)))
+    (when (and (not err) o.region)
+      (case (mesh-options.parse-region o.region)
+        r (set o.region r)
+        (nil e) (set err e)))
     (when (not o.scene) (set o.scene default-scene))
     (if err (values nil err) (check-options o))))
 

@@ -1,7 +1,8 @@
 ;; `love . --input-check`: drives the player through LÖVE's own event queue, as a
 ;; person at a slow machine would: a key tapped between two frames, a click after the
-;; pointer moved with no button held, - before ] (another scene), F12, and the
-;; parameter panel (drag a slider, tick a switch, save into the file). Every event is
+;; pointer moved with no button held, - before ] (another scene), F12, the
+;; parameter panel (drag a slider, tick a switch, save into the file) and F9 (a mesh
+;; of the scene as shown). Every event is
 ;; pushed with love.event.push and reaches the player through love.run, exactly like
 ;; real input; keyboard state (isDown) stays empty, as for a tap too short to be seen.
 
@@ -111,6 +112,23 @@ next frame."
       (love.event.push :mousereleased (+ g.x g.w -1) (+ g.y 5) 1 false 1)
       (wait 2)
       (check (= 1 (. state.scene.objects 1 :color 2)) "the colour's green slider at its end sets 1"))
+    ;; F9: a mesh of the scene as shown (the radius dragged to 0.875; the plane
+    ;; left out) beside the scene file.
+    (set state.message nil)
+    (push-key :f9)
+    (wait 4)
+    (let [formats (require :src.mesh.formats)
+          check-mesh (require :src.mesh.check)
+          written (string.match (or state.message "") "^wrote (.-%.ply): ")
+          bytes (when written (files.read-user written))
+          m (when bytes (formats.decode bytes :ply))
+          v (when m (check-mesh.volume m))
+          want (* (/ 4 3) math.pi (^ 0.875 3))]
+      (check (and m (. (check-mesh.topology m) :manifold?) (< (math.abs (- v want)) (* 0.01 want))
+                  (string.find state.message "left out objects[2] (plane): infinite" 1 true))
+             (string.format "F9 writes a closed mesh of the scene as shown beside it (%s; volume %s, a sphere of 0.875: %.4f)"
+                            (tostring state.message) (tostring v) want))
+      (when written (os.remove written)))
     (let [save (item-named "Save to file (ctrl+s)")
           reloads state.reloads]
       (love.event.push :mousepressed (+ save.x 5) (+ save.y 5) 1 false 1)

@@ -1,0 +1,607 @@
+;; Dual contouring of a signed distance field into a closed triangle mesh (issue 31).
+;; The field is sampled at the corners of a grid of cubic cells, only in blocks its
+;; own values cannot prove far from the surface (an octree of blocks, skipped where
+;; |d| at a block's centre exceeds its half-diagonal), so the work follows the surface
+;; area. Every grid edge whose ends differ in sign gets a crossing point (regula falsi
+;; on the field) and the field's gradient there; every cell gets one vertex per patch
+;; of surface in it, placed where the tangent planes of its crossings meet (a QEF, kept
+;; inside the cell), which keeps sharp edges and corners; every crossing edge gives a
+;; quad of the four cells around it.
+;;
+;; Patches: a cell's crossing edges are joined into patches along the faces of the
+;; cell, a face with two crossings joining them and a face with four (ambiguous)
+;; joining them as the face's bilinear interpolant does (the asymptotic decider: it
+;; reads only the face's four corner values, so both cells of a face decide alike).
+;; With one vertex per patch instead of one per cell, two sheets through one cell (a
+;; thin wall, two objects touching) get a vertex each and the mesh stays 2-manifold.
+;; With the field cut by a box inside the grid the grid's boundary is all outside, so
+;; every crossing edge has its four cells and the mesh is closed.
+;;
+;; Pure: runs under plain LuaJIT. The field is a table of batch functions (see mesh),
+;; so the same mesher runs on the CPU evaluator and on the GPU.
+
+(local sqrt math.sqrt)
+(local floor math.floor)
+(local abs math.abs)
+(local min math.min)
+(local max math.max)
+
+;; Cells per side of a leaf block (the blocks whose corners are sampled), and of the
+;; largest blocks the octree starts from.
+(local leaf 4)
+(local top 32)
+;; Points per call of the field's batch functions.
+(local batch-size 32768)
+;; A vertex farther than this (in cells) from the surface is moved onto it. The QEF
+;; puts the vertex of a sharp edge or corner on the surface, so this leaves them be;
+;; what it moves are vertices clamped to their cell and those of features thinner
+;; than a cell, whose tangent planes meet far away.
+(local off-surface 0.25)
+;; The work of the steps that evaluate nothing (finding the cells, their patches,
+;; vertices and quads), counted in field evaluations per crossing for the time-left
+;; estimate: machined-part at 256 cells took 1.2 s for them and 79k crossings, about
+;; 15 microseconds each, while its evaluations took 0.8 microseconds each (organic's
+;; three times that): about 10 evaluations' worth. The caller may add its own work
+;; per vertex (:after-work of the grid: the export's colours).
+(local geometry-work 10)
+;; Regula falsi steps refining each crossing after the linear guess from the corners.
+(local refine-steps 4)
+;; The QEF's pull toward the mean of the crossings, per crossing (normals are unit,
+;; so the planes' matrix has eigenvalues up to the crossing count): where the normals
+;; are nearly parallel (a smooth surface) it keeps the vertex near the crossings
+;; instead of far along the surface, and at a corner of three orthogonal faces
+;; (eigenvalues near 1/3 per crossing) it moves the vertex by about 1/300 of its
+;; distance to the mean, under 1% of a cell.
+(local pull 0.001)
+
+;;; Cells: corners c = x + 2y + 4z; edges 0-3 along x (at y + 2z), 4-7 along y (at
+;;; x + 2z), 8-11 along z (at x + 2y).
+
+(fn corner-bits [c] (values (% c 2) (% (floor (/ c 2)) 2) (floor (/ c 4))))
+
+(fn edge-between [a b]
+  "The local edge joining corners a and b (which differ along one axis)."
+  (let [(ax ay az) (corner-bits a)
+        (bx by bz) (corner-bits b)]
+    (if (not= ax bx) (+ ay (* 2 az))
+        (not= ay by) (+ 4 ax (* 2 az))
+        (+ 8 ax (* 2 ay)))))
+
+;; Each edge's two corners, low end first.
+(local edge-corners
+  (fcollect [e 0 11]
+    (let [axis (floor (/ e 4)) r (% e 4) p (% r 2) q (floor (/ r 2))
+          ;; The two other coordinates, in cyclic-free order: x: (y z), y: (x z), z: (x y).
+          lo (case axis 0 (+ (* 2 p) (* 4 q)) 1 (+ p (* 4 q)) _ (+ p (* 2 q)))]
+      [lo (+ lo (case axis 0 1 1 2 _ 4))])))
+
+;; Each face's four corners in cyclic order and its four edges (edge k joins corner k
+;; to corner k+1).
+(local faces
+  (let [out []]
+    (for [axis 0 2]
+      (for [side 0 1]
+        (let [u (% (+ axis 1) 3) v (% (+ axis 2) 3)
+              at (fn [a b] (+ (* side (^ 2 axis)) (* a (^ 2 u)) (* b (^ 2 v))))
+              cs [(at 0 0) (at 1 0) (at 1 1) (at 0 1)]]
+          (table.insert out {:corners cs
+                             :edges (fcollect [k 1 4]
+                                      (edge-between (. cs k) (. cs (+ 1 (% k 4)))))}))))
+    out))
+
+;;; Union-find over a cell's twelve edges.
+
+(fn find [parent e]
+  (var r e)
+  (while (not= (. parent r) r) (set r (. parent r)))
+  r)
+
+(fn join! [parent a b]
+  (let [ra (find parent a) rb (find parent b)]
+    (when (not= ra rb) (tset parent ra rb))))
+
+;; The faces of most cells: none (shared, never written).
+(local no-faces [])
+
+(fn patches [v ?flipped]
+  "The patches of a cell with corner values `v` (1-based by corner c + 1; inside is
+below 0): a table from each crossing edge (0-11) to its patch's representative, and
+a list of the cell's ambiguous faces (1-6) whose two segments belong to one patch.
+`?flipped` (a table of faces 1-6) reverses the asymptotic decider on those faces."
+  (let [parent {}]
+    (var joined nil)
+    (for [e 0 11]
+      (let [[a b] (. edge-corners (+ e 1))]
+        (when (not= (< (. v (+ a 1)) 0) (< (. v (+ b 1)) 0))
+          (tset parent e e))))
+    (each [fi f (ipairs faces)]
+      (let [[c0 c1 c2 c3] f.corners
+            [e01 e12 e23 e30] f.edges
+            n (+ (if (. parent e01) 1 0) (if (. parent e12) 1 0)
+                 (if (. parent e23) 1 0) (if (. parent e30) 1 0))]
+        (if (= n 2)
+            (let [ends (icollect [_ e (ipairs f.edges)] (when (. parent e) e))]
+              (join! parent (. ends 1) (. ends 2)))
+            (= n 4)
+            ;; Ambiguous: corners 0 and 2 have one sign, 1 and 3 the other. They are
+            ;; joined across the face when the bilinear interpolant's saddle has
+            ;; their sign; then the face's two segments cut off corners 1 and 3.
+            (let [a (. v (+ c0 1)) b (. v (+ c1 1)) c (. v (+ c2 1)) d (. v (+ c3 1))
+                  saddle (/ (- (* a c) (* b d)) (- (+ a c) b d))]
+              (if (not= (= (< saddle 0) (< a 0)) (not= nil (and ?flipped (. ?flipped fi))))
+                  (do (join! parent e01 e12) (join! parent e23 e30))
+                  (do (join! parent e30 e01) (join! parent e12 e23)))))))
+    ;; e01 and e23 are on different segments either way.
+    (each [fi f (ipairs faces)]
+      (let [[e01 e12 e23 e30] f.edges]
+        (when (and (. parent e01) (. parent e12) (. parent e23) (. parent e30)
+                   (= (find parent e01) (find parent e23)))
+          (when (not joined) (set joined []))
+          (table.insert joined fi))))
+    (values (collect [e _ (pairs parent)] e (find parent e)) (or joined no-faces))))
+
+;; Vertices keep this share of a cell inside their cell's walls, so that vertices of
+;; neighbouring cells never meet: a surface lying on a cell wall (a box face on a grid
+;; plane) would otherwise put vertices of both cells on the same point, and a file
+;; without shared vertices (STL), welded by position, would pinch there. Two patches
+;; of one cell whose vertices meet (boxes touching along an edge) are moved apart by
+;; ten times this.
+(local inset 1e-3)
+
+(fn clamp-cell [v lo h]
+  (let [a (+ lo (* inset h)) b (- (+ lo h) (* inset h))]
+    (if (< v a) a (> v b) b v)))
+
+;;; The QEF: the point nearest (in the least-squares sense) to the crossings' tangent
+;;; planes, pulled slightly toward their mean.
+
+(fn solve3 [a11 a12 a13 a22 a23 a33 b1 b2 b3]
+  ;; Symmetric 3x3 system by Cramer's rule (the pull makes it positive definite).
+  (let [c11 (- (* a22 a33) (* a23 a23))
+        c12 (- (* a13 a23) (* a12 a33))
+        c13 (- (* a12 a23) (* a13 a22))
+        det (+ (* a11 c11) (* a12 c12) (* a13 c13))]
+    (if (<= (abs det) 1e-300)
+        (values 0 0 0)
+        (let [c22 (- (* a11 a33) (* a13 a13))
+              c23 (- (* a12 a13) (* a11 a23))
+              c33 (- (* a11 a22) (* a12 a12))]
+          (values (/ (+ (* c11 b1) (* c12 b2) (* c13 b3)) det)
+                  (/ (+ (* c12 b1) (* c22 b2) (* c23 b3)) det)
+                  (/ (+ (* c13 b1) (* c23 b2) (* c33 b3)) det))))))
+
+(fn qef-vertex [ids px py pz nx ny nz lo-x lo-y lo-z h]
+  "The vertex of the crossings `ids` (indices into the crossing arrays), clamped to
+the cell whose low corner is lo and side h, then the crossings' mean."
+  (var (cx cy cz) (values 0 0 0))
+  (let [m (length ids)]
+    (each [_ k (ipairs ids)]
+      (set (cx cy cz) (values (+ cx (. px k)) (+ cy (. py k)) (+ cz (. pz k)))))
+    (set (cx cy cz) (values (/ cx m) (/ cy m) (/ cz m)))
+    (var (a11 a12 a13 a22 a23 a33 b1 b2 b3) (values 0 0 0 0 0 0 0 0 0))
+    (each [_ k (ipairs ids)]
+      (let [x (. nx k) y (. ny k) z (. nz k)
+            r (+ (* x (- (. px k) cx)) (* y (- (. py k) cy)) (* z (- (. pz k) cz)))]
+        (set (a11 a12 a13) (values (+ a11 (* x x)) (+ a12 (* x y)) (+ a13 (* x z))))
+        (set (a22 a23 a33) (values (+ a22 (* y y)) (+ a23 (* y z)) (+ a33 (* z z))))
+        (set (b1 b2 b3) (values (+ b1 (* x r)) (+ b2 (* y r)) (+ b3 (* z r))))))
+    (let [l (* pull m)
+          (dx dy dz) (solve3 (+ a11 l) a12 a13 (+ a22 l) a23 (+ a33 l) b1 b2 b3)]
+      (values (clamp-cell (+ cx dx) lo-x h) (clamp-cell (+ cy dy) lo-y h)
+              (clamp-cell (+ cz dz) lo-z h)
+              (clamp-cell cx lo-x h) (clamp-cell cy lo-y h) (clamp-cell cz lo-z h)))))
+
+;;; Evaluating the field in batches.
+
+(fn box-distance [cut x y z]
+  ;; Signed distance to the box {:lo :hi}: the cut that closes the mesh.
+  (let [[lx ly lz] cut.lo [hx hy hz] cut.hi
+        qx (- (abs (- x (* 0.5 (+ lx hx)))) (* 0.5 (- hx lx)))
+        qy (- (abs (- y (* 0.5 (+ ly hy)))) (* 0.5 (- hy ly)))
+        qz (- (abs (- z (* 0.5 (+ lz hz)))) (* 0.5 (- hz lz)))
+        ox (max qx 0) oy (max qy 0) oz (max qz 0)]
+    (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz))) (min (max qx qy qz) 0))))
+
+(fn evaluator [field cut counts progress]
+  "A function from a phase name and a flat list of points x y z ... to their
+distances (the field cut by the box `cut`), in batches of batch-size points; each
+batch counts as work done (see mesh) and `progress` hears of it."
+  (fn [phase flat]
+    (let [n (/ (length flat) 3)
+          out []]
+      (for [start 0 (- n 1) batch-size]
+        (let [count (min batch-size (- n start))
+              chunk (fcollect [q (+ 1 (* 3 start)) (* 3 (+ start count))] (. flat q))
+              ds (field.distances chunk count)]
+          (for [k 1 count]
+            (let [j (* 3 (- k 1))
+                  d (. ds k)
+                  b (box-distance cut (. chunk (+ j 1)) (. chunk (+ j 2)) (. chunk (+ j 3)))]
+              (tset out (+ start k) (max d b))))
+          (set counts.points (+ counts.points count))
+          (set counts.work (+ counts.work count))
+          (progress phase counts.work counts.estimate counts.points)))
+      out)))
+
+;;; The mesher.
+
+(fn mesh [field grid ?progress]
+  "Contour `field` over `grid`. The field: {:distances (fn [flat n]) -> n signed
+distances at the points of the flat list x1 y1 z1 x2 ...; :step the gradient's
+difference step as a share of a cell}. The grid: {:lo [x y z] (its low corner) :h
+(the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a box inside the grid
+by at least one cell: the field is cut by it, which closes the mesh)}.
+`?progress` (fn [phase work estimate points]) hears of each batch of points and
+each step: the phase (:blocks, :corners, :crossings, :normals, :patches, :vertices,
+:projection, :faces), the work done so far (in field evaluations: see geometry-work),
+an estimate of all the work (nil until the blocks are known; the grid's :after-work
+per vertex included) and the points evaluated.
+Returns {:positions [x y z ...] :triangles [a b c ...] (1-based vertex indices,
+counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
+(leaf blocks sampled) :skipped (leaf blocks' worth of volume skipped) :cells
+(cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
+moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
+  (let [progress (or ?progress (fn []))
+        counts {:points 0 :work 0}
+        after (+ geometry-work (or grid.after-work 0))
+        ;; Work not done by evaluating: counted, and heard by progress.
+        worked! (fn [phase units]
+                  (set counts.work (+ counts.work units))
+                  (progress phase counts.work counts.estimate counts.points))
+        evaluate (evaluator field grid.cut counts progress)
+        [ox oy oz] grid.lo
+        h grid.h
+        [nx ny nz] grid.dims
+        step (* h (or field.step 1e-3))
+        ;; CPU seconds of each step, for the figures (os.clock: a GPU field's waits
+        ;; are not counted).
+        times {}
+        mark! (let [state {:at (os.clock) :step nil}]
+                (fn [step]
+                  (let [now (os.clock)]
+                    (when state.step
+                      (tset times state.step (- now state.at)))
+                    (set (state.at state.step) (values now step)))))]
+    (mark! :blocks)
+    ;; 1. The octree of blocks: keep those whose centre's |d| does not prove them
+    ;; clear of the surface; subdivide down to leaves.
+    (var blocks [])
+    (for [k 0 (- nz 1) top]
+      (for [j 0 (- ny 1) top]
+        (for [i 0 (- nx 1) top]
+          (table.insert blocks [i j k]))))
+    (var size top)
+    (var leaves nil)
+    (var skipped 0)
+    (while (not leaves)
+      (let [flat []
+            half (* 0.5 size h)
+            radius (* 1.0001 (sqrt 3) half)]
+        (each [_ [i j k] (ipairs blocks)]
+          (table.insert flat (+ ox (* i h) half))
+          (table.insert flat (+ oy (* j h) half))
+          (table.insert flat (+ oz (* k h) half)))
+        (let [ds (evaluate :blocks flat)
+              kept (icollect [b [i j k] (ipairs blocks)]
+                     (if (<= (abs (. ds b)) radius) [i j k]
+                         (do (set skipped (+ skipped (/ (^ size 3) (^ leaf 3)))) nil)))]
+          (if (= size leaf)
+              (set leaves kept)
+              (let [s (/ size 2)]
+                (set blocks [])
+                (each [_ [i j k] (ipairs kept)]
+                  (for [c 0 7]
+                    (let [(bx by bz) (corner-bits c)
+                          a (+ i (* bx s)) b (+ j (* by s)) d (+ k (* bz s))]
+                      (when (and (< a nx) (< b ny) (< d nz))
+                        (table.insert blocks [a b d])))))
+                (set size s))))))
+    (mark! :corners)
+    ;; 2. The corners of the leaves, (leaf + 1)^3 each (clamped to the grid).
+    (let [side (+ leaf 1)
+          flat []]
+      (each [_ [i j k] (ipairs leaves)]
+        (for [c 0 leaf]
+          (for [b 0 leaf]
+            (for [a 0 leaf]
+              (table.insert flat (+ ox (* (min nx (+ i a)) h)))
+              (table.insert flat (+ oy (* (min ny (+ j b)) h)))
+              (table.insert flat (+ oz (* (min nz (+ k c)) h)))))))
+      ;; The crossings and normals take about as many points again as the corners:
+      ;; a leaf of 64 cells holds some 13 crossings where a surface crosses it (a
+      ;; sphere at 32 cells), each taking 10 points (measured: 3990 crossings in 308
+      ;; leaves); the estimate is made exact once the crossings are counted.
+      (set counts.estimate (+ counts.work (* (+ 2 (/ after 10)) (/ (length flat) 3))))
+      (let [corner-values (evaluate :corners flat)
+            px [] py [] pz [] nrx [] nry [] nrz []
+            ;; Crossing edges: global key -> index; their ends and values.
+            edge-index {}
+            ex0 [] ey0 [] ez0 [] ed0 [] ed1 [] eaxis []
+            cells []
+            stride-x (+ nx 1)
+            stride-y (* (+ nx 1) (+ ny 1))]
+        (var crossings 0)
+        (mark! :cells)
+        ;; 3. Cells with surface, and their crossing edges (each edge once).
+        (each [l [i0 j0 k0] (ipairs leaves)]
+          (let [base (* (- l 1) side side side)]
+            (for [c 0 (- (min leaf (- nz k0)) 1)]
+              (for [b 0 (- (min leaf (- ny j0)) 1)]
+                (for [a 0 (- (min leaf (- nx i0)) 1)]
+                  (let [v (fcollect [q 0 7]
+                            (let [(qx qy qz) (corner-bits q)]
+                              (. corner-values (+ base 1 (+ a qx) (* side (+ b qy))
+                                           (* side side (+ c qz))))))
+                        inside (accumulate [n 0 _ d (ipairs v)] (if (< d 0) (+ n 1) n))]
+                    (when (and (> inside 0) (< inside 8))
+                      (let [i (+ i0 a) j (+ j0 b) k (+ k0 c)
+                            cell {: i : j : k : v :edges {}}]
+                        (table.insert cells cell)
+                        (for [e 0 11]
+                          (let [[ca cb] (. edge-corners (+ e 1))
+                                da (. v (+ ca 1)) db (. v (+ cb 1))]
+                            (when (not= (< da 0) (< db 0))
+                              (let [(qx qy qz) (corner-bits ca)
+                                    gi (+ i qx) gj (+ j qy) gk (+ k qz)
+                                    axis (floor (/ e 4))
+                                    key (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk))))]
+                                (var idx (. edge-index key))
+                                (when (not idx)
+                                  (set crossings (+ crossings 1))
+                                  (set idx crossings)
+                                  (tset edge-index key idx)
+                                  (tset ex0 idx gi) (tset ey0 idx gj) (tset ez0 idx gk)
+                                  (tset eaxis idx axis)
+                                  (tset ed0 idx da) (tset ed1 idx db))
+                                (tset cell.edges e idx)))))))))))))
+        ;; Each crossing: refine-steps points, 6 for its normal, and about one vertex
+        ;; (a cell has about as many crossing edges as a cell has vertices: 3990 and
+        ;; 3992 on a sphere), whose distance is checked.
+        (set counts.estimate (+ counts.work (* crossings (+ refine-steps 7 after))))
+        (mark! :crossings)
+        ;; 4. Crossing points: the linear guess from the corner values, then regula
+        ;; falsi (the Illinois variant) on the field along each edge.
+        (let [ta (fcollect [e 1 crossings] 0)
+              tb (fcollect [e 1 crossings] 1)
+              fa (fcollect [e 1 crossings] (. ed0 e))
+              fb (fcollect [e 1 crossings] (. ed1 e))
+              side-kept (fcollect [e 1 crossings] 0)
+              guess (fn [e]
+                      (let [a (. fa e) b (. fb e)]
+                        (+ (. ta e) (* (- (. tb e) (. ta e)) (/ a (- a b))))))
+              point (fn [e t]
+                      (let [axis (. eaxis e)]
+                        (values (+ ox (* h (+ (. ex0 e) (if (= axis 0) t 0))))
+                                (+ oy (* h (+ (. ey0 e) (if (= axis 1) t 0))))
+                                (+ oz (* h (+ (. ez0 e) (if (= axis 2) t 0)))))))
+              ts (fcollect [e 1 crossings] (guess e))]
+          (for [s 1 refine-steps]
+            (let [flat []]
+              (for [e 1 crossings]
+                (let [(x y z) (point e (. ts e))]
+                  (table.insert flat x) (table.insert flat y) (table.insert flat z)))
+              (let [ds (evaluate :crossings flat)]
+                (for [e 1 crossings]
+                  (let [t (. ts e) d (. ds e)]
+                    (if (= (< d 0) (< (. fa e) 0))
+                        (do (tset ta e t) (tset fa e d)
+                            (when (= (. side-kept e) 1) (tset fb e (* 0.5 (. fb e))))
+                            (tset side-kept e 1))
+                        (do (tset tb e t) (tset fb e d)
+                            (when (= (. side-kept e) -1) (tset fa e (* 0.5 (. fa e))))
+                            (tset side-kept e -1)))
+                    (tset ts e (if (= d 0) t (guess e))))))))
+          (for [e 1 crossings]
+            (let [(x y z) (point e (. ts e))]
+              (tset px e x) (tset py e y) (tset pz e z))))
+        (mark! :normals)
+        ;; 5. Normals: central differences of the field at each crossing.
+        (let [flat []]
+          (for [e 1 crossings]
+            (let [x (. px e) y (. py e) z (. pz e)]
+              (each [_ [dx dy dz] (ipairs [[step 0 0] [(- step) 0 0] [0 step 0]
+                                           [0 (- step) 0] [0 0 step] [0 0 (- step)]])]
+                (table.insert flat (+ x dx)) (table.insert flat (+ y dy))
+                (table.insert flat (+ z dz)))))
+          (let [ds (evaluate :normals flat)]
+            (for [e 1 crossings]
+              (let [b (* 6 (- e 1))
+                    gx (- (. ds (+ b 1)) (. ds (+ b 2)))
+                    gy (- (. ds (+ b 3)) (. ds (+ b 4)))
+                    gz (- (. ds (+ b 5)) (. ds (+ b 6)))
+                    len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))]
+                (if (> len 0)
+                    (do (tset nrx e (/ gx len)) (tset nry e (/ gy len)) (tset nrz e (/ gz len)))
+                    ;; A flat spot: the edge's own direction, pointing outward.
+                    (let [axis (. eaxis e) sgn (if (< (. ed0 e) 0) 1 -1)]
+                      (tset nrx e (if (= axis 0) sgn 0)) (tset nry e (if (= axis 1) sgn 0))
+                      (tset nrz e (if (= axis 2) sgn 0))))))))
+        (worked! :patches (* 0.25 geometry-work crossings))
+        (mark! :patches)
+        ;; 6. Patches. Where both cells of an ambiguous face have one patch through
+        ;; both of the face's segments, the quads of the two segments would share
+        ;; their edge across the face (four triangles on one edge): reversing the
+        ;; face's decision in both cells splits each patch in two. Repeated until no
+        ;; face is left so (each reversal only splits patches, so it ends).
+        (let [cell-at {}
+              face-key (fn [cell fi]
+                         (let [axis (floor (/ (- fi 1) 2)) side (% (- fi 1) 2)]
+                           (+ axis (* 3 (+ cell.i (if (= axis 0) side 0)
+                                           (* stride-x (+ cell.j (if (= axis 1) side 0)))
+                                           (* stride-y (+ cell.k (if (= axis 2) side 0))))))))
+              ;; The same face seen from the cell across it.
+              across (fn [cell fi]
+                       (let [axis (floor (/ (- fi 1) 2)) sgn (if (= 0 (% (- fi 1) 2)) -1 1)]
+                         (values (. cell-at (+ cell.i (if (= axis 0) sgn 0)
+                                               (* stride-x (+ cell.j (if (= axis 1) sgn 0)))
+                                               (* stride-y (+ cell.k (if (= axis 2) sgn 0)))))
+                                 (if (= sgn 1) (- fi 1) (+ fi 1)))))
+              flipped {}]
+          (each [_ cell (ipairs cells)]
+            (tset cell-at (+ cell.i (* stride-x cell.j) (* stride-y cell.k)) cell)
+            (set (cell.rep cell.joined) (patches cell.v)))
+          ;; Each reversal takes effect at once: a cell between two such faces
+          ;; (a twisted row of cells) must not have both reversed in one pass.
+          (var todo (icollect [_ cell (ipairs cells)] (when (< 0 (length cell.joined)) cell)))
+          (for [_ 1 16 &until (= 0 (length todo))]
+            (let [again []
+                  joined? (fn [c fi] (accumulate [j? false _ g (ipairs c.joined)] (or j? (= g fi))))]
+              (each [_ cell (ipairs todo)]
+                (each [_ fi (ipairs (icollect [_ g (ipairs cell.joined)] g))]
+                  (let [(other ofi) (across cell fi)]
+                    (when (and other (joined? cell fi) (joined? other ofi)
+                               (not (. flipped (face-key cell fi))))
+                      (tset flipped (face-key cell fi) true)
+                      (set counts.flipped (+ 1 (or counts.flipped 0)))
+                      (when (not cell.flips) (set cell.flips {}))
+                      (when (not other.flips) (set other.flips {}))
+                      (tset cell.flips fi (not (. cell.flips fi)))
+                      (tset other.flips ofi (not (. other.flips ofi)))
+                      (set (cell.rep cell.joined) (patches cell.v cell.flips))
+                      (set (other.rep other.joined) (patches other.v other.flips))
+                      (table.insert again cell)
+                      (table.insert again other)))))
+              (set todo again))))
+        (worked! :vertices (* 0.25 geometry-work crossings))
+        (mark! :vertices)
+        ;; 7. One vertex per patch of each cell.
+        (let [positions []
+              ;; Per vertex: its cell's low corner and its crossings' mean.
+              vertex-info []
+              cell-vertices {}]
+          (var vertex-count 0)
+          (each [_ cell (ipairs cells)]
+            (let [rep cell.rep
+                  groups {}
+                  order []
+                  local-vertex {}]
+              (for [e 0 11]
+                (let [r (. rep e)]
+                  (when r
+                    (when (not (. groups r))
+                      (tset groups r [])
+                      (table.insert order r))
+                    (table.insert (. groups r) (. cell.edges e)))))
+              (let [lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
+                    placed (icollect [_ r (ipairs order)]
+                             [(qef-vertex (. groups r) px py pz nrx nry nrz lx ly lz h)])]
+                ;; Patches of this cell whose vertices meet: each moves toward its
+                ;; crossings' mean (or, when that is the same point, apart along x).
+                (for [a 1 (length placed)]
+                  (for [b (+ a 1) (length placed)]
+                    (let [[ax ay az] (. placed a) [bx by bz] (. placed b)]
+                      (when (< (sqrt (+ (* (- ax bx) (- ax bx)) (* (- ay by) (- ay by))
+                                        (* (- az bz) (- az bz))))
+                               (* inset h))
+                        (each [k q (ipairs [(. placed a) (. placed b)])]
+                          (let [[x y z mx my mz] q
+                                dx (- mx x) dy (- my y) dz (- mz z)
+                                len (sqrt (+ (* dx dx) (* dy dy) (* dz dz)))
+                                push (* 10 inset h)
+                                (ux uy uz) (if (> len (* inset h)) (values (/ dx len) (/ dy len) (/ dz len))
+                                               (values (if (= k 1) -1 1) 0 0))]
+                            (tset q 1 (clamp-cell (+ x (* push ux)) lx h))
+                            (tset q 2 (clamp-cell (+ y (* push uy)) ly h))
+                            (tset q 3 (clamp-cell (+ z (* push uz)) lz h))))))))
+                (each [n r (ipairs order)]
+                  (let [[x y z mx my mz] (. placed n)]
+                    (set vertex-count (+ vertex-count 1))
+                    (each [_ v (ipairs [lx ly lz mx my mz])] (table.insert vertex-info v))
+                    (table.insert positions x) (table.insert positions y)
+                    (table.insert positions z)
+                    (tset local-vertex r vertex-count))))
+              (tset cell-vertices (+ cell.i (* stride-x cell.j) (* stride-y cell.k))
+                    (collect [e r (pairs rep)] e (. local-vertex r)))
+              ;; Done with this cell but for its vertices: the rest may go.
+              (set (cell.v cell.edges cell.rep cell.joined cell.flips) nil)))
+          (worked! :projection (* 0.2 geometry-work crossings))
+          (mark! :projection)
+          ;; 8. Vertices off the surface (see off-surface): each moved to the best
+          ;; of a Newton step along the field's gradient (kept in its cell) and its
+          ;; crossings' mean (which may leave the cell, but a crossing is on the
+          ;; surface), where it stays unless that is nearer the surface.
+          (let [flat (icollect [_ v (ipairs positions)] v)
+                ds (evaluate :projection flat)
+                bad (icollect [v d (ipairs ds)] (when (> (abs d) (* off-surface h)) v))
+                grad []]
+            (each [_ v (ipairs bad)]
+              (let [b (* 3 (- v 1))
+                    x (. positions (+ b 1)) y (. positions (+ b 2)) z (. positions (+ b 3))]
+                (each [_ [dx dy dz] (ipairs [[step 0 0] [(- step) 0 0] [0 step 0]
+                                             [0 (- step) 0] [0 0 step] [0 0 (- step)]])]
+                  (table.insert grad (+ x dx)) (table.insert grad (+ y dy))
+                  (table.insert grad (+ z dz)))))
+            (let [gs (evaluate :projection grad)
+                  candidates []]
+              (each [n v (ipairs bad)]
+                (let [b (* 3 (- v 1)) g (* 6 (- n 1))
+                      gx (- (. gs (+ g 1)) (. gs (+ g 2)))
+                      gy (- (. gs (+ g 3)) (. gs (+ g 4)))
+                      gz (- (. gs (+ g 5)) (. gs (+ g 6)))
+                      len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))
+                      d (. ds v)
+                      s (if (> len 0) (/ d len) 0)
+                      clamp (fn [q lo] (clamp-cell q lo h))
+                      i (* 6 (- v 1))]
+                  (table.insert candidates (clamp (- (. positions (+ b 1)) (* s gx)) (. vertex-info (+ i 1))))
+                  (table.insert candidates (clamp (- (. positions (+ b 2)) (* s gy)) (. vertex-info (+ i 2))))
+                  (table.insert candidates (clamp (- (. positions (+ b 3)) (* s gz)) (. vertex-info (+ i 3))))
+                  (for [q 4 6] (table.insert candidates (. vertex-info (+ i q))))))
+              (let [cds (evaluate :projection candidates)]
+                (each [n v (ipairs bad)]
+                  (var best (abs (. ds v)))
+                  (for [c 0 1]
+                    (let [at (+ (* 2 (- n 1)) c 1)]
+                      (when (< (abs (. cds at)) best)
+                        (set best (abs (. cds at)))
+                        (for [q 1 3]
+                          (tset positions (+ (* 3 (- v 1)) q)
+                                (. candidates (+ (* 3 (- at 1)) q)))))))))
+              (set counts.moved (length bad))))
+          (mark! :faces)
+          ;; 9. A quad of the four cells around each crossing edge, split into two
+          ;; triangles along the diagonal that bends it least.
+          (let [triangles []
+                vertex-of (fn [i j k e]
+                            (let [vs (. cell-vertices (+ i (* stride-x j) (* stride-y k)))]
+                              (assert (and vs (. vs e))
+                                      (string.format "mesh: crossing edge without cell (%d %d %d)" i j k))
+                              (. vs e)))
+                pos (fn [v] (let [b (* 3 (- v 1))]
+                              (values (. positions (+ b 1)) (. positions (+ b 2))
+                                      (. positions (+ b 3)))))
+                normal (fn [a b c]
+                         (let [(ax ay az) (pos a) (bx by bz) (pos b) (cx cy cz) (pos c)
+                               ux (- bx ax) uy (- by ay) uz (- bz az)
+                               vx (- cx ax) vy (- cy ay) vz (- cz az)
+                               x (- (* uy vz) (* uz vy)) y (- (* uz vx) (* ux vz))
+                               z (- (* ux vy) (* uy vx))
+                               l (sqrt (+ (* x x) (* y y) (* z z)))]
+                           (if (> l 0) (values (/ x l) (/ y l) (/ z l)) (values 0 0 0))))
+                flatness (fn [a b c d]
+                           (let [(x1 y1 z1) (normal a b c) (x2 y2 z2) (normal a c d)]
+                             (+ (* x1 x2) (* y1 y2) (* z1 z2))))]
+            (for [e 1 crossings]
+              (let [axis (. eaxis e) i (. ex0 e) j (. ey0 e) k (. ez0 e)
+                    ;; The cells at offsets (du dv) in {-1 0}^2 along the two other
+                    ;; axes u, v (u x v = the edge's axis), counter-clockwise.
+                    quad (icollect [_ [du dv] (ipairs [[-1 -1] [0 -1] [0 0] [-1 0]])]
+                           (let [uu (- du) vv (- dv)]
+                             (case axis
+                               0 (vertex-of i (+ j du) (+ k dv) (+ uu (* 2 vv)))
+                               1 (vertex-of (+ i dv) j (+ k du) (+ 4 vv (* 2 uu)))
+                               _ (vertex-of (+ i du) (+ j dv) k (+ 8 uu (* 2 vv))))))
+                    [a b c d] (if (< (. ed0 e) 0) quad
+                                  [(. quad 4) (. quad 3) (. quad 2) (. quad 1)])]
+                (if (>= (flatness a b c d) (flatness b c d a))
+                    (each [_ v (ipairs [a b c a c d])] (table.insert triangles v))
+                    (each [_ v (ipairs [b c d b d a])] (table.insert triangles v)))))
+            (worked! :faces (* 0.3 geometry-work crossings))
+            (mark! nil)
+            {: positions : triangles
+             :stats {:points counts.points :blocks (length leaves) : skipped
+                     :cells (length cells) : crossings :moved counts.moved : times
+                     :flipped (or counts.flipped 0)
+                     :work counts.work :estimate counts.estimate}}))))))
+
+{: mesh : patches : box-distance : leaf}

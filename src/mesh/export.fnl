@@ -1,0 +1,112 @@
+;; `--mesh`: a scene's objects to a mesh file (issue 31). Picks what to mesh
+;; (src/mesh/scene.fnl), contours it (src/mesh/contour.fnl) with a field from the
+;; CPU evaluator or the GPU (src/mesh/gpu.fnl, given by the caller), colours the
+;; vertices with the scene's materials and writes STL, PLY or OBJ
+;; (src/mesh/formats.fnl) through the one output writer. Progress on stderr with an
+;; estimate of the time left. Pure: runs under plain LuaJIT with the CPU field.
+
+(local contour (require :src.mesh.contour))
+(local mesh-scene (require :src.mesh.scene))
+(local formats (require :src.mesh.formats))
+(local status (require :src.util.status))
+(local output (require :src.util.output))
+
+(fn millions [n]
+  (if (>= n 1e6) (string.format "%.1fM" (/ n 1e6))
+      (>= n 1e3) (string.format "%.0fk" (/ n 1e3))
+      (tostring n)))
+
+(fn reporter [clock ?quiet?]
+  "A progress function for contour.mesh that shows, as each phase starts and at
+most twice a second within it, the phase, the share of the work done and the time
+left at the rate so far."
+  (let [start (clock)]
+    (var last start)
+    (var last-phase nil)
+    ;; The estimate grows when the crossings are counted: the share shown never
+    ;; goes back.
+    (var shown 0)
+    (fn [phase work estimate points]
+      (let [now (clock)]
+        (when (and (not ?quiet?) (or (not= phase last-phase) (>= (- now last) 0.5)))
+          (set (last last-phase) (values now phase))
+          (let [elapsed (- now start)
+                left (when (and estimate (> work 0))
+                       (* elapsed (/ (math.max 0 (- estimate work)) work)))]
+            (status.update!
+             (if left
+                 (string.format "mesh: %s, %d%% (%s points), %.1f s, %s left"
+                                phase
+                                (do (set shown (math.max shown (math.min 99 (math.floor (/ (* 100 work) estimate)))))
+                                    shown)
+                                (millions points) elapsed
+                                (if (< left 1) "under 1 s" (string.format "about %.0f s" left)))
+                 (string.format "mesh: %s, %s points, %.1f s (finding the surface)"
+                                phase (millions points) elapsed)))))))))
+
+;; The colours' work per vertex, in field evaluations (see contour's geometry-work):
+;; a material's colour (map-color, every object's material) took 9 microseconds a
+;; vertex on machined-part, 11 of its distances near the surface (its guards skip
+;; most objects), and about 3 of organic's.
+(local colour-work 6)
+
+(fn colour! [m field progress stats]
+  ;; The material's colour at each vertex, in batches.
+  (let [p m.positions
+        n (/ (length p) 3)
+        colors []]
+    (for [start 0 (- n 1) 32768]
+      (let [count (math.min 32768 (- n start))
+            chunk (fcollect [q (+ 1 (* 3 start)) (* 3 (+ start count))] (. p q))
+            cs (field.colors chunk count)]
+        (for [q 1 (* 3 count)] (tset colors (+ (* 3 start) q) (. cs q)))
+        (set stats.work (+ stats.work (* colour-work count)))
+        (set stats.points (+ stats.points count))
+        (progress :colours stats.work stats.estimate stats.points)))
+    (set m.colors colors)
+    m))
+
+(fn build [scene ?options]
+  "Mesh `scene`. Options: :resolution (cells along the region's longest side,
+default 128), :region {:lo :hi} (default the finite objects' box), :field (fn
+[scene] -> a field as contour.mesh takes, with :colors; default the CPU evaluator),
+:clock (seconds, for progress; default os.clock), :quiet? (no progress).
+Returns {:mesh {:positions :triangles :colors} :message (what was left out or cut)
+:grid :stats :seconds}, or nil and a message."
+  (let [options (or ?options {})
+        clock (or options.clock os.clock)
+        make-field (or options.field mesh-scene.cpu-field)
+        resolution (or options.resolution mesh-scene.default-resolution)]
+    (case (mesh-scene.select-objects scene options.region)
+      (nil err) (values nil err)
+      selection
+      (case (make-field selection.scene)
+        (nil err) (values nil err)
+        field
+        (let [grid (doto (mesh-scene.grid-for selection resolution)
+                     (tset :after-work colour-work))
+              start (clock)
+              progress (reporter clock options.quiet?)
+              m (contour.mesh field grid progress)]
+          (if (= 0 (length m.triangles))
+              (do (when (not options.quiet?) (status.done!))
+                  (values nil (.. "no surface to mesh: " selection.message
+                                  (if options.region
+                                      " (is the region clear of every object?)"
+                                      " (every object thinner than a cell? raise --resolution)"))))
+              (do (colour! m field progress m.stats)
+                  (when (not options.quiet?) (status.done!))
+                  {:mesh m :message selection.message : grid :stats m.stats
+                   :seconds (- (clock) start)})))))))
+
+(fn write! [m path ?options]
+  "Write mesh `m` to `path` in the format its extension names. Options: :name (for
+the file's header), :protect and :label as output.write! takes them. Returns true,
+or nil and a message."
+  (let [options (or ?options {})]
+    (case (formats.format-of path)
+      (nil err) (values nil err)
+      format (output.write! path (formats.encode m format options.name)
+                            {:protect options.protect :label options.label}))))
+
+{: build : write!}

@@ -1,0 +1,34 @@
+;; The command-line values of `--mesh` (issue 31), checked before anything opens:
+;; the resolution and the region. Pure: no requires.
+
+(local min-resolution 8)
+;; 1.5 GB at 512 (machined-part, 632k triangles): the mesher keeps Lua tables per
+;; surface cell, so memory grows with the area, four times a doubling.
+(local max-resolution 512)
+(local default-resolution 128)
+
+(fn parse-region [s]
+  "The box {:lo :hi} of `s` = \"x0,y0,z0,x1,y1,z1\", or nil and a message."
+  (let [nums (icollect [w (s:gmatch "[^,]+")] (tonumber w))
+        fields (icollect [w (s:gmatch "[^,]+")] w)
+        ok? (and (= 6 (length nums)) (= 6 (length fields))
+                 (accumulate [ok? true _ v (ipairs nums)]
+                   (and ok? (= v v) (< (math.abs v) math.huge))))]
+    (if (not ok?)
+        (values nil (.. "--region must be six numbers x0,y0,z0,x1,y1,z1, got " s))
+        (let [lo [(. nums 1) (. nums 2) (. nums 3)]
+              hi [(. nums 4) (. nums 5) (. nums 6)]
+              bad (accumulate [b nil i axis (ipairs [:x :y :z])]
+                    (or b (when (<= (. hi i) (. lo i)) axis)))]
+          (if bad (values nil (string.format "--region: %s1 must be greater than %s0, got %s"
+                                             bad bad s))
+              {: lo : hi})))))
+
+(fn parse-resolution [s]
+  "The resolution in `s` (a whole number of cells, 8 to 1024), or nil and a message."
+  (let [n (tonumber s)]
+    (if (and n (= n (math.floor n)) (>= n min-resolution) (<= n max-resolution)) n
+        (values nil (string.format "--resolution must be a whole number from %d to %d, got %s"
+                                   min-resolution max-resolution s)))))
+
+{: parse-region : parse-resolution : default-resolution : min-resolution : max-resolution}

@@ -1,0 +1,92 @@
+;; `love . --mesh` (issue 31) run headless through the app's command line: the CPU
+;; evaluator and the GPU (llvmpipe in CI) write closed meshes of a scene, progress
+;; goes to stderr, and bad arguments and scenes are refused with a clear message.
+
+(local formats (require :src.mesh.formats))
+(local check (require :src.mesh.check))
+(local load (require :src.scene.load))
+(local mesh-scene (require :src.mesh.scene))
+(local contour (require :src.mesh.contour))
+
+(fn run [args]
+  "Run `love . ARGS` headless: exit code, stdout, stderr."
+  (let [err-path (os.tmpname)
+        text (with-open [p (io.popen (.. "SDL_VIDEODRIVER=offscreen timeout 300 love . " args
+                                         " 2>" err-path "; echo \"exit:$?\""))]
+               (p:read :*a))
+        err (with-open [f (io.open err-path :rb)] (f:read :*a))
+        code (tonumber (text:match "exit:(%d+)%s*$"))]
+    (os.remove err-path)
+    (values code (pick-values 1 (text:gsub "exit:%d+%s*$" "")) err)))
+
+(fn read-mesh [path]
+  (let [bytes (with-open [f (assert (io.open path :rb))] (f:read :*a))]
+    (assert (formats.decode bytes (formats.format-of path)))))
+
+(describe "love . --mesh"
+  (fn []
+    (os.execute "mkdir -p test/out")
+    (local scene-path "scenes/machined-part.fnl")
+    (local scene (assert (load.load-file scene-path)))
+    (local volumes {})
+
+    (each [_ [label flag path] (ipairs [["the CPU evaluator" "" "test/out/mesh-machined.ply"]
+                                        ["the GPU" " --gpu" "test/out/mesh-machined-gpu.ply"]])]
+      (it (.. "writes a closed coloured mesh of a scene's finite objects with " label)
+        (fn []
+          (os.remove path)
+          (let [(code out err) (run (.. "--mesh " scene-path " --out " path " --resolution 48" flag))]
+            (assert.are.equal 0 code err)
+            (assert.truthy (out:find (.. "wrote " path ": ") 1 true) out)
+            (assert.truthy (out:find "left out objects[1] (plane): infinite" 1 true) out)
+            ;; Progress: each phase, with the time left once the blocks are known.
+            (assert.truthy (err:find "mesh: corners, [^\n]* left\n") err)
+            (let [m (read-mesh path)
+                  t (check.topology m)
+                  selection (assert (mesh-scene.select-objects scene))
+                  grid (mesh-scene.grid-for selection 48)
+                  field (assert (mesh-scene.cpu-field selection.scene))
+                  worst (check.surface-distance
+                         m (fn [x y z] (math.max (field.distance x y z)
+                                                 (contour.box-distance grid.cut x y z))))]
+              (assert.is_true t.manifold? (check.describe t))
+              (assert.is_truthy m.colors)
+              ;; float32 positions and (on the GPU) distances: still within half a cell.
+              (assert.is_true (<= worst (* 0.5 grid.h)) (tostring (/ worst grid.h)))
+              (table.insert volumes (check.volume m)))))))
+
+    (it "gives the same volume on the GPU as on the CPU, within 0.5%"
+      (fn []
+        ;; float32 sampling moves crossings by far less than a cell.
+        (assert.are.equal 2 (length volumes))
+        (let [[a b] volumes]
+          (assert.is_true (< (math.abs (- a b)) (* 0.005 a)) (.. a " " b)))))
+
+    (it "cuts a ground plane by a given region, and says so"
+      (fn []
+        (let [path "test/out/mesh-region.stl"
+              (code out err) (run (.. "--mesh scenes/seed.fnl --out " path
+                                      " --resolution 24 --region -10,-10,-1,10,10,6"))]
+          (assert.are.equal 0 code err)
+          (assert.truthy (out:find "cut by the region: objects[3] (box), objects[5] (sphere), objects[6] (plane)" 1 true) out)
+          (assert.is_true (. (check.topology (read-mesh path)) :manifold?)))))
+
+    (it "refuses bad arguments and scenes with a clear message"
+      (fn []
+        (each [_ [args message]
+               (ipairs [["--mesh scenes/seed.fnl --out x.off"
+                         "error: --out must name a .stl, .ply or .obj file, got x.off"]
+                        ["--mesh scenes/seed.fnl" "error: --mesh needs --out FILE.stl, FILE.ply or FILE.obj"]
+                        ["--mesh scenes/seed.fnl --out x.stl --resolution 2000"
+                         "error: --resolution must be a whole number from 8 to 512, got 2000"]
+                        ["--mesh scenes/seed.fnl --out x.stl --region 1,2,3"
+                         "error: --region must be six numbers x0,y0,z0,x1,y1,z1, got 1,2,3"]
+                        ["--render scenes/seed.fnl --out x.png --resolution 64"
+                         "error: --resolution only goes with --mesh"]
+                        ["--mesh scenes/seed.fnl --out /nonexistent-folder/x.stl"
+                         "error: --out /nonexistent-folder/x.stl: "]
+                        ["--mesh test/fixtures/mesh-plane-only.fnl --out test/out/x.stl"
+                         "error: test/fixtures/mesh-plane-only.fnl: the scene has no finite objects to mesh (objects[1] (plane) infinite); give --region x0,y0,z0,x1,y1,z1 to mesh them cut by a box"]])]
+          (let [(code _ err) (run args)]
+            (assert.are.equal 1 code args)
+            (assert.truthy (err:find message 1 true) err)))))))
