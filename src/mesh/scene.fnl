@@ -6,6 +6,7 @@
 
 (local plan-mod (require :src.render.plan))
 (local reference (require :src.verify.reference))
+(local lower (require :src.sdf.lower))
 
 (local options (require :src.mesh.options))
 
@@ -35,7 +36,7 @@ those reaching out of the box cut by it."
   (case (plan-mod.scene->plan scene {:view :glow :probe? true})
     (nil err) (values nil err)
     plan
-    (let [infos (collect [_ t (ipairs (or (?. plan :tape :objects) []))] t.index t.info)
+    (let [infos (lower.infos-by-index plan.tape)
           boxes (collect [_ o (ipairs plan.objects)] o.index (or (object-box o infos) false))
           ordered (doto (icollect [_ o (ipairs plan.objects)] o)
                     (table.sort (fn [a b] (< a.index b.index))))

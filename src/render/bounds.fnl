@@ -5,6 +5,8 @@
 ;; LuaJIT; the GLSL (shaders/pipeline/march-bounded.glsl) and the CPU reference
 ;; (src/verify/reference.fnl) follow the same rules.
 
+(local lower (require :src.sdf.lower))
+
 ;; From this radius on a sphere loses float32 precision near its surface.
 (local large-radius (. (require :src.sdf.large-sphere) :radius))
 
@@ -40,11 +42,13 @@ near its surface."
 pairs: every tape object's (an instance group's members each) but the half-spaces
 (met in closed form; see lower.fnl); not a field's (its grid bounds them; see
 src/render/field.fnl). `scene-objects`: the scene's object list."
-  (let [out []]
+  (let [infos (lower.infos-by-index plan.tape)
+        by-index (collect [_ o (ipairs scene-objects)] o.index o)
+        out []]
     (each [_ o (ipairs plan.tape.objects)]
       (when (not o.half-space?)
-        (each [m index (ipairs (or o.indices [o.index]))]
-          (table.insert out [(. scene-objects index) (if o.infos (. o.infos m) o.info)]))))
+        (each [_ index (ipairs (or o.indices [o.index]))]
+          (table.insert out [(. by-index index) (. infos index)]))))
     out))
 
 (fn plan-bounds [plan scene options]

@@ -162,10 +162,12 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :load-once? (not= false options.load-once?)
               ;; The objects in shader order (the numbers gObject gives them): the
               ;; field's, then the tape's (an instance group's members in turn).
-              :objects (let [out (icollect [_ o (ipairs (or members []))] o)]
+              :objects (let [out (icollect [_ o (ipairs (or members []))] o)
+                             ;; (A scene may hold some of a file's objects: by index.)
+                             by-index (collect [_ o (ipairs scene.objects)] o.index o)]
                          (each [_ o (ipairs (if tape tape.objects []))]
                            (each [_ index (ipairs (or o.indices [o.index]))]
-                             (table.insert out (. scene.objects index))))
+                             (table.insert out (. by-index index))))
                          out)
               :tape (or tape (lower.lower []))
               :mirrors? (and tape tape.mirrors?

@@ -613,6 +613,15 @@ and into the key; an instance group's values stay in its bank."
              :used (icollect [_ name (ipairs used-list)] {: name :desc (. used name)})
              :key (table.concat key " ")})))))
 
+(fn infos-by-index [tape]
+  "Each object's lowered root info by its scene index (an instance group's members'
+each)."
+  (let [out {}]
+    (each [_ o (ipairs tape.objects)]
+      (each [m index (ipairs (or o.indices [o.index]))]
+        (tset out index (if o.infos (. o.infos m) o.info))))
+    out))
+
 (fn class-label [info]
   (.. (if (> info.lipschitz 1)
           (string.format "bound, Lipschitz %.3g (steps divided by it)" info.lipschitz)
@@ -636,4 +645,4 @@ what `--tree` prints."
     (each [_ o (ipairs tape.objects)] (walk o.info 0 o.instances))
     lines))
 
-{: lower : describe : node-of : min-group}
+{: lower : describe : node-of : min-group : infos-by-index}
