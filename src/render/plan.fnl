@@ -39,36 +39,35 @@
   (each [_ name (ipairs views)] (when (= name v) (set found? true)))
   found?)
 
+;; The key: equal keys mean the same generated code. It is derived from the plan
+;; itself: every field is structure (it decides what the code holds), but these, which
+;; travel as uniforms and textures or are counted from the rest. A new field is in the
+;; key without anyone listing it: at worst a value edit compiles again, never a
+;; stale shader.
+(local value-fields {:objects true :in-field true :reflections true :uniform-vectors true
+                     :key true})
+
+;; Of nested parts, what the code reads: the tape's key (its own structure, derived
+;; the same way in lower.fnl), a field's kinds, walk and object count.
+(local parts {:tape (fn [tape] tape.key)
+              :field (fn [fd] {:kinds fd.kinds :walk? fd.walk? :count fd.count})})
+
+(fn key-text [v]
+  ;; A deterministic text of plain data: tables with their keys sorted.
+  (if (not= (type v) :table)
+      (if (= (type v) :number) (string.format "%.9g" v) (tostring v))
+      (let [ks (icollect [k (pairs v)] k)]
+        (table.sort ks (fn [a b] (< (tostring a) (tostring b))))
+        (.. "{" (table.concat (icollect [_ k (ipairs ks)] (.. (tostring k) "=" (key-text (. v k)))) " ")
+            "}"))))
+
 (fn structure-key [plan]
-  (let [parts []]
-    (when plan.shadows? (table.insert parts "shadows"))
-    (when plan.reflections? (table.insert parts "reflections"))
-    (when plan.glow? (table.insert parts "glow"))
-    (when plan.relaxed? (table.insert parts "relaxed"))
-    (table.insert parts (.. "hit:" plan.hit-test))
-    (when plan.normals
-      (table.insert parts (.. "normals:" plan.normals (if (= plan.normals-of :scene) " normals-of:scene" ""))))
-    (when plan.uber? (table.insert parts "uber"))
-    (when (not plan.load-once?) (table.insert parts "uniforms-direct"))
-    (when plan.lighting
-      (let [l plan.lighting]
-        (table.insert parts (.. "modern lights:" l.lights (if l.soft? " soft" "")
-                                (if (and l.soft? l.hard?) " hard" "")
-                                (if l.shadow-bounds? "" " shadows-unbounded") (if l.ao? " ao" "")
-                                (if l.fog? " fog" "") (if l.specular? " specular" "")))))
-    (when (= plan.out-of-steps :surface) (table.insert parts "out-of-steps:surface"))
-    (when (> plan.samples 1)
-      (table.insert parts (.. "samples:" plan.samples (if plan.adaptive? " adaptive" ""))))
-    (when plan.bounds (table.insert parts (.. "bounds:" plan.bounds.count)))
-    (when plan.field
-      (table.insert parts (.. "field:" (if plan.field.kinds.spheres? "spheres" "")
-                              (if (and plan.field.kinds.spheres? plan.field.kinds.boxes?) "+" "")
-                              (if plan.field.kinds.boxes? "boxes" "")
-                              (if plan.field.walk? " walk" ""))))
-    (table.insert parts (.. "view:" plan.view))
-    (table.insert parts (.. "tape:" plan.tape.key))
-    (when plan.mirrors? (table.insert parts "mirrors"))
-    (table.concat parts " ")))
+  (let [ks (icollect [k (pairs plan)] (when (not (. value-fields k)) k))]
+    (table.sort ks)
+    (table.concat (icollect [_ k (ipairs ks)]
+                    (let [part (. parts k)]
+                      (.. k "=" (key-text (if part (part (. plan k)) (. plan k))))))
+                  " ")))
 
 (fn object-label [o]
   ;; What a tape object draws, for a message: its placed node's kind.
@@ -258,4 +257,4 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
         plan)))
 
 {: scene->plan : views : view? : default-uniform-limit : fixed-uniform-vectors
- : software-renderer? : renderer-options}
+ : software-renderer? : renderer-options : structure-key}
