@@ -1,0 +1,213 @@
+;; Custom nodes: a scene's own distance function, {:kind :custom :distance (fn [x y z]
+;; ...) :bounds [hx hy hz]}. The scene worker finds the fn's form in the parsed file
+;; (by the line Lua says the closure was defined on), translates it to GLSL and Lua
+;; (src/sdf/translate.fnl), measures its Lipschitz factor and sends the texts back as
+;; plain data; lowering (src/sdf/lower.fnl) turns that data into a descriptor like a
+;; primitive's, so every emitter, the CPU reference and the probe take it as they
+;; take a sphere.
+
+(local fennel (require :fennel))
+(local translate (require :src.sdf.translate))
+
+(local limits
+  {;; The Lipschitz estimate: central differences at the centres of a 16^3 grid over
+   ;; the bounds grown by half (the far field outside is the box's, 1-Lipschitz),
+   ;; and as many random points again, from a fixed seed.
+   :grid 16 :random 4096 :grow 1.5
+   ;; A measured factor at most this is taken as 1: central differences across a
+   ;; kink of an exact distance read below 1, and rounding adds ~1e-6.
+   :exact-slack 1.01
+   ;; A measured factor above that is raised by this margin: the sampled maximum is
+   ;; a lower bound of the true one, which may lie between two samples.
+   :margin 1.1
+   ;; A declared :lipschitz may be below the measured one by this much (rounding of
+   ;; the differences), no more.
+   :declared-slack 1.01})
+
+;;; Finding the form of a closure
+
+(fn fn-forms-at [node line out depth]
+  ;; Every (fn ...) list on `line` within `node`, outermost first.
+  (when (and (= (type node) :table) (< depth 200) (not (fennel.sym? node)))
+    (when (and (fennel.list? node) (fennel.sym? (. node 1)) (= "fn" (tostring (. node 1))))
+      (let [src (fennel.ast-source node)]
+        (when (and src (= src.line line)) (table.insert out node))))
+    (each [k v (pairs node)]
+      (fn-forms-at k line out (+ depth 1))
+      (fn-forms-at v line out (+ depth 1))))
+  out)
+
+(fn param-count [form]
+  (let [params (. form (if (fennel.sym? (. form 2)) 3 2))]
+    (if (fennel.sequence? params) (length params) -1)))
+
+(fn inside? [inner outer]
+  (var found? false)
+  (fn walk [node depth]
+    (when (and (not found?) (= (type node) :table) (< depth 200))
+      (if (rawequal node inner) (set found? true)
+          (each [_ v (pairs node)] (walk v (+ depth 1))))))
+  (each [i v (ipairs outer)] (when (> i 1) (walk v 1)))
+  found?)
+
+(fn find-form [f forms file]
+  "The parsed (fn ...) form among `forms` (a file's top-level forms) that closure `f`
+was compiled from; or nil and why."
+  (let [info (debug.getinfo f :Su)]
+    (if (not= info.source (.. "@" file))
+        (values nil "must be written in the scene file itself as (fn [x y z] ...)")
+        (let [found (fn-forms-at forms info.linedefined [] 0)
+              same-arity (icollect [_ form (ipairs found)]
+                           (when (or (= nil info.nparams) (= info.nparams (param-count form))) form))
+              outermost (icollect [_ a (ipairs same-arity)]
+                          (when (not (accumulate [in? false _ b (ipairs same-arity)]
+                                       (or in? (and (not (rawequal a b)) (inside? a b)))))
+                            a))
+              ;; The same form may be reached twice (a key and a value): one each.
+              unique (let [seen {}]
+                       (icollect [_ form (ipairs outermost)]
+                         (when (not (. seen form)) (tset seen form true) form)))]
+          (case (length unique)
+            1 (. unique 1)
+            0 (values nil "must be written (fn [x y z] ...) in the scene file (a #(...) or a function made by another function cannot be translated)")
+            _ (values nil (.. "line " info.linedefined " holds several functions with "
+                              (or info.nparams "as many") " parameters; put the distance function on a line of its own")))))))
+
+(fn resolver [f]
+  "A resolver for translate: names the closure `f` reaches outside itself (its
+upvalues), as numbers and math functions."
+  (let [math-names (collect [k v (pairs math)] (when (= (type v) :function) (values v k)))]
+    (fn [name]
+      (let [mangled (fennel.mangle name)]
+        (var found nil)
+        (var i 1)
+        (while (and (= found nil) (debug.getupvalue f i))
+          (let [(upname value) (debug.getupvalue f i)]
+            (when (= upname mangled)
+              (set found (case (type value)
+                           :number {:number value}
+                           :function (if (. math-names value) {:math (. math-names value)}
+                                         {:other "a function that is not math's"})
+                           t {:other (.. "a " t)}))))
+          (set i (+ i 1)))
+        found))))
+
+;;; Hashing, for the shader's structure key
+
+(fn digest [text]
+  "A short hex digest of `text` (two polynomial hashes modulo a prime below 2^32,
+exact in doubles) and its length: equal texts, equal digests."
+  (let [p 4294967291]
+    (var a 0)
+    (var b 7)
+    (for [i 1 (length text)]
+      (let [c (text:byte i)]
+        (set a (% (+ (* a 31) c) p))
+        (set b (% (+ (* b 131) c) p))))
+    (string.format "%08x%08x-%d" a b (length text))))
+
+;;; The Lipschitz factor
+
+(fn lcg [seed]
+  (var s seed)
+  (fn []
+    (set s (% (+ (* s 1103515245) 12345) 2147483648))
+    (/ s 2147483648)))
+
+(fn measure [cpu bounds args]
+  "The largest gradient length of `cpu` (fn [x y z ...args]) found by central
+differences over `bounds` (half extents) grown by limits.grow, and the point; or
+nil, a message and the point where it is not finite."
+  (let [[hx hy hz] (icollect [_ b (ipairs bounds)] (* b limits.grow))
+        h (* 1e-4 (math.max hx hy hz))
+        unpack (or table.unpack _G.unpack)
+        d (fn [x y z] (cpu x y z (unpack args)))
+        n limits.grid
+        rand (lcg 12345)]
+    (var worst 0)
+    (var at [0 0 0])
+    (var bad nil)
+    (fn sample [x y z]
+      (when (not bad)
+        (let [v (d x y z)
+              gx (/ (- (d (+ x h) y z) (d (- x h) y z)) (* 2 h))
+              gy (/ (- (d x (+ y h) z) (d x (- y h) z)) (* 2 h))
+              gz (/ (- (d x y (+ z h)) (d x y (- z h))) (* 2 h))
+              g (math.sqrt (+ (* gx gx) (* gy gy) (* gz gz)))]
+          (if (not (and (= v v) (= g g) (< (math.abs v) math.huge) (< g math.huge)))
+              (set bad [x y z])
+              (> g worst) (do (set worst g) (set at [x y z]))))))
+    (for [i 0 (- n 1)]
+      (for [j 0 (- n 1)]
+        (for [k 0 (- n 1)]
+          (sample (* hx (- (/ (* 2 (+ i 0.5)) n) 1))
+                  (* hy (- (/ (* 2 (+ j 0.5)) n) 1))
+                  (* hz (- (/ (* 2 (+ k 0.5)) n) 1))))))
+    (for [_ 1 limits.random]
+      (sample (* hx (- (* 2 (rand)) 1)) (* hy (- (* 2 (rand)) 1)) (* hz (- (* 2 (rand)) 1))))
+    (if bad (values nil "is not a finite number" bad)
+        (values worst at))))
+
+(fn point-text [p]
+  (string.format "[%.3g %.3g %.3g]" (. p 1) (. p 2) (. p 3)))
+
+(fn factor [measured ?declared at]
+  "The factor the distance is divided by, from the `measured` gradient and the
+`?declared` :lipschitz; or nil and why the declaration is refused."
+  (if ?declared
+      (if (> measured (* ?declared limits.declared-slack))
+          (values nil (string.format "declares %g, but the distance changes by %.3g per unit at %s (sampled over its bounds); declare at least %.3g, or leave :lipschitz out to have it measured"
+                                     ?declared measured (point-text at) measured))
+          ?declared)
+      (<= measured limits.exact-slack) 1
+      (* measured limits.margin)))
+
+;;; The worker's side: from a closure to plain data
+
+(fn capture [f forms file]
+  "Translate the distance closure `f` of scene `file` (whose parsed top-level forms
+are `forms`): {:glsl :lua :glsl-name :params :cost}, or nil, a message and a line."
+  (case (find-form f forms file)
+    (nil msg) (values nil msg (. (debug.getinfo f :S) :linedefined))
+    form (translate.translate form {:resolve (resolver f)})))
+
+;;; The lowering's side: a descriptor from the data
+
+(local cache {})
+(var cached 0)
+
+(fn descriptor [node]
+  "The primitive-like descriptor (see src/sdf/primitives.fnl) of custom node `node`
+(validated data: :custom {:glsl :lua :glsl-name :key :params}, :params, :bounds,
+:lipschitz), or nil for any other node. Its function takes the parameters in the
+order of the fn's arguments, then 1 / :lipschitz, by which it multiplies."
+  (when (= node.kind :custom)
+    (let [c node.custom
+          key (.. c.glsl-name ":" c.key)]
+      (when (not (. cache key))
+        (when (> cached 256)
+          (each [k (pairs cache)] (tset cache k nil))
+          (set cached 0))
+        (set cached (+ cached 1))
+        (let [names c.params
+              args (icollect [i _ (ipairs names)] {:name (.. "a" i) :type :float})]
+          (table.insert args {:name :scale :type :float})
+          (tset cache key
+                {:kind (.. "custom:" key)
+                 :doc "A distance function written in the scene."
+                 :params []
+                 :class :bound
+                 :lipschitz 1
+                 : args
+                 :arg-size (length args)
+                 :pack (fn [o]
+                         (let [out (icollect [_ n (ipairs names)] (. o.params n))]
+                           (table.insert out (/ 1 o.lipschitz))
+                           out))
+                 :glsl-name c.glsl-name
+                 :glsl c.glsl
+                 :cpu (translate.compile-lua c.lua)
+                 :bounds (fn [o] o.bounds)})))
+      (. cache key))))
+
+{: capture : measure : factor : digest : descriptor : find-form : limits}
