@@ -12,8 +12,11 @@
 (local limits
   {;; The Lipschitz estimate: central differences at the centres of a 16^3 grid over
    ;; the bounds grown by half (the far field outside is the box's, 1-Lipschitz),
-   ;; and as many random points again, from a fixed seed.
+   ;; and as many random points again, from a fixed seed: 57,344 calls.
    :grid 16 :random 4096 :grow 1.5
+   ;; A costly function gets fewer points, so that no estimate takes more than
+   ;; about this many operations (0.1 to 0.3 s here); never fewer than an 8^3 grid.
+   :measure-ops 3e7 :min-grid 8
    ;; A measured factor at most this is taken as 1: central differences across a
    ;; kink of an exact distance read below 1, and rounding adds ~1e-6.
    :exact-slack 1.01
@@ -73,9 +76,9 @@ was compiled from; or nil and why."
             _ (values nil (.. "line " info.linedefined " holds several functions with "
                               (or info.nparams "as many") " parameters; put the distance function on a line of its own")))))))
 
-(fn resolver [f]
+(fn resolver [f forms file]
   "A resolver for translate: names the closure `f` reaches outside itself (its
-upvalues), as numbers and math functions."
+upvalues), as numbers, math functions and functions of the file (`forms`, `file`)."
   (let [math-names (collect [k v (pairs math)] (when (= (type v) :function) (values v k)))]
     (fn [name]
       (let [mangled (fennel.mangle name)]
@@ -87,7 +90,9 @@ upvalues), as numbers and math functions."
               (set found (case (type value)
                            :number {:number value}
                            :function (if (. math-names value) {:math (. math-names value)}
-                                         {:other "a function that is not math's"})
+                                         (case (find-form value forms file)
+                                           form {:helper form :resolve (resolver value forms file)}
+                                           _ {:other "a function not written in the scene file"}))
                            t {:other (.. "a " t)}))))
           (set i (+ i 1)))
         found))))
@@ -114,15 +119,20 @@ exact in doubles) and its length: equal texts, equal digests."
     (set s (% (+ (* s 1103515245) 12345) 2147483648))
     (/ s 2147483648)))
 
-(fn measure [cpu bounds args]
+(fn measure [cpu bounds args ?cost]
   "The largest gradient length of `cpu` (fn [x y z ...args]) found by central
 differences over `bounds` (half extents) grown by limits.grow, and the point; or
-nil, a message and the point where it is not finite."
+nil, a message and the point where it is not finite. `?cost`: operations per call,
+to take fewer points for a costly function (see limits.measure-ops)."
   (let [[hx hy hz] (icollect [_ b (ipairs bounds)] (* b limits.grow))
         h (* 1e-4 (math.max hx hy hz))
         unpack (or table.unpack _G.unpack)
         d (fn [x y z] (cpu x y z (unpack args)))
-        n limits.grid
+        full (+ (^ limits.grid 3) limits.random)
+        points (math.min full (/ limits.measure-ops (* 7 (math.max 1 (or ?cost 1)))))
+        n (math.max limits.min-grid
+                    (math.min limits.grid (math.floor (^ (* 0.5 points) (/ 1 3)))))
+        random (math.floor (* limits.random (/ (^ n 3) (^ limits.grid 3))))
         rand (lcg 12345)]
     (var worst 0)
     (var at [0 0 0])
@@ -143,7 +153,7 @@ nil, a message and the point where it is not finite."
           (sample (* hx (- (/ (* 2 (+ i 0.5)) n) 1))
                   (* hy (- (/ (* 2 (+ j 0.5)) n) 1))
                   (* hz (- (/ (* 2 (+ k 0.5)) n) 1))))))
-    (for [_ 1 limits.random]
+    (for [_ 1 random]
       (sample (* hx (- (* 2 (rand)) 1)) (* hy (- (* 2 (rand)) 1)) (* hz (- (* 2 (rand)) 1))))
     (if bad (values nil "is not a finite number" bad)
         (values worst at))))
@@ -169,7 +179,7 @@ nil, a message and the point where it is not finite."
 are `forms`): {:glsl :lua :glsl-name :params :cost}, or nil, a message and a line."
   (case (find-form f forms file)
     (nil msg) (values nil msg (. (debug.getinfo f :S) :linedefined))
-    form (translate.translate form {:resolve (resolver f)})))
+    form (translate.translate form {:resolve (resolver f forms file)})))
 
 ;;; The lowering's side: a descriptor from the data
 

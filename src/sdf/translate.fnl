@@ -15,7 +15,7 @@
 ;;   math.pi. A name from outside the function is looked up by `?resolve`: a number
 ;;   (inlined) or a math function (as math.x).
 ;; Anything else is refused with the line and the construct. The output holds only
-;; generated names (p, v0 v1 ..., i0 ..., fn0 ...) and numbers with a decimal point:
+;; generated names (p, v0 v1 ..., i0 ..., sdCustom, its helpers sdCustomFn0 ...) and numbers with a decimal point:
 ;; nothing of the scene's text, and the same text for the same form.
 
 (local fennel (require :fennel))
@@ -503,6 +503,20 @@ else gets a local."
                  block "}" "end")
           [])))))
 
+(fn external-helper [st node name form resolve]
+  ;; A function of the scene file outside the distance function (a top-level fn):
+  ;; translated once as a helper, its own outside names looked up by its `resolve`.
+  (case (. st.external form)
+    :busy (refuse st node (.. "`" name "` calls itself: recursion is not supported in a distance function"))
+    helper helper
+    nil (let [saved st.resolve]
+          (tset st.external form :busy)
+          (set st.resolve resolve)
+          (let [helper (define-helper st (new-scope nil) form)]
+            (set st.resolve saved)
+            (tset st.external form helper)
+            helper))))
+
 (fn resolve-free [st node name]
   (let [field (name:match "^math%.([%w_]+)$")]
     (if (and field (. math-constants field)) {:kind :value :part (constant st node (. math-constants field))}
@@ -514,6 +528,7 @@ else gets a local."
           {:math f} (if (. math-functions f) {:kind :math :name f}
                         (refuse st node (.. "`" name "` is math." f ", which a distance function cannot use ("
                                             supported ")")))
+          {:helper form :resolve resolve} (external-helper st node name form resolve)
           {:other what} (refuse st node (.. "`" name "` is " what " from outside the function; a distance function may use numbers and math functions from outside it"))
           _ (refuse st node (.. "`" name "` is not defined in the distance function (it may use its arguments, its own locals and helpers, math.*, and numbers or math functions named outside it)"))))))
 
@@ -628,7 +643,9 @@ parts."
        (when (>= (length st.helpers) limits.helpers)
          (refuse st node (.. "more than " limits.helpers " helper functions")))
        (let [(name-sym names forms) (params-of st node)
-             name (.. "fn" (length st.helpers))
+             ;; Named after the function: two custom functions in one shader each
+             ;; have their own helpers.
+             name (.. st.name "Fn" (length st.helpers))
              _ (table.insert st.helpers false)   ; its place, for the next helper's name
              slot (length st.helpers)
              saved {:fn st.fn :scope st.scope :weight st.weight :cost st.cost :out st.out}
@@ -671,11 +688,14 @@ scene file. Returns {:glsl :lua :params [name ...] :cost n}: :glsl defines
 (x y z ...); the extra arguments are the fn's parameters after x y z (:params, in
 order), then, with :scale? (default true), a factor the distance is multiplied by.
 On failure: nil, the reason and its line. Options: :name (the GLSL function's name,
-default sdCustom), :resolve (fn [name]) -> {:number n} or {:math f} or {:other what}
-or nil, for names from outside the function, :scale? false for no factor."
+default sdCustom), :resolve (fn [name]) -> {:number n}, {:math f}, {:helper FORM
+:resolve RESOLVE} (a function of the file: its form and the resolver of its own outside
+names), {:other what} or nil, for names from outside the function, :scale? false for
+no factor."
   (let [options (or ?options {})
-        st {:counter 0 :fn-count 0 :helpers [] :out [] :weight 1 :cost 0
-            :scope (new-scope nil) :line (line-of form) :resolve options.resolve}
+        st {:counter 0 :fn-count 0 :helpers [] :out [] :weight 1 :cost 0 :external {}
+            :scope (new-scope nil) :line (line-of form) :resolve options.resolve
+            :name (or options.name "sdCustom")}
         (ok? result)
         (pcall
          (fn []
@@ -701,7 +721,7 @@ or nil, for names from outside the function, :scale? false for no factor."
                    d (. parts 1)
                    _ (when (not= d.t :float)
                        (refuse st form "a distance function must give a number, not a comparison"))
-                   name (or options.name "sdCustom")
+                   name st.name
                    gargs (table.concat (icollect [i v (ipairs vars)] (when (> i 3) (.. ", float " v))) "")
                    gscale (if scale (.. ", float " scale) "")
                    head [{:g (.. "float " (. vars 1) " = p.x;")} {:g (.. "float " (. vars 2) " = p.y;")}
