@@ -579,7 +579,7 @@ into `out`: :custom (the texts), :params, :lipschitz (the factor used)."
                 args (icollect [_ n (ipairs t.params)] (. out.params n))]
             (table.insert args 1)
             (case (custom.measure desc.cpu out.bounds args t.cost)
-              (nil why at) (fail ctx dpath (string.format "%s at [%.3g %.3g %.3g] (it must give a number everywhere in its bounds)"
+              (nil why at) (fail ctx dpath (string.format "%s at [%.3g %.3g %.3g] (sampled over its bounds grown by half: it must give a number everywhere there)"
                                                           why (. at 1) (. at 2) (. at 3)) line)
               (measured at) (case (custom.factor measured out.lipschitz at)
                               (nil why) (fail ctx (sub-path path :lipschitz) why)

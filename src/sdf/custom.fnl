@@ -155,7 +155,7 @@ to take fewer points for a costly function (see limits.measure-ops)."
                   (* hz (- (/ (* 2 (+ k 0.5)) n) 1))))))
     (for [_ 1 random]
       (sample (* hx (- (* 2 (rand)) 1)) (* hy (- (* 2 (rand)) 1)) (* hz (- (* 2 (rand)) 1))))
-    (if bad (values nil "is not a finite number" bad)
+    (if bad (values nil "gives a value that is not a finite number" bad)
         (values worst at))))
 
 (fn point-text [p]

@@ -30,7 +30,7 @@
    :power 8})         ; the largest constant exponent of ^
 
 (local supported
-  "numbers, the arguments, let, local, var/set, if, when, do, values, fn helpers, for with constant bounds, + - * / % ^, < > <= >= = not=, and/or/not, math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max pi")
+  "numbers, let, local, var/set, if, when, do, values, fn helpers, for with constant bounds, + - * / % ^, comparisons, and/or/not, math functions")
 
 ;; math functions: GLSL name and the argument counts taken (nil: one or more).
 (local math-functions
@@ -52,19 +52,22 @@
 
 (local math-constants {:pi math.pi})
 
+(local math-list "math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max pi")
+
 ;; Forms a reader may expect to work, with the reason they do not.
+;; Forms a reader may expect to work, with a hint at what to write instead.
 (local refused-forms
-  {:while "`while` is not supported in a distance function (use for with constant bounds)"
-   :each "`each` is not supported in a distance function (it walks tables)"
-   :lambda "`lambda` is not supported in a distance function (use fn)"
-   :λ "`λ` is not supported in a distance function (use fn)"
-   :hashfn "`#(...)` is not supported in a distance function (use fn)"
-   :tset "`tset` is not supported in a distance function (no tables)"
-   :. "`.` is not supported in a distance function (no tables)"
-   :length "`length` is not supported in a distance function (no tables)"
-   :# "`#` is not supported in a distance function (no tables)"
-   :.. "`..` is not supported in a distance function (no strings)"
-   :// "`//` is not supported in a distance function (use math.floor of /)"})
+  {:while "use for with constant bounds"
+   :each "no tables"
+   :lambda "use fn"
+   :λ "use fn"
+   :hashfn "use fn"
+   :tset "no tables"
+   :. "no tables"
+   :length "no tables"
+   :# "no tables"
+   :.. "no strings"
+   :// "use math.floor of /"})
 
 ;;; Failing
 
@@ -76,9 +79,9 @@
   "Stop the translation with `what`, at `node`'s line (or the innermost form's)."
   (error {:translate-error what :line (or (line-of node) st.line)} 0))
 
-(fn not-supported [st node what]
-  (refuse st node (.. what " is not supported in a distance function (supported: "
-                      supported ")")))
+(fn not-supported [st node what ?hint]
+  (refuse st node (.. what " is not supported in a distance function ("
+                      (if ?hint (.. ?hint "; ") "") "supported: " supported ")")))
 
 ;;; Numbers and names
 
@@ -522,12 +525,12 @@ else gets a local."
     (if (and field (. math-constants field)) {:kind :value :part (constant st node (. math-constants field))}
         (and field (. math-functions field)) {:kind :math :name field}
         field (refuse st node (.. "`" name "` is not one of the math functions a distance function may use ("
-                                  supported ")"))
+                                  math-list ")"))
         (case (and st.resolve (st.resolve name))
           {:number n} {:kind :value :part (constant st node n)}
           {:math f} (if (. math-functions f) {:kind :math :name f}
-                        (refuse st node (.. "`" name "` is math." f ", which a distance function cannot use ("
-                                            supported ")")))
+                        (refuse st node (.. "`" name "` is math." f ", which a distance function cannot use (it may use "
+                                            math-list ")")))
           {:helper form :resolve resolve} (external-helper st node name form resolve)
           {:other what} (refuse st node (.. "`" name "` is " what " from outside the function; a distance function may use numbers and math functions from outside it"))
           _ (refuse st node (.. "`" name "` is not defined in the distance function (it may use its arguments, its own locals and helpers, math.*, and numbers or math functions named outside it)"))))))
@@ -569,7 +572,7 @@ else gets a local."
           "var" (refuse st node "(var ...) belongs in a body (a fn's or a let's), not inside an expression")
           "fn" (refuse st node "a helper function must be bound to a name: (fn name [a b] ...) in a body, or (let [name (fn [a b] ...)] ...)")
           _ (let [reason (. refused-forms name)]
-              (if reason (refuse st node (.. reason " (supported: " supported ")"))
+              (if reason (not-supported st node (.. "`" (if (= name "hashfn") "#(...)" name) "`") reason)
                   (let [b (or (lookup st.scope name) (resolve-free st head name))]
                     (case b.kind
                       :helper (helper-call st node b)
@@ -587,7 +590,7 @@ else gets a local."
                          (fennel.list? node) (call st node)
                          (= (type node) :string) (not-supported st node "a string")
                          (= (type node) :boolean) (refuse st node (.. "`" (tostring node) "` is not a number; conditions are comparisons"))
-                         (fennel.sequence? node) (not-supported st node "a [...] table (use (values a b c) for several numbers)")
+                         (fennel.sequence? node) (not-supported st node "a [...] table" "for several numbers use (values a b c)")
                          (fennel.table? node) (not-supported st node "a {...} table")
                          (not-supported st node (.. "a " (type node))))]
            (set st.line saved)
