@@ -201,11 +201,11 @@
 
 (fn args-of [node] (fcollect [i 2 (length node)] (. node i)))
 
-(fn fold [parts op g-op l-op identity]
-  (if (= 0 (length parts)) (constant {} nil identity)
+(fn fold [st node parts op g-op l-op identity]
+  (if (= 0 (length parts)) (constant st node identity)
       (accumulate [acc nil _ p (ipairs parts)]
         (if (= acc nil) p
-            (and acc.const p.const) (constant {} nil (op acc.const p.const))
+            (and acc.const p.const) (constant st node (op acc.const p.const))
             {:g (.. "(" acc.g " " g-op " " p.g ")") :l (.. "(" acc.l " " l-op " " p.l ")")
              :t :float}))))
 
@@ -213,17 +213,17 @@
   (let [args (icollect [_ a (ipairs (args-of node))] (number-arg st a))]
     (cost! st node (math.max 1 (- (length args) 1)))
     (case op
-      "+" [(fold args #(+ $1 $2) "+" "+" 0)]
-      "*" [(fold args #(* $1 $2) "*" "*" 1)]
+      "+" [(fold st node args #(+ $1 $2) "+" "+" 0)]
+      "*" [(fold st node args #(* $1 $2) "*" "*" 1)]
       "-" (if (= 0 (length args)) (refuse st node "(-) needs an argument")
               (= 1 (length args))
               (let [a (. args 1)]
                 [(if a.const (constant st node (- a.const))
                      {:g (.. "(-" a.g ")") :l (.. "(-" a.l ")") :t :float})])
-              [(fold args #(- $1 $2) "-" "-" 0)])
+              [(fold st node args #(- $1 $2) "-" "-" 0)])
       "/" (if (= 0 (length args)) (refuse st node "(/) needs an argument")
-              (= 1 (length args)) [(fold [(constant st node 1) (. args 1)] #(/ $1 $2) "/" "/" 1)]
-              [(fold args #(/ $1 $2) "/" "/" 1)])
+              (= 1 (length args)) [(fold st node [(constant st node 1) (. args 1)] #(/ $1 $2) "/" "/" 1)]
+              [(fold st node args #(/ $1 $2) "/" "/" 1)])
       "%" (if (not= 2 (length args)) (refuse st node "(% a b) takes two arguments")
               (let [[a b] args]
                 [{:g (.. "mod(" a.g ", " b.g ")") :l (.. "(" a.l " % " b.l ")") :t :float}])))))
@@ -248,7 +248,7 @@
       (if (= n 0) [(constant st node 1)]
           base.const [(constant st node (^ base.const n))]
           (let [b (if (= n 1) base (declare! st node base))]
-            [(fold (fcollect [_ 1 n] b) #(* $1 $2) "*" "*" 1)])))))
+            [(fold st node (fcollect [_ 1 n] b) #(* $1 $2) "*" "*" 1)])))))
 
 (local comparison-ops {"<" ["<" "<"] ">" [">" ">"] "<=" ["<=" "<="] ">=" [">=" ">="]
                        "=" ["==" "=="] "not=" ["!=" "~="] "~=" ["!=" "~="]})
