@@ -1,7 +1,7 @@
 ;; Custom nodes through the app: `love . --probe` on the CPU and with --gpu agree on
 ;; distance functions written in Fennel (alone, with helpers, piecewise, in loops,
 ;; under operations), within the budget test/probe_spec.fnl holds the primitives to;
-;; --export-shader and --render take scenes/custom.fnl.
+;; --export-shader, --render and the player's hot reload take scenes/custom.fnl.
 (local {: lcg} (require :test.support.fields))
 (local glslang (. (require :test.support.glslang) :ok?))
 
@@ -142,6 +142,13 @@
             (assert.truthy (text:find "float sdCustom1(vec3 p" 1 true))
             (assert.truthy (text:find "sdCustom2Fn0" 1 true))
             (assert.is_true ok? vout))))
+
+      (it "hot reload: a :params edit re-sends uniforms, compiling nothing (the player's own reload path)"
+        (fn []
+          (let [(code out) (run "love . --soak scenes/custom.fnl --cycles 6")]
+            (assert.are.equal 0 code out)
+            (assert.truthy (out:find "editing a custom node's :params value changes the next frame without a shader compile: ok" 1 true) out)
+            (assert.truthy (out:find "soak checks: 0 failed" 1 true) out))))
 
       (it "--render draws scenes/custom.fnl"
         (fn []
