@@ -190,7 +190,8 @@ are `forms`): {:glsl :lua :glsl-name :params :cost}, or nil, a message and a lin
   "The primitive-like descriptor (see src/sdf/primitives.fnl) of custom node `node`
 (validated data: :custom {:glsl :lua :glsl-name :key :params}, :params, :bounds,
 :lipschitz), or nil for any other node. Its function takes the parameters in the
-order of the fn's arguments, then 1 / :lipschitz, by which it multiplies."
+order of the fn's arguments, then 1 / :lipschitz, by which it multiplies. The
+descriptors of nodes with the same texts share their GLSL and their Lua function."
   (when (= node.kind :custom)
     (let [c node.custom
           key (.. c.glsl-name ":" c.key)]
@@ -218,6 +219,9 @@ order of the fn's arguments, then 1 / :lipschitz, by which it multiplies."
                  :glsl c.glsl
                  :cpu (translate.compile-lua c.lua)
                  :bounds (fn [o] o.bounds)})))
-      (. cache key))))
+      ;; The node's own factor, for --tree: the function divides by it already, and
+      ;; nothing reads a primitive's factor to divide again.
+      (doto (collect [k v (pairs (. cache key))] k v)
+        (tset :lipschitz (or node.lipschitz 1))))))
 
 {: capture : measure : factor : digest : descriptor : find-form : limits}
