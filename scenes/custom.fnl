@@ -1,7 +1,8 @@
 ;; Distance functions written in Fennel, the article's way, drawn on the GPU: each
 ;; :custom object's (fn [x y z ...] ...) is translated to GLSL when the scene loads
 ;; (see README, Custom nodes). Its parameters after x y z come from :params, as
-;; uniforms: editing a value there compiles nothing.
+;; uniforms: editing a value there, or dragging the shell's slider (F2), compiles
+;; nothing.
 (local {: sqrt : abs : min : max : sin : cos} math)
 
 (fn len3 [x y z] (sqrt (+ (* x x) (* y y) (* z z))))
@@ -19,7 +20,7 @@
   ;; A gyroid shell cut by a sphere: the gyroid's field changes up to about
   ;; sqrt(3) * freq per unit, so the loader measures that and divides by it.
   {:kind :custom :pos [-2.6 0 1.3] :color [0.9 0.55 0.2] :mirror 0 :roughness 0.4
-   :params {:freq 4 :thickness 0.06 :radius 1.2}
+   :params {:freq 4 :thickness (param :shell 0.06 {:min 0.02 :max 0.2}) :radius 1.2}
    :distance (fn [x y z freq thickness radius]
                (let [fx (* freq x) fy (* freq y) fz (* freq z)
                      g (/ (+ (* (sin fx) (cos fy)) (* (sin fy) (cos fz)) (* (sin fz) (cos fx)))

@@ -224,6 +224,16 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
           (assert.are.equal (codegen.shader a) (codegen.shader b))
           (assert.are_not.equal a.key c.key))))
 
+    (it "a (param ...) slider in :params is a value edit too (scenes/custom.fnl's shell)"
+      (fn []
+        (let [a (assert (load.load-file "scenes/custom.fnl"))
+              b (assert (load.load-file "scenes/custom.fnl" nil {:overrides {:shell {:value 0.15 :base 0.06}}}))
+              pa (assert (plan-mod.scene->plan a))
+              pb (assert (plan-mod.scene->plan b))]
+          (assert.are.equal 0.06 (. a.objects 2 :tree :params :thickness))
+          (assert.are.equal 0.15 (. b.objects 2 :tree :params :thickness))
+          (assert.are.equal pa.key pb.key))))
+
     (it "names one GLSL function per distinct function, in the order met"
       (fn []
         (let [s (assert (load.load-string "(local ball (fn [x y z] (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1)))
