@@ -201,6 +201,19 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
             (assert.truthy (msg:find expected 1 true) (.. source "\n=> " (tostring msg)))
             (assert.are.equal line got-line (.. source ": line"))))))
 
+    (it "writes the GLSL and the CPU function of the primitives given as :fennel text"
+      (fn []
+        (let [primitives (require :src.sdf.primitives)
+              torus (primitives.lookup :torus)
+              capsule (primitives.lookup :capsule)]
+          (assert.is_string torus.fennel)
+          (assert.truthy (torus.glsl:find "float sdTorus(vec3 p, float a0, float a1) {" 1 true) torus.glsl)
+          (assert.truthy (capsule.glsl:find "float sdCapsule(vec3 p, vec3 a0, vec3 a1, float a2) {" 1 true)
+                         capsule.glsl)
+          ;; On the ring circle's far side, 0.5 out: 0.5 less the tube.
+          (assert.are.near 0.25 (torus.cpu 0 -1.5 0 1 0.25) 1e-12)
+          (assert.are.near 0.7 (capsule.cpu 0 0 2 0 0 -0.5 0 0 1 0.3) 1e-12))))
+
     (it "refuses a function too costly for the shader"
       (fn []
         (let [(ok? msg) (translate.translate

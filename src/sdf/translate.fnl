@@ -684,6 +684,27 @@ parts."
              (set st.out saved.out)
              helper)))))
 
+(local type-sizes {:float 1 :vec2 2 :vec3 3 :vec4 4})
+
+(fn group-args [st form types vars head]
+  ;; The GLSL parameters when the arguments after x y z come in vectors (a
+  ;; primitive's :args): a0, a1, ... of `types`, unpacked into the v names in `head`.
+  (let [out []]
+    (var i 4)
+    (each [k t (ipairs types)]
+      (let [n (or (. type-sizes t) (refuse st form (.. "unknown argument type " (tostring t))))
+            a (.. "a" (- k 1))]
+        (table.insert out (.. ", " t " " a))
+        (for [c 1 n]
+          (when (not (. vars i))
+            (refuse st form "the function takes fewer arguments than its argument types hold"))
+          (table.insert head {:g (.. "float " (. vars i) " = " a
+                                     (if (= n 1) "" (.. "." (. ["x" "y" "z" "w"] c))) ";")})
+          (set i (+ i 1)))))
+    (when (not= i (+ 1 (length vars)))
+      (refuse st form "the function takes more arguments than its argument types hold"))
+    (table.concat out "")))
+
 (fn translate [form ?options]
   "GLSL and Lua for the distance function `form`, the parsed (fn [x y z ...] ...) of a
 scene file. Returns {:glsl :lua :params [name ...] :cost n}: :glsl defines
@@ -694,7 +715,8 @@ On failure: nil, the reason and its line. Options: :name (the GLSL function's na
 default sdCustom), :resolve (fn [name]) -> {:number n}, {:math f}, {:helper FORM
 :resolve RESOLVE} (a function of the file: its form and the resolver of its own outside
 names), {:other what} or nil, for names from outside the function, :scale? false for
-no factor."
+no factor, :arg-types [:vec3 :float ...] to take the arguments after x y z in GLSL as
+those vectors (a0, a1, ...; the Lua function still takes them one by one)."
   (let [options (or ?options {})
         st {:counter 0 :fn-count 0 :helpers [] :out [] :weight 1 :cost 0 :external {}
             :scope (new-scope nil) :line (line-of form) :resolve options.resolve
@@ -725,10 +747,12 @@ no factor."
                    _ (when (not= d.t :float)
                        (refuse st form "a distance function must give a number, not a comparison"))
                    name st.name
-                   gargs (table.concat (icollect [i v (ipairs vars)] (when (> i 3) (.. ", float " v))) "")
-                   gscale (if scale (.. ", float " scale) "")
                    head [{:g (.. "float " (. vars 1) " = p.x;")} {:g (.. "float " (. vars 2) " = p.y;")}
                          {:g (.. "float " (. vars 3) " = p.z;")}]
+                   gargs (if options.arg-types
+                             (group-args st form options.arg-types vars head)
+                             (table.concat (icollect [i v (ipairs vars)] (when (> i 3) (.. ", float " v))) ""))
+                   gscale (if scale (.. ", float " scale) "")
                    main (icollect [_ item (ipairs head)] item)]
                (each [_ item (ipairs block)] (table.insert main item))
                (table.insert main {:g (.. "return " (if scale (.. "(" d.g ") * " scale) d.g) ";")
