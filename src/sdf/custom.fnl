@@ -29,16 +29,26 @@
 
 ;;; Finding the form of a closure
 
-(fn fn-forms-at [node line out depth]
-  ;; Every (fn ...) list on `line` within `node`, outermost first.
+(fn index-fn-forms [node index depth]
+  ;; Every (fn ...) list within `node`, by line.
   (when (and (= (type node) :table) (< depth 200) (not (fennel.sym? node)))
     (when (and (fennel.list? node) (fennel.sym? (. node 1)) (= "fn" (tostring (. node 1))))
       (let [src (fennel.ast-source node)]
-        (when (and src (= src.line line)) (table.insert out node))))
+        (when (and src src.line)
+          (when (not (. index src.line)) (tset index src.line []))
+          (table.insert (. index src.line) node))))
     (each [k v (pairs node)]
-      (fn-forms-at k line out (+ depth 1))
-      (fn-forms-at v line out (+ depth 1))))
-  out)
+      (index-fn-forms k index (+ depth 1))
+      (index-fn-forms v index (+ depth 1))))
+  index)
+
+;; A file's fn forms by line, built once per load (a scene of many custom nodes
+;; walks its forms once).
+(local indexes (setmetatable {} {:__mode :k}))
+
+(fn fn-forms-at [forms line]
+  (when (not (. indexes forms)) (tset indexes forms (index-fn-forms forms {} 0)))
+  (or (. indexes forms line) []))
 
 (fn param-count [form]
   (let [params (. form (if (fennel.sym? (. form 2)) 3 2))]
@@ -59,7 +69,7 @@ was compiled from; or nil and why."
   (let [info (debug.getinfo f :Su)]
     (if (not= info.source (.. "@" file))
         (values nil "must be written in the scene file itself as (fn [x y z] ...)")
-        (let [found (fn-forms-at forms info.linedefined [] 0)
+        (let [found (fn-forms-at forms info.linedefined)
               same-arity (icollect [_ form (ipairs found)]
                            (when (or (= nil info.nparams) (= info.nparams (param-count form))) form))
               outermost (icollect [_ a (ipairs same-arity)]

@@ -352,7 +352,7 @@
         (when (or (not= width (length arm.b))
                   (accumulate [bad? false i p (ipairs arm.b)] (or bad? (not= p.t (. e i :t)))))
           (refuse st node "the branches of an if give different kinds or numbers of values")))
-      (when (= width 0) (refuse st node "the branches of an if give no value"))
+      ;; No value at all: an if for its sets, in a body.
       (cost! st node (length arms))
       (if (and (= width 1) (= 0 (length eblock))
                (accumulate [simple? true _ arm (ipairs arms)]
@@ -373,7 +373,8 @@
             (count-local! st node width)
             (each [_ r (ipairs results)]
               (emit! st (.. (if (= r.t :bool) "bool " "float ") r.g ";") nil))
-            (emit! st nil (.. "local " (table.concat (icollect [_ r (ipairs results)] r.l) ", ")))
+            (when (> width 0)
+              (emit! st nil (.. "local " (table.concat (icollect [_ r (ipairs results)] r.l) ", "))))
             ;; if (c1) {...} else { c2's lines; if (c2) {...} else {...} }
             (fn chain [k]
               (if (> k (length arms))
