@@ -308,6 +308,38 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
           (assert.is_true (load.animate s 0.5))
           (assert.are.equal 1.5 (. s.objects 1 :tree :params :r)))))
 
+    (it "the main process refuses texts the translator would not write (a forged worker answer)"
+      (fn []
+        (let [s (assert (load.load-string (scene-with "{:r 1}") "t.fnl"))
+              node (. s.objects 1 :tree)
+              good node.custom
+              forge (fn [field from to]
+                      (let [c (collect [k v (pairs good)] k v)
+                            (text n) (: (. c field) :gsub from to 1)]
+                        (assert.are.equal 1 n (.. "the forgery of " field " did not apply: " from))
+                        (tset c field text)
+                        (when (= field :glsl) (set c.key (custom.digest text)))
+                        (doto (collect [k v (pairs node)] k v) (tset :custom c))))
+              refused (fn [n]
+                        (let [(ok? e) (pcall custom.descriptor n)]
+                          (and (not ok?) (= (type e) :table) e.reason)))]
+          (assert.truthy (custom.descriptor node))
+          (each [_ [field from to why]
+                 (ipairs [[:lua "math%.sqrt" "os.exit" "not the translator's"]
+                          [:lua "return %(" "return (\"x\" .. " "not the translator's"]
+                          [:lua "return function%(([^)]*)%)" "return function(%1) while true do end" "not the translator's"]
+                          [:lua "return function%(([^)]*)%)" "return function(%1) for v99 = 1, 1000 do end" "not the translator's"]
+                          [:lua "math%.sqrt" "string.rep" "not the translator's"]
+                          [:glsl "sqrt" "texture2D" "not the translator's"]
+                          [:glsl "return " "for (int i9 = 0; i9 <= 100000; i9++) {} return " "not the translator's"]])]
+            (let [why-got (refused (forge field from to))]
+              (assert.truthy (and why-got (why-got:find why 1 true)) (.. field " " to ": " (tostring why-got)))))
+          ;; The digest must match the GLSL the key stands for.
+          (let [c (collect [k v (pairs good)] k v)]
+            (set c.key "00000000000000-1")
+            (assert.truthy (: (refused (doto (collect [k v (pairs node)] k v) (tset :custom c))) :find
+                              "digest" 1 true))))))
+
     (it "works under operations and with the shorthands"
       (fn []
         (let [s (assert (load.load-string "{:objects [{:kind :smooth-union :radius 0.3 :children

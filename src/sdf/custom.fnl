@@ -191,6 +191,168 @@ are `forms`): {:glsl :lua :glsl-name :params :cost}, or nil, a message and a lin
     (nil msg) (values nil msg (. (debug.getinfo f :S) :linedefined))
     form (translate.translate form {:resolve (resolver f forms file)})))
 
+;;; The main process's check of the texts: they come from the worker, which runs the
+;;; scene's code. What the translator writes is a small language; anything else (a
+;;; string, a table, a global, a loop past the translator's limits, a recursive call)
+;;; is refused before `load` or the shader compiler sees it.
+
+(local lua-words
+  (collect [_ w (ipairs ["local" "function" "return" "end" "if" "then" "else" "for" "do" "and"
+                         "or" "not" "math"])]
+    w true))
+(local lua-math
+  (collect [_ w (ipairs ["sqrt" "abs" "floor" "ceil" "sin" "cos" "tan" "asin" "acos" "atan"
+                         "atan2" "exp" "log" "min" "max"])]
+    w true))
+(local glsl-words
+  (collect [_ w (ipairs ["float" "vec2" "vec3" "vec4" "int" "bool" "return" "if" "else" "for"
+                         "p" "sqrt" "abs" "floor" "ceil" "sin" "cos" "tan" "asin" "acos" "atan"
+                         "exp" "log" "pow" "min" "max" "mod"])]
+    w true))
+(local swizzles {:x true :y true :z true :w true})
+
+(fn tokens [text]
+  "The tokens of `text` (names, numbers, operators), or nil at a character the
+translator never writes."
+  (let [out []
+        n (length text)]
+    (var i 1)
+    (var bad? false)
+    (while (and (<= i n) (not bad?))
+      (let [rest-at i
+            ws (text:match "^%s+" rest-at)]
+        (if ws (set i (+ i (length ws)))
+            (let [tok (or (text:match "^[%a_][%w_]*" i)
+                          (text:match "^%d+%.?%d*[eE][-+]?%d+" i)
+                          (text:match "^%d+%.?%d*" i)
+                          (text:match "^[=~<>!]=" i)
+                          (text:match "^&&" i) (text:match "^||" i) (text:match "^%+%+" i)
+                          (text:match "^%+=" i)
+                          (text:match "^[-+*/%%^(),=<>.;{}?:!]" i))]
+              (if tok (do (table.insert out tok) (set i (+ i (length tok))))
+                  (set bad? true))))))
+    (when (not bad?) out)))
+
+(fn number? [tok] (not= nil (tok:match "^%d")))
+
+(fn signed [toks k]
+  ;; The whole number at token k ("-" then digits, or digits) and the index after it.
+  (if (= (. toks k) "-")
+      (values (and (. toks (+ k 1)) (tonumber (. toks (+ k 1))) (- (tonumber (. toks (+ k 1)))))
+              (+ k 2))
+      (values (and (. toks k) (tonumber (. toks k))) (+ k 1))))
+
+(fn loop-turns [start stop step]
+  (let [a (tonumber start) b (tonumber stop) c (tonumber step)]
+    (when (and a b c (not= c 0))
+      (math.max 0 (+ 1 (math.floor (/ (- b a) c)))))))
+
+(fn check-lua [text]
+  "True when `text` is Lua of the translator's kind: generated names, math's
+functions, for loops of constant bounds within translate's limits, calls of helpers
+defined before (no recursion)."
+  (case (tokens text)
+    nil false
+    toks
+    (let [stack []          ; open blocks: {:kind :turns :name}
+          closed {}         ; helpers whose definition has ended
+          max-turns translate.limits.cost]
+      (var ok? true)
+      (var i 1)
+      (fn at [k] (or (. toks (+ i k)) ""))
+      (fn work []
+        (accumulate [w 1 _ b (ipairs stack)] (* w (or b.turns 1))))
+      (while (and ok? (<= i (length toks)))
+        (let [t (. toks i)]
+          (if (= t "math")
+              (do (set ok? (and (= (at 1) ".") (. lua-math (at 2)) true))
+                  (set i (+ i 3)))
+              (= t ".") (set ok? false)
+              (= t "function")
+              (do (table.insert stack {:kind :function :name (when (= (. toks (- i 1)) "local") (at 1))})
+                  (set i (+ i 1)))
+              (= t "if") (do (table.insert stack {:kind :if}) (set i (+ i 1)))
+              (= t "for")
+              ;; for vN = A, B[, C] do: whole numbers, maybe negative ("-" then digits).
+              (let [(a after-a) (signed toks (+ i 3))
+                    (b after-b) (signed toks (+ after-a 1))
+                    three? (= (. toks after-b) ",")
+                    (c after-c) (if three? (signed toks (+ after-b 1)) (values 1 after-b))
+                    turns (and (: (at 1) :match "^v%d+$") (= (at 2) "=") (= (. toks after-a) ",")
+                               (loop-turns a b c))]
+                (if (and turns (<= turns translate.limits.loop-turns) (= (. toks after-c) "do"))
+                    (do (table.insert stack {:kind :for : turns})
+                        (set ok? (<= (work) max-turns))
+                        (set i (+ after-c 1)))
+                    (set ok? false)))
+              (= t "end")
+              (let [b (table.remove stack)]
+                (when (and b b.name) (tset closed b.name true))
+                (set ok? (not= nil b))
+                (set i (+ i 1)))
+              (= t "do") (set ok? false)
+              (or (. lua-words t) (number? t) (t:match "^v%d+$") (not (t:match "^[%a_]")))
+              (set i (+ i 1))
+              (t:match "^sdCustom%d*Fn%d+$")
+              ;; A helper's name: its definition, or a call of one defined before.
+              (do (set ok? (or (= (. toks (- i 1)) "function") (. closed t) false))
+                  (set i (+ i 1)))
+              (set ok? false))))
+      (and ok? (= 0 (length stack))))))
+
+(fn check-glsl [text name]
+  "True when `text` is GLSL of the translator's kind for the function `name`."
+  (case (tokens text)
+    nil false
+    toks
+    (let [braces []]
+      (var ok? true)
+      (var pending nil)   ; a for header's turns, until its {
+      (var i 1)
+      (fn at [k] (or (. toks (+ i k)) ""))
+      (while (and ok? (<= i (length toks)))
+        (let [t (. toks i)]
+          (if (= t "for")
+              ;; for ( int iN = A ; iN <= B ; iN ++ | iN += C ) {
+              (let [(a after-a) (signed toks (+ i 5))
+                    cmp (. toks (+ after-a 2))
+                    (b after-b) (signed toks (+ after-a 3))
+                    update (. toks (+ after-b 2))
+                    (c) (if (= update "++") (values 1) (signed toks (+ after-b 3)))
+                    turns (and (= (at 1) "(") (= (at 2) "int") (: (at 3) :match "^i%d+$")
+                               (= (at 4) "=") (= (. toks after-a) ";")
+                               (or (= cmp "<=") (= cmp ">=")) (= (. toks after-b) ";")
+                               (or (= update "++") (= update "+="))
+                               (loop-turns a b c))]
+                (set ok? (and turns (<= turns translate.limits.loop-turns) true))
+                (set pending turns)
+                (set i (+ i 2)))
+              (= t "{") (do (table.insert braces (or pending 1)) (set pending nil) (set i (+ i 1))
+                            (set ok? (<= (accumulate [w 1 _ b (ipairs braces)] (* w b))
+                                         translate.limits.cost)))
+              (= t "}") (do (set ok? (not= nil (table.remove braces))) (set i (+ i 1)))
+              (= t ".") (do (set ok? (and (. swizzles (at 1))
+                                           (or (= (. toks (- i 1)) "p") (: (. toks (- i 1)) :match "^[va]%d+$"))
+                                           true))
+                            (set i (+ i 2)))
+              (or (. glsl-words t) (number? t) (t:match "^[via]%d+$") (= t name)
+                  (and (= (t:sub 1 (length name)) name) (: (t:sub (+ 1 (length name))) :match "^Fn%d+$"))
+                  (not (t:match "^[%a_]")))
+              (set i (+ i 1))
+              (set ok? false))))
+      (and ok? (= 0 (length braces))))))
+
+(fn check-data [c]
+  "Nil when the custom node data `c` (from the worker) is as the translator writes it,
+else why not."
+  (if (not (and (= (type c) :table) (= (type c.glsl) :string) (= (type c.lua) :string)
+                (= (type c.glsl-name) :string) (c.glsl-name:match "^sdCustom%d+$")
+                (= (type c.key) :string) (= (type c.params) :table)))
+      "its data is not a translation"
+      (not (check-glsl c.glsl c.glsl-name)) "its GLSL is not the translator's"
+      (not (check-lua c.lua)) "its Lua is not the translator's"
+      (not= c.key (digest c.glsl)) "its digest does not match its GLSL"))
+
 ;;; The lowering's side: a descriptor from the data
 
 (local cache {})
@@ -204,6 +366,10 @@ order of the fn's arguments, then 1 / :lipschitz, by which it multiplies. The
 descriptors of nodes with the same texts share their GLSL and their Lua function."
   (when (= node.kind :custom)
     (let [c node.custom
+          bad (check-data c)
+          _ (when bad
+              (let [reason (.. "a custom node: " bad " (refused)")]
+                (error {:lower-error (.. (tostring node.path) ": " reason) : reason : node})))
           key (.. c.glsl-name ":" c.key)]
       (when (not (. cache key))
         (when (> cached 256)
@@ -234,4 +400,5 @@ descriptors of nodes with the same texts share their GLSL and their Lua function
       (doto (collect [k v (pairs (. cache key))] k v)
         (tset :lipschitz (or node.lipschitz 1))))))
 
-{: capture : measure : factor : digest : descriptor : find-form : limits}
+{: capture : measure : factor : digest : descriptor : find-form : check-lua : check-glsl
+ : limits}
