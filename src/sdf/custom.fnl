@@ -219,8 +219,7 @@ translator never writes."
     (var i 1)
     (var bad? false)
     (while (and (<= i n) (not bad?))
-      (let [rest-at i
-            ws (text:match "^%s+" rest-at)]
+      (let [ws (text:match "^%s+" i)]
         (if ws (set i (+ i (length ws)))
             (let [tok (or (text:match "^[%a_][%w_]*" i)
                           (text:match "^%d+%.?%d*[eE][-+]?%d+" i)

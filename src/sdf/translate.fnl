@@ -303,8 +303,7 @@
             :t :float}]))))
 
 (fn values-form [st node]
-  (let [parts (icollect [_ a (ipairs (args-of node))] (number-arg st a))]
-    parts))
+  (icollect [_ a (ipairs (args-of node))] (number-arg st a)))
 
 (fn vec-type [n] (if (= n 1) "float" (.. "vec" n)))
 
@@ -630,9 +629,7 @@ parts."
       (let [name (sym-name p)]
         (when (and name (or (= name "&") (name:find "^&")))
           (refuse st p "rest parameters (&) are not supported in a distance function"))))
-    (when (and (= (type (. node start)) :string) (> (length node) start))
-      ;; A docstring: skipped, it is not code.
-      nil)
+    ;; A docstring (a string first, with forms after it) is not code: skipped.
     (let [first (if (and (= (type (. node start)) :string) (> (length node) start)) (+ start 1) start)]
       (values (and named? (. node 2))
               (icollect [_ p (ipairs params)] (check-name! st p))
