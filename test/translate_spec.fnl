@@ -257,6 +257,15 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
               names (icollect [_ o (ipairs s.objects)] o.tree.custom.glsl-name)]
           (assert.are.same ["sdCustom1" "sdCustom2" "sdCustom1"] names))))
 
+    (it "packs each node's own parameters when two functions differ only in their names"
+      (fn []
+        (let [s (assert (load.load-string "{:objects [
+  {:kind :custom :bounds [2 2 2] :params {:r 1} :distance (fn [x y z r] (- (math.abs x) r))}
+  {:kind :custom :bounds [2 2 2] :params {:radius 2} :distance (fn [x y z radius] (- (math.abs x) radius))}]}" "t.fnl"))
+              packs (icollect [_ o (ipairs s.objects)]
+                      (let [d (custom.descriptor o.tree)] (. (d.pack o.tree) 1)))]
+          (assert.are.same [1 2] packs))))
+
     (it "translates a function of the file the distance function calls, as its helper"
       (fn []
         (let [s (assert (load.load-string "(local {: sqrt} math)

@@ -365,11 +365,21 @@ order of the fn's arguments, then 1 / :lipschitz, by which it multiplies. The
 descriptors of nodes with the same texts share their GLSL and their Lua function."
   (when (= node.kind :custom)
     (let [c node.custom
-          bad (check-data c)
+          ;; The texts themselves key the cache: checked once, then found again at
+          ;; every lowering (each value edit lowers the scene again).
+          ;; The parameters' names too: two functions that differ only in them have
+          ;; the same texts, and each packs its own :params.
+          text-key (and (= (type c) :table) (= (type c.glsl) :string) (= (type c.lua) :string)
+                        (= (type c.glsl-name) :string) (= (type c.key) :string)
+                        (= (type c.params) :table)
+                        (accumulate [ok? true _ n (ipairs c.params)] (and ok? (= (type n) :string)))
+                        (.. c.glsl-name "\n" c.key "\n" c.glsl "\n" c.lua "\n" (table.concat c.params " ")))
+          bad (if (not text-key) "its data is not a translation"
+                  (not (. cache text-key)) (check-data c))
           _ (when bad
               (let [reason (.. "a custom node: " bad " (refused)")]
                 (error {:lower-error (.. (tostring node.path) ": " reason) : reason : node})))
-          key (.. c.glsl-name ":" c.key)]
+          key text-key]
       (when (not (. cache key))
         (when (> cached 256)
           (each [k (pairs cache)] (tset cache k nil))
@@ -379,7 +389,7 @@ descriptors of nodes with the same texts share their GLSL and their Lua function
               args (icollect [i _ (ipairs names)] {:name (.. "a" i) :type :float})]
           (table.insert args {:name :scale :type :float})
           (tset cache key
-                {:kind (.. "custom:" key)
+                {:kind (.. "custom:" c.glsl-name ":" c.key)
                  :doc "A distance function written in the scene."
                  :params []
                  :class :bound
