@@ -13,17 +13,20 @@
 ;;   < > <= >= = not= and and, or, not over comparisons; math.sqrt abs floor ceil sin
 ;;   cos tan asin acos atan (1 or 2 arguments: atan(y, x)) exp log pow min max and
 ;;   math.pi. A name from outside the function is looked up by `?resolve`: a number
-;;   (inlined) or a math function (as math.x).
+;;   (inlined), a math function (as math.x) or a function of the file (a helper).
 ;; Anything else is refused with the line and the construct. The output holds only
-;; generated names (p, v0 v1 ..., i0 ..., sdCustom, its helpers sdCustomFn0 ...) and numbers with a decimal point:
-;; nothing of the scene's text, and the same text for the same form.
+;; generated names (p, v0 v1 ..., i0 ... for loop counters, a0 ... for vector
+;; arguments, sdCustom and its helpers sdCustomFn0 ...) and floats with a decimal
+;; point (a loop counter's bounds are ints): nothing of the scene's text, and the
+;; same text for the same form.
 
 (local fennel (require :fennel))
 
 (local limits
   {:loop-turns 64     ; one for loop's turns: a constant bound, unrolled or not
    :cost 4000         ; operations per evaluation, loops counted by their turns
-                      ; (a gyroid shell cut by a sphere: 31; a sphere: 6)
+                      ; (scenes/custom.fnl: the gyroid shell cut by a sphere 25,
+                      ; the six blended spheres' loop 150)
    :locals 150        ; names in one function (Lua allows 200 live locals)
    :values 4          ; values a helper returns: GLSL's vec4 at most
    :helpers 32
@@ -32,7 +35,7 @@
 (local supported
   "numbers, let, local, var/set, if, when, do, values, fn helpers, for with constant bounds, + - * / % ^, comparisons, and/or/not, math functions")
 
-;; math functions: GLSL name and the argument counts taken (nil: one or more).
+;; math's functions: the GLSL name and the argument counts taken (none: one or more).
 (local math-functions
   {:sqrt {:glsl "sqrt" :counts {1 true}}
    :abs {:glsl "abs" :counts {1 true}}
@@ -54,7 +57,6 @@
 
 (local math-list "math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max pi")
 
-;; Forms a reader may expect to work, with the reason they do not.
 ;; Forms a reader may expect to work, with a hint at what to write instead.
 (local refused-forms
   {:while "use for with constant bounds"
