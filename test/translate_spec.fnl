@@ -248,6 +248,15 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
           (assert.are.equal 0.15 (. b.objects 2 :tree :params :thickness))
           (assert.are.equal pa.key pb.key))))
 
+    (it "gives scenes/custom.fnl the same shader text on every load, none of its names in it"
+      (fn []
+        (let [shader-of #(codegen.shader (assert (plan-mod.scene->plan (assert (load.load-file "scenes/custom.fnl")))))
+              a (shader-of)
+              b (shader-of)]
+          (assert.are.equal a b)
+          (each [_ word (ipairs ["freq" "thickness" "outside" "len3" "shell"])]
+            (assert.falsy (a:find word 1 true) (.. "the shader holds `" word "`"))))))
+
     (it "names one GLSL function per distinct function, in the order met"
       (fn []
         (let [s (assert (load.load-string "(local ball (fn [x y z] (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1)))
