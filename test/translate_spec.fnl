@@ -55,7 +55,7 @@
         (set nearest (math.min nearest (- (math.sqrt (+ (* fa fa) (* fb fb) (* z z))) 0.25))))))
   (for [k 4 1 -2] (set nearest (+ nearest (* k 0.001))))
   (if (< x 0) (set nearest (+ nearest 0.002)) (> x 1) (set nearest (- nearest 0.001)) (set nearest nearest))
-  (+ nearest (* 0.01 (math.atan y x)) (* 0.001 (math.atan x)) (* 0.001 (math.exp (- (math.abs z))))
+  (+ nearest (* 0.001 (-> x (- 1) (/ 2))) (* 0.001 (->> x (- 5) (/ 2))) (* 0.01 (math.atan y x)) (* 0.001 (math.atan x)) (* 0.001 (math.exp (- (math.abs z))))
      (* 0.001 (math.pow (math.abs x) 1.5)) (* 0.001 (math.floor x)) (* 0.001 (math.ceil y))
      (* 0.0001 (/ x)) (- 0.001) (* 0.001 math.pi)))"
                      :params []}})

@@ -6,7 +6,7 @@
 ;; The subset (what a distance needs, and what both languages mean the same way):
 ;;   numbers; the function's arguments; let (names and (a b c) for several values),
 ;;   local, var and set (of a var of the same function); if (any number of branches,
-;;   with an else), when, do; values (at most 4); helper functions (fn in a let or a
+;;   with an else), when, do, -> and ->>; values (at most 4); helper functions (fn in a let or a
 ;;   body, not recursive, using only their own arguments, numbers and other helpers);
 ;;   numeric for with constant whole-number bounds (at most 64 turns); + - * / %
 ;;   (floored, GLSL's mod) and ^ with a whole constant exponent from 0 to 8;
@@ -33,7 +33,7 @@
    :power 8})         ; the largest constant exponent of ^
 
 (local supported
-  "numbers, let, local, var/set, if, when, do, values, fn helpers, for with constant bounds, + - * / % ^, comparisons, and/or/not, math functions")
+  "numbers, let, local, var/set, if, when, do, -> ->>, values, fn helpers, for with constant bounds, + - * / % ^, comparisons, and/or/not, math functions")
 
 ;; math's functions: the GLSL name and the argument counts taken (none: one or more).
 (local math-functions
@@ -552,6 +552,18 @@ else gets a local."
       {:kind :math} (refuse st node (.. "`" name "` is used as a value; call it"))
       _ (refuse st node (.. "`" name "` cannot be used here")))))
 
+(fn thread [st node last?]
+  ;; (-> x (f a) g) is (g (f x a)); ->> puts x last: the form they stand for.
+  (when (< (length node) 2) (refuse st node "(-> x ...) needs a value to thread"))
+  (var acc (. node 2))
+  (for [i 3 (length node)]
+    (let [step (. node i)
+          items (if (fennel.list? step) (icollect [_ v (ipairs step)] v) [step])
+          at (if last? (+ (length items) 1) 2)]
+      (table.insert items at acc)
+      (set acc (fennel.list ((or table.unpack _G.unpack) items)))))
+  acc)
+
 (fn call [st node]
   (let [head (. node 1)
         name (sym-name head)]
@@ -563,6 +575,8 @@ else gets a local."
           "^" (power st node)
           (where op (. comparison-ops op)) (comparison st node op)
           (where op (or (= op "and") (= op "or") (= op "not"))) (logic st node op)
+          "->" (expr st (thread st node false))
+          "->>" (expr st (thread st node true))
           "if" (if-form st node)
           "when" (when-form st node)
           "do" (body st (new-scope st.scope) (args-of node) node)
