@@ -286,6 +286,17 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
           (assert.truthy (c.glsl:find "float sdCustom1Fn0(float" 1 true) c.glsl)
           (assert.are.equal 1 (f 0 0 2.5 1)))))
 
+    (it "translates a function made by another one, each closure with its own numbers"
+      (fn []
+        (let [s (assert (load.load-string "(fn make-ball [r]
+  (fn [x y z] (- (math.sqrt (+ (* x x) (* y y) (* z z))) r)))
+{:objects [{:kind :custom :bounds [1 1 1] :distance (make-ball 1)}
+           {:kind :custom :bounds [2 2 2] :distance (make-ball 2)}]}" "t.fnl"))
+              [a b] (icollect [_ o (ipairs s.objects)] o.tree.custom)]
+          (assert.are.same ["sdCustom1" "sdCustom2"] [a.glsl-name b.glsl-name])
+          (assert.are.equal -1 ((translate.compile-lua a.lua) 0 0 0 1))
+          (assert.are.equal -2 ((translate.compile-lua b.lua) 0 0 0 1)))))
+
     (it "measures the Lipschitz factor: 1 for an exact distance, more for a gyroid"
       (fn []
         (let [exact (assert (load.load-string (scene-with "{:r 1}") "t.fnl"))

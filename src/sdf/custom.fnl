@@ -82,7 +82,7 @@ was compiled from; or nil and why."
                          (when (not (. seen form)) (tset seen form true) form)))]
           (case (length unique)
             1 (. unique 1)
-            0 (values nil "must be written (fn [x y z] ...) in the scene file (a #(...) or a function made by another function cannot be translated)")
+            0 (values nil "must be written (fn [x y z] ...) in the scene file (a #(...) has no form to translate)")
             _ (values nil (.. "line " info.linedefined " holds several functions with "
                               (or info.nparams "as many") " parameters; put the distance function on a line of its own")))))))
 
