@@ -142,10 +142,12 @@
                 (let [prepared (prepared-for "scenes/seed.fnl" :shaded)
                       budget (budget-for :seed :shaded)]
                   ;; Interior distance negated: faces facing +x, +y or +z get wrong
-                  ;; normals from the one-sided differences, which reach inside.
+                  ;; normals from the one-sided differences, which reach inside. (The
+                  ;; box's GLSL is the translator's, from its :fennel text: the
+                  ;; interior term is min(max(max(qx, qy), qz), 0.0) in its names.)
                   (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
-                                      "min%(max%(q%.x, max%(q%.y, q%.z%)%), 0%.0%)"
-                                      "-min(max(q.x, max(q.y, q.z)), 0.0)")
+                                      "%+ (min%(max%(max%(v%d+, v%d+%), v%d+%), 0%.0%))"
+                                      "+ -%1")
                         _ (assert.are.equal 1 n)
                         st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "seed, broken -min" st))

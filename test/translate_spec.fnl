@@ -63,14 +63,14 @@
 (local shape-names ["sphere" "rounded-box" "gyroid-ball" "piecewise" "loop-and-values"])
 
 ;; Names of the scene's text that may appear in no output.
-(local scene-names ["radius" "ball" "half" "corner" "my" "length" "positive" "gyroid" "frequency"
+(local scene-names ["radius" "ball" "half" "corner" "my" "positive" "gyroid" "frequency"
                     "flat" "folded" "nearest" "step" "angle" "fa" "fb" "fc"])
 
 ;; What a GLSL identifier of the output may be: a generated name or GLSL's own.
 (local glsl-words (collect [_ w (ipairs ["float" "vec2" "vec3" "vec4" "int" "bool" "return" "if"
                                          "else" "for" "p" "x" "y" "z" "w" "sqrt" "abs" "floor"
                                          "ceil" "sin" "cos" "tan" "asin" "acos" "atan" "exp"
-                                         "log" "pow" "min" "max" "mod"])]
+                                         "log" "pow" "min" "max" "mod" "length"])]
                     w true))
 
 (fn glsl-tokens [text]
@@ -359,7 +359,7 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
                           [:lua "return function%(([^)]*)%)" "return function(%1) while true do end" "not the translator's"]
                           [:lua "return function%(([^)]*)%)" "return function(%1) for v99 = 1, 1000 do end" "not the translator's"]
                           [:lua "math%.sqrt" "string.rep" "not the translator's"]
-                          [:glsl "sqrt" "texture2D" "not the translator's"]
+                          [:glsl "length" "texture2D" "not the translator's"]
                           [:glsl "return " "for (int i9 = 0; i9 <= 100000; i9++) {} return " "not the translator's"]])]
             (let [why-got (refused (forge field from to))]
               (assert.truthy (and why-got (why-got:find why 1 true)) (.. field " " to ": " (tostring why-got)))))

@@ -207,7 +207,7 @@ are `forms`): {:glsl :lua :glsl-name :params :cost}, or nil, a message and a lin
 (local glsl-words
   (collect [_ w (ipairs ["float" "vec2" "vec3" "vec4" "int" "bool" "return" "if" "else" "for"
                          "p" "sqrt" "abs" "floor" "ceil" "sin" "cos" "tan" "asin" "acos" "atan"
-                         "exp" "log" "pow" "min" "max" "mod"])]
+                         "exp" "log" "pow" "min" "max" "mod" "length"])]
     w true))
 (local swizzles {:x true :y true :z true :w true})
 

@@ -281,6 +281,17 @@
                         :l (.. "(" acc.l " " op " " p.l ")") :t :bool}
                    p))]))))
 
+(fn squared-names [form]
+  ;; The names a, b ... of a form (+ (* a a) (* b b) ...) of two to four terms, else
+  ;; nil.
+  (when (and (fennel.list? form) (= "+" (sym-name (. form 1))) (<= 3 (length form) 5))
+    (let [names (fcollect [i 2 (length form)]
+                  (let [term (. form i)]
+                    (when (and (fennel.list? term) (= 3 (length term)) (= "*" (sym-name (. term 1)))
+                               (sym-name (. term 2)) (= (sym-name (. term 2)) (sym-name (. term 3))))
+                      (. term 2))))]
+      (when (= (length names) (- (length form) 1)) names))))
+
 (fn math-call [st node fname]
   (let [spec (. math-functions fname)
         args (icollect [_ a (ipairs (args-of node))] (number-arg st a))
@@ -298,8 +309,15 @@
                     :t :float}
                p))]
         (let [gs (table.concat (icollect [_ a (ipairs args)] a.g) ", ")
-              ls (table.concat (icollect [_ a (ipairs args)] a.l) ", ")]
-          [{:g (.. spec.glsl "(" gs ")")
+              ls (table.concat (icollect [_ a (ipairs args)] a.l) ", ")
+              ;; The square root of a sum of squares is GLSL's length(), as a
+              ;; hand-written distance says it (the same rounding as length(p)).
+              lengths (when (= fname :sqrt) (squared-names (. node 2)))]
+          [{:g (if lengths
+                   (.. "length(vec" (length lengths) "("
+                       (table.concat (icollect [_ n (ipairs lengths)] (. (number-arg st n) :g)) ", ")
+                       "))")
+                   (.. spec.glsl "(" gs ")"))
             :l (if (= fname :pow) (.. "(" (. args 1 :l) " ^ " (. args 2 :l) ")")
                    (.. (if (and (= fname :atan) (= n 2)) "math.atan2" (.. "math." fname)) "(" ls ")"))
             :t :float}]))))
