@@ -28,7 +28,7 @@
 (describe "shader export"
   (fn []
     (local ctx (assert (headless.context)))
-    (each [_ file (ipairs ["scenes/seed.fnl" "scenes/organic.fnl" "scenes/colonnade.fnl"])]
+    (each [_ file (ipairs ["scenes/seed.fnl" "scenes/organic.fnl" "scenes/colonnade.fnl" "scenes/custom.fnl"])]
       (let [scene (assert (load.load-file file))
             plan (assert (plan-mod.scene->plan scene))
             text (assert (export.shadertoy scene plan))]

@@ -53,7 +53,7 @@
 
     (local ctx (assert (headless.context)))
     (each [_ file (ipairs ["scenes/organic.fnl" "scenes/twisted-tower.fnl" "scenes/flower.fnl"
-                           "scenes/colonnade.fnl" "scenes/machined-part.fnl"])]
+                           "scenes/colonnade.fnl" "scenes/machined-part.fnl" "scenes/custom.fnl"])]
       (it (.. file ": draws the same picture folded")
         (fn []
           (let [scene (assert (load.load-file file))

@@ -16,8 +16,8 @@ if [ "${1:-}" = "--check" ]; then
     test/plan_spec.fnl test/png_spec.fnl test/primitives_spec.fnl \
     test/probe_input_spec.fnl test/progress_spec.fnl test/reference_spec.fnl \
     test/sandbox_spec.fnl test/scene_spec.fnl test/states_spec.fnl \
-    test/tape_spec.fnl test/uniforms_spec.fnl test/watch_spec.fnl test/worker_spec.fnl test/wire_spec.fnl \
-    test/mesh_spec.fnl
+    test/tape_spec.fnl test/translate_spec.fnl test/uniforms_spec.fnl test/watch_spec.fnl \
+    test/worker_spec.fnl test/wire_spec.fnl test/mesh_spec.fnl
 fi
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT

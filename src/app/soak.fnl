@@ -118,6 +118,15 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
       (let [image4 (step! recoloured)]
         (report "fixing the file clears the message and renders again"
                 (and (= state.error nil) (= image4 image1))))
+      ;; A custom node's parameter is a uniform: its edit compiles nothing.
+      (let [(param-edit n) (recoloured:gsub "(:kind :custom[^\n]-\n?[^\n]-:params {:[%w%-]+ )([%d%.]+)"
+                                            #(.. $1 (* 1.25 (tonumber $2))) 1)]
+        (when (> n 0)
+          (let [compiles state.cache.compiles
+                image (step! param-edit)]
+            (report "editing a custom node's :params value changes the next frame without a shader compile"
+                    (and (not= image image1) (= state.cache.compiles compiles) (= state.error nil))))
+          (step! recoloured)))
       ;; A file still being written is not loaded, however late the poll: half of it,
       ;; written just now, polled at once and again a second later (a slow player)
       ;; after the writer wrote the same half again.

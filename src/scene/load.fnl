@@ -5,6 +5,7 @@
 (local primitives (require :src.sdf.primitives))
 (local operations (require :src.sdf.operations))
 (local lower (require :src.sdf.lower))
+(local custom (require :src.sdf.custom))
 (local sandbox (require :src.scene.sandbox))
 (local params (require :src.scene.params))
 (local files (require :src.util.files))
@@ -220,8 +221,8 @@ Long words get none: no name is that long, and the distance would cost time."
   ;; A deep tree's path would fill the message: keep its two ends.
   (if (> (length s) 120) (.. (s:sub 1 50) " ... " (s:sub -60)) s))
 
-(fn fail [ctx path reason]
-  (let [line (line-for ctx path)
+(fn fail [ctx path reason ?line]
+  (let [line (or ?line (line-for ctx path))
         where (if line (.. ctx.file ":" line) ctx.file)
         field (short-path (path->string path))]
     (error {:scene-error (if (= field "")
@@ -497,6 +498,7 @@ shines from where the classic :light is (seen from the origin)."
 (fn all-kind-names []
   (let [names (primitives.kind-names)]
     (each [_ k (ipairs (operations.kind-names))] (table.insert names k))
+    (table.insert names :custom)
     (doto names table.sort)))
 
 ;; Fields every tree node may carry: placement shorthands and its material.
@@ -539,6 +541,70 @@ shines from where the classic :light is (seen from the origin)."
                                  (check ctx [:objects i p.name] v p.type))))))
     out))
 
+;; A custom node's fields beside :distance and :params (src/sdf/custom.fnl).
+(local custom-spec
+  {:params [{:name :bounds :type :size3 :required? true
+             :missing "missing; a custom node needs :bounds [hx hy hz], the half extents of a box about its origin that holds the shape"}
+            {:name :lipschitz :type :positive :optional? true}]
+   :extra-fields [:distance :params]})
+
+(fn check-custom! [ctx path o out]
+  "Translate custom node `o`'s distance function and measure its Lipschitz factor,
+into `out`: :custom (the texts), :params, :lipschitz (the factor used)."
+  (let [dpath (sub-path path :distance)
+        ppath (sub-path path :params)
+        given (or o.params {})]
+    (when (not= (type o.distance) :function)
+      (fail ctx dpath (.. (if (= nil o.distance) "missing; a custom node needs " "must be ")
+                          "a distance function like (fn [x y z] (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1))"
+                          (if (= nil o.distance) "" (.. ", got " (describe-value o.distance))))))
+    (when (or (not= (type given) :table) (not= nil (. given 1)))
+      (fail ctx ppath (.. "must be a table of named numbers like {:radius 1}, got " (describe-value given))))
+    (let [names (doto (icollect [k (pairs given)] k) (table.sort key-before?))]
+      (each [_ k (ipairs names)]
+        (when (not= (type k) :string)
+          (fail ctx ppath (.. "unexpected entry " (describe-value k) "; parameters are named, like {:radius 1}"))))
+      (set out.params (collect [_ k (ipairs names)] k (check ctx (sub-path ppath k) (. given k) :number))))
+    (case (custom.capture o.distance ctx.forms ctx.file)
+      (nil msg line) (fail ctx dpath msg line)
+      t (let [line (. (debug.getinfo o.distance :S) :linedefined)
+              declared (collect [_ n (ipairs t.params)] n true)]
+          (each [_ n (ipairs t.params)]
+            (when (= nil (. out.params n))
+              (fail ctx dpath (.. "its parameter `" n "` has no value: add it to :params, like :params {:"
+                                  n " 1}") line)))
+          (each [_ n (ipairs (doto (icollect [k (pairs out.params)] k) table.sort))]
+            (when (not (. declared n))
+              (fail ctx (sub-path ppath n) (.. "is not a parameter of the distance function; name it after x y z: (fn [x y z "
+                                               (table.concat t.params " ") (if (> (length t.params) 0) " " "") n "] ...)"))))
+          ;; One GLSL function per distinct text, named in the order met.
+          (set ctx.customs (or ctx.customs {:n 0}))
+          (when (not (. ctx.customs t.glsl))
+            (set ctx.customs.n (+ ctx.customs.n 1))
+            (tset ctx.customs t.glsl ctx.customs.n))
+          (let [index (. ctx.customs t.glsl)
+                glsl (t.glsl:gsub "sdCustom" (.. "sdCustom" index))
+                data {:glsl glsl :lua t.lua :glsl-name (.. "sdCustom" index) :key (custom.digest glsl)
+                      :params t.params :cost t.cost}
+                desc (custom.descriptor {:kind :custom :custom data})
+                args (icollect [_ n (ipairs t.params)] (. out.params n))]
+            (table.insert args 1)
+            ;; Nodes made by a loop often share the function and its values: measured
+            ;; once per load.
+            (set ctx.measures (or ctx.measures {}))
+            (case (let [mkey (.. glsl "\n" (table.concat (icollect [_ v (ipairs args)] (string.format "%.17g" v)) " ")
+                                 "\n" (table.concat (icollect [_ v (ipairs out.bounds)] (string.format "%.17g" v)) " "))]
+                    (when (not (. ctx.measures mkey))
+                      (tset ctx.measures mkey [(custom.measure desc.cpu out.bounds args t.cost)]))
+                    ((or table.unpack _G.unpack) (. ctx.measures mkey) 1 3))
+              (nil why at) (fail ctx dpath (string.format "%s at [%.3g %.3g %.3g] (sampled over its bounds grown by half: it must give a number everywhere there)"
+                                                          why (. at 1) (. at 2) (. at 3)) line)
+              (measured at) (case (custom.factor measured out.lipschitz at)
+                              (nil why) (fail ctx (sub-path path :lipschitz) why)
+                              k (do (set out.lipschitz k)
+                                    (set data.measured measured)
+                                    (set out.custom data)))))))))
+
 (fn check-node [ctx path o depth counter]
   (when (not= (type o) :table)
     (fail ctx path (.. "must be a node table like {:kind :sphere ...}, got " (describe-value o))))
@@ -553,7 +619,7 @@ shines from where the classic :light is (seen from the origin)."
     (fail ctx (sub-path path :kind) (.. "must be a kind name like :sphere, got " (describe-value o.kind))))
   (let [prim (primitives.lookup o.kind)
         op (operations.lookup o.kind)
-        desc (or prim op)]
+        desc (or prim op (when (= o.kind :custom) custom-spec))]
     (when (not desc)
       (fail ctx (sub-path path :kind)
             (.. "unknown kind " (text.keyword o.kind) (suggestion o.kind (all-kind-names))
@@ -561,6 +627,7 @@ shines from where the classic :light is (seen from the origin)."
     (let [allowed (icollect [_ p (ipairs desc.params)] p.name)]
       (each [_ f (ipairs shorthand-fields)] (table.insert allowed f))
       (table.insert allowed :kind)
+      (each [_ f (ipairs (or desc.extra-fields []))] (table.insert allowed f))
       (when op (table.insert allowed :children))
       (check-keys ctx path o allowed))
     (let [out {:kind o.kind :path (path->string path) :path-list path}]
@@ -575,7 +642,9 @@ shines from where the classic :light is (seen from the origin)."
         (let [v (. o p.name)]
           (tset out p.name (if (not= v nil) (check-param ctx (sub-path path p.name) v p)
                                p.optional? nil
+                               p.required? (fail ctx (sub-path path p.name) p.missing)
                                (fresh p.default)))))
+      (when (= desc custom-spec) (check-custom! ctx path o out))
       (when desc.check
         (let [(field reason) (desc.check out)]
           (when field (fail ctx (sub-path path field) reason))))
@@ -722,7 +791,7 @@ their (param ...) calls give instead of the file's; the scene's :params lists th
         (not sites-ok?)
         (values nil (safe-message site-err))
         ;; Field lines come from the last form: the table the file evaluates to.
-        (let [ctx {: file :source checked-source :ast (and forms (. forms (length forms)))
+        (let [ctx {: file :source checked-source :ast (and forms (. forms (length forms))) : forms
                    : env :animated [] :time-budget {:left frame-steps}}
               (ok? result) (pcall validate value ctx)]
           (if ok?

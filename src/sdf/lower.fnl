@@ -44,6 +44,7 @@
 (local primitives (require :src.sdf.primitives))
 (local operations (require :src.sdf.operations))
 (local large-sphere (require :src.sdf.large-sphere))
+(local custom (require :src.sdf.custom))
 
 (local sizes primitives.glsl-types)
 (local box-desc (primitives.lookup :box))
@@ -308,7 +309,8 @@ first when `?centre?` (else the box is taken as centred); return the register."
      (fn [st code node pin inherited]
        (let [material (node-material node inherited)
              node (wrap-shorthand node)]
-         (case (primitives.lookup node.kind)
+         ;; A custom node's descriptor comes from its own data (src/sdf/custom.fnl).
+         (case (or (custom.descriptor node) (primitives.lookup node.kind))
            desc (lower-primitive st code node desc pin material)
            _ (lower-operation st code node (assert (operations.lookup node.kind)
                                                    (.. "unknown kind " (tostring node.kind)))

@@ -21,6 +21,9 @@
 ;;   :glsl        the GLSL function's text: float sdX(vec3 p, <args>)
 ;;   :helpers     optional list of shared GLSL helper names (see `helpers`)
 ;;   :cpu         (fn [x y z ...args as flat numbers]) -> distance, in double
+;;   :fennel      instead of :glsl and :cpu: the distance as the text of a Fennel
+;;                (fn [x y z ...args as flat numbers] ...), in the subset of
+;;                src/sdf/translate.fnl, which writes both from it
 ;;   :bounds      optional (fn [o]) -> [hx hy hz] half extents of a box centred at
 ;;                the origin that holds the shape; absent when it is unbounded
 ;;   :placed?     false for primitives placed by their own parameters (the plane)
@@ -34,7 +37,9 @@
 ;;   :gradient    (fn [x y z ...args]) -> nx ny nz, in double; objects whose kind has
 ;;                one take it as their normal instead of finite differences
 
+(local fennel (require :fennel))
 (local files (require :src.util.files))
+(local translate (require :src.sdf.translate))
 
 (local dir "src/sdf/primitives")
 
@@ -46,8 +51,20 @@ float dot2(vec3 v) { return dot(v, v); }"
 
 (local glsl-types {:float 1 :vec2 2 :vec3 3 :vec4 4})
 
+(fn from-fennel! [d file]
+  ;; :glsl and :cpu of a descriptor written as :fennel text, both from its one form.
+  (let [(ok? form) ((fennel.parser (fennel.string-stream d.fennel) file))
+        (t err line) (translate.translate (assert (and ok? form) (.. file ": :fennel does not parse"))
+                                          {:name d.glsl-name :scale? false
+                                           :arg-types (icollect [_ a (ipairs d.args)] a.type)})]
+    (assert t (.. file ": :fennel, line " (tostring line) " of its text: " (tostring err)))
+    (set d.glsl t.glsl)
+    (set d.cpu (translate.compile-lua t.lua))))
+
 (fn check-descriptor [d file]
   (fn need [ok? what] (assert ok? (.. file ": descriptor " what)))
+  (when (and (= (type d) :table) (= (type d.fennel) :string) (= (type d.args) :table))
+    (from-fennel! d file))
   (need (= (type d) :table) "must be a table")
   (need (and (= (type d.kind) :string) (d.kind:match "^[a-z][a-z0-9%-]*$")) "needs a :kind name")
   (need (= (type d.doc) :string) "needs :doc")

@@ -9,15 +9,12 @@
  :args [{:name :h :type :vec3}]
  :pack (fn [o] (let [[x y z] o.size] [(* x 0.5) (* y 0.5) (* z 0.5)]))
  :glsl-name "sdBox"
- :glsl "float sdBox(vec3 p, vec3 h) {
-    vec3 q = abs(p) - h;
-    return length(max(q, 0.0)) + min(max(q.x, max(q.y, q.z)), 0.0);
-}"
- :cpu (fn [x y z hx hy hz]
-        (let [qx (- (abs x) hx) qy (- (abs y) hy) qz (- (abs z) hz)
-              ox (max qx 0) oy (max qy 0) oz (max qz 0)]
-          (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz)))
-             (min (max qx qy qz) 0))))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z hx hy hz]
+  (let [qx (- (math.abs x) hx) qy (- (math.abs y) hy) qz (- (math.abs z) hz)
+        ox (math.max qx 0) oy (math.max qy 0) oz (math.max qz 0)]
+    (+ (math.sqrt (+ (* ox ox) (* oy oy) (* oz oz)))
+       (math.min (math.max qx qy qz) 0))))"
  ;; The exact normal: the distance's gradient. Outside, along the part of p beyond
  ;; the half extents; inside (and on a face), the axis of the nearest face.
  :gradient-glsl "vec3 gradBox(vec3 p, vec3 h) {

@@ -1,6 +1,6 @@
 ;; Capsule (a segment with a radius): exact. The distance to the segment from :a to :b,
 ;; less the radius.
-(local {: sqrt : max : min : abs} math)
+(local {: max : abs} math)
 
 {:kind :capsule
  :doc "Capsule: the segment from :a to :b thickened by :radius."
@@ -11,20 +11,14 @@
  :args [{:name :a :type :vec3} {:name :b :type :vec3} {:name :r :type :float}]
  :pack (fn [o] (let [[ax ay az] o.a [bx by bz] o.b] [ax ay az bx by bz o.radius]))
  :glsl-name "sdCapsule"
- :glsl "float sdCapsule(vec3 p, vec3 a, vec3 b, float r) {
-    vec3 pa = p - a;
-    vec3 ba = b - a;
-    float l2 = dot(ba, ba);
-    float h = l2 > 0.0 ? clamp(dot(pa, ba) / l2, 0.0, 1.0) : 0.0;
-    return length(pa - ba * h) - r;
-}"
- :cpu (fn [x y z ax ay az bx by bz r]
-        (let [px (- x ax) py (- y ay) pz (- z az)
-              dx (- bx ax) dy (- by ay) dz (- bz az)
-              l2 (+ (* dx dx) (* dy dy) (* dz dz))
-              h (if (> l2 0) (max 0 (min 1 (/ (+ (* px dx) (* py dy) (* pz dz)) l2))) 0)
-              qx (- px (* dx h)) qy (- py (* dy h)) qz (- pz (* dz h))]
-          (- (sqrt (+ (* qx qx) (* qy qy) (* qz qz))) r)))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z ax ay az bx by bz r]
+  (let [px (- x ax) py (- y ay) pz (- z az)
+        dx (- bx ax) dy (- by ay) dz (- bz az)
+        l2 (+ (* dx dx) (* dy dy) (* dz dz))
+        h (if (> l2 0) (math.max 0 (math.min 1 (/ (+ (* px dx) (* py dy) (* pz dz)) l2))) 0)
+        qx (- px (* dx h)) qy (- py (* dy h)) qz (- pz (* dz h))]
+    (- (math.sqrt (+ (* qx qx) (* qy qy) (* qz qz))) r)))"
  :bounds (fn [o]
            (let [[ax ay az] o.a [bx by bz] o.b r o.radius]
              ;; Centred bounds: the largest coordinate of either end, plus the radius.

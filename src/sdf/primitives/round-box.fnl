@@ -1,7 +1,7 @@
 ;; Round box: exact. A box of full extents :size whose edges and corners are rounded by
 ;; :radius: the exact distance to the box shrunk by :radius on every side, less :radius
 ;; (an offset of an exact distance is exact outside), so the outer extents stay :size.
-(local {: sqrt : max : min : abs} math)
+(local {: min} math)
 
 {:kind :round-box
  :doc "Box with full extents :size, edges and corners rounded by :radius."
@@ -19,14 +19,11 @@
          (let [[x y z] o.size r o.radius]
            [(- (* x 0.5) r) (- (* y 0.5) r) (- (* z 0.5) r) r]))
  :glsl-name "sdRoundBox"
- :glsl "float sdRoundBox(vec3 p, vec3 b, float r) {
-    vec3 q = abs(p) - b;
-    return length(max(q, 0.0)) + min(max(q.x, max(q.y, q.z)), 0.0) - r;
-}"
- :cpu (fn [x y z bx by bz r]
-        (let [qx (- (abs x) bx) qy (- (abs y) by) qz (- (abs z) bz)
-              ox (max qx 0) oy (max qy 0) oz (max qz 0)]
-          (- (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz)))
-                (min (max qx qy qz) 0))
-             r)))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z bx by bz r]
+  (let [qx (- (math.abs x) bx) qy (- (math.abs y) by) qz (- (math.abs z) bz)
+        ox (math.max qx 0) oy (math.max qy 0) oz (math.max qz 0)]
+    (- (+ (math.sqrt (+ (* ox ox) (* oy oy) (* oz oz)))
+          (math.min (math.max qx qy qz) 0))
+       r)))"
  :bounds (fn [o] (let [[x y z] o.size] [(* x 0.5) (* y 0.5) (* z 0.5)]))}

@@ -6,11 +6,9 @@
  :args [{:name :r :type :float}]
  :pack (fn [o] [o.radius])
  :glsl-name "sdSphere"
- :glsl "float sdSphere(vec3 p, float r) {
-    return length(p) - r;
-}"
- :cpu (fn [x y z r]
-        (- (math.sqrt (+ (* x x) (* y y) (* z z))) r))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z r]
+  (- (math.sqrt (+ (* x x) (* y y) (* z z))) r))"
  ;; The exact normal: the distance's gradient, away from the centre (up at it).
  :gradient-glsl "vec3 gradSphere(vec3 p, float r) {
     float len = length(p);

@@ -1,6 +1,5 @@
 ;; Torus: exact. A ring of :radius in the xy plane (around z), a tube of :thickness
 ;; (the tube's radius): the distance to the ring circle, less the tube radius.
-(local {: sqrt} math)
 
 {:kind :torus
  :doc "Torus around the z axis: ring :radius, tube radius :thickness."
@@ -10,11 +9,8 @@
  :args [{:name :r :type :float} {:name :t :type :float}]
  :pack (fn [o] [o.radius o.thickness])
  :glsl-name "sdTorus"
- :glsl "float sdTorus(vec3 p, float r, float t) {
-    vec2 q = vec2(length(p.xy) - r, p.z);
-    return length(q) - t;
-}"
- :cpu (fn [x y z r t]
-        (let [qx (- (sqrt (+ (* x x) (* y y))) r)]
-          (- (sqrt (+ (* qx qx) (* z z))) t)))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z r t]
+  (let [qx (- (math.sqrt (+ (* x x) (* y y))) r)]
+    (- (math.sqrt (+ (* qx qx) (* z z))) t)))"
  :bounds (fn [o] (let [e (+ o.radius o.thickness)] [e e o.thickness]))}
