@@ -117,7 +117,8 @@
           (assert.is_nil (: (codegen.shader p :core) :find "float visibility(" 1 true)))
         (let [p (assert (plan.scene->plan (load (modern "{:fog 0.1 :lights [{:kind :sun} {:kind :point}]}"))))]
           ;; The point light's softness is 0 by default: its hard march is kept.
-          (assert.matches "modern lights:2 soft hard ao fog specular" p.key))))
+          (assert.truthy (p.key:find "lighting={features={1=occlusion} fog?=true hard?=true lights=2" 1 true) p.key)
+          (assert.truthy (p.key:find "soft?=true specular?=true}" 1 true) p.key))))
 
     (it "soft shadows hold the hard march only when a light may have softness 0"
       (fn []
@@ -188,7 +189,7 @@
 ;; at the GPU-vs-CPU size. With the feature's lines cut from the GLSL (the reference
 ;; unchanged), the comparison must fail.
 (local mutations
-  [["ambient occlusion" "occ = occlusion(p, n);" ""]
+  [["ambient occlusion" "occ *= occlusion(p, n);" ""]
    ["fog" "through = fogTransmittance(origin, dir, t);" ""]
    ["specular" "c += radiance * mix(vec3(1.0), albedo, mirror)" "c += 0.0 * mix(vec3(1.0), albedo, mirror)"]
    ["soft shadows" "seen = min(seen, closest / (softness * along));" ""]
@@ -223,6 +224,47 @@
                     (assert.is_true (> replaced 0) (.. "the mutation of " name " found nothing to change"))
                     (assert.is_false (passes? st budget)
                                      (.. name " cut from the GLSL still passes: " (report-line name st))))))))))))
+
+(describe "lighting: a feature declared once (src/render/features/)"
+  (fn []
+    (it "is found by listing the folder, and its settings are the :lighting section's"
+      (fn []
+        (let [features (require :src.render.features)]
+          (assert.are.same [:occlusion :rim] (icollect [_ d (ipairs features.all)] d.name))
+          (let [s (load (modern "{:rim 0.7 :rim-power 2}"))
+                p (assert (plan.scene->plan s))]
+            (assert.are.equal 0.7 s.lighting.rim)
+            (assert.are.same [:occlusion :rim] p.lighting.features)
+            (assert.truthy (p.key:find "features={1=occlusion 2=rim}" 1 true))
+            (assert.truthy (: (codegen.shader p :core) :find "surface += rimLight(cosView, albedo, skyLight);" 1 true)))
+          ;; Off by default: neither its code nor its uniform.
+          (let [p (assert (plan.scene->plan (load (modern "{}"))))]
+            (assert.are.same [:occlusion] p.lighting.features)
+            (assert.is_nil (: (codegen.shader p :core) :find "rimLight" 1 true)))
+          (assert.truthy (: (load-error (modern "{:rim 2}")) :find "rim" 1 true)))))
+
+    (let [(ctx why) (headless.context)]
+      (if (not ctx)
+          (pending (.. "OSMesa is not available: " (tostring why)))
+          (it "matches the reference with a rim light, and fails without it in the GLSL"
+            (fn []
+              (with-open [f (assert (io.open "test/out/rim.fnl" :wb))]
+                (f:write "{:camera {:pos [0 -6 2] :yaw 90 :pitch -10 :fov 60}
+                           :lighting {:rim 0.9 :rim-power 2 :lights [{:kind :sun :softness 0}]}
+                           :render {:reflections 1}
+                           :objects [{:kind :plane :height 0 :color [0.5 0.5 0.5]}
+                                     {:kind :sphere :radius 1 :pos [0 0 1] :color [0.9 0.4 0.2]}
+                                     {:kind :box :size [1 1 1] :pos [1.8 0.5 0.5] :color [0.2 0.5 0.9]}]}"))
+              (let [prepared (prepare "test/out/rim.fnl")
+                    budget {:over 2 :max 40}
+                    st (compare-image prepared (gpu-render ctx prepared))
+                    (cut n) (: (codegen.shader prepared.plan :core) :gsub
+                               "surface %+= rimLight%(cosView, albedo, skyLight%);" "")
+                    without (compare-image prepared (gpu-render ctx prepared {:source #cut}))]
+                (print (report-line "rim light" st))
+                (assert.is_true (passes? st budget) (describe-failures "rim light" st budget))
+                (assert.are.equal 1 n)
+                (assert.is_false (passes? without budget) (report-line "rim light cut" without)))))))))
 
 (describe "anti-aliasing: supersampling"
   (fn []

@@ -32,6 +32,7 @@ vec3 dir = rd;
     vec3 surface = (1.0 - reflected) * (directLight(p, n, -dir, albedo, mirror, roughness)
                                         + albedo * skyLight * (uAmbient * occ))
                    + albedo * gMaterial.y;
+    // @slot surface
     float through = 1.0;
     // @slot fog
     weight *= through;

@@ -6,6 +6,7 @@
 (local emit-glsl (require :src.sdf.emit-glsl))
 (local primitives (require :src.sdf.primitives))
 (local field (require :src.render.field))
+(local features (require :src.render.features))
 
 ;; Chunks are read through the program's one file reader (project files, from any
 ;; working directory); tests may swap the reader. Chunks are cached by path. A chunk
@@ -112,7 +113,6 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
                                "uniform float uAmbient;"
                                "uniform float uExposure;"])]
           (table.insert lines line))
-        (when l.ao? (table.insert lines "uniform vec2 uAo;                      // strength, radius"))
         (when l.fog?
           (table.insert lines "uniform vec4 uFog;                     // linear colour, density")
           (table.insert lines "uniform float uFogFalloff;             // per unit of height")
@@ -322,7 +322,7 @@ only when the plan has it."
                   "float ts = raymarchTo(o, l, reach, shadowSteps);"
                   "float ts = raymarch(o, l, shadowSteps);")]
     [(fill "shaders/shading/modern/sky.glsl" {})
-     (if l.ao? (fill "shaders/shading/modern/occlusion.glsl" {}) [])
+     (icollect [_ name (ipairs l.features)] (fill (. (features.lookup name) :chunk) {}))
      (if l.fog? (fill "shaders/shading/modern/fog.glsl" {}) [])
      (if (not plan.shadows?) []
          l.soft? (fill "shaders/shading/modern/shadow-soft.glsl"
@@ -347,7 +347,8 @@ only when the plan has it."
                 (fill "shaders/views/modern.glsl"
                       {:bounce-loop [(.. "for (int bounce = 0; bounce <= "
                                          (if plan.reflections? "uReflections" "0") "; bounce++) {")]
-                       :occlusion (if plan.lighting.ao? ["occ = occlusion(p, n);"] [])
+                       :occlusion (features.slot-lines plan.lighting.features :occlusion)
+                       :surface (features.slot-lines plan.lighting.features :surface)
                        :fog (if plan.lighting.fog?
                                 ["through = fogTransmittance(origin, dir, t);"
                                  "radiance += weight * ((1.0 - through) * fogColor(dir));"]

@@ -6,6 +6,7 @@
 (local bounds (require :src.render.bounds))
 (local field (require :src.render.field))
 (local emit-glsl (require :src.sdf.emit-glsl))
+(local features (require :src.render.features))
 
 (local views [:shaded :normals :glow :heat])
 
@@ -218,7 +219,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               ;; Soft shadow rays may march only inside the bounding spheres grown by
               ;; the penumbra (see :soft-bounded? below), unless switched off.
               :shadow-bounds? (not= false options.shadow-bounds?)
-              :ao? (> l.ao 0)
+              ;; The features it has on (src/render/features/), by name.
+              :features (features.active l)
               :fog? (> l.fog 0)
               :specular? l.specular
               ;; Steps of a soft shadow ray at most: its penumbra estimate needs every
@@ -227,8 +229,10 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :shadow-steps 128})))
     (var field-error nil)
     (when members
-      (case (field.build members {:reach-at-least (when (and plan.lighting plan.lighting.ao?)
-                                                    scene.lighting.ao-radius)
+      (case (field.build members {:reach-at-least (when plan.lighting
+                                                    (accumulate [r nil _ name (ipairs plan.lighting.features)]
+                                                      (let [d (features.lookup name)]
+                                                        (if d.reach (math.max (or r 0) (d.reach scene.lighting)) r))))
                                   :wide? (and plan.lighting plan.lighting.soft?)
                                   :cells-per-object options.field-cells})
         fd (set plan.field fd)

@@ -6,6 +6,7 @@
 (local large-sphere (require :src.sdf.large-sphere))
 (local bounds (require :src.render.bounds))
 (local field (require :src.render.field))
+(local features (require :src.render.features))
 
 (fn hit-threshold [scene plan cam height]
   "The shader's hitThreshold on the CPU: a step under this at `dist` from the camera
@@ -86,8 +87,8 @@ centre's row and the camera."
                                                         [2 3])}
               {:name "uAmbient" :type :float :values [lighting.ambient]}
               {:name "uExposure" :type :float :values [lighting.exposure]}])
-    (when plan.lighting.ao?
-      (table.insert out {:name "uAo" :type :vec2 :values [lighting.ao lighting.ao-radius]}))
+    (each [_ name (ipairs plan.lighting.features)]
+      (append! out ((. (features.lookup name) :uniforms) lighting)))
     (when plan.lighting.fog?
       (table.insert out {:name "uFog" :type :vec4
                          :values (doto (linear lighting.fog-color) (table.insert lighting.fog))})

@@ -2,6 +2,7 @@
 ;; defaults. A scene file is Fennel data; the result is plain data with every field set.
 
 (local fennel (require :fennel))
+(local features (require :src.render.features))
 (local primitives (require :src.sdf.primitives))
 (local operations (require :src.sdf.operations))
 (local lower (require :src.sdf.lower))
@@ -78,12 +79,13 @@ scene never changes another's defaults."
    :sun-size {:type :sun-size :default 1.5}     ; the sun disc's radius, degrees (0: none)
    :ambient {:type :intensity :default 0.5}      ; light from the sky, times its colour
    :specular {:type :boolean :default true}
-   :ao {:type :fraction :default 0.8}            ; ambient occlusion strength (0: off)
-   :ao-radius {:type :positive :default 0.5}
    :fog {:type :fog :default 0}                  ; density per unit (0: off)
    :fog-color {:type :color :default [0.75 0.85 0.95]}
    :fog-falloff {:type :fog :default 0}          ; thinning per unit of height (0: even)
    :exposure {:type :intensity :default 1}})
+
+;; And the features' own settings (src/render/features/: ambient occlusion, rim light).
+(each [k v (pairs (features.settings))] (tset lighting-spec k v))
 
 (local light-specs
   {:sun {:direction {:type :direction :default [0.4 -0.3 0.85]}   ; toward the sun

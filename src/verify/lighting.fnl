@@ -5,6 +5,7 @@
 ;; the distance field, its marches and its normals.
 
 (local uniforms (require :src.render.uniforms))
+(local feature-set (require :src.render.features))
 
 (local sqrt math.sqrt)
 (local exp math.exp)
@@ -52,7 +53,14 @@ the sky, and the surface points met ([x y z] each)."
         map T.map
         march T.march
         threshold T.threshold
-        normal-delta T.normal-delta]
+        normal-delta T.normal-delta
+        ;; The features' terms (src/render/features/), by the view's slot.
+        terms (fn [slot]
+                (icollect [_ name (ipairs features.features)]
+                  (let [d (feature-set.lookup name)]
+                    (when (= d.slot slot) (d.cpu L T)))))
+        occlusion-terms (terms :occlusion)
+        surface-terms (terms :surface)]
 
     (fn sky [dx dy dz]
       (let [w (sqrt (clamp01 dz))
@@ -152,18 +160,6 @@ the sky, and the surface points met ([x y z] each)."
                                          (+ b (* lb (mix 1 ab mirror) spec)))))))))))
       (values r g b))
 
-    (fn occlusion [px py pz nx ny nz]
-      (var occ 0)
-      (var weight 1)
-      (var total 0)
-      (for [i 1 5]
-        (let [h (/ (* L.ao-radius i) 5)
-              d (map (+ px (* nx h)) (+ py (* ny h)) (+ pz (* nz h)))]
-          (set occ (+ occ (* weight (clamp01 (/ (- h d) h)))))
-          (set total (+ total weight))
-          (set weight (* weight 0.5))))
-      (clamp01 (- 1 (/ (* L.ao occ) total))))
-
     (fn fog-transmittance [oz dz t]
       (let [k (* L.fog-falloff dz t)
             thinning (if (> (math.abs k) 0.0001) (/ (- 1 (exp (- k))) k) 1)]
@@ -204,15 +200,21 @@ the sky, and the surface points met ([x y z] each)."
                   f0 (mix 0.04 1 mirror)
                   smooth (- 1 roughness)
                   reflected (* (+ f0 (* (- 1 f0) (math.pow (- 1 cos-view) 5))) smooth smooth)
-                  occ (if features.ao? (occlusion px py pz nx ny nz) 1)
+                  occ (accumulate [occ 1 _ f (ipairs occlusion-terms)]
+                        (* occ (f px py pz nx ny nz)))
                   sky-w (+ 0.5 (* 0.5 nz))
                   amb (* L.ambient occ)
                   (lr lg lb) (direct-light px py pz nx ny nz (- vx) (- vy) (- vz) ar ag ab
                                            mirror roughness)
                   keep (- 1 reflected)
-                  sr (+ (* keep (+ lr (* ar (mix hr zr sky-w) amb))) (* ar emission))
-                  sg (+ (* keep (+ lg (* ag (mix hg zg sky-w) amb))) (* ag emission))
-                  sb (+ (* keep (+ lb (* ab (mix hb zb sky-w) amb))) (* ab emission))
+                  sky-r (mix hr zr sky-w) sky-g (mix hg zg sky-w) sky-b (mix hb zb sky-w)
+                  surface {:p [px py pz] :n [nx ny nz] :v [(- vx) (- vy) (- vz)]
+                           :albedo [ar ag ab] : cos-view :sky [sky-r sky-g sky-b]}
+                  (sr sg sb) (accumulate [(r g b) (values (+ (* keep (+ lr (* ar sky-r amb))) (* ar emission))
+                                                          (+ (* keep (+ lg (* ag sky-g amb))) (* ag emission))
+                                                          (+ (* keep (+ lb (* ab sky-b amb))) (* ab emission)))
+                                          _ f (ipairs surface-terms)]
+                               (let [(dr dg db) (f surface)] (values (+ r dr) (+ g dg) (+ b db))))
                   through (if features.fog? (fog-transmittance qz vz t) 1)]
               (table.insert path (or i 0))
               (table.insert points [px py pz])

@@ -1,6 +1,8 @@
 // Ambient occlusion: five samples along the normal out to uAo.y; each finds how much
 // nearer the surfaces are than its own height, the nearer samples weighing more.
 // uAo.x scales the darkening.
+uniform vec2 uAo;                      // strength, radius
+
 float occlusion(vec3 p, vec3 n) {
     float occ = 0.0;
     float weight = 1.0;

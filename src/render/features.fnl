@@ -1,0 +1,82 @@
+;; Lighting features of the modern model, each declared once: one descriptor file in
+;; src/render/features/ and its chunk, found by listing that folder. The loader takes
+;; their settings into the :lighting section, the plan keeps those that are on (and
+;; so the key), codegen includes their chunks and fills the modern view's slots with
+;; their lines, the uniforms send theirs, and the CPU reference
+;; (src/verify/lighting.fnl) adds their terms at the same places.
+;;
+;; A descriptor:
+;;   :name      keyword; :doc one line
+;;   :settings  {:field {:type :default}}: fields of a scene's :lighting (types as
+;;              src/scene/load.fnl checks them)
+;;   :on?       (fn [lighting]) -> whether the scene's checked :lighting uses it
+;;   :uniforms  (fn [lighting]) -> [{:name :type :values}] (see src/render/uniforms.fnl)
+;;   :chunk     the GLSL file holding its uniforms' declarations and its functions
+;;   :slot      the modern view's slot (shaders/views/modern.glsl) its :lines go into:
+;;              :occlusion (lines that scale `occ`, the sky light's share) or
+;;              :surface (lines that add to `surface`, the light leaving the point)
+;;   :lines     the GLSL lines for that slot
+;;   :cpu       (fn [lighting tracer]) -> the slot's term on the CPU, in double:
+;;              :occlusion (fn [px py pz nx ny nz]) -> a factor;
+;;              :surface (fn [s]) -> r g b to add, s a table of the hit: :p :n :v
+;;              (toward the viewer) :albedo (linear) :cos-view :sky (the sky's light
+;;              along the normal, linear)
+;;   :reach     optional (fn [lighting]) -> how far from a surface its distance
+;;              queries look (a field lists objects at least that near each cell)
+
+(local files (require :src.util.files))
+
+(local dir "src/render/features")
+
+(local slots {:occlusion true :surface true})
+
+(fn check-descriptor [d file]
+  (fn need [ok? what] (assert ok? (.. file ": feature " what)))
+  (need (= (type d.name) :string) "needs a :name")
+  (need (= (type d.doc) :string) "needs :doc")
+  (need (= (type d.settings) :table) "needs :settings")
+  (need (= (type d.on?) :function) "needs :on?")
+  (need (= (type d.uniforms) :function) "needs :uniforms")
+  (need (= (type d.chunk) :string) "needs a :chunk")
+  (need (. slots d.slot) (.. "needs a :slot, one of the modern view's: occlusion, surface"))
+  (need (= (type d.lines) :table) "needs :lines")
+  (need (= (type d.cpu) :function) "needs :cpu")
+  d)
+
+(local all
+  (let [out []]
+    (each [_ name (ipairs (assert (files.list-project dir)))]
+      (let [base (name:match "^(.-)%.fnl$")]
+        (when base
+          (table.insert out (check-descriptor (require (.. "src.render.features." base))
+                                              (.. dir "/" name))))))
+    (table.sort out (fn [a b] (< a.name b.name)))
+    out))
+
+(local by-name (collect [_ d (ipairs all)] d.name d))
+
+(fn settings []
+  "Every feature's settings, merged: field -> {:type :default}."
+  (let [out {}]
+    (each [_ d (ipairs all)]
+      (each [k v (pairs d.settings)] (tset out k v)))
+    out))
+
+(fn active [lighting]
+  "The names of the features `lighting` (a checked :lighting section) has on, in
+name order."
+  (icollect [_ d (ipairs all)] (when (d.on? lighting) d.name)))
+
+(fn lookup [name]
+  "The descriptor of feature `name`."
+  (. by-name name))
+
+(fn slot-lines [names slot]
+  "The lines the features `names` put into the modern view's `slot`."
+  (let [out []]
+    (each [_ name (ipairs names)]
+      (let [d (. by-name name)]
+        (when (= d.slot slot) (each [_ l (ipairs d.lines)] (table.insert out l)))))
+    out))
+
+{: all : settings : active : lookup : slot-lines : slots}

@@ -1,0 +1,28 @@
+;; Ambient occlusion: the sky's light darkened where surfaces crowd the normal.
+(local {: min : max} math)
+
+(fn clamp01 [v] (min 1 (max 0 v)))
+
+{:name :occlusion
+ :doc "Ambient occlusion: five distance samples along the normal darken the sky's light."
+ :settings {:ao {:type :fraction :default 0.8}          ; strength (0: off)
+            :ao-radius {:type :positive :default 0.5}}   ; how far along the normal
+ :on? (fn [l] (> l.ao 0))
+ :uniforms (fn [l] [{:name "uAo" :type :vec2 :values [l.ao l.ao-radius]}])
+ :chunk "shaders/shading/modern/occlusion.glsl"
+ :slot :occlusion
+ :lines ["occ *= occlusion(p, n);"]
+ :reach (fn [l] l.ao-radius)
+ ;; occlusion() in the chunk: nearer samples weigh more.
+ :cpu (fn [l T]
+        (fn [px py pz nx ny nz]
+          (var occ 0)
+          (var weight 1)
+          (var total 0)
+          (for [i 1 5]
+            (let [h (/ (* l.ao-radius i) 5)
+                  d (T.map (+ px (* nx h)) (+ py (* ny h)) (+ pz (* nz h)))]
+              (set occ (+ occ (* weight (clamp01 (/ (- h d) h)))))
+              (set total (+ total weight))
+              (set weight (* weight 0.5))))
+          (clamp01 (- 1 (/ (* l.ao occ) total)))))}
