@@ -85,10 +85,10 @@
           (each [_ line (ipairs ["uniform vec4 uTape[16];" "uniform int uReflections;"
                                  ;; A few objects are written out one by one, reading the
                                  ;; copies made once per pixel.
-                                 "    // objects[5]: sphere\n    {\n        vec3 p1 = opTranslate(p, gTape[11].xyz);\n        float d2 = sdSphere(p1, gTape[11].w);\n        d = min(d, d2);\n    }"
-                                 "        float d2 = sdBox(p1, gTape[7].xyz);"
-                                 "        float d2 = sdPlane(p, gTape[14].xyz, gTape[14].w);"
-                                 "        vec4 m3 = gTape[8];\n        if (d2 < d) { d = d2; color = m3.rgb; }"])]
+                                 "    // objects[5]: sphere\n    {\n        vec3 p1 = opTranslate(p, uTape[11].xyz);\n        float d2 = sdSphere(p1, uTape[11].w);\n        d = min(d, d2);\n    }"
+                                 "        float d2 = sdBox(p1, uTape[7].xyz);"
+                                 "        float d2 = sdPlane(p, uTape[14].xyz, uTape[14].w);"
+                                 "        vec4 m3 = uTape[8];\n        if (d2 < d) { d = d2; color = m3.rgb; }"])]
             (assert-has text line))
           (assert-lacks text "for (int i = 0; i < 2;")
           (assert-lacks text "for (int i = 0; i < 3;")
@@ -106,7 +106,7 @@
           (assert-lacks text "sdBox")
           ;; An unplaced plane reads the shader's point: its height takes the camera
           ;; off (see lower.fnl's hand-in).
-          (assert-has text "sdPlane(p, gTape[1].xyz, gTape[1].w)"))
+          (assert-has text "sdPlane(p, uTape[1].xyz, uTape[1].w)"))
         ;; Nine or more of one structure: a loop over their rows.
         (let [text (shader-of (.. "{:objects [" (string.rep "{:kind :sphere :pos [1 0 0]} " 9) "]}"))]
           (assert-has text "    for (int i = 0; i < 9; i++) {")
@@ -120,7 +120,7 @@
           (assert-lacks (strip-comments text) "bounce"))
         (let [text (shader-of "{:objects [{:kind :sphere}] :render {:reflections 1}}")]
           (assert-has text "uniform int uReflections;")
-          (assert-has text "for (int bounce = 1; bounce <= gReflections; bounce++) {"))))
+          (assert-has text "for (int bounce = 1; bounce <= uReflections; bounce++) {"))))
 
     (it "has no shadow code when shadows are off"
       (fn []
@@ -144,7 +144,7 @@
         (let [text (codegen.shader (assert (plan.scene->plan seed {:uber? true})))]
           (each [_ line (ipairs ["uniform bool uShadows;"
                                  "uniform bool uGlow;" "uniform int uReflections;"
-                                 "if (gShadows) {" "if (gGlow) {"])]
+                                 "if (uShadows) {" "if (uGlow) {"])]
             (assert-has text line)))))
 
     (it "reads each uniform once per pixel, into a global copy, but arrays indexed in a loop"
@@ -157,9 +157,14 @@
                                  "    float nothing = 0.0 / gl_FragCoord.x;"
                                  "void main() {\n    loadUniforms();"])]
             (assert-has text line))
-          ;; Outside the declarations and loadUniforms, no uniform is read but the
-          ;; resolution.
-          (let [body (: (text:gsub "void loadUniforms%(%) {.-\n}" "") :gsub "\nuniform [^\n]*" "")]
+          ;; The code reads uName; `#define uName gName` makes it the copy's read:
+          ;; once the preprocessor has run, outside the declarations and
+          ;; loadUniforms no uniform is read but the resolution.
+          (assert-has text "#define uDrawDist gDrawDist")
+          (assert-has text "#undef uDrawDist")
+          (let [body (: ((. (require :test.support.glslang) :preprocessed) text)
+                        :gsub "void loadUniforms%(%) *{.-\n}" "")
+                body (body:gsub "\nuniform [^\n]*" "")]
             ;; (and the bounding spheres, read once per ray in a loop).
             (each [name (body:gmatch "%f[%w_](u%u[%w_]*)")]
               (assert.is_true (or (= name "uResolution") (= name "uBounds")) name)))
@@ -200,13 +205,13 @@
               trees (shader-of "{:objects [{:kind :sphere} {:kind :plane} {:kind :torus :radius 1 :thickness 0.2 :pos [4 0 0]}]}" nil :core)
               scene-normals (shader-of "{:render {:normals-of :scene} :objects [{:kind :sphere} {:kind :box}]}" nil :core)]
           (assert-has text "vec3 gradBox(vec3 p, vec3 h) {")
-          (assert-has text "    if (gObject == 0) {  // objects[1]: sphere\n        vec3 p1 = opTranslate(p, gTape[0].xyz);\n        n = gradSphere(p1, gTape[0].w);\n    }")
-          (assert-has text "    if (gObject == 1) {  // objects[2]: box\n        vec3 p1 = opTranslate(p, gTape[2].xyz);\n        n = gradBox(p1, gTape[3].xyz);\n    }")
-          (assert-has text "    if (gObject == 2) {  // objects[3]: plane\n        n = gradPlane(p, gTape[6].xyz, gTape[6].w);\n    }")
+          (assert-has text "    if (gObject == 0) {  // objects[1]: sphere\n        vec3 p1 = opTranslate(p, uTape[0].xyz);\n        n = gradSphere(p1, uTape[0].w);\n    }")
+          (assert-has text "    if (gObject == 1) {  // objects[2]: box\n        vec3 p1 = opTranslate(p, uTape[2].xyz);\n        n = gradBox(p1, uTape[3].xyz);\n    }")
+          (assert-has text "    if (gObject == 2) {  // objects[3]: plane\n        n = gradPlane(p, uTape[6].xyz, uTape[6].w);\n    }")
           (assert-lacks text "mapObject")
           (assert-lacks text "mapOthers")
           ;; A tree takes differences and the crease; the leaves return first.
-          (assert-has trees "        return gradSphere(p1, gTape[0].w);")
+          (assert-has trees "        return gradSphere(p1, uTape[0].w);")
           (assert-has trees "float d = mapOthers(p + s * e);")
           ;; One call of each in the crease normal: loops from gZero, not unrolled.
           (let [normal (trees:match "vec3 objectNormal.-\n}.-vec3 calcNormal.-\n}")]
@@ -231,7 +236,7 @@
     (it "generates a scene with no objects"
       (fn []
         (let [text (shader-of "{:objects []}" nil :core)]
-          (assert-has text "float map(vec3 p) {\n    float d = gDrawDist;\n    return d;\n}")
+          (assert-has text "float map(vec3 p) {\n    float d = uDrawDist;\n    return d;\n}")
           (assert-lacks text "uniform vec4")
           (assert-lacks text "sdSphere"))))))
 
@@ -252,7 +257,7 @@
           (assert-lacks normals "mapColor")
           (assert-lacks heat "mapColor")
           (assert-lacks heat "calcNormal")
-          (assert-has heat "float h = clamp(float(steps) / float(gMaxSteps), 0.0, 1.0);")
+          (assert-has heat "float h = clamp(float(steps) / float(uMaxSteps), 0.0, 1.0);")
           (assert-has glow "mapColor(ro + rd * t, surface);")
           (assert-lacks glow "calcNormal")
           (assert-has glow "return vec3(float(steps) / 100.0);"))))
@@ -340,7 +345,7 @@
         ;; about ints: array sizes, int loops, the int step counters, the header.
         (let [int-lines ["^#version 330 core$" "^%s*uniform [%w]+ [%w]+%[%d+%];$"
                          "^%s*for %(int i = 0; i < %w+; i%+%+%) {$"
-                         "^%s*for %(int bounce = 1; bounce <= gReflections; bounce%+%+%) {$"
+                         "^%s*for %(int bounce = 1; bounce <= uReflections; bounce%+%+%) {$"
                          "^%s*[%w]+ [%w]+%[%d+%];$" "^%s*g%w+%[%d+%] = u%w+%[%d+%];$"
                          "^%s*{ const int i = 0;$" "^%s*steps = 0;$" "^%s*steps = i %+ 1;$"
                          ;; object numbers for the nearest object's normal (map-object.glsl)

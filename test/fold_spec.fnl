@@ -37,9 +37,9 @@
           (assert.truthy (source:find "sdOctahedron%(p%d+, 1%.5%)") source)
           (assert.truthy (source:find "vec3(1.0, 1.0, 2.0)" 1 true))
           ;; ... the placement (made camera-relative on upload) is read from uTape.
-          (assert.truthy (source:find "opTranslate(p, gTape[0].xyz)" 1 true))
+          (assert.truthy (source:find "opTranslate(p, uTape[0].xyz)" 1 true))
           ;; No other row is read, nor copied once per pixel (load-once).
-          (assert.falsy (source:find "gTape%[[1-9]%d*%]%."))
+          (assert.falsy (source:find "uTape%[[1-9]%d*%]%."))
           (assert.falsy (source:find "uTape%[[1-9]%d*%] %+"))
           (assert.are_not.equal folded.key plain.key)
           ;; Another value: another folded key, the same unfolded one.

@@ -246,8 +246,8 @@
                   ;; and any hit shadows.
                   (let [(source n) (-> shader
                                        (: :gsub "raymarchTo%(p %+ n %* %(2%.0 %* normalDelta%(p%)%), l, reach,"
-                                          "raymarchTo(p + n * (2.0 * normalDelta(p)), l, gDrawDist,")
-                                       (: :gsub "if %(ts < reach%)" "if (ts < gDrawDist)"))
+                                          "raymarchTo(p + n * (2.0 * normalDelta(p)), l, uDrawDist,")
+                                       (: :gsub "if %(ts < reach%)" "if (ts < uDrawDist)"))
                         _ (assert.are.equal 1 n)
                         st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "light below a box, shadow past the light" st))

@@ -33,10 +33,18 @@ and forget cached ones."
 ;;; by the slot's lines at the same indentation. Nested lists flatten.
 
 (fn flatten-into [out indent lines]
+  ;; A uniform's declaration (emit-glsl.declare) stays an item of its own.
   (each [_ line (ipairs lines)]
-    (if (= (type line) :table)
-        (flatten-into out indent line)
+    (if (and (= (type line) :table) line.declare) (table.insert out line)
+        (= (type line) :table) (flatten-into out indent line)
         (table.insert out (if (= line "") "" (.. indent line))))))
+
+(fn chunk-declaration [line]
+  ;; A chunk's `uniform TYPE uName;` line as a declaration (emit-glsl.declare's
+  ;; data): chunks declare their uniforms so, and codegen places them (load-once).
+  (let [(ty name count trailer) (line:match "^uniform (%w+) (u[%w_]+)%[?(%d*)%]?;(.*)$")]
+    (when name
+      {:declare {:type ty : name :count (tonumber count) : trailer :text line}})))
 
 (fn fill-names [path line slots]
   ;; `line` of chunk `path` with each `@{NAME}` written as the name `slots` gives it
@@ -58,7 +66,7 @@ and forget cached ones."
             (let [given (. slots name)]
               (assert (= (type given) :table) (.. path ": no lines given for slot " name))
               (flatten-into out indent given))
-            (table.insert out (fill-names path line slots)))))
+            (table.insert out (or (chunk-declaration line) (fill-names path line slots))))))
     out))
 
 (fn fill [path slots]
@@ -90,8 +98,9 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
       (table.insert lines (.. "// objects: " plan.tape.count))
       (flatten-into lines "" (emit-glsl.declarations plan.tape)))
     (when (and plan.bounds (> plan.bounds.count 0))
-      (table.insert lines (.. "uniform vec4 uBounds[" plan.bounds.count
-                              "];  // bounding spheres of the finite objects (camera-relative)")))
+      (table.insert lines (emit-glsl.declare "vec4" "uBounds" plan.bounds.count
+                                             "bounding spheres of the finite objects (camera-relative)"
+                                             true)))
     (when (object-normals? plan)
       (table.insert lines "int gObject = -1;  // the object mapColor found nearest last (-1: none)"))
     (let [modern? (modern-materials? plan)]
@@ -105,18 +114,19 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
         (table.insert lines (.. "// modern lighting: " l.lights (if (= l.lights 1) " light" " lights")))
         (table.insert lines (.. "const int kLightCount = " l.lights ";"))
         (when l.soft? (table.insert lines (.. "const int kShadowSteps = " l.shadow-steps ";")))
-        (each [_ line (ipairs [(.. "uniform vec4 uLights[" l.lights "];      // point: position, range; sun: direction, 0")
-                               (.. "uniform vec4 uLightColors[" l.lights "];    // linear colour times intensity, softness")
-                               "uniform vec3 uSkyZenith;                // linear"
-                               "uniform vec3 uSkyHorizon;"
-                               "uniform vec2 uSunEdge;                  // cosines of the sun disc's outer, inner radius"
-                               "uniform float uAmbient;"
-                               "uniform float uExposure;"])]
-          (table.insert lines line))
+        (each [_ [ty name count note loop?]
+               (ipairs [["vec4" "uLights" l.lights "point: position, range; sun: direction, 0" true]
+                        ["vec4" "uLightColors" l.lights "linear colour times intensity, softness" true]
+                        ["vec3" "uSkyZenith" nil "linear"]
+                        ["vec3" "uSkyHorizon"]
+                        ["vec2" "uSunEdge" nil "cosines of the sun disc's outer, inner radius"]
+                        ["float" "uAmbient"]
+                        ["float" "uExposure"]])]
+          (table.insert lines (emit-glsl.declare ty name count note loop?)))
         (when l.fog?
-          (table.insert lines "uniform vec4 uFog;                     // linear colour, density")
-          (table.insert lines "uniform float uFogFalloff;             // per unit of height")
-          (table.insert lines "uniform float uCamHeight;              // the camera's world z"))))
+          (table.insert lines (emit-glsl.declare "vec4" "uFog" nil "linear colour, density"))
+          (table.insert lines (emit-glsl.declare "float" "uFogFalloff" nil "per unit of height"))
+          (table.insert lines (emit-glsl.declare "float" "uCamHeight" nil "the camera's world z")))))
     lines))
 
 (fn field-term [plan skip]
@@ -256,11 +266,12 @@ src/render/bounds.fnl)."
 
 (fn feature-uniforms [plan]
   (let [lines []]
-    (when plan.reflections? (table.insert lines "uniform int uReflections;"))
-    (when plan.relaxed? (table.insert lines "uniform float uRelaxation;  // over-relaxation factor"))
+    (when plan.reflections? (table.insert lines (emit-glsl.declare "int" "uReflections")))
+    (when plan.relaxed?
+      (table.insert lines (emit-glsl.declare "float" "uRelaxation" nil "over-relaxation factor")))
     (when plan.uber?
-      (table.insert lines "uniform bool uShadows;")
-      (table.insert lines "uniform bool uGlow;"))
+      (table.insert lines (emit-glsl.declare "bool" "uShadows"))
+      (table.insert lines (emit-glsl.declare "bool" "uGlow")))
     lines))
 
 (fn parts [path]
@@ -480,9 +491,7 @@ only when the plan has it."
                                       (- (. tests.second 1) 0.5) (- (. tests.second 2) 0.5))
                        (string.format "const float kContrast = %.6f;  // a luma difference this large is an edge"
                                       tests.contrast)]]
-        (table.insert sections
-                      (icollect [_ line (ipairs (. (parts "shaders/pipeline/adaptive.glsl") :tests))]
-                        (if (= line "// @slot constants") constants line)))))
+        (table.insert sections (fill-part "shaders/pipeline/adaptive.glsl" :tests {: constants}))))
     ;; With supersampling render() is one sample (renderSample); the entry point's
     ;; render() averages N x N of them.
     (table.insert sections (fill "shaders/pipeline/render.glsl"
@@ -547,10 +556,6 @@ only when the plan has it."
 (local max-varyings 28)
 (local varying-sizes {:float 1 :vec2 2 :vec3 3 :vec4 4 :int 1})
 
-(fn indexed-by-variable? [lines name]
-  (accumulate [found? false _ line (ipairs lines) &until found?]
-    (not= nil (line:find (.. "%f[%w_]" name "%[[^%d]")))))
-
 (fn pack-varyings [reads]
   ;; Flat varyings for the uniform reads `reads` ([{:read "uX[0]" :ty ty}]) that
   ;; fit: vec4 slots filled in order, a value never split across two. Returns read ->
@@ -580,45 +585,50 @@ only when the plan has it."
                         (= s.used 3) ", 0.0" "")
                     ");"))))))
 
-(fn read-indices [lines name]
-  "The constant indices at which `lines` read the uniform array `name` (a set)."
-  (let [used {}]
-    (each [_ line (ipairs lines)]
-      (when (not (line:match "^uniform "))
-        (each [i (line:gmatch (.. "%f[%w_]" name "%[(%d+)%]"))]
-          (tset used (tonumber i) true))))
-    used))
+(fn text-of [line]
+  (if (= (type line) :table) (declaration-text line.declare) line))
 
-(fn load-once [lines ?varyings?]
-  "`lines` (the shader's body, flattened) with each uniform read through a global
-copy, and the function that fills the copies: loadUniforms(), called first by every
-entry point. With `?varyings?` (LÖVE's entry) as many copies as fit in flat varyings
-come from a vertex stage of their own: returns the lines and the vertex stage's."
-  (let [names []
+;; How a declaration is written: as itself, unless the caller says otherwise (the
+;; Shadertoy export writes constants).
+(var declaration-text (fn [d] d.text))
+
+(fn load-once [declarations code ?varyings?]
+  "The shader's body: `declarations` (items from emit-glsl.declare or a chunk's
+uniform lines, in order) first, then the lines `code`, each uniform read through a
+global copy that loadUniforms(), called first by every entry point, fills. The copy
+gName of uName is declared after it and `#define uName gName` renames every read of
+the code that follows, the preprocessor's doing: no generated line is rewritten.
+Not copied: samplers, the resolution, arrays that code indexes by a variable (their
+:loop?). Of the tape's rows only those the code reads (emit-glsl.reads). With
+`?varyings?` (LÖVE's entry) as many copies as fit in flat varyings come from a
+vertex stage of their own: returns the lines and the vertex stage's."
+  (let [out []
+        copied []
         reads []
-        declarations {}
-        out []]
+        rows-read (emit-glsl.reads)]
     (var opaque? false)
-    (each [_ line (ipairs lines)]
-      (let [(ty name count) (line:match "^uniform (%w+) (u[%w_]+)%[?(%d*)%]?;")]
-        (if (and name (not (. read-directly name)) (not (ty:find "sampler"))
-                 (not (indexed-by-variable? lines name)))
-            (let [copy (.. "g" (name:sub 2))
-                  n (tonumber count)]
-              (table.insert names [name copy])
-              (tset declarations name line)
-              (table.insert out line)
-              (table.insert out (.. ty " " copy (if n (.. "[" n "]") "") ";"))
-              (if n
-                  ;; Only the elements the code reads (a folded tape reads only its
-                  ;; camera-relative rows).
-                  (let [used (read-indices lines name)]
-                    (for [i 0 (- n 1)]
-                      (when (. used i)
-                        (table.insert reads {:copy (string.format "%s[%d]" copy i) : ty :uniform name
-                                             :read (string.format "%s[%d]" name i)}))))
-                  (table.insert reads {: copy : ty :uniform name :read name})))
-            (table.insert out line))))
+    (each [_ {:declare d} (ipairs declarations)]
+      (table.insert out (declaration-text d))
+      (when (not (or (. read-directly d.name) (d.type:find "sampler") d.loop?))
+        (let [copy (.. "g" (d.name:sub 2))]
+          (table.insert copied [d.name copy])
+          (table.insert out (.. d.type " " copy (if d.count (.. "[" d.count "]") "") ";"))
+          (if d.count
+              ;; Only the elements the code reads (a folded tape reads only its
+              ;; camera-relative rows).
+              (for [i 0 (- d.count 1)]
+                (when (or (not= d.name "uTape") (. rows-read i))
+                  (table.insert reads {:copy (string.format "%s[%d]" copy i) :ty d.type
+                                       :uniform d.name :declaration d.text
+                                       :read (string.format "%s[%d]" d.name i)})))
+              (table.insert reads {: copy :ty d.type :uniform d.name :declaration d.text
+                                   :read d.name})))))
+    (table.insert out "")
+    (table.insert out "// Every read of a uniform below is of its copy (see load-once in src/render/codegen.fnl).")
+    (each [_ [name copy] (ipairs copied)] (table.insert out (.. "#define " name " " copy)))
+    (each [_ line (ipairs code)] (table.insert out line))
+    (table.insert out "")
+    (each [_ [name] (ipairs copied)] (table.insert out (.. "#undef " name)))
     (local (instead vertex-lines) (if ?varyings? (pack-varyings reads) {}))
     (local copies
       (icollect [_ {: copy : ty : read} (ipairs reads)]
@@ -626,14 +636,6 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
           (when (and wrap (wrap:find "opaque")) (set opaque? true))
           (string.format "    %s = %s;" copy
                          (if wrap (string.format wrap (or (. instead read) read)) read)))))
-    (for [i 1 (length out)]
-      (let [line (. out i)]
-        (when (not (line:match "^uniform ")) 
-          (var l line)
-          (each [_ [name copy] (ipairs names)]
-            (set l (l:gsub (.. "%f[%w_]" name "%f[^%w_]") copy)))
-          (tset out i l))))
-    (table.insert out "")
     (table.insert out "// Every uniform copied once per pixel (see load-once in src/render/codegen.fnl).")
     (table.insert out "void loadUniforms() {")
     (table.insert out "    // Through values the compiler cannot fold (see load-once in codegen.fnl).")
@@ -649,10 +651,10 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
               (let [used {}
                     vertex ["// Uniforms read once per vertex, not per pixel (see pack-varyings in"
                             "// src/render/codegen.fnl): flat varyings reach each pixel as broadcasts."]]
-                (each [_ {: uniform : read} (ipairs reads)]
+                (each [_ {: uniform : read : declaration} (ipairs reads)]
                   (when (and (. instead read) (not (. used uniform)))
                     (tset used uniform true)
-                    (table.insert vertex (. declarations uniform))))
+                    (table.insert vertex declaration)))
                 (for [i 0 (- (length vertex-lines) 1)]
                   (table.insert vertex (.. "flat out vec4 vLoad" i ";")))
                 (table.insert vertex "vec4 position(mat4 transform_projection, vec4 vertex_position) {")
@@ -664,16 +666,25 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
 (fn generate [plan target]
   (let [body []
         out []
-        sections [[(.. "// Generated by src/render/codegen.fnl for: " plan.key)]]]
+        sections []]
     (flatten-into out "" target.header)
     (when (> (length target.header) 0) (table.insert out ""))
+    (table.insert out (.. "// Generated by src/render/codegen.fnl for: " plan.key))
+    (table.insert out "")
+    (emit-glsl.reset-reads!)
     (each [_ s (ipairs (body-lines plan))] (table.insert sections s))
     (each [i s (ipairs sections)]
       (when (> i 1) (table.insert body ""))
       (flatten-into body "" s))
-    (let [(lines vertex) (if plan.load-once? (load-once body target.varyings?)
-                             (doto body (table.insert "")
-                                   (table.insert (.. "void loadUniforms() { gZero = int(" nothing "); }"))))]
+    ;; Every uniform is declared first, where the chunks and the plan declared them.
+    (let [declarations (icollect [_ l (ipairs body)] (when (= (type l) :table) l))
+          code (icollect [_ l (ipairs body)] (when (= (type l) :string) l))
+          (lines vertex) (if plan.load-once? (load-once declarations code target.varyings?)
+                             (doto (icollect [_ d (ipairs declarations)] (declaration-text d.declare))
+                               (table.insert "")
+                               (flatten-into "" code)
+                               (table.insert "")
+                               (table.insert (.. "void loadUniforms() { gZero = int(" nothing "); }"))))]
       ;; With a vertex stage the pixel stage's code goes under PIXEL (LÖVE compiles
       ;; the text once per stage, defining VERTEX or PIXEL).
       (when vertex
@@ -684,21 +695,25 @@ come from a vertex stage of their own: returns the lines and the vertex stage's.
           (table.insert out (.. "flat in vec4 vLoad" i ";"))))
       (flatten-into out "" lines)
       (table.insert out "")
-      (flatten-into out ""
-                    (fill target.entry
-                          {:mirror [(.. "float mirror = " (if plan.mirrors? "gMirror" "1.0") ";")
-                                    "return uProbeChannel == 0 ? vec4(d, color) : vec4(mirror, 0.0, 0.0, 1.0);"]}))
+      (each [_ l (ipairs (fill target.entry
+                               {:mirror [(.. "float mirror = " (if plan.mirrors? "gMirror" "1.0") ";")
+                                         "return uProbeChannel == 0 ? vec4(d, color) : vec4(mirror, 0.0, 0.0, 1.0);"]}))]
+        (table.insert out (text-of l)))
       (when vertex (table.insert out "#endif")))
     (.. (table.concat out "\n") "\n")))
 
-(fn shader [plan ?target]
+(fn shader [plan ?target ?declaration]
   "GLSL fragment shader text for `plan`. `?target` is :love (default: LÖVE's effect()
 entry point, the uniforms read once handed to pixels in flat varyings; :love-uniforms
 reads them from the uniforms instead), :core (a plain #version 330 core shader, for
-headless tests and glslangValidator) or :probe (LÖVE, one scene evaluation per pixel; see --probe). Returns the text, or nil and a message when a chunk cannot be read."
+headless tests and glslangValidator) or :probe (LÖVE, one scene evaluation per pixel; see --probe). `?declaration` (fn [d]) -> text writes each uniform's
+declaration (d: {:type :name :count :trailer :text}; the Shadertoy export writes
+constants). Returns the text, or nil and a message when a chunk cannot be read."
   (let [target (. targets (or ?target :love))
         _ (assert target (.. "unknown target " (tostring ?target)))
+        _ (set declaration-text (or ?declaration (fn [d] d.text)))
         (ok? result) (pcall generate plan target)]
+    (set declaration-text (fn [d] d.text))
     (if ok? result
         (and (= (type result) :table) (= result.marker chunk-error)) (values nil result.message)
         (error result 0))))

@@ -36,25 +36,24 @@ Returns the text, or nil and a message."
                             " spheres and boxes in float textures (a field), which a Shadertoy"
                             " shader cannot hold; export takes scenes of fewer than "
                             field.min-objects " spheres and boxes"))
-            (codegen.shader plan :shadertoy))
+            ;; Every uniform declared as a constant of its value, but the resolution.
+            (let [values-by-name (collect [_ u (ipairs (uniforms.pack scene plan (camera.from-scene scene) 1 1))]
+                                   u.name u)]
+              (var missing nil)
+              (let [text (codegen.shader plan :shadertoy
+                                         (fn [d]
+                                           (if (= d.name "uResolution") (.. "vec2 uResolution;" d.trailer)
+                                               (case (. values-by-name d.name)
+                                                 u (.. (constant u) d.trailer)
+                                                 _ (do (set missing d.name) d.text)))))]
+                (if missing (values nil (.. "export: no value for the uniform " missing))
+                    text))))
     (nil err) (values nil err)
-    text (let [values-by-name (collect [_ u (ipairs (uniforms.pack scene plan (camera.from-scene scene) 1 1))]
-                                u.name u)
-               out [(.. "// " scene.name ": exported by `love . --export-shader` (Shadertoy form; every")
+    text (let [out [(.. "// " scene.name ": exported by `love . --export-shader` (Shadertoy form; every")
                     "// value is baked in, so a changed scene needs another export)."]]
            (when scene.animated
              ;; Functions of time are Lua code run in the sandbox; GLSL cannot run them.
              (table.insert out "// The scene's functions of time are baked at t = 0 (iTime is not used)."))
-           (var missing nil)
-           (each [line (: (.. text "\n") :gmatch "([^\n]*)\n")]
-             (let [(name trailer) (line:match "^uniform %w+ ([%w_]+)[^;]*;(.*)$")]
-               (if (= name "uResolution") (table.insert out (.. "vec2 uResolution;" trailer))
-                   name (case (. values-by-name name)
-                          u (table.insert out (.. (constant u) trailer))
-                          _ (set missing name))
-                   (table.insert out line))))
-           (if missing
-               (values nil (.. "export: no value for the uniform " missing))
-               (.. (table.concat out "\n") "\n")))))
+           (.. (table.concat out "\n") "\n" text))))
 
 {: shadertoy}

@@ -23,11 +23,20 @@ with a decimal point or an exponent."
 ;; base + row + stride * i in the group's loop.
 (var group nil)
 
+;; The tape's rows the code emitted since `reset-reads!` reads (row -> true): only
+;; those are copied once per pixel (see load-once in src/render/codegen.fnl).
+(var rows-read {})
+
+(fn reset-reads! [] (set rows-read {}))
+
+(fn reads [] rows-read)
+
 (fn row-expr [row]
   (if group
       (let [at (+ group.base row)]
         (.. "uInstances[i * " group.stride (if (= at 0) "" (.. " + " at)) "]"))
-      (.. "uTape[" row "]")))
+      (do (tset rows-read row true)
+          (.. "uTape[" row "]"))))
 
 (fn arg-expr [ref]
   (if ref.literal (literal ref.literal)
@@ -161,14 +170,23 @@ it)."
         (when (and prim prim.desc.gradient-glsl (which o)) (add prim.desc))))
     out))
 
+(fn declare [ty name ?count ?comment ?loop?]
+  "A uniform's declaration as data (codegen writes it, and its copy; see load-once
+there): GLSL type, name, array size, comment, and whether code indexes it by a
+variable (then it is read where used, never copied)."
+  (let [trailer (if ?comment (.. "  // " ?comment) "")]
+    {:declare {:type ty : name :count ?count :loop? ?loop? : trailer
+               :text (.. "uniform " ty " " name (if ?count (.. "[" ?count "]") "") ";" trailer)}}))
+
 (fn declarations [tape]
-  "The parameter arrays' declarations: the tape's rows, and the instance groups'."
+  "The parameter arrays' declarations (see `declare`): the tape's rows, read at
+constant indices, and the instance groups', in loops."
   [(if (> (length tape.rows) 0)
-       [(.. "uniform vec4 uTape[" (length tape.rows) "];  // tree parameters and materials")]
+       [(declare "vec4" "uTape" (length tape.rows) "tree parameters and materials")]
        [])
    (if (> (length tape.instances.rows) 0)
-       [(.. "uniform vec4 uInstances[" (length tape.instances.rows)
-            "];  // instance groups' parameters and materials, one stride each")]
+       [(declare "vec4" "uInstances" (length tape.instances.rows)
+                 "instance groups' parameters and materials, one stride each" true)]
        [])])
 
 (fn object-comment [o]
@@ -321,6 +339,6 @@ the ray's rate along its normal (the gradient). `p` is the ray's origin."
                                "}"])
                     "}"])))))
 
-{: functions : gradient-functions : declarations : distance-terms : others-terms
+{: functions : gradient-functions : declarations : declare : reset-reads! : reads : distance-terms : others-terms
  : color-terms : object-terms : gradient-terms : plane-terms : exact? : text-lines
  : float-literal}

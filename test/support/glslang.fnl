@@ -13,4 +13,16 @@ false and the output."
       (os.remove path)
       (values (not= nil (out:match "exit:0%s*$")) out))))
 
-{: ok?}
+(fn preprocessed [source]
+  "`source` as the GLSL preprocessor leaves it (glslangValidator -E): macros
+expanded, directives gone."
+  (let [base (os.tmpname)
+        path (.. base ".frag")]
+    (os.remove base)
+    (with-open [f (assert (io.open path :wb))] (f:write source))
+    (let [out (with-open [p (io.popen (.. "glslangValidator -E " path " 2>&1"))]
+                (p:read :*a))]
+      (os.remove path)
+      out)))
+
+{: ok? : preprocessed}
