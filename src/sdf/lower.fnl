@@ -371,9 +371,12 @@ is a translation or a plane; else nil."
         ;; ends with its box's max on that point: its box becomes the guard's.
         own? (and placed placed.far? (= :far (?. code n :op))
                   (= (?. code (- n 1) :pin) (?. code 1 :pout)))
-        ;; Only an operation gets a guard: it skips a subtree. A primitive's own
-        ;; distance costs about what its box's does, and holds it.
-        guard (when (and placed placed.box (> (length placed.children) 0)
+        ;; An exact primitive gets no guard: its own distance costs about what its
+        ;; box's does, and is never below it, so the max would change nothing. An
+        ;; operation's guard skips a subtree; a bound primitive's (an ellipsoid, a
+        ;; custom node) also lifts its weak bound far away to the box's.
+        guard (when (and placed placed.box
+                         (or (> (length placed.children) 0) (not= placed.class :exact))
                          (= :point (?. code 1 :op)) st.far-field?)
                 (table.insert st.key "guard")
                 (if own?
