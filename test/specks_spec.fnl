@@ -177,7 +177,12 @@ by its 4 x 4 render (see fireflies.unsupported)."
                                                 ["scenes/machined-part.fnl" :modern 14]
                                                 ["scenes/organic.fnl" :classic 0]
                                                 ["scenes/organic.fnl" :modern 1]
-                                                ["scenes/platonic-shelf.fnl" :classic 1]
+                                                ;; 2 since its wall became a half-space and
+                                                ;; the scene bounded (issue 28): the steps
+                                                ;; start elsewhere and a second silhouette
+                                                ;; pixel (the blue box's edge) is a near
+                                                ;; miss; both lie on silhouettes.
+                                                ["scenes/platonic-shelf.fnl" :classic 2]
                                                 ["scenes/platonic-shelf.fnl" :modern 3]
                                                 ["scenes/seed.fnl" nil 1]
                                                 ["scenes/spheres.fnl" nil 0]
