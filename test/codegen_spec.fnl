@@ -87,7 +87,7 @@
                                  ;; copies made once per pixel.
                                  "    // objects[5]: sphere\n    {\n        vec3 p1 = opTranslate(p, uTape[11].xyz);\n        float d2 = sdSphere(p1, uTape[11].w);\n        d = min(d, d2);\n    }"
                                  "        float d2 = sdBox(p1, uTape[7].xyz);"
-                                 "        float d2 = sdPlane(p, uTape[14].xyz, uTape[14].w);"
+                                 "        float d2 = sdGround(p, uTape[14].xyzw);"
                                  "        vec4 m3 = uTape[8];\n        if (d2 < d) { d = d2; color = m3.rgb; }"])]
             (assert-has text line))
           (assert-lacks text "for (int i = 0; i < 2;")
@@ -105,7 +105,9 @@
           (assert-lacks text "sdSphere")
           (assert-lacks text "sdBox")
           ;; An unplaced plane reads the shader's point: its height takes the camera
-          ;; off (see lower.fnl's hand-in).
+          ;; off (see lower.fnl's hand-in). Facing up, it is the ground form.
+          (assert-has text "sdGround(p, uTape[1].xyzw)"))
+        (let [text (shader-of "{:objects [{:kind :plane :normal [0 1 1]}]}")]
           (assert-has text "sdPlane(p, uTape[1].xyz, uTape[1].w)"))
         ;; Nine or more of one structure: a loop over their rows.
         (let [text (shader-of (.. "{:objects [" (string.rep "{:kind :sphere :pos [1 0 0]} " 9) "]}"))]
@@ -207,7 +209,7 @@
           (assert-has text "vec3 gradBox(vec3 p, vec3 h) {")
           (assert-has text "    if (gObject == 0) {  // objects[1]: sphere\n        vec3 p1 = opTranslate(p, uTape[0].xyz);\n        n = gradSphere(p1, uTape[0].w);\n    }")
           (assert-has text "    if (gObject == 1) {  // objects[2]: box\n        vec3 p1 = opTranslate(p, uTape[2].xyz);\n        n = gradBox(p1, uTape[3].xyz);\n    }")
-          (assert-has text "    if (gObject == 2) {  // objects[3]: plane\n        n = gradPlane(p, uTape[6].xyz, uTape[6].w);\n    }")
+          (assert-has text "    if (gObject == 2) {  // objects[3]: plane\n        n = gradGround(p, uTape[6].xyzw);\n    }")
           (assert-lacks text "mapObject")
           (assert-lacks text "mapOthers")
           ;; A tree takes differences and the crease; the leaves return first.

@@ -286,7 +286,7 @@
           ;; Every object's normal in closed form: the plane's, the field's.
           (assert.is_truthy (text:find "if (gObject >= 0 && gObject < 100) n = fieldNormal(p, gObject);" 1 true))
           (assert.is_truthy (text:find "if (gObject == 100) {  // objects[1]: plane" 1 true))
-          (assert.is_truthy (text:find "n = gradPlane(p, " 1 true))
+          (assert.is_truthy (text:find "n = gradGround(p, " 1 true))
           (assert.is_nil (text:find "mapObject" 1 true))
           (assert.is_truthy (text:find "const bool kFieldOthers = false;" 1 true))
           (let [(out err) (export.shadertoy s p)]

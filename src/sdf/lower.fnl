@@ -139,7 +139,8 @@ translate(rotate(scale(node)))."
 (var lower-node nil)
 
 (fn lower-primitive [st code node desc pin material]
-  (let [dout (fresh! st "d")
+  (let [desc (or (and desc.variant (desc.variant node)) desc)
+        dout (fresh! st "d")
         mout (fresh! st "m")]
     (use! st desc.glsl-name desc)
     (each [_ h (ipairs (or desc.helpers []))] (use! st (.. "helper:" h) h))
@@ -343,6 +344,9 @@ is a translation or a plane; else nil."
                              ;; The normal and the height share one row.
                              (assert (and (= n.row h.row) (= n.offset 0) (= h.offset 3)))
                              (table.insert found.planes {:row n.row :height h}))
+            ;; The ground form's one vec4 is the same row.
+            [:prim :ground] (let [[nh] ins.args]
+                              (table.insert found.planes {:row nh.row :height nh}))
             _ (set ok? false)))
         (when ins.body (walk ins.body))))
     (when ok? (walk (icollect [i ins (ipairs code)] (when (> i 1) ins))))
