@@ -117,8 +117,8 @@
           (assert.is_nil (: (codegen.shader p :core) :find "float visibility(" 1 true)))
         (let [p (assert (plan.scene->plan (load (modern "{:fog 0.1 :lights [{:kind :sun} {:kind :point}]}"))))]
           ;; The point light's softness is 0 by default: its hard march is kept.
-          (assert.truthy (p.key:find "lighting={features={1=occlusion} fog?=true hard?=true lights=2" 1 true) p.key)
-          (assert.truthy (p.key:find "soft?=true specular?=true}" 1 true) p.key))))
+          (assert.truthy (p.key:find "lighting={features={1=fog 2=occlusion 3=specular} hard?=true lights=2" 1 true) p.key)
+          (assert.truthy (p.key:find "soft?=true}" 1 true) p.key))))
 
     (it "soft shadows hold the hard march only when a light may have softness 0"
       (fn []
@@ -190,8 +190,8 @@
 ;; unchanged), the comparison must fail.
 (local mutations
   [["ambient occlusion" "occ *= occlusion(p, n);" ""]
-   ["fog" "through = fogTransmittance(origin, dir, t);" ""]
-   ["specular" "c += radiance * mix(vec3(1.0), albedo, mirror)" "c += 0.0 * mix(vec3(1.0), albedo, mirror)"]
+   ["fog" "through *= fogThrough;" ""]
+   ["specular" "return radiance * mix(vec3(1.0), albedo, mirror)" "return 0.0 * mix(vec3(1.0), albedo, mirror)"]
    ["soft shadows" "seen = min(seen, closest / (softness * along));" ""]
    ["Fresnel reflection" "radiance += weight * sky(dir);" "radiance += weight * uSkyHorizon;"]
    ["emission" "+ albedo * gMaterial.y;" ";"]
@@ -230,16 +230,16 @@
     (it "is found by listing the folder, and its settings are the :lighting section's"
       (fn []
         (let [features (require :src.render.features)]
-          (assert.are.same [:occlusion :rim] (icollect [_ d (ipairs features.all)] d.name))
+          (assert.are.same [:fog :occlusion :rim :specular] (icollect [_ d (ipairs features.all)] d.name))
           (let [s (load (modern "{:rim 0.7 :rim-power 2}"))
                 p (assert (plan.scene->plan s))]
             (assert.are.equal 0.7 s.lighting.rim)
-            (assert.are.same [:occlusion :rim] p.lighting.features)
-            (assert.truthy (p.key:find "features={1=occlusion 2=rim}" 1 true))
+            (assert.are.same [:occlusion :rim :specular] p.lighting.features)
+            (assert.truthy (p.key:find "features={1=occlusion 2=rim 3=specular}" 1 true))
             (assert.truthy (: (codegen.shader p :core) :find "surface += rimLight(cosView, albedo, skyLight);" 1 true)))
           ;; Off by default: neither its code nor its uniform.
           (let [p (assert (plan.scene->plan (load (modern "{}"))))]
-            (assert.are.same [:occlusion] p.lighting.features)
+            (assert.are.same [:occlusion :specular] p.lighting.features)
             (assert.is_nil (: (codegen.shader p :core) :find "rimLight" 1 true)))
           (assert.truthy (: (load-error (modern "{:rim 2}")) :find "rim" 1 true)))))
 

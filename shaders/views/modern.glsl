@@ -34,7 +34,7 @@ vec3 dir = rd;
                    + albedo * gMaterial.y;
     // @slot surface
     float through = 1.0;
-    // @slot fog
+    // @slot segment
     weight *= through;
     radiance += weight * surface;
     weight *= reflected * mix(vec3(1.0), albedo, mirror);

@@ -123,10 +123,7 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
                         ["float" "uAmbient"]
                         ["float" "uExposure"]])]
           (table.insert lines (emit-glsl.declare ty name count note loop?)))
-        (when l.fog?
-          (table.insert lines (emit-glsl.declare "vec4" "uFog" nil "linear colour, density"))
-          (table.insert lines (emit-glsl.declare "float" "uFogFalloff" nil "per unit of height"))
-          (table.insert lines (emit-glsl.declare "float" "uCamHeight" nil "the camera's world z")))))
+))
     lines))
 
 (fn field-term [plan skip]
@@ -334,7 +331,6 @@ only when the plan has it."
                   "float ts = raymarch(o, l, shadowSteps);")]
     [(fill "shaders/shading/modern/sky.glsl" {})
      (icollect [_ name (ipairs l.features)] (fill (. (features.lookup name) :chunk) {}))
-     (if l.fog? (fill "shaders/shading/modern/fog.glsl" {}) [])
      (if (not plan.shadows?) []
          l.soft? (fill "shaders/shading/modern/shadow-soft.glsl"
                        {:hard-shadow (if l.hard?
@@ -350,7 +346,7 @@ only when the plan has it."
          (fill "shaders/shading/modern/shadow-hard.glsl" {:shadow-march [march]}))
      (fill "shaders/shading/modern/lights.glsl"
            {:shadow (if plan.shadows? ["visible = visibility(origin, l, reach, uLightColors[i].w);"] [])
-            :specular (if l.specular? (fill "shaders/shading/modern/specular.glsl" {}) [])})]))
+            :light (features.slot-lines l.features :light)})]))
 
 (fn view-lines [plan]
   (case plan.view
@@ -360,10 +356,7 @@ only when the plan has it."
                                          (if plan.reflections? "uReflections" "0") "; bounce++) {")]
                        :occlusion (features.slot-lines plan.lighting.features :occlusion)
                        :surface (features.slot-lines plan.lighting.features :surface)
-                       :fog (if plan.lighting.fog?
-                                ["through = fogTransmittance(origin, dir, t);"
-                                 "radiance += weight * ((1.0 - through) * fogColor(dir));"]
-                                [])})
+                       :segment (features.slot-lines plan.lighting.features :segment)})
                 (fill "shaders/views/shaded.glsl"
                   {:glow (if plan.glow? (when-switched plan "uGlow" (fill "shaders/shading/glow.glsl" {})) [])
                    :reflections (if plan.reflections?

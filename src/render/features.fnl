@@ -10,17 +10,24 @@
 ;;   :settings  {:field {:type :default}}: fields of a scene's :lighting (types as
 ;;              src/scene/load.fnl checks them)
 ;;   :on?       (fn [lighting]) -> whether the scene's checked :lighting uses it
-;;   :uniforms  (fn [lighting]) -> [{:name :type :values}] (see src/render/uniforms.fnl)
+;;   :uniforms  (fn [lighting cam-pos]) -> [{:name :type :values}] (src/render/uniforms.fnl)
 ;;   :chunk     the GLSL file holding its uniforms' declarations and its functions
-;;   :slot      the modern view's slot (shaders/views/modern.glsl) its :lines go into:
-;;              :occlusion (lines that scale `occ`, the sky light's share) or
-;;              :surface (lines that add to `surface`, the light leaving the point)
+;;   :slot      the slot its :lines go into: in the modern view (shaders/views/modern.glsl)
+;;              :occlusion (lines that scale `occ`, the sky light's share),
+;;              :surface (lines that add to `surface`, the light leaving the point) or
+;;              :segment (a path segment: lines that scale `through` and add to
+;;              `radiance`); in directLight (shaders/shading/modern/lights.glsl) :light
+;;              (each light's: lines that add to `c`, given `radiance` arriving)
 ;;   :lines     the GLSL lines for that slot
 ;;   :cpu       (fn [lighting tracer]) -> the slot's term on the CPU, in double:
 ;;              :occlusion (fn [px py pz nx ny nz]) -> a factor;
 ;;              :surface (fn [s]) -> r g b to add, s a table of the hit: :p :n :v
 ;;              (toward the viewer) :albedo (linear) :cos-view :sky (the sky's light
-;;              along the normal, linear)
+;;              along the normal, linear), and :mirror :roughness;
+;;              :light (fn [s lx ly lz lr lg lb]) -> r g b to add, for a light from
+;;              direction l whose radiance arrives;
+;;              :segment (fn [ox oy oz dx dy dz t]) -> the share that crosses the
+;;              segment, and r g b it adds (before the path's weight)
 ;;   :reach     optional (fn [lighting]) -> how far from a surface its distance
 ;;              queries look (a field lists objects at least that near each cell)
 
@@ -28,7 +35,7 @@
 
 (local dir "src/render/features")
 
-(local slots {:occlusion true :surface true})
+(local slots {:occlusion true :surface true :segment true :light true})
 
 (fn check-descriptor [d file]
   (fn need [ok? what] (assert ok? (.. file ": feature " what)))
@@ -38,7 +45,7 @@
   (need (= (type d.on?) :function) "needs :on?")
   (need (= (type d.uniforms) :function) "needs :uniforms")
   (need (= (type d.chunk) :string) "needs a :chunk")
-  (need (. slots d.slot) (.. "needs a :slot, one of the modern view's: occlusion, surface"))
+  (need (. slots d.slot) "needs a :slot: occlusion, surface, segment or light")
   (need (= (type d.lines) :table) "needs :lines")
   (need (= (type d.cpu) :function) "needs :cpu")
   d)

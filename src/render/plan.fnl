@@ -221,8 +221,6 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :shadow-bounds? (not= false options.shadow-bounds?)
               ;; The features it has on (src/render/features/), by name.
               :features (features.active l)
-              :fog? (> l.fog 0)
-              :specular? l.specular
               ;; Steps of a soft shadow ray at most: its penumbra estimate needs every
               ;; step, so it cannot skip empty space by bounds; a ray that has not
               ;; reached the light by then counts as lit.

@@ -61,10 +61,7 @@ centre's row and the camera."
             (append! out [x y z w]))))
     out))
 
-(fn linear [[r g b] ?k]
-  "An sRGB colour in linear light (the shader's gamma of 2.2), times `?k`."
-  (let [k (or ?k 1)]
-    [(* k (math.pow r 2.2)) (* k (math.pow g 2.2)) (* k (math.pow b 2.2))]))
+(local {: linear} (require :src.render.color))
 
 (fn lighting-uniforms [lighting plan cam-pos]
   "The modern model's uniforms (see src/render/codegen.fnl)."
@@ -88,12 +85,7 @@ centre's row and the camera."
               {:name "uAmbient" :type :float :values [lighting.ambient]}
               {:name "uExposure" :type :float :values [lighting.exposure]}])
     (each [_ name (ipairs plan.lighting.features)]
-      (append! out ((. (features.lookup name) :uniforms) lighting)))
-    (when plan.lighting.fog?
-      (table.insert out {:name "uFog" :type :vec4
-                         :values (doto (linear lighting.fog-color) (table.insert lighting.fog))})
-      (table.insert out {:name "uFogFalloff" :type :float :values [lighting.fog-falloff]})
-      (table.insert out {:name "uCamHeight" :type :float :values [(. cam-pos 3)]}))
+      (append! out ((. (features.lookup name) :uniforms) lighting cam-pos)))
     out))
 
 (fn field-uniforms [fd cam-pos]

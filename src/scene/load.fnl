@@ -78,13 +78,10 @@ scene never changes another's defaults."
    :sky-horizon {:type :color :default [0.75 0.85 0.95]}
    :sun-size {:type :sun-size :default 1.5}     ; the sun disc's radius, degrees (0: none)
    :ambient {:type :intensity :default 0.5}      ; light from the sky, times its colour
-   :specular {:type :boolean :default true}
-   :fog {:type :fog :default 0}                  ; density per unit (0: off)
-   :fog-color {:type :color :default [0.75 0.85 0.95]}
-   :fog-falloff {:type :fog :default 0}          ; thinning per unit of height (0: even)
    :exposure {:type :intensity :default 1}})
 
-;; And the features' own settings (src/render/features/: ambient occlusion, rim light).
+;; And the features' own settings (src/render/features/: ambient occlusion, fog, rim
+;; light, specular highlights).
 (each [k v (pairs (features.settings))] (tset lighting-spec k v))
 
 (local light-specs

@@ -38,13 +38,9 @@ the sky, and the surface points met ([x y z] each)."
         lights (icollect [_ l (ipairs L.lights)]
                  (let [[r g b] (uniforms.linear l.color l.intensity)]
                    {:sun? (= l.kind :sun) :dir l.direction :pos l.pos :range l.range
-                    :softness l.softness : r : g : b
-                    ;; The fog's tint toward a sun: its colour over its brightest part.
-                    :tint (let [m (max r g b 0.000001)] [(/ r m) (/ g m) (/ b m)])}))
+                    :softness l.softness : r : g : b}))
         [zr zg zb] (uniforms.linear L.sky-zenith)
         [hr hg hb] (uniforms.linear L.sky-horizon)
-        [fr fg fb] (uniforms.linear L.fog-color)
-        fog-max (max fr fg fb)
         sun (* (/ L.sun-size 180) math.pi)
         (edge0 edge1) (if (> sun 0) (values (math.cos sun) (math.cos (* 0.8 sun))) (values 2 3))
         shadows? plan.shadows?
@@ -60,7 +56,9 @@ the sky, and the surface points met ([x y z] each)."
                   (let [d (feature-set.lookup name)]
                     (when (= d.slot slot) (d.cpu L T)))))
         occlusion-terms (terms :occlusion)
-        surface-terms (terms :surface)]
+        surface-terms (terms :surface)
+        light-terms (terms :light)
+        segment-terms (terms :segment)]
 
     (fn sky [dx dy dz]
       (let [w (sqrt (clamp01 dz))
@@ -127,6 +125,7 @@ the sky, and the surface points met ([x y z] each)."
 
     (fn direct-light [px py pz nx ny nz vx vy vz ar ag ab mirror roughness]
       (var (r g b) (values 0 0 0))
+      (local surface {:n [nx ny nz] :v [vx vy vz] :albedo [ar ag ab] : mirror : roughness})
       (let [s (* 2 (normal-delta px py pz))
             ox (+ px (* nx s)) oy (+ py (* ny s)) oz (+ pz (* nz s))]
         (each [_ l (ipairs lights)]
@@ -147,33 +146,10 @@ the sky, and the surface points met ([x y z] each)."
                     k (* falloff lambert visible)
                     lr (* l.r k) lg (* l.g k) lb (* l.b k)]
                 (set (r g b) (values (+ r (* ar lr)) (+ g (* ag lg)) (+ b (* ab lb))))
-                (when features.specular?
-                  (let [(hx hy hz) (safe-normalize (+ lx vx) (+ ly vy) (+ lz vz))
-                        shininess (math.pow 2 (+ 1 (* 10 (- 1 roughness))))
-                        f0 (mix 0.04 1 mirror)
-                        fresnel (+ f0 (* (- 1 f0)
-                                         (math.pow (- 1 (clamp01 (+ (* lx hx) (* ly hy) (* lz hz)))) 5)))
-                        spec (* fresnel (/ (+ shininess 8) 8)
-                                (math.pow (clamp01 (+ (* nx hx) (* ny hy) (* nz hz))) shininess))]
-                    (set (r g b) (values (+ r (* lr (mix 1 ar mirror) spec))
-                                         (+ g (* lg (mix 1 ag mirror) spec))
-                                         (+ b (* lb (mix 1 ab mirror) spec)))))))))))
-      (values r g b))
-
-    (fn fog-transmittance [oz dz t]
-      (let [k (* L.fog-falloff dz t)
-            thinning (if (> (math.abs k) 0.0001) (/ (- 1 (exp (- k))) k) 1)]
-        (exp (- (* L.fog (exp (- (* L.fog-falloff oz))) t thinning)))))
-
-    (fn fog-color [dx dy dz]
-      (var (r g b) (values fr fg fb))
-      (each [_ l (ipairs lights)]
-        (when l.sun?
-          (let [[lx ly lz] l.dir
-                [tr tg tb] l.tint
-                w (math.pow (max (+ (* dx lx) (* dy ly) (* dz lz)) 0) 8)]
-            (set (r g b) (values (mix r (* tr fog-max) w) (mix g (* tg fog-max) w)
-                                 (mix b (* tb fog-max) w))))))
+                ;; The features' terms per light (specular).
+                (each [_ f (ipairs light-terms)]
+                  (let [(dr dg db) (f surface lx ly lz lr lg lb)]
+                    (set (r g b) (values (+ r dr) (+ g dg) (+ b db))))))))))
       (values r g b))
 
     (fn [ox oy oz dx dy dz t-primary]
@@ -209,19 +185,22 @@ the sky, and the surface points met ([x y z] each)."
                   keep (- 1 reflected)
                   sky-r (mix hr zr sky-w) sky-g (mix hg zg sky-w) sky-b (mix hb zb sky-w)
                   surface {:p [px py pz] :n [nx ny nz] :v [(- vx) (- vy) (- vz)]
-                           :albedo [ar ag ab] : cos-view :sky [sky-r sky-g sky-b]}
+                           :albedo [ar ag ab] : cos-view :sky [sky-r sky-g sky-b]
+                           : mirror : roughness}
                   (sr sg sb) (accumulate [(r g b) (values (+ (* keep (+ lr (* ar sky-r amb))) (* ar emission))
                                                           (+ (* keep (+ lg (* ag sky-g amb))) (* ag emission))
                                                           (+ (* keep (+ lb (* ab sky-b amb))) (* ab emission)))
                                           _ f (ipairs surface-terms)]
-                               (let [(dr dg db) (f surface)] (values (+ r dr) (+ g dg) (+ b db))))
-                  through (if features.fog? (fog-transmittance qz vz t) 1)]
+                               (let [(dr dg db) (f surface)] (values (+ r dr) (+ g dg) (+ b db))))]
               (table.insert path (or i 0))
               (table.insert points [px py pz])
-              (when features.fog?
-                (let [(gr gg gb) (fog-color vx vy vz)
-                      f (- 1 through)]
-                  (set (rr rg rb) (values (+ rr (* wr f gr)) (+ rg (* wg f gg)) (+ rb (* wb f gb))))))
+              ;; The features' terms on the segment (fog): what crosses it, and what
+              ;; they add, times the path's weight so far.
+              (var through 1)
+              (each [_ f (ipairs segment-terms)]
+                (let [(k gr gg gb) (f qx qy qz vx vy vz t)]
+                  (set through (* through k))
+                  (set (rr rg rb) (values (+ rr (* wr gr)) (+ rg (* wg gg)) (+ rb (* wb gb))))))
               (set (wr wg wb) (values (* wr through) (* wg through) (* wb through)))
               (set (rr rg rb) (values (+ rr (* wr sr)) (+ rg (* wg sg)) (+ rb (* wb sb))))
               (set (wr wg wb) (values (* wr reflected (mix 1 ar mirror))

@@ -1,6 +1,10 @@
 // Fog: the fraction of light that crosses a segment of a ray (exponential in the
 // density uFog.w, thinning with height by uFogFalloff: Quilez's closed form), and the
 // fog's colour along a direction, tinted toward each sun's colour near it.
+uniform vec4 uFog;                     // linear colour, density
+uniform float uFogFalloff;             // per unit of height
+uniform float uCamHeight;              // the camera's world z
+
 float fogTransmittance(vec3 ro, vec3 rd, float t) {
     float k = uFogFalloff * rd.z * t;
     float thinning = abs(k) > 0.0001 ? (1.0 - exp(-k)) / k : 1.0;

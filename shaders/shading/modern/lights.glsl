@@ -26,7 +26,7 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, vec3 albedo, float mirror, float roughn
             // @slot shadow
             vec3 radiance = uLightColors[i].rgb * (falloff * lambert * visible);
             c += albedo * radiance;
-            // @slot specular
+            // @slot light
         }
     }
     return c;
