@@ -18,13 +18,11 @@ uniform int uMaxSteps;
 uniform float uEpsilon;
 uniform float uDrawDist;
 uniform int uReflections;
-uniform vec4 uSphere[2];
-uniform vec3 uSphereColor[2];
-uniform vec3 uBoxCenter[3];
-uniform vec3 uBoxHalfSize[3];
-uniform vec3 uBoxColor[3];
-uniform float uPlaneHeight[1];
-uniform vec3 uPlaneColor[1];
+// The seed's objects as the marcher's tape holds them (src/sdf/lower.fnl), rows in
+// file order: each box its centre, its half size, its material; each sphere its centre
+// and radius, its material; the plane an unused row, its normal and height, its
+// material. Positions are camera-relative, as the marcher's.
+uniform vec4 uTape[16];
 
 // Nearest hit along ro + t rd for t in (0, tMax): distance, normal and colour.
 struct Hit { float t; vec3 n; vec3 color; };
@@ -68,12 +66,12 @@ void planeHit(vec3 ro, vec3 rd, float height, vec3 color, inout Hit h) {
 
 Hit trace(vec3 ro, vec3 rd) {
     Hit h = Hit(uDrawDist, vec3(0.0, 0.0, 1.0), vec3(0.0));
-    sphereHit(ro, rd, uSphere[0], uSphereColor[0], h);
-    sphereHit(ro, rd, uSphere[1], uSphereColor[1], h);
-    boxHit(ro, rd, uBoxCenter[0], uBoxHalfSize[0], uBoxColor[0], h);
-    boxHit(ro, rd, uBoxCenter[1], uBoxHalfSize[1], uBoxColor[1], h);
-    boxHit(ro, rd, uBoxCenter[2], uBoxHalfSize[2], uBoxColor[2], h);
-    planeHit(ro, rd, uPlaneHeight[0], uPlaneColor[0], h);
+    sphereHit(ro, rd, uTape[9], uTape[10].rgb, h);
+    sphereHit(ro, rd, uTape[11], uTape[12].rgb, h);
+    boxHit(ro, rd, uTape[0].xyz, uTape[1].xyz, uTape[2].rgb, h);
+    boxHit(ro, rd, uTape[3].xyz, uTape[4].xyz, uTape[5].rgb, h);
+    boxHit(ro, rd, uTape[6].xyz, uTape[7].xyz, uTape[8].rgb, h);
+    planeHit(ro, rd, uTape[14].w, uTape[15].rgb, h);
     return h;
 }
 
