@@ -41,11 +41,9 @@
  :args [{:name :n :type :vec3} {:name :h :type :float}]
  :pack (fn [o] (let [[x y z] o.normal] [x y z o.height]))
  :glsl-name "sdPlane"
- :glsl "float sdPlane(vec3 p, vec3 n, float h) {
-    return dot(p, n) - h;
-}"
- :cpu (fn [x y z nx ny nz h]
-        (- (+ (* x nx) (* y ny) (* z nz)) h))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z nx ny nz h]
+  (- (+ (* x nx) (* y ny) (* z nz)) h))"
  ;; The exact normal: the plane's own.
  :gradient-glsl "vec3 gradPlane(vec3 p, vec3 n, float h) {
     return n;
