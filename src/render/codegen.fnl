@@ -585,12 +585,12 @@ only when the plan has it."
                         (= s.used 3) ", 0.0" "")
                     ");"))))))
 
+;; How a declaration is written: as itself, unless the caller says otherwise (the
+;; Shadertoy export writes constants). Declared before text-of, which reads it.
+(var declaration-text (fn [d] d.text))
+
 (fn text-of [line]
   (if (= (type line) :table) (declaration-text line.declare) line))
-
-;; How a declaration is written: as itself, unless the caller says otherwise (the
-;; Shadertoy export writes constants).
-(var declaration-text (fn [d] d.text))
 
 (fn load-once [declarations code ?varyings?]
   "The shader's body: `declarations` (items from emit-glsl.declare or a chunk's
