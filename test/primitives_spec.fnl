@@ -37,7 +37,27 @@
     (it "packs as many numbers as its GLSL arguments take"
       (fn []
         (each [_ d (ipairs primitives.all)]
-          (assert.are.equal d.arg-size (length (d.pack (defaults-of d))) d.kind))))))
+          (assert.are.equal d.arg-size (length (d.pack (defaults-of d))) d.kind))))
+    ;; Issue 30: no hand-written GLSL; the translator writes :glsl and :cpu from one
+    ;; form, so the GPU and the CPU reference cannot say different things.
+    (it "is written once in Fennel, with the forms it lowers to instead"
+      (fn []
+        (each [_ d (ipairs primitives.all)]
+          (assert.is_string d.fennel d.kind)
+          (each [_ v (ipairs (or d.variants []))]
+            (assert.is_string v.fennel (.. d.kind "'s variant " v.kind))
+            (assert.truthy (v.glsl:find (.. "float " v.glsl-name "(vec3 p") 1 true) v.kind)
+            (assert.is_function v.cpu v.kind)))))
+    (it "gives a flat plane's distance through its ground form"
+      (fn []
+        (let [plane (primitives.lookup :plane)
+              o {:normal [0 0 1] :height 0.75}
+              ground (plane.variant o)
+              a (plane.pack o)
+              b (ground.pack o)]
+          (assert.are.equal :ground ground.kind)
+          (each [_ [x y z] (ipairs [[0 0 0] [1 -2 3] [-4 5 -0.5] [0.25 0.5 0.75]])]
+            (assert.are.equal (plane.cpu x y z (unpack a)) (ground.cpu x y z (unpack b)))))))))
 
 (describe "exact primitives"
   (fn []

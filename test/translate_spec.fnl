@@ -58,9 +58,16 @@
   (+ nearest (* 0.001 (-> x (- 1) (/ 2))) (* 0.001 (->> x (- 5) (/ 2))) (* 0.01 (math.atan y x)) (* 0.001 (math.atan x)) (* 0.001 (math.exp (- (math.abs z))))
      (* 0.001 (math.pow (math.abs x) 1.5)) (* 0.001 (math.floor x)) (* 0.001 (math.ceil y))
      (* 0.0001 (/ x)) (- 0.001) (* 0.001 math.pi)))"
-                     :params []}})
+                     :params []}
+   ;; The sign pattern, GLSL's sign(), and two ifs that only look like it.
+   :signs {:source "(fn [x y z]
+  (let [side-offset (- x 0.5)
+        side (if (> side-offset 0) 1 (< side-offset 0) -1 0)
+        half (if (> y 0) 1 (< y 0) -1 0.5)]
+    (+ (* side (math.abs z)) (* 0.1 half) (if (> x 0) 1 (< z 0) -1 0) (if (> z 0) 1 (< z 0) -1 0))))"
+           :params []}})
 
-(local shape-names ["sphere" "rounded-box" "gyroid-ball" "piecewise" "loop-and-values"])
+(local shape-names ["sphere" "rounded-box" "gyroid-ball" "piecewise" "loop-and-values" "signs"])
 
 ;; Names of the scene's text that may appear in no output.
 (local scene-names ["radius" "ball" "half" "corner" "my" "positive" "gyroid" "frequency"
@@ -70,7 +77,7 @@
 (local glsl-words (collect [_ w (ipairs ["float" "vec2" "vec3" "vec4" "int" "bool" "return" "if"
                                          "else" "for" "p" "x" "y" "z" "w" "sqrt" "abs" "floor"
                                          "ceil" "sin" "cos" "tan" "asin" "acos" "atan" "exp"
-                                         "log" "pow" "min" "max" "mod" "length"])]
+                                         "log" "pow" "min" "max" "mod" "length" "sign"])]
                     w true))
 
 (fn glsl-tokens [text]
@@ -214,6 +221,16 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
           ;; On the ring circle's far side, 0.5 out: 0.5 less the tube.
           (assert.are.near 0.25 (torus.cpu 0 -1.5 0 1 0.25) 1e-12)
           (assert.are.near 0.7 (capsule.cpu 0 0 2 0 0 -0.5 0 0 1 0.3) 1e-12))))
+
+    (it "writes GLSL's sign() for (if (> x 0) 1 (< x 0) -1 0) of one name x, and only there"
+      (fn []
+        (let [t (assert (translate.translate (parse shapes.signs.source)))
+              (_ n) (t.glsl:gsub "sign%(" "")]
+          (assert.are.equal 2 n t.glsl)
+          ;; Zeros too, which random points never hit: sign(0) is 0.
+          (each [_ [x y z] (ipairs [[0.5 0 0] [0 0 0] [0.5 1 -2] [1 -1 2] [0 0 -3]])]
+            (assert.are.equal ((fennel-function shapes.signs.source) x y z)
+                              ((translate.compile-lua t.lua) x y z 1))))))
 
     (it "refuses a function too costly for the shader"
       (fn []

@@ -579,7 +579,7 @@ only when the plan has it."
                     ");"))))))
 
 ;; How a declaration is written: as itself, unless the caller says otherwise (the
-;; Shadertoy export writes constants).
+;; Shadertoy export writes constants). Declared before text-of, which reads it.
 (var declaration-text (fn [d] d.text))
 
 (fn text-of [line]

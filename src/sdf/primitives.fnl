@@ -26,6 +26,11 @@
 ;;                src/sdf/translate.fnl, which writes both from it
 ;;   :bounds      optional (fn [o]) -> [hx hy hz] half extents of a box centred at
 ;;                the origin that holds the shape; absent when it is unbounded
+;;   :variant     optional (fn [o]) -> another descriptor for this node, or nil: a form
+;;                lowered instead where the parameters allow a cheaper one (the plane's
+;;                ground)
+;;   :variants    the descriptors :variant may return; their :fennel is translated
+;;                as the descriptor's own is
 ;;   :placed?     false for primitives placed by their own parameters (the plane)
 ;;   :half-space? true for a primitive solid on one side of a plane (the plane): its
 ;;                distance over its gradient's rate along a ray gives where the ray
@@ -64,7 +69,9 @@ float dot2(vec3 v) { return dot(v, v); }"
 (fn check-descriptor [d file]
   (fn need [ok? what] (assert ok? (.. file ": descriptor " what)))
   (when (and (= (type d) :table) (= (type d.fennel) :string) (= (type d.args) :table))
-    (from-fennel! d file))
+    (from-fennel! d file)
+    (each [_ v (ipairs (or d.variants []))]
+      (when (= (type v.fennel) :string) (from-fennel! v file))))
   (need (= (type d) :table) "must be a table")
   (need (and (= (type d.kind) :string) (d.kind:match "^[a-z][a-z0-9%-]*$")) "needs a :kind name")
   (need (= (type d.doc) :string) "needs :doc")

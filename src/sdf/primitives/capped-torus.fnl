@@ -4,7 +4,6 @@
 ;; arc's angle, else to the nearer end point), less the tube radius. A point on the -y
 ;; axis goes to the end point: that is the right choice at :angle 0 (a sphere), where
 ;; the angle test cannot tell, and the same distance as the ring's at 180.
-(local {: sqrt : abs} math)
 
 {:kind :capped-torus
  :doc "Arc of a torus around z: ring :radius, tube radius :thickness, :angle degrees either side of +y (180: whole)."
@@ -21,18 +20,13 @@
          (let [a (math.rad o.angle)]
            [(* o.radius (math.sin a)) (* o.radius (math.cos a)) o.radius o.thickness]))
  :glsl-name "sdCappedTorus"
- :glsl "float sdCappedTorus(vec3 p, vec2 e, float ra, float rb) {
-    p.x = abs(p.x);
-    bool past = e.y * p.x > e.x * p.y || (p.x == 0.0 && p.y < 0.0);
-    float d = past ? length(p - vec3(e, 0.0)) : length(vec2(length(p.xy) - ra, p.z));
-    return d - rb;
-}"
- :cpu (fn [x y z ex ey ra rb]
-        (let [ax (abs x)]
-          (- (if (or (> (* ey ax) (* ex y)) (and (= ax 0) (< y 0)))
-                 (let [dx (- ax ex) dy (- y ey)] (sqrt (+ (* dx dx) (* dy dy) (* z z))))
-                 (let [dr (- (sqrt (+ (* ax ax) (* y y))) ra)] (sqrt (+ (* dr dr) (* z z)))))
-             rb)))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z ex ey ra rb]
+  (let [ax (math.abs x)]
+    (- (if (or (> (* ey ax) (* ex y)) (and (= ax 0) (< y 0)))
+           (let [dx (- ax ex) dy (- y ey)] (math.sqrt (+ (* dx dx) (* dy dy) (* z z))))
+           (let [dr (- (math.sqrt (+ (* ax ax) (* y y))) ra)] (math.sqrt (+ (* dr dr) (* z z)))))
+       rb)))"
  :bounds (fn [o]
            (let [r o.radius t o.thickness
                  wide (if (>= o.angle 90) 1 (math.sin (math.rad o.angle)))]

@@ -3,7 +3,7 @@
 ;; torus's :thickness is its tube radius). The distance to that arc, less the thickness:
 ;; in the meridian plane q = (|p.xy|, p.z), inside the cone through the rim (w, cut),
 ;; w = sqrt(r^2 - cut^2), the rim is nearest; elsewhere the circle.
-(local {: sqrt : max : abs} math)
+(local {: sqrt} math)
 
 {:kind :cut-hollow-sphere
  :doc "Bowl: a sphere shell of :radius, walls :thickness either side, open above z = :cut."
@@ -19,16 +19,13 @@
         {:name :t :type :float}]
  :pack (fn [o] [o.radius o.cut (sqrt (- (* o.radius o.radius) (* o.cut o.cut))) o.thickness])
  :glsl-name "sdCutHollowSphere"
- :glsl "float sdCutHollowSphere(vec3 p, float r, float h, float w, float t) {
-    vec2 q = vec2(length(p.xy), p.z);
-    return (h * q.x < w * q.y ? length(q - vec2(w, h)) : abs(length(q) - r)) - t;
-}"
- :cpu (fn [x y z r h w t]
-        (let [qx (sqrt (+ (* x x) (* y y))) qy z]
-          (- (if (< (* h qx) (* w qy))
-                 (let [dx (- qx w) dy (- qy h)] (sqrt (+ (* dx dx) (* dy dy))))
-                 (abs (- (sqrt (+ (* qx qx) (* qy qy))) r)))
-             t)))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z r h w t]
+  (let [qx (math.sqrt (+ (* x x) (* y y))) qy z]
+    (- (if (< (* h qx) (* w qy))
+           (let [dx (- qx w) dy (- qy h)] (math.sqrt (+ (* dx dx) (* dy dy))))
+           (math.abs (- (math.sqrt (+ (* qx qx) (* qy qy))) r)))
+       t)))"
  :bounds (fn [o]
            (let [e (if (> o.cut 0) o.radius (sqrt (- (* o.radius o.radius) (* o.cut o.cut))))]
              [(+ e o.thickness) (+ e o.thickness) (+ o.radius o.thickness)]))}

@@ -4,7 +4,7 @@
 ;; above the flat face at height h = -cut. The arc is nearest when s < 0: q is past the
 ;; line from the centre through the rim (w, h) and past the parabola of points as far
 ;; from the arc as from the flat face; otherwise the flat face (q.x < w) or the rim.
-(local {: sqrt : max : min} math)
+(local {: sqrt} math)
 
 {:kind :cut-sphere
  :doc "Sphere of :radius with the part above z = :cut sliced off flat."
@@ -18,18 +18,14 @@
  :args [{:name :r :type :float} {:name :h :type :float} {:name :w :type :float}]
  :pack (fn [o] [o.radius (- o.cut) (sqrt (- (* o.radius o.radius) (* o.cut o.cut)))])
  :glsl-name "sdCutSphere"
- :glsl "float sdCutSphere(vec3 p, float r, float h, float w) {
-    vec2 q = vec2(length(p.xy), -p.z);
-    float s = max((h - r) * q.x * q.x + w * w * (h + r - 2.0 * q.y), h * q.x - w * q.y);
-    return s < 0.0 ? length(q) - r : (q.x < w ? h - q.y : length(q - vec2(w, h)));
-}"
- :cpu (fn [x y z r h w]
-        (let [qx (sqrt (+ (* x x) (* y y))) qy (- z)
-              s (max (+ (* (- h r) qx qx) (* w w (- (+ h r) (* 2 qy))))
-                     (- (* h qx) (* w qy)))]
-          (if (< s 0) (- (sqrt (+ (* qx qx) (* qy qy))) r)
-              (< qx w) (- h qy)
-              (let [dx (- qx w) dy (- qy h)] (sqrt (+ (* dx dx) (* dy dy)))))))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z r h w]
+  (let [qx (math.sqrt (+ (* x x) (* y y))) qy (- z)
+        s (math.max (+ (* (- h r) qx qx) (* w w (- (+ h r) (* 2 qy))))
+                    (- (* h qx) (* w qy)))]
+    (if (< s 0) (- (math.sqrt (+ (* qx qx) (* qy qy))) r)
+        (< qx w) (- h qy)
+        (let [dx (- qx w) dy (- qy h)] (math.sqrt (+ (* dx dx) (* dy dy)))))))"
  :bounds (fn [o]
            (let [e (if (> o.cut 0) o.radius (sqrt (- (* o.radius o.radius) (* o.cut o.cut))))]
              [e e o.radius]))}

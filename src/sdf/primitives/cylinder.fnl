@@ -1,6 +1,5 @@
 ;; Cylinder, infinite along z: exact. The distance to the z axis, less the radius.
 ;; Unbounded, so it has no :bounds.
-(local {: sqrt} math)
 
 {:kind :cylinder
  :doc "Infinite cylinder along z of :radius."
@@ -9,8 +8,6 @@
  :args [{:name :r :type :float}]
  :pack (fn [o] [o.radius])
  :glsl-name "sdCylinder"
- :glsl "float sdCylinder(vec3 p, float r) {
-    return length(p.xy) - r;
-}"
- :cpu (fn [x y z r]
-        (- (sqrt (+ (* x x) (* y y))) r))}
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z r]
+  (- (math.sqrt (+ (* x x) (* y y))) r))"}

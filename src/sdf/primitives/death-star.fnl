@@ -26,18 +26,12 @@
         {:name :rim :type :vec2}]
  :pack (fn [o] (let [(a b) (rim o)] [o.radius o.cutter-radius o.offset a b]))
  :glsl-name "sdDeathStar"
- :glsl "float sdDeathStar(vec3 p, float ra, float rb, float d, vec2 rim) {
-    vec2 q = vec2(p.z, length(p.xy));
-    if (q.x * rim.y - q.y * rim.x > d * max(rim.y - q.y, 0.0)) {
-        return length(q - rim);
-    }
-    return max(length(q) - ra, rb - length(q - vec2(d, 0.0)));
-}"
- :cpu (fn [x y z ra rb d a b]
-        (let [qx z qy (sqrt (+ (* x x) (* y y)))]
-          (if (> (- (* qx b) (* qy a)) (* d (max (- b qy) 0)))
-              (let [dx (- qx a) dy (- qy b)] (sqrt (+ (* dx dx) (* dy dy))))
-              (let [dx (- qx d)]
-                (max (- (sqrt (+ (* qx qx) (* qy qy))) ra)
-                     (- rb (sqrt (+ (* dx dx) (* qy qy)))))))))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z ra rb d a b]
+  (let [qx z qy (math.sqrt (+ (* x x) (* y y)))]
+    (if (> (- (* qx b) (* qy a)) (* d (math.max (- b qy) 0)))
+        (let [dx (- qx a) dy (- qy b)] (math.sqrt (+ (* dx dx) (* dy dy))))
+        (let [dx (- qx d)]
+          (math.max (- (math.sqrt (+ (* qx qx) (* qy qy))) ra)
+                    (- rb (math.sqrt (+ (* dx dx) (* qy qy)))))))))"
  :bounds (fn [o] [o.radius o.radius o.radius])}

@@ -9,7 +9,7 @@
 ;; for axis ratios up to 20:1). Inside, k0 (k0 - 1) / k1 (k0 = |p/r|, k1 = |p/r^2|, the
 ;; tangent plane at the radial projection) can overshoot (-max radius at the centre),
 ;; so it is capped by min(r) (k0 - 1), which is 1-Lipschitz and zero on the surface.
-(local {: sqrt : max : min} math)
+(local {: min} math)
 
 {:kind :ellipsoid
  :doc "Ellipsoid with semi-axes :radii along x, y and z."
@@ -18,45 +18,27 @@
  :args [{:name :r :type :vec3} {:name :rmin :type :float}]
  :pack (fn [o] (let [[x y z] o.radii] [x y z (min x y z)]))
  :glsl-name "sdEllipsoid"
- :glsl "float sdEllipsoid(vec3 p, vec3 r, float rmin) {
-    vec3 r2 = r * r;
-    float k0 = length(p / r);
-    float k1 = length(p / r2);
-    if (k0 < 1.0) {
-        float d = k1 > 0.0 ? k0 * (k0 - 1.0) / k1 : -rmin;
-        return max(d, rmin * (k0 - 1.0));
-    }
-    float t = (k0 - 1.0) * k0 * k0 / (k1 * k1);
-    for (int i = 0; i < 3; i++) {
-        vec3 w = 1.0 / (t + r2);
-        vec3 a = r * p * w;
-        float s2 = dot(a, a);
-        t += (sqrt(s2) - 1.0) * s2 / dot(a * a, w);
-    }
-    vec3 x = r2 * p / (t + r2);
-    x /= length(x / r);
-    return dot(p - x, normalize(x / r2));
-}"
- :cpu (fn [x y z rx ry rz rmin]
-        (let [ux (/ x rx) uy (/ y ry) uz (/ z rz)
-              vx (/ ux rx) vy (/ uy ry) vz (/ uz rz)
-              k0 (sqrt (+ (* ux ux) (* uy uy) (* uz uz)))
-              k1 (sqrt (+ (* vx vx) (* vy vy) (* vz vz)))
-              rx2 (* rx rx) ry2 (* ry ry) rz2 (* rz rz)]
-          (if (< k0 1)
-              (max (if (> k1 0) (/ (* k0 (- k0 1)) k1) (- rmin)) (* rmin (- k0 1)))
-              (do
-                (var t (/ (* (- k0 1) k0 k0) (* k1 k1)))
-                (for [_ 1 3]
-                  (let [wx (/ 1 (+ t rx2)) wy (/ 1 (+ t ry2)) wz (/ 1 (+ t rz2))
-                        ax (* rx x wx) ay (* ry y wy) az (* rz z wz)
-                        s2 (+ (* ax ax) (* ay ay) (* az az))]
-                    (set t (+ t (/ (* (- (sqrt s2) 1) s2)
-                                   (+ (* ax ax wx) (* ay ay wy) (* az az wz)))))))
-                (let [px (/ (* rx2 x) (+ t rx2)) py (/ (* ry2 y) (+ t ry2)) pz (/ (* rz2 z) (+ t rz2))
-                      k (sqrt (+ (* (/ px rx) (/ px rx)) (* (/ py ry) (/ py ry)) (* (/ pz rz) (/ pz rz))))
-                      px (/ px k) py (/ py k) pz (/ pz k)
-                      nx (/ px rx2) ny (/ py ry2) nz (/ pz rz2)
-                      nl (sqrt (+ (* nx nx) (* ny ny) (* nz nz)))]
-                  (/ (+ (* (- x px) nx) (* (- y py) ny) (* (- z pz) nz)) nl))))))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z rx ry rz rmin]
+  (let [ux (/ x rx) uy (/ y ry) uz (/ z rz)
+        vx (/ ux rx) vy (/ uy ry) vz (/ uz rz)
+        k0 (math.sqrt (+ (* ux ux) (* uy uy) (* uz uz)))
+        k1 (math.sqrt (+ (* vx vx) (* vy vy) (* vz vz)))
+        rx2 (* rx rx) ry2 (* ry ry) rz2 (* rz rz)]
+    (if (< k0 1)
+        (math.max (if (> k1 0) (/ (* k0 (- k0 1)) k1) (- rmin)) (* rmin (- k0 1)))
+        (do
+          (var t (/ (* (- k0 1) k0 k0) (* k1 k1)))
+          (for [_ 1 3]
+            (let [wx (/ 1 (+ t rx2)) wy (/ 1 (+ t ry2)) wz (/ 1 (+ t rz2))
+                  ax (* rx x wx) ay (* ry y wy) az (* rz z wz)
+                  s2 (+ (* ax ax) (* ay ay) (* az az))]
+              (set t (+ t (/ (* (- (math.sqrt s2) 1) s2)
+                             (+ (* ax ax wx) (* ay ay wy) (* az az wz)))))))
+          (let [px (/ (* rx2 x) (+ t rx2)) py (/ (* ry2 y) (+ t ry2)) pz (/ (* rz2 z) (+ t rz2))
+                k (math.sqrt (+ (* (/ px rx) (/ px rx)) (* (/ py ry) (/ py ry)) (* (/ pz rz) (/ pz rz))))
+                px (/ px k) py (/ py k) pz (/ pz k)
+                nx (/ px rx2) ny (/ py ry2) nz (/ pz rz2)
+                nl (math.sqrt (+ (* nx nx) (* ny ny) (* nz nz)))]
+            (/ (+ (* (- x px) nx) (* (- y py) ny) (* (- z pz) nz)) nl))))))"
  :bounds (fn [o] (let [[x y z] o.radii] [x y z]))}

@@ -2,7 +2,7 @@
 ;; (the apothem) and corners on the x axis. Folded by symmetry so the point faces the
 ;; top side, the 2D distance is the signed distance to that side's segment; the prism's
 ;; distance combines it with the distance to the caps like a 2D box.
-(local {: sqrt : max : min : abs} math)
+(local {: sqrt} math)
 
 (local cos30 (/ (sqrt 3) 2))
 (local tan30 (/ 1 (sqrt 3)))
@@ -16,23 +16,18 @@
  :args [{:name :r :type :float} {:name :e :type :float} {:name :h :type :float}]
  :pack (fn [o] [o.radius (* o.radius tan30) (* o.height 0.5)])
  :glsl-name "sdHexPrism"
- :glsl "float sdHexPrism(vec3 p, float r, float e, float h) {
-    const vec2 k = vec2(-0.8660254037844386, 0.5);
-    p = abs(p);
-    p.xy -= 2.0 * min(dot(k, p.xy), 0.0) * k;
-    vec2 d = vec2(length(p.xy - vec2(clamp(p.x, -e, e), r)) * sign(p.y - r), p.z - h);
-    return min(max(d.x, d.y), 0.0) + length(max(d, 0.0));
-}"
- :cpu (fn [x y z r e h]
-        (let [ax (abs x) ay (abs y)
-              f (* 2 (min (+ (* (- cos30) ax) (* 0.5 ay)) 0))
-              px (+ ax (* f cos30))
-              py (- ay (* f 0.5))
-              sx (- px (max (- e) (min e px)))
-              sy (- py r)
-              sgn (if (> sy 0) 1 (< sy 0) -1 0)
-              dx (* (sqrt (+ (* sx sx) (* sy sy))) sgn)
-              dy (- (abs z) h)
-              ox (max dx 0) oy (max dy 0)]
-          (+ (min (max dx dy) 0) (sqrt (+ (* ox ox) (* oy oy))))))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ ;; 0.8660254037844386 is cos 30.
+ :fennel "(fn [x y z r e h]
+  (let [ax (math.abs x) ay (math.abs y)
+        f (* 2 (math.min (+ (* -0.8660254037844386 ax) (* 0.5 ay)) 0))
+        px (+ ax (* f 0.8660254037844386))
+        py (- ay (* f 0.5))
+        sx (- px (math.max (- e) (math.min e px)))
+        sy (- py r)
+        sgn (if (> sy 0) 1 (< sy 0) -1 0)
+        dx (* (math.sqrt (+ (* sx sx) (* sy sy))) sgn)
+        dy (- (math.abs z) h)
+        ox (math.max dx 0) oy (math.max dy 0)]
+    (+ (math.min (math.max dx dy) 0) (math.sqrt (+ (* ox ox) (* oy oy))))))"
  :bounds (fn [o] [(/ o.radius cos30) o.radius (* o.height 0.5)])}

@@ -3,7 +3,6 @@
 ;; the cyclic permutations of (0, +-phi, +-1/phi) / sqrt(3); with p folded by abs four
 ;; planes remain. The largest face-plane distance: exact inside and over the faces,
 ;; less beyond edges and vertices.
-(local {: max : abs} math)
 
 {:kind :icosahedron
  :doc "Regular icosahedron with inradius :size."
@@ -12,20 +11,12 @@
  :args [{:name :r :type :float}]
  :pack (fn [o] [o.size])
  :glsl-name "sdIcosahedron"
- :glsl "float sdIcosahedron(vec3 p, float r) {
-    p = abs(p);
-    vec2 n = vec2(0.93417235896271578, 0.35682208977308993);
-    float a = (p.x + p.y + p.z) * 0.57735026918962584;
-    float b = dot(p.yz, n);
-    float c = dot(p.zx, n);
-    float d = dot(p.xy, n);
-    return max(max(a, b), max(c, d)) - r;
-}"
- :cpu (fn [x y z r]
-        (let [x (abs x) y (abs y) z (abs z)
-              u 0.93417235896271578 v 0.35682208977308993]
-          (- (max (* (+ x y z) 0.57735026918962584)
-                  (+ (* u y) (* v z)) (+ (* u z) (* v x)) (+ (* u x) (* v y)))
-             r)))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z r]
+  (let [x (math.abs x) y (math.abs y) z (math.abs z)
+        u 0.93417235896271578 v 0.35682208977308993]
+    (- (math.max (* (+ x y z) 0.57735026918962584)
+                 (+ (* u y) (* v z)) (+ (* u z) (* v x)) (+ (* u x) (* v y)))
+       r)))"
  ;; The vertices reach sqrt(3)/phi times the inradius along each axis.
  :bounds (fn [o] (let [e (* o.size 1.0704662693192697)] [e e e]))}

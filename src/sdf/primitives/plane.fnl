@@ -18,10 +18,10 @@
    :arg-size 4
    :pack (fn [o] [0 0 1 o.height])
    :glsl-name "sdGround"
-   :glsl "float sdGround(vec3 p, vec4 nh) {
-    return p.z - nh.w;
-}"
-   :cpu (fn [_x _y z _nx _ny _nz h] (- z h))
+   ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it
+   ;; (the plane lists this form in its :variants).
+   :fennel "(fn [_ _ z _ _ _ h]
+  (- z h))"
    :gradient-glsl "vec3 gradGround(vec3 p, vec4 nh) {
     return vec3(0.0, 0.0, 1.0);
 }"
@@ -38,14 +38,13 @@
  :half-space? true
  ;; Facing straight up: the ground form above.
  :variant (fn [o] (let [[x y z] o.normal] (when (and (= x 0) (= y 0) (= z 1)) ground)))
+ :variants [ground]
  :args [{:name :n :type :vec3} {:name :h :type :float}]
  :pack (fn [o] (let [[x y z] o.normal] [x y z o.height]))
  :glsl-name "sdPlane"
- :glsl "float sdPlane(vec3 p, vec3 n, float h) {
-    return dot(p, n) - h;
-}"
- :cpu (fn [x y z nx ny nz h]
-        (- (+ (* x nx) (* y ny) (* z nz)) h))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z nx ny nz h]
+  (- (+ (* x nx) (* y ny) (* z nz)) h))"
  ;; The exact normal: the plane's own.
  :gradient-glsl "vec3 gradPlane(vec3 p, vec3 n, float h) {
     return n;

@@ -24,21 +24,14 @@
          (let [b (/ (- o.radius1 o.radius2) o.height)]
            [(sqrt (- 1 (* b b))) b (* o.height 0.5) o.radius1 o.radius2]))
  :glsl-name "sdRoundCone"
- :glsl "float sdRoundCone(vec3 p, vec2 ab, float hh, float r1, float r2) {
-    vec2 q = vec2(length(p.xy), p.z);
-    float m = dot(q, vec2(-ab.y, ab.x));
-    float e = ab.x * hh;
-    if (m < -e) return length(q - vec2(0.0, -hh)) - r1;
-    if (m > e) return length(q - vec2(0.0, hh)) - r2;
-    return dot(q, ab) + ab.y * hh - r1;
-}"
- :cpu (fn [x y z a b hh r1 r2]
-        (let [qx (sqrt (+ (* x x) (* y y)))
-              m (+ (* qx (- b)) (* z a))
-              e (* a hh)]
-          (if (< m (- e)) (let [dz (+ z hh)] (- (sqrt (+ (* qx qx) (* dz dz))) r1))
-              (> m e) (let [dz (- z hh)] (- (sqrt (+ (* qx qx) (* dz dz))) r2))
-              (- (+ (* qx a) (* z b) (* b hh)) r1))))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z a b hh r1 r2]
+  (let [qx (math.sqrt (+ (* x x) (* y y)))
+        m (+ (* qx (- b)) (* z a))
+        e (* a hh)]
+    (if (< m (- e)) (let [dz (+ z hh)] (- (math.sqrt (+ (* qx qx) (* dz dz))) r1))
+        (> m e) (let [dz (- z hh)] (- (math.sqrt (+ (* qx qx) (* dz dz))) r2))
+        (- (+ (* qx a) (* z b) (* b hh)) r1))))"
  :bounds (fn [o]
            (let [r (max o.radius1 o.radius2)
                  hh (* o.height 0.5)]

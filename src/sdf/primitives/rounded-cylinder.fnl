@@ -1,6 +1,5 @@
 ;; Rounded cylinder: exact. A capped cylinder shrunk by :rounding on every side, whose
 ;; exact distance less :rounding rounds both rims; the outer :radius and :height stay.
-(local {: sqrt : max : min : abs} math)
 
 {:kind :rounded-cylinder
  :doc "Cylinder along z of :radius and full :height, rims rounded by :rounding."
@@ -17,13 +16,10 @@
  :args [{:name :ra :type :float} {:name :h :type :float} {:name :rb :type :float}]
  :pack (fn [o] [(- o.radius o.rounding) (- (* o.height 0.5) o.rounding) o.rounding])
  :glsl-name "sdRoundedCylinder"
- :glsl "float sdRoundedCylinder(vec3 p, float ra, float h, float rb) {
-    vec2 d = vec2(length(p.xy) - ra, abs(p.z) - h);
-    return min(max(d.x, d.y), 0.0) + length(max(d, 0.0)) - rb;
-}"
- :cpu (fn [x y z ra h rb]
-        (let [dx (- (sqrt (+ (* x x) (* y y))) ra)
-              dy (- (abs z) h)
-              ox (max dx 0) oy (max dy 0)]
-          (- (+ (min (max dx dy) 0) (sqrt (+ (* ox ox) (* oy oy)))) rb)))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z ra h rb]
+  (let [dx (- (math.sqrt (+ (* x x) (* y y))) ra)
+        dy (- (math.abs z) h)
+        ox (math.max dx 0) oy (math.max dy 0)]
+    (- (+ (math.min (math.max dx dy) 0) (math.sqrt (+ (* ox ox) (* oy oy)))) rb)))"
  :bounds (fn [o] [o.radius o.radius (* o.height 0.5)])}

@@ -3,7 +3,7 @@
 ;; q = (|p.xy|, p.z) the outline is the arc and the segment from the origin to the rim
 ;; c r, c = (sin, cos) of the angle: outside the cone the segment (and its end, the rim)
 ;; is nearest, inside it the arc.
-(local {: sqrt : max : min : abs : sin : cos : rad} math)
+(local {: sin : cos : rad} math)
 
 {:kind :solid-angle
  :doc "Spherical sector: the ball of :radius within :angle degrees of the +z axis."
@@ -13,21 +13,16 @@
  :args [{:name :c :type :vec2} {:name :r :type :float}]
  :pack (fn [o] (let [a (rad o.angle)] [(sin a) (cos a) o.radius]))
  :glsl-name "sdSolidAngle"
- :glsl "float sdSolidAngle(vec3 p, vec2 c, float r) {
-    vec2 q = vec2(length(p.xy), p.z);
-    float l = length(q) - r;
-    float m = length(q - c * clamp(dot(q, c), 0.0, r));
-    return max(l, m * sign(c.y * q.x - c.x * q.y));
-}"
- :cpu (fn [x y z cs cc r]
-        (let [qx (sqrt (+ (* x x) (* y y))) qy z
-              l (- (sqrt (+ (* qx qx) (* qy qy))) r)
-              t (max 0 (min r (+ (* qx cs) (* qy cc))))
-              mx (- qx (* cs t)) my (- qy (* cc t))
-              m (sqrt (+ (* mx mx) (* my my)))
-              w (- (* cc qx) (* cs qy))
-              sg (if (> w 0) 1 (< w 0) -1 0)]
-          (max l (* m sg))))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z cs cc r]
+  (let [qx (math.sqrt (+ (* x x) (* y y))) qy z
+        l (- (math.sqrt (+ (* qx qx) (* qy qy))) r)
+        t (math.max 0 (math.min r (+ (* qx cs) (* qy cc))))
+        mx (- qx (* cs t)) my (- qy (* cc t))
+        m (math.sqrt (+ (* mx mx) (* my my)))
+        w (- (* cc qx) (* cs qy))
+        sg (if (> w 0) 1 (< w 0) -1 0)]
+    (math.max l (* m sg))))"
  :bounds (fn [o]
            (let [e (if (< o.angle 90) (* o.radius (sin (rad o.angle))) o.radius)]
              [e e o.radius]))}

@@ -3,7 +3,6 @@
 ;; y = 2 :radius. The value is the largest of the signed distances to the five planes
 ;; of the faces: exact inside and where the nearest point lies on a face, but less
 ;; than the distance near the edges and corners (a bound, never more).
-(local {: max : abs} math)
 
 (local cos30 (/ (math.sqrt 3) 2))
 
@@ -15,11 +14,9 @@
  :args [{:name :r :type :float} {:name :h :type :float}]
  :pack (fn [o] [o.radius (* o.height 0.5)])
  :glsl-name "sdTriPrism"
- :glsl "float sdTriPrism(vec3 p, float r, float h) {
-    float t = max(abs(p.x) * 0.8660254037844386 + p.y * 0.5, -p.y) - r;
-    return max(abs(p.z) - h, t);
-}"
- :cpu (fn [x y z r h]
-        (max (- (abs z) h)
-             (- (max (+ (* (abs x) cos30) (* y 0.5)) (- y)) r)))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ ;; 0.8660254037844386 is cos 30.
+ :fennel "(fn [x y z r h]
+  (math.max (- (math.abs z) h)
+            (- (math.max (+ (* (math.abs x) 0.8660254037844386) (* y 0.5)) (- y)) r)))"
  :bounds (fn [o] [(* o.radius 2 cos30) (* o.radius 2) (* o.height 0.5)])}

@@ -4,7 +4,6 @@
 ;; (|p.xy|, |p.z|) is the exact distance: the tip (0, b) when the point is past the arc's
 ;; normal at the tip, else the distance to the arc's circle centred at (-d, 0).
 ;; With b = length/2 and half width c = width/2: d = (b^2 - c^2) / 2c and r = d + c.
-(local {: sqrt : max : abs} math)
 
 {:kind :vesica
  :doc "Lens shape revolved around z: tips :length apart along z, :width across at z = 0."
@@ -20,13 +19,10 @@
                d (/ (- (* b b) (* c c)) (* 2 c))]
            [(+ d c) d b]))
  :glsl-name "sdVesica"
- :glsl "float sdVesica(vec3 p, float r, float d, float b) {
-    vec2 q = vec2(length(p.xy), abs(p.z));
-    return (q.y - b) * d > q.x * b ? length(q - vec2(0.0, b)) : length(q + vec2(d, 0.0)) - r;
-}"
- :cpu (fn [x y z r d b]
-        (let [qx (sqrt (+ (* x x) (* y y))) qy (abs z)]
-          (if (> (* (- qy b) d) (* qx b))
-              (let [dy (- qy b)] (sqrt (+ (* qx qx) (* dy dy))))
-              (let [dx (+ qx d)] (- (sqrt (+ (* dx dx) (* qy qy))) r)))))
+ ;; The distance once, in Fennel: src/sdf/translate.fnl writes :glsl and :cpu from it.
+ :fennel "(fn [x y z r d b]
+  (let [qx (math.sqrt (+ (* x x) (* y y))) qy (math.abs z)]
+    (if (> (* (- qy b) d) (* qx b))
+        (let [dy (- qy b)] (math.sqrt (+ (* qx qx) (* dy dy))))
+        (let [dx (+ qx d)] (- (math.sqrt (+ (* dx dx) (* qy qy))) r)))))"
  :bounds (fn [o] (let [c (* o.width 0.5)] [c c (* o.length 0.5)]))}
