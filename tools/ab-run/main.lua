@@ -1,0 +1,56 @@
+-- love tools/ab-run W H FRAMES DUMP_A DUMP_B ...: the frame times of each dump's shader
+-- (written by tools/ab-dump.fnl, in any checkout), drawn in turn, frame by frame, in
+-- one process: the ratio of two versions of the code on a shared, noisy machine.
+local comps = {float=1, int=1, bool=1, vec2=2, vec3=3, vec4=4}
+local function send(shader, us)
+  for _, u in ipairs(us) do
+    if shader:hasUniform(u.name) then
+      if u.texture then
+        local t = u.texture
+        local data = love.image.newImageData(t.width, t.height, "rgba32f")
+        local ffi = require("ffi")
+        local ptr = ffi.cast("float *", data:getFFIPointer())
+        for i = 0, 4 * t.width * t.height - 1 do ptr[i] = t.data[i + 1] or 0 end
+        local img = love.graphics.newImage(data)
+        img:setFilter("nearest", "nearest")
+        shader:send(u.name, img)
+      else
+        local n = comps[u.type]
+        local vals = {}
+        if u.type == "bool" then for i, v in ipairs(u.values) do vals[i] = v ~= 0 end
+        elseif n == 1 then vals = u.values
+        else for i = 1, #u.values, n do local t = {} for j = 0, n - 1 do t[j + 1] = u.values[i + j] end vals[#vals + 1] = t end end
+        shader:send(u.name, unpack(vals))
+      end
+    end
+  end
+end
+function love.load(args)
+  local w, h, frames = tonumber(args[1]), tonumber(args[2]), tonumber(args[3])
+  local vs = {}
+  for i = 4, #args do
+    local d = dofile(args[i])
+    local shader = love.graphics.newShader(d.source)
+    send(shader, d.uniforms)
+    vs[#vs + 1] = {name = args[i], shader = shader, canvas = love.graphics.newCanvas(w, h), times = {}}
+  end
+  local function frame(v)
+    local t0 = love.timer.getTime()
+    love.graphics.push("all")
+    love.graphics.setCanvas(v.canvas)
+    love.graphics.setShader(v.shader)
+    love.graphics.rectangle("fill", 0, 0, w, h)
+    love.graphics.pop()
+    v.canvas:newImageData(0, 1, 0, 0, 1, 1)
+    return 1000 * (love.timer.getTime() - t0)
+  end
+  for _, v in ipairs(vs) do frame(v) end
+  for r = 1, frames do for _, v in ipairs(vs) do v.times[#v.times + 1] = frame(v) end end
+  for _, v in ipairs(vs) do
+    table.sort(v.times)
+    print(string.format("%-40s median %.1f ms (min %.1f, max %.1f)", v.name, v.times[math.floor((#v.times + 1) / 2)], v.times[1], v.times[#v.times]))
+  end
+  if #vs == 2 then print(string.format("ratio B/A %.3f", vs[2].times[math.floor((#vs[2].times + 1) / 2)] / vs[1].times[math.floor((#vs[1].times + 1) / 2)])) end
+  love.event.quit(0)
+end
+function love.errorhandler(msg) io.stderr:write("error: ", tostring(msg), "\n", debug.traceback(), "\n") os.exit(1) end
