@@ -124,16 +124,13 @@ with a decimal point or an exponent."
 
 
 (fn functions [tape ?defined]
-  "GLSL definitions of every helper and function the tape uses, in first-use order,
+  "GLSL definitions of every function the tape uses, in first-use order,
 but those named in `?defined` (GLSL name -> true: already in the shader; those
 written here are added to it)."
   (let [out []
         defined (or ?defined {})]
     (each [_ u (ipairs tape.used)]
-      (when (u.name:find "^helper:")
-        (table.insert out (. primitives.helpers u.desc))))
-    (each [_ u (ipairs tape.used)]
-      (when (and (not (u.name:find "^helper:")) (not (. defined u.name)))
+      (when (not (. defined u.name))
         (tset defined u.name true)
         (table.insert out u.desc.glsl)))
     (when (= tape.material-size 8)

@@ -143,7 +143,6 @@ translate(rotate(scale(node)))."
         dout (fresh! st "d")
         mout (fresh! st "m")]
     (use! st desc.glsl-name desc)
-    (each [_ h (ipairs (or desc.helpers []))] (use! st (.. "helper:" h) h))
     (table.insert code {:op :prim :desc desc :args (alloc-args! st desc (desc.pack node))
                         : pin : dout})
     (table.insert code {:op :material :row (material-row! st material) : mout})

@@ -19,7 +19,6 @@
 ;;   :pack        (fn [o]) -> flat list of numbers for :args, in order
 ;;   :glsl-name   the GLSL function's name, sdCamelCase
 ;;   :glsl        the GLSL function's text: float sdX(vec3 p, <args>)
-;;   :helpers     optional list of shared GLSL helper names (see `helpers`)
 ;;   :cpu         (fn [x y z ...args as flat numbers]) -> distance, in double
 ;;   :fennel      instead of :glsl and :cpu: the distance as the text of a Fennel
 ;;                (fn [x y z ...args as flat numbers] ...), in the subset of
@@ -47,12 +46,6 @@
 (local translate (require :src.sdf.translate))
 
 (local dir "src/sdf/primitives")
-
-;; GLSL helpers shared by several primitives, included once when any user needs them.
-(local helpers
-  {:dot2 "float dot2(vec2 v) { return dot(v, v); }
-float dot2(vec3 v) { return dot(v, v); }"
-   :ndot "float ndot(vec2 a, vec2 b) { return a.x * b.x - a.y * b.y; }"})
 
 (local glsl-types {:float 1 :vec2 2 :vec3 3 :vec4 4})
 
@@ -88,8 +81,6 @@ float dot2(vec3 v) { return dot(v, v); }"
     (need (and (= (type d.gradient) :function) (= (type d.gradient-glsl) :string)
                (d.gradient-glsl:find (.. "vec3 " (d.glsl-name:gsub "^sd" "grad") "(vec3 p") 1 true))
           "needs both :gradient and :gradient-glsl defining vec3 grad<Name>(vec3 p, ...)"))
-  (each [_ h (ipairs (or d.helpers []))]
-    (need (. helpers h) (.. "uses an unknown helper " (tostring h))))
   (set d.lipschitz (or d.lipschitz 1))
   (set d.arg-size (accumulate [n 0 _ a (ipairs d.args)] (+ n (. glsl-types a.type))))
   d)
@@ -115,4 +106,4 @@ float dot2(vec3 v) { return dot(v, v); }"
   "The primitive kinds, sorted."
   (icollect [_ d (ipairs all)] d.kind))
 
-{: all : lookup : kind-names : helpers : glsl-types}
+{: all : lookup : kind-names : glsl-types}
