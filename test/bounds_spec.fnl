@@ -75,7 +75,7 @@
       (fn []
         (let [s (load "{:camera {:pos [0 -10 1]} :objects [{:kind :sphere :pos [3 0 1] :radius 1}]}")
               p (assert (plan.scene->plan s))
-              [x y z r] (bounds.spheres p s.objects [0 -10 1] (fn [d] (* 1e-3 d)))]
+              [x y z r] (bounds.spheres p [0 -10 1] (fn [d] (* 1e-3 d)))]
           (assert.are.same [3 10 0] [x y z])
           ;; 1 + 2 * 1e-3 * (|(3 10 0)| + 1) + 0.001
           (assert.is_true (near? r (+ 1 (* 2e-3 (+ (math.sqrt 109) 1)) 0.001) 1e-12)))))

@@ -147,7 +147,7 @@ object (see shift-node!)."
         (let [(s err) (load.load-string "{:objects [{:kind :translate :offset [5 0 1]
                                                      :children [{:kind :torus :radius 1 :thickness 0.3}]}]}")
               p (assert (plan-mod.scene->plan (assert s err)))
-              [x y z r] (bounds.spheres p s.objects [0 0 0] #0 true)]
+              [x y z r] (bounds.spheres p [0 0 0] #0 true)]
           (assert.are.same [5 0 1] [x y z])
           (assert.is_true (< r 1.9)))))))
 

@@ -5,8 +5,6 @@
 ;; LuaJIT; the GLSL (shaders/pipeline/march-bounded.glsl) and the CPU reference
 ;; (src/verify/reference.fnl) follow the same rules.
 
-(local lower (require :src.sdf.lower))
-
 ;; From this radius on a sphere loses float32 precision near its surface.
 (local large-radius (. (require :src.sdf.large-sphere) :radius))
 
@@ -37,18 +35,19 @@ near its surface."
            (length3 (fcollect [i 1 3] (* 0.5 (- (. hi i) (. lo i)))))])
         b [[px py pz] (or child.radius (length3 b))])))
 
-(fn finite-objects [plan scene-objects]
+(fn finite-objects [plan]
   "The objects a bounded plan marches by their bounding spheres, as [object info]
 pairs: every tape object's (an instance group's members each) but the half-spaces
 (met in closed form; see lower.fnl); not a field's (its grid bounds them; see
-src/render/field.fnl). `scene-objects`: the scene's object list."
-  (let [infos (lower.infos-by-index plan.tape)
-        by-index (collect [_ o (ipairs scene-objects)] o.index o)
-        out []]
+src/render/field.fnl). plan.objects holds the tape's objects in this order, after
+the field's."
+  (let [out []]
+    (var at (if plan.field plan.field.count 0))
     (each [_ o (ipairs plan.tape.objects)]
-      (when (not o.half-space?)
-        (each [_ index (ipairs (or o.indices [o.index]))]
-          (table.insert out [(. by-index index) (. infos index)]))))
+      (for [m 1 (if o.instances o.instances.count 1)]
+        (set at (+ at 1))
+        (when (not o.half-space?)
+          (table.insert out [(. plan.objects at) (if o.infos (. o.infos m) o.info)]))))
     out))
 
 (fn plan-bounds [plan scene options]
@@ -57,7 +56,7 @@ src/render/field.fnl). `scene-objects`: the scene's object list."
 article's does. The scene's :render :bounds false, or `options.bounds?` false (the
 benchmark's before), switch it off."
   (when (and (not= false options.bounds?) scene.render.bounds (not plan.uber?))
-    (let [finite (finite-objects plan scene.objects)
+    (let [finite (finite-objects plan)
           all? (accumulate [ok? true _ [o info] (ipairs finite) &until (not ok?)]
                  (not= nil (object-sphere o info)))]
       (when all? {:count (length finite)}))))
@@ -68,14 +67,14 @@ benchmark's before), switch it off."
   ;; its radius for float32 rounding in the GPU's test.
   (+ (* 2 (hit-threshold (+ centre-distance radius))) (* 0.001 radius)))
 
-(fn spheres [plan scene-objects cam-pos hit-threshold ?world?]
-  "The bounding spheres of the finite objects of `plan` (of the scene whose objects
-are `scene-objects`), camera-relative (in double; in world coordinates with
-`?world?`) and grown by `margin`, as one flat list x y z r per object."
+(fn spheres [plan cam-pos hit-threshold ?world?]
+  "The bounding spheres of the finite objects of `plan`, camera-relative (in double;
+in world coordinates with `?world?`) and grown by `margin`, as one flat list x y z r
+per object."
   (let [[cx cy cz] (if ?world? [0 0 0] cam-pos)
         [kx ky kz] cam-pos
         out []]
-    (each [_ [o info] (ipairs (finite-objects plan scene-objects))]
+    (each [_ [o info] (ipairs (finite-objects plan))]
       (let [[[x y z] r] (object-sphere o info)
             rel [(- x cx) (- y cy) (- z cz)]
             grown (+ r (margin r (length3 [(- x kx) (- y ky) (- z kz)]) hit-threshold))]

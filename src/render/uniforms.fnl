@@ -145,7 +145,7 @@ by name. Booleans are sent as 0 or 1 with :type :bool. A field's textures come a
                            :count (length bank.rows)})))
     (when (and plan.bounds (> plan.bounds.count 0))
       (table.insert out {:name "uBounds" :type :vec4 :count plan.bounds.count
-                         :values (bounds.spheres plan scene.objects cam.pos
+                         :values (bounds.spheres plan cam.pos
                                                  (hit-threshold scene plan cam height))}))
     (table.sort out (fn [a b] (< a.name b.name)))
     out))

@@ -164,7 +164,7 @@ Positions are in world coordinates."
         (math.max (threshold dist) (* 0.000001 (+ 1 dist)))))
 
     (local bound-spheres (when plan.bounds
-                           (bounds.spheres plan scene.objects [cx cy cz] threshold true)))
+                           (bounds.spheres plan [cx cy cz] threshold true)))
 
     (fn march-field [ox oy oz dx dy dz ?t-max]
       ;; march-field.glsl: the grid's cells in order, each cell's objects met in
