@@ -35,19 +35,33 @@ near its surface."
            (length3 (fcollect [i 1 3] (* 0.5 (- (. hi i) (. lo i)))))])
         b [[px py pz] (or child.radius (length3 b))])))
 
-(fn finite-objects [plan]
-  "The objects a bounded plan marches by their bounding spheres, as [object info]
-pairs: every tape object's (an instance group's members each) but the half-spaces
-(met in closed form; see lower.fnl); not a field's (its grid bounds them; see
+(fn grid-sphere [g]
+  ;; The sphere about a grid's box (src/sdf/grid.fnl): it holds every member.
+  (let [[lx ly lz] g.lo
+        [sx sy sz] g.size]
+    [[(+ lx (* 0.5 sx)) (+ ly (* 0.5 sy)) (+ lz (* 0.5 sz))]
+     (* 0.5 (length3 g.size))]))
+
+(fn finite-spheres [plan]
+  "The bounding spheres ([centre radius], or false for an object that has none) of the
+objects a bounded plan marches by them: every tape object's (an instance group's
+members each) but the half-spaces (met in closed form; see lower.fnl); one for an
+instance group with a grid, about its grid; not a field's (its grid bounds them; see
 src/render/field.fnl). plan.objects holds the tape's objects in this order, after
 the field's."
   (let [out []]
     (var at (if plan.field plan.field.count 0))
     (each [_ o (ipairs plan.tape.objects)]
-      (for [m 1 (if o.instances o.instances.count 1)]
-        (set at (+ at 1))
-        (when (not o.half-space?)
-          (table.insert out [(. plan.objects at) (if o.infos (. o.infos m) o.info)]))))
+      (let [g (?. o :instances :grid)
+            n (if o.instances o.instances.count 1)]
+        (if g
+            (do (table.insert out (grid-sphere (. plan.grids.list (+ g 1) :grid)))
+                (set at (+ at n)))
+            (for [m 1 n]
+              (set at (+ at 1))
+              (when (not o.half-space?)
+                (table.insert out (or (object-sphere (. plan.objects at) (if o.infos (. o.infos m) o.info))
+                                      false)))))))
     out))
 
 (fn plan-bounds [plan scene options]
@@ -56,9 +70,8 @@ the field's."
 article's does. The scene's :render :bounds false, or `options.bounds?` false (the
 benchmark's before), switch it off."
   (when (and (not= false options.bounds?) scene.render.bounds (not plan.uber?))
-    (let [finite (finite-objects plan)
-          all? (accumulate [ok? true _ [o info] (ipairs finite) &until (not ok?)]
-                 (not= nil (object-sphere o info)))]
+    (let [finite (finite-spheres plan)
+          all? (accumulate [ok? true _ s (ipairs finite) &until (not ok?)] (not= false s))]
       (when all? {:count (length finite)}))))
 
 (fn margin [radius centre-distance hit-threshold]
@@ -74,9 +87,8 @@ per object."
   (let [[cx cy cz] (if ?world? [0 0 0] cam-pos)
         [kx ky kz] cam-pos
         out []]
-    (each [_ [o info] (ipairs (finite-objects plan))]
-      (let [[[x y z] r] (object-sphere o info)
-            rel [(- x cx) (- y cy) (- z cz)]
+    (each [_ [[x y z] r] (ipairs (finite-spheres plan))]
+      (let [rel [(- x cx) (- y cy) (- z cz)]
             grown (+ r (margin r (length3 [(- x kx) (- y ky) (- z kz)]) hit-threshold))]
         (each [_ v (ipairs [(. rel 1) (. rel 2) (. rel 3) grown])] (table.insert out v))))
     out))

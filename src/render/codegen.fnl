@@ -97,6 +97,9 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
     (when (> plan.tape.count 0)
       (table.insert lines (.. "// objects: " plan.tape.count))
       (flatten-into lines "" (emit-glsl.declarations plan.tape)))
+    (when plan.grids
+      (table.insert lines (emit-glsl.declare "vec4" "uGrids" (* 3 (length plan.grids.list))
+                                             "per grid: low corner, reach; cell, first cell; cells along each axis")))
     (when (and plan.bounds (> plan.bounds.count 0))
       (table.insert lines (emit-glsl.declare "vec4" "uBounds" plan.bounds.count
                                              "bounding spheres of the finite objects (camera-relative)"
@@ -386,6 +389,9 @@ only when the plan has it."
     ;; Distance functions: the tape's, each once, and the exact gradients its leaves
     ;; and a field's objects (fieldNormal: the box's) take.
     (let [defined {}]
+      ;; Instance groups with grids read their rows and cells from textures.
+      (when plan.grids
+        (table.insert sections (fill "shaders/pipeline/grid.glsl" {})))
       (table.insert sections (emit-glsl.functions plan.tape defined))
       ;; A field's objects are round boxes (shaders/pipeline/field.glsl).
       (when (and plan.field (not (. defined "sdRoundBox")))

@@ -7,6 +7,8 @@
 (local field (require :src.render.field))
 (local emit-glsl (require :src.sdf.emit-glsl))
 (local features (require :src.render.features))
+(local grid (require :src.sdf.grid))
+(local uniforms (require :src.render.uniforms))
 
 (local views [:shaded :normals :glow :heat])
 
@@ -51,6 +53,8 @@
 ;; Of nested parts, what the code reads: the tape's key (its own structure, derived
 ;; the same way in lower.fnl), a field's kinds, walk and object count.
 (local parts {:tape (fn [tape] tape.key)
+              ;; Which groups have grids (their sizes travel as uniforms).
+              :grids (fn [gs] (icollect [_ e (ipairs gs.list)] e.id))
               :field (fn [fd] {:kinds fd.kinds :walk? fd.walk? :count fd.count})})
 
 (fn key-text [v]
@@ -110,6 +114,30 @@ the copies, flower 193 against 221, gallery and the seed alike)."
     (when (= nil options.load-once?)
       (set options.load-once? (software-renderer? name)))
     options))
+
+(fn grids-of [tape]
+  "The grids of `tape`'s instance groups (src/sdf/grid.fnl): one for each group of at
+least grid.min-members members that all have a box (finite, not a half-space), or nil
+when none has. Marks those groups (:grid, their number from 0) and, since the bank
+then lives in a texture, every group (:texture?). Returns {:list [{:id :grid}]
+:anchor (the first grid's low corner: the bank's rows are about it) :textures}, or
+nil and a message when a texture would not fit."
+  (let [list []]
+    (each [_ o (ipairs tape.objects)]
+      (when (and o.instances (>= o.instances.count grid.min-members) (not o.half-space?))
+        (let [boxes (icollect [_ info (ipairs o.infos)] (when (not info.large?) info.box))]
+          (when (= (length boxes) o.instances.count)
+            (set o.instances.grid (length list))
+            (table.insert list {:id o.id :grid (grid.build boxes)})))))
+    (when (> (length list) 0)
+      (set tape.instances.texture? true)
+      (each [_ o (ipairs tape.objects)]
+        (when o.instances (set o.instances.texture? true)))
+      (let [anchor (. list 1 :grid :lo)]
+        (case (grid.textures (icollect [_ e (ipairs list)] e.grid)
+                             (uniforms.tape-values tape.instances anchor))
+          tex {: list : anchor :textures tex}
+          (nil err) (values nil err))))))
 
 (fn scene->plan [scene ?options]
   "Lower `scene` into a plan. Options:
@@ -190,8 +218,14 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               : reflections}
         limit (or options.uniform-limit default-uniform-limit)]
     (assert (view? view) (.. "unknown view " (tostring view)))
+    (var grid-error nil)
+    (case (if (not= false options.grids?) (grids-of plan.tape) nil)
+      gs (set plan.grids gs)
+      (nil err) (set grid-error (.. scene.file ": objects: " err)))
     (set plan.uniform-vectors (+ fixed-uniform-vectors (length plan.tape.rows)
-                                 (length plan.tape.instances.rows)))
+                                 (if plan.grids
+                                     (* 3 (length plan.grids.list))
+                                     (length plan.tape.instances.rows))))
     ;; Bounds take a vector each: a scene that fits only without them goes without.
     (let [b (bounds.plan-bounds plan scene options)]
       (when (and b (<= (+ plan.uniform-vectors b.count) limit))
@@ -250,6 +284,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                                     (and all? (emit-glsl.exact? o)))))
     (set plan.key (structure-key plan))
     (if field-error (values nil field-error)
+        grid-error (values nil grid-error)
         (and members (not plan.bounds))
         ;; Some other object has no bound (an infinite repetition, a plane inside a
         ;; tree): no field then, and the uniform budget decides.

@@ -111,6 +111,29 @@ backend uploads them once). A field of spheres walks one more texture (:walk?)."
                     {:name "uFieldWalk" :type :texture :texture tex.walk}]
                    [])))))
 
+(fn grid-uniforms [grids cam-pos]
+  "The uniforms of a plan's grids (src/sdf/grid.fnl, src/render/plan.fnl's grids-of):
+per grid its low corner about the anchor, reach, cell, first cell and cells along
+each axis; the anchor camera-relative (in double); the textures (the same tables
+every frame, so a backend uploads them once) and their rows' reciprocals."
+  (let [{: list : anchor : textures} grids
+        [ax ay az] anchor
+        rows []]
+    (each [i {: grid} (ipairs list)]
+      (let [[lx ly lz] grid.lo
+            [cx cy cz] grid.cell
+            [nx ny nz] grid.dims]
+        (append! rows [(- lx ax) (- ly ay) (- lz az) grid.reach
+                       cx cy cz (. textures.offsets i :cell)
+                       nx ny nz 0])))
+    [{:name "uGrids" :type :vec4 :count (* 3 (length list)) :values rows}
+     {:name "uBankOrigin" :type :vec3 :values (relative anchor cam-pos)}
+     {:name "uGridRows" :type :vec3 :values [(/ 1 textures.bank.height) (/ 1 textures.cells.height)
+                                            (/ 1 textures.lists.height)]}
+     {:name "uBankRows" :type :texture :texture textures.bank}
+     {:name "uGridCells" :type :texture :texture textures.cells}
+     {:name "uGridLists" :type :texture :texture textures.lists}]))
+
 (fn pack [scene plan cam width height]
   "Uniforms for drawing `scene` lowered to `plan`, seen by camera state `cam`, into a
 `width` x `height` target: a list of {:name :type :values [numbers] :count n} sorted
@@ -139,8 +162,10 @@ by name. Booleans are sent as 0 or 1 with :type :bool. A field's textures come a
       (append! out (lighting-uniforms scene.lighting plan cam.pos)))
     (when plan.field
       (append! out (field-uniforms plan.field cam.pos)))
+    (when plan.grids
+      (append! out (grid-uniforms plan.grids cam.pos)))
     (each [_ [name bank] (ipairs [["uTape" plan.tape] ["uInstances" plan.tape.instances]])]
-      (when (> (length bank.rows) 0)
+      (when (and (> (length bank.rows) 0) (not bank.texture?))
         (table.insert out {: name :type :vec4 :values (tape-values bank cam.pos)
                            :count (length bank.rows)})))
     (when (and plan.bounds (> plan.bounds.count 0))
@@ -150,4 +175,4 @@ by name. Booleans are sent as 0 or 1 with :type :bool. A field's textures come a
     (table.sort out (fn [a b] (< a.name b.name)))
     out))
 
-{: pack : components : linear}
+{: pack : components : linear : tape-values}

@@ -33,8 +33,10 @@ with a decimal point or an exponent."
 
 (fn row-expr [row]
   (if group
-      (let [at (+ group.base row)]
-        (.. "uInstances[i * " group.stride (if (= at 0) "" (.. " + " at)) "]"))
+      (let [at (+ group.base row)
+            index (.. "i * " group.stride (if (= at 0) "" (.. " + " at)))]
+        ;; A bank in a texture (src/sdf/grid.fnl) is read through bankRow.
+        (if group.texture? (.. "bankRow(" index ")") (.. "uInstances[" index "]")))
       (do (tset rows-read row true)
           (.. "uTape[" row "]"))))
 
@@ -47,8 +49,9 @@ with a decimal point or an exponent."
   (icollect [_ a (ipairs args)] (arg-expr a)))
 
 (fn reg [name]
-  ;; p0 is map()'s own point.
-  (if (= name "p0") "p" name))
+  ;; p0 is map()'s own point; a group whose bank is in a texture reads its rows
+  ;; about the bank's anchor, so its members are evaluated at pg = p - uBankOrigin.
+  (if (= name "p0") (if (?. group :texture?) "pg" "p") name))
 
 (fn call [fname first args ?last]
   (let [parts [first (unpack (args-list args))]]
@@ -181,7 +184,7 @@ constant indices, and the instance groups', in loops."
   [(if (> (length tape.rows) 0)
        [(declare "vec4" "uTape" (length tape.rows) "tree parameters and materials")]
        [])
-   (if (> (length tape.instances.rows) 0)
+   (if (and (> (length tape.instances.rows) 0) (not tape.instances.texture?))
        [(declare "vec4" "uInstances" (length tape.instances.rows)
                  "instance groups' parameters and materials, one stride each" true)]
        [])])
@@ -230,13 +233,33 @@ could not lower d."
     (set group nil)
     (if ok? lines (error lines 0))))
 
+(fn bank-point [o]
+  ;; A group whose bank is in a texture evaluates its members at pg (see reg).
+  (if (?. o :instances :texture?) ["vec3 pg = p - uBankOrigin;"] []))
+
 (fn looped [o block-fn]
   ;; `(block-fn)`'s lines for object `o` after its comment: once, or for an instance
-  ;; group in a loop over its members, read from its bank.
-  (let [block (in-group o block-fn)]
+  ;; group in a loop over its members, read from its bank. A group with a grid
+  ;; (src/sdf/grid.fnl) loops over the members its cell at pg lists, after folding
+  ;; the lower bound of the others into d (in mapColor too: it lowers d, never the
+  ;; colour, as no surface is nearer than it).
+  (let [block (in-group o block-fn)
+        g (?. o :instances :grid)]
     [(object-comment o)
-     (if o.instances
-         [(.. "for (int i = 0; i < " o.instances.count "; i++) {") (indented block) "}"]
+     (if g
+         ["{"
+          (indented [(bank-point o)
+                     "int gridStart;"
+                     "int gridCount;"
+                     (.. "float gridBound = gridCell(" g ", pg, gridStart, gridCount);")
+                     "d = min(d, gridBound);"
+                     "for (int k = 0; k < gridCount; k++) {"
+                     (indented ["int i = gridMember(gridStart + k);" block])
+                     "}"])
+          "}"]
+         o.instances
+         (let [loop [(.. "for (int i = 0; i < " o.instances.count "; i++) {") (indented block) "}"]]
+           (if o.instances.texture? ["{" (indented [(bank-point o) loop]) "}"] loop))
          block)]))
 
 (fn object-block [o first materials? open tail]
@@ -286,6 +309,7 @@ objects are numbered from it in tape order, an instance group's members one each
         [(.. "if (gObject >= " id " && gObject < " (+ id o.instances.count) ") {  "
              (object-comment o))
          (indented [(.. "int i = gObject" (if (= id 0) "" (.. " - " id)) ";")
+                    (bank-point o)
                     (in-group o lines-fn)])
          "}"]
         [(.. "if (gObject == " id ") {  " (object-comment o))

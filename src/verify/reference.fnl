@@ -8,6 +8,7 @@
 (local emit-lua (require :src.sdf.emit-lua))
 (local bounds (require :src.render.bounds))
 (local field (require :src.render.field))
+(local grid (require :src.sdf.grid))
 (local lighting (require :src.verify.lighting))
 
 (local sqrt math.sqrt)
@@ -80,29 +81,68 @@ Positions are in world coordinates."
                        (for [_ 1 (if o.instances o.instances.count 1)]
                          (set j (+ j 1))
                          (tset out j o.half-space?)))
-                     out)]
+                     out)
+        ;; The tape's objects as the shader folds them, run by run: an object, an
+        ;; instance group's members, or a group with a grid (src/sdf/grid.fnl): the
+        ;; members its cell lists and the bound of the others, folded in first.
+        runs (let [out []]
+               (var j 0)
+               (each [_ o (ipairs plan.tape.objects)]
+                 (let [n (if o.instances o.instances.count 1)
+                       g (?. o :instances :grid)]
+                   (table.insert out {:first (+ j 1) :last (+ j n) :half-space? o.half-space?
+                                      :grid (when g (. plan.grids.list (+ g 1) :grid))})
+                   (set j (+ j n))))
+               out)]
+
+    (fn tape-min [d x y z finite? skip]
+      ;; d lowered by the tape's objects at x y z (the finite ones with `finite?`),
+      ;; skipping tape object number `skip` (or none).
+      (var d d)
+      (each [_ r (ipairs runs)]
+        (when (not (and finite? r.half-space?))
+          (if r.grid
+              (let [(start count bound) (grid.query r.grid x y z)
+                    records r.grid.records]
+                (when (< bound d) (set d bound))
+                (for [s (+ start 1) (+ start count)]
+                  (let [i (+ r.first (. records s))]
+                    (when (not= i skip)
+                      (let [di ((. tape-distance i) x y z)]
+                        (when (< di d) (set d di)))))))
+              (for [i r.first r.last]
+                (when (not= i skip)
+                  (let [di ((. tape-distance i) x y z)]
+                    (when (< di d) (set d di))))))))
+      d)
+
+    (fn near-count [x y z reach]
+      ;; How many of the tape's objects come within `reach` of x y z (less than a
+      ;; grid's reach: the ones its cell lists).
+      (var near 0)
+      (each [_ r (ipairs runs)]
+        (if r.grid
+            (let [(start count) (grid.query r.grid x y z)]
+              (for [s (+ start 1) (+ start count)]
+                (when (< ((. tape-distance (+ r.first (. r.grid.records s))) x y z) reach)
+                  (set near (+ near 1)))))
+            (for [i r.first r.last]
+              (when (< ((. tape-distance i) x y z) reach) (set near (+ near 1))))))
+      near)
 
     (fn map [x y z]
       (var d draw)
       (when fd
         (let [df (field.distance fd x y z)]
           (when (< df d) (set d df))))
-      (for [i 1 m]
-        (let [di ((. tape-distance i) x y z)]
-          (when (< di d) (set d di))))
-      d)
+      (tape-min d x y z false nil))
 
     ;; With bounds (src/render/bounds.fnl), as the shader: the half-spaces met in
     ;; closed form, the other objects marched over the span of their bounding spheres.
-    (local finite (fcollect [i 1 m] (when (not (. half-space i)) (. tape-distance i))))
     (local planes (fcollect [i 1 m] (when (. half-space i) i)))
 
     (fn map-finite [x y z]
-      (var d draw)
-      (each [_ f (ipairs finite)]
-        (let [di (f x y z)]
-          (when (< di d) (set d di))))
-      d)
+      (tape-min draw x y z true nil))
 
     (fn planes-hit [ox oy oz dx dy dz]
       ;; A half-space's distance s at the origin over the ray's rate v along its
@@ -131,13 +171,21 @@ Positions are in world coordinates."
             (set d df)
             (set best fb)
             (let [[cr cg cb] (if fb (. fd.colors fb) [0 0 0])] (set (r g b) (values cr cg cb))))))
-      (for [i 1 m]
+      (fn visit [i]
         (let [(di mr mg mb ma mk me) ((. tape-material i) x y z)]
           (when (< di d)
             (set d di)
             (set best (+ nf i))
             (set (r g b mirror) (values mr mg mb ma))
             (when modern? (set (rough emit) (values mk me))))))
+      ;; A grid's bound lowers d, not the colour (as emit-glsl's looped).
+      (each [_ run (ipairs runs)]
+        (if run.grid
+            (let [(start count bound) (grid.query run.grid x y z)]
+              (when (< bound d) (set d bound))
+              (for [s (+ start 1) (+ start count)]
+                (visit (+ run.first (. run.grid.records s)))))
+            (for [i run.first run.last] (visit i))))
       (values d best r g b mirror rough emit))
 
     (fn threshold [dist]
@@ -326,8 +374,8 @@ Positions are in world coordinates."
       ;; Two objects meet within the normal's finite-difference reach of the point:
       ;; a whole-scene normal there points between their surfaces.
       (let [reach (* 2 (normal-delta x y z))]
-        (var near 0)
-        (for [i 1 (+ nf m)]
+        (var near (near-count x y z reach))
+        (for [i 1 nf]
           (when (< ((object-map i) x y z) reach) (set near (+ near 1))))
         (>= near 2)))
 
@@ -338,10 +386,7 @@ Positions are in world coordinates."
         (var d draw)
         (when fd
           (let [df (field.distance fd x y z i)] (when (< df d) (set d df))))
-        (for [j (+ nf 1) (+ nf m)]
-          (when (not= j i)
-            (let [dj ((object-map j) x y z)] (when (< dj d) (set d dj)))))
-        d))
+        (tape-min d x y z false (- i nf))))
 
     (fn differences [map x y z h]
       (tally :normal (if (= normal-method :central) 6 4))

@@ -28,13 +28,14 @@
 (fn prepare [file ?options]
   "Scene, plan, camera, sampled pixels and their reference results for `file`.
 Options: :view, :render (fields overriding the scene's :render), :size [w h],
-:camera (fn [cam] cam) to move the camera."
+:camera (fn [cam] cam) to move the camera, :plan (options for plan.scene->plan)."
   (let [options (or ?options {})
         [width height] (or options.size default-size)
         (s err) (scene.load-file file)
         _ (assert s err)
         _ (each [k v (pairs (or options.render {}))] (tset s.render k v))
-        (p perr) (plan.scene->plan s {:view (or options.view :shaded)})
+        (p perr) (plan.scene->plan s (doto (collect [k v (pairs (or options.plan {}))] k v)
+                                             (tset :view (or options.view :shaded))))
         _ (assert p perr)
         cam ((or options.camera #$) (camera.from-scene s))
         pixels (compare.sample-pixels s p cam width height sample-options)]
