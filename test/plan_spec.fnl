@@ -209,8 +209,9 @@
   (fn []
     ;; A sphere takes 2 vectors (its place and radius, its material) and 32 are
     ;; reserved: (4096 - 32) / 2 = 2032 spheres fit in uniform arrays. (From 16 on
-    ;; they form a field in textures, which has no such budget: :field? false keeps
-    ;; them in uniforms here; see field_spec.)
+    ;; they form a field in textures, and from grid.min-members on a group has a
+    ;; grid and its rows in a texture, neither with such a budget: :field? false and
+    ;; :grids? false keep them in uniforms here; see field_spec and grid_spec.)
     (local most (math.floor (/ (- plan.default-uniform-limit plan.fixed-uniform-vectors) 2)))
 
     (it "has the documented limits"
@@ -221,22 +222,25 @@
 
     (it "plans the largest number of spheres that fits"
       (fn []
-        (let [p (assert (plan.scene->plan (spheres most) {:field? false}))]
+        (let [p (assert (plan.scene->plan (spheres most) {:field? false :grids? false}))]
           (assert.are.equal 4096 p.uniform-vectors)
           (assert.are.equal most (. p.tape.objects 1 :instances :count))
           (assert.truthy (p.key:find (.. "tape=group:" most "[translate( sphere ) ;] rows:0") 1 true)))))
 
     (it "refuses one more sphere with a message naming the file and the budget"
       (fn []
-        (let [(p err) (plan.scene->plan (spheres (+ most 1)) {:field? false})]
+        (let [(p err) (plan.scene->plan (spheres (+ most 1)) {:field? false :grids? false})]
           (assert.is_nil p)
           (assert.are.equal
             (.. "t.fnl: objects: the scene needs 4098 uniform vectors but the driver allows "
                 "4096 (32 are reserved); remove objects worth 2 vectors (a sphere takes 2)")
             err)
           (assert.truthy (err:find "uniform vectors" 1 true))
-          ;; As a field they fit.
-          (assert.truthy (. (assert (plan.scene->plan (spheres (+ most 1)))) :field)))))
+          ;; As a field they fit, and as a group with a grid.
+          (assert.truthy (. (assert (plan.scene->plan (spheres (+ most 1)))) :field))
+          (let [p (assert (plan.scene->plan (spheres (+ most 1)) {:field? false}))]
+            (assert.are.equal 1 (length p.grids.list))
+            (assert.is_true (< p.uniform-vectors 100))))))
 
     (it "honours the :uniform-limit option"
       (fn []

@@ -145,7 +145,7 @@
           (assert.are.equal 500 d.render.max-steps)
           (assert.are.same {:max-reflections 16 :max-steps 100000 :max-objects 200000
                             :world 1e7 :min-length 1e-6 :max-epsilon 10 :min-fov 0.1
-                            :max-fov 179 :max-name 80 :max-depth 32 :max-nodes 500}
+                            :max-fov 179 :max-name 80 :max-depth 32 :max-nodes 1000000}
                            scene.limits))))))
 
 (describe "scene loader: error messages"

@@ -1,6 +1,9 @@
 ;; The shader and uniforms of a scene as this checkout makes them, for tools/ab-run:
 ;; run it from any checkout (old or new code) as
-;;   luajit tools/fnl.lua PATH/ab-dump.fnl SCENE W H OUT.lua [fold]
+;;   luajit tools/fnl.lua PATH/ab-dump.fnl SCENE W H OUT.lua [FLAGS]
+;; FLAGS, comma-separated: fold (values folded into the code), nogrids (no grids over
+;; instance groups: every member evaluated everywhere), nofield (spheres and boxes in
+;; the tape, not a field).
 ;; then `SDL_VIDEODRIVER=offscreen love tools/ab-run W H FRAMES A.lua B.lua` times them
 ;; in turn. LÖVE's shader (flat varyings), uniforms read once as on llvmpipe.
 (local load (require :src.scene.load))
@@ -12,7 +15,9 @@
 (local w (tonumber w))
 (local h (tonumber h))
 (let [scene (assert (load.load-file file))
-      p (assert (plan.scene->plan scene (plan.renderer-options "llvmpipe" {:fold? (= fold "fold")})))
+      p (assert (plan.scene->plan scene (plan.renderer-options "llvmpipe" {:fold? (not= nil (string.find (or fold "") "fold"))
+                                                                      :grids? (= nil (string.find (or fold "") "nogrids"))
+                                                                      :field? (= nil (string.find (or fold "") "nofield"))})))
       source (assert (codegen.shader p :love))
       us (uniforms.pack scene p (camera.from-scene scene) w h)
       f (assert (io.open out :w))]

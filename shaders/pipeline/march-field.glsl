@@ -50,7 +50,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             cellEnd = min(tNext.x, min(tNext.y, tNext.z));
         }
         vec3 p = ro + rd * t;
-        float d = mapFinite(p);
+        float d = @{map}(p@{ray});
         startHalf = i == 0 && t == 0.0 && t0 > 0.0 ? startLimit(d) : startHalf;
         bool evaluated = kFieldOthers;
         if (state == 1) {

@@ -28,7 +28,7 @@ float @{march}(vec3 ro, vec3 rd, @{range}out int steps) {
     // its own start.
     float startHalf = 10000000000.0;
     for (int i = 0; i < uMaxSteps; i++) {
-        float d = @{map}(ro + rd * t);
+        float d = @{map}(ro + rd * t@{ray});
         startHalf = i == 0 && @{first}t0 > 0.0 ? startLimit(d) : startHalf;
         // @slot step
     }

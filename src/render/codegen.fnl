@@ -294,6 +294,26 @@ comment lines before the first part are the chunk's own documentation)."
     (assert lines (.. path ": no part " name))
     (fill-lines path lines slots)))
 
+(fn along-lines [plan]
+  "With grids, the distance a march takes, along its ray rd (mapAlong, or with bounds
+mapFiniteAlong): map's or mapFinite's terms, each grid bounding its unlisted members
+along the ray (see gridCellAlong in shaders/pipeline/grid.glsl)."
+  (if plan.grids
+      (let [bounded? (not= nil plan.bounds)]
+        ["// What the march steps by: as map (mapFinite with bounds), each grid's unlisted"
+         "// members bounded along the ray rd too."
+         (.. "float " (if bounded? "mapFiniteAlong" "mapAlong") "(vec3 p, vec3 rd) {")
+         "    float d = uDrawDist;"
+         (doto [] (flatten-into "    " (emit-glsl.distance-terms plan.tape (when bounded? #(not $.half-space?))
+                                                              true)))
+         "    return d;"
+         "}"])
+      []))
+
+(fn march-map [plan]
+  ;; The march's distance call: map's or mapFinite's, along the ray with grids.
+  (.. (if plan.bounds "mapFinite" "map") (if plan.grids "Along" "")))
+
 (fn march-lines [plan count-step out-of-steps]
   ;; The primary march (shaders/pipeline/march.glsl) in the form the plan needs:
   ;; plain or over-relaxed, over the whole scene or bounded (mapFinite over the
@@ -308,7 +328,8 @@ comment lines before the first part are the chunk's own documentation)."
                  (part (if bounded? :step-plain-bounded :step-plain) {:count-step count-step}))]
     [(part :march {:march (if bounded? "raymarchTo" "raymarch")
                    :range (if bounded? "float tMax, " "")
-                   :map (if bounded? "mapFinite" "map")
+                   :map (march-map plan)
+                   :ray (if plan.grids ", rd" "")
                    :first (if bounded? "t == 0.0 && " "")
                    :start [(part (if bounded? :start-bounded :start-unbounded))
                            (if plan.relaxed? (part :relaxed-state {:t-prev (if bounded? "t" "0.0")}) [])]
@@ -433,6 +454,7 @@ only when the plan has it."
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
     (when plan.bounds
       (table.insert sections (bounded-lines plan)))
+    (table.insert sections (along-lines plan))
     ;; Only the glow and heat views read the step count; elsewhere it is not kept.
     (let [count-step (if (or plan.glow? (= view :glow) (= view :heat))
                          ["steps = i + 1;"] [])]
@@ -444,6 +466,8 @@ only when the plan has it."
                                   "shaders/pipeline/march-field-alone.glsl"
                                   "shaders/pipeline/march-field.glsl")
                               {:count-step count-step
+                               :map (march-map plan)
+                               :ray (if plan.grids ", rd" "")
                                :out-of-steps (out-of-steps-lines plan)})
                         (march-lines plan count-step (out-of-steps-lines plan)))))
     (when normals?

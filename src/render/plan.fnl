@@ -20,6 +20,18 @@
 ;; love.graphics.validateShader does not catch an overflow, so the plan checks it.
 (local default-uniform-limit 4096)
 
+;; Tree nodes the shader may hold written out: every node of an object is straight-line
+;; code (an instance group's once, in its loop), and llvmpipe's compile time grows
+;; faster than linearly: 200 nodes 0.9 s, 500 nodes 3.6 s, 1900 nodes 59 s (measured).
+(local max-written-nodes 500)
+
+(fn written-nodes [tape]
+  ;; The nodes of the tape's objects as written in the shader: each object's, an
+  ;; instance group's once; not the translations lowering adds (:implicit?).
+  (fn count [info]
+    (accumulate [n (if info.implicit? 0 1) _ c (ipairs (or info.children []))] (+ n (count c))))
+  (accumulate [n 0 _ o (ipairs tape.objects)] (+ n (count o.info))))
+
 ;; Adaptive supersampling's edge tests (shaders/pipeline/adaptive.glsl and the
 ;; reference's needs-samples?): a pixel's footprint further along the centre ray, a
 ;; whole-scene normal that turns from the surface's own by 1 - cos > edge-turn (an
@@ -122,20 +134,27 @@ when none has. Marks those groups (:grid, their number from 0) and, since the ba
 then lives in a texture, every group (:texture?). Returns {:list [{:id :grid}]
 :anchor (the first grid's low corner: the bank's rows are about it) :textures}, or
 nil and a message when a texture would not fit."
-  (let [list []]
+  (let [list []
+        all []]
     (each [_ o (ipairs tape.objects)]
       (when (and o.instances (>= o.instances.count grid.min-members) (not o.half-space?))
         (let [boxes (icollect [_ info (ipairs o.infos)] (when (not info.large?) info.box))]
           (when (= (length boxes) o.instances.count)
             (set o.instances.grid (length list))
-            (table.insert list {:id o.id :grid (grid.build boxes)})))))
+            (each [_ b (ipairs boxes)] (table.insert all b))
+            (table.insert list {:id o.id : boxes})))))
+    ;; One frame for every grid: a ray crosses one set of walls.
+    (let [f (when (> (length list) 0) (grid.frame all))]
+      (each [_ e (ipairs list)]
+        (set e.grid (grid.build e.boxes f))
+        (set e.boxes nil)))
     (when (> (length list) 0)
       (set tape.instances.texture? true)
       (each [_ o (ipairs tape.objects)]
         (when o.instances (set o.instances.texture? true)))
       (let [anchor (. list 1 :grid :lo)]
         (case (grid.textures (icollect [_ e (ipairs list)] e.grid)
-                             (uniforms.tape-values tape.instances anchor))
+                             (uniforms.tape-values tape.instances anchor) anchor)
           tex {: list : anchor :textures tex}
           (nil err) (values nil err))))))
 
@@ -222,6 +241,9 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
     (case (if (not= false options.grids?) (grids-of plan.tape) nil)
       gs (set plan.grids gs)
       (nil err) (set grid-error (.. scene.file ": objects: " err)))
+    ;; A march through grids steps to cell walls along its ray, which over-relaxation's
+    ;; overlapping spheres do not cover: plain steps, as a field's march.
+    (when plan.grids (set plan.relaxed? false))
     (set plan.uniform-vectors (+ fixed-uniform-vectors (length plan.tape.rows)
                                  (if plan.grids
                                      (* 3 (length plan.grids.list))
@@ -290,6 +312,9 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
         ;; tree): no field then, and the uniform budget decides.
         (scene->plan scene (doto (collect [k v (pairs options)] k v) (tset :field? false)))
         lower-error (values nil (.. scene.file ": " lower-error))
+        (> (written-nodes plan.tape) max-written-nodes)
+        (values nil (string.format "%s: objects: the shader would hold %d tree nodes written out, more than %d (compiling grows faster than their number); objects of one structure (the same kinds and fields, other numbers) share one loop: make more of them alike, or remove some"
+                                   scene.file (written-nodes plan.tape) max-written-nodes))
         (> plan.uniform-vectors limit) (values nil (budget-message scene plan limit))
         plan)))
 

@@ -125,11 +125,12 @@ every frame, so a backend uploads them once) and their rows' reciprocals."
             [nx ny nz] grid.dims]
         (append! rows [(- lx ax) (- ly ay) (- lz az) grid.reach
                        cx cy cz (. textures.offsets i :cell)
-                       nx ny nz 0])))
+                       nx ny nz (. textures.offsets i :sphere)])))
     [{:name "uGrids" :type :vec4 :count (* 3 (length list)) :values rows}
      {:name "uBankOrigin" :type :vec3 :values (relative anchor cam-pos)}
-     {:name "uGridRows" :type :vec3 :values [(/ 1 textures.bank.height) (/ 1 textures.cells.height)
-                                            (/ 1 textures.lists.height)]}
+     {:name "uGridRows" :type :vec4 :values [(/ 1 textures.bank.height) (/ 1 textures.cells.height)
+                                            (/ 1 textures.lists.height) (/ 1 textures.spheres.height)]}
+     {:name "uGridSpheres" :type :texture :texture textures.spheres}
      {:name "uBankRows" :type :texture :texture textures.bank}
      {:name "uGridCells" :type :texture :texture textures.cells}
      {:name "uGridLists" :type :texture :texture textures.lists}]))

@@ -112,11 +112,11 @@ scene never changes another's defaults."
                ;; (positions are sent camera-relative), and the image stays meaningful.
                :world 1e7 :min-length 1e-6 :max-epsilon 10 :min-fov 0.1 :max-fov 179
                :max-name 80
-               ;; Scene trees: depth and size. Every node is straight-line shader
-               ;; code, and llvmpipe's compile time grows faster than linearly:
-               ;; 200 nodes 0.9 s, 500 nodes 3.6 s, 1900 nodes 59 s (measured).
-               ;; Hundreds of objects belong in flat lists (the grouped path).
-               :max-depth 32 :max-nodes 500})
+               ;; Scene trees: depth and size. The shader's size is the plan's to
+               ;; check (src/render/plan.fnl's max-written-nodes: objects of one
+               ;; structure share one loop); here the nodes of all objects together,
+               ;; as many as the objects allowed, each validated in turn.
+               :max-depth 32 :max-nodes 1000000})
 
 ;;; Messages
 

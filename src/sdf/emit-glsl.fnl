@@ -23,6 +23,11 @@ with a decimal point or an exponent."
 ;; base + row + stride * i in the group's loop.
 (var group nil)
 
+;; While distance-terms emits a march's distance (`along?`): grids bound their
+;; unlisted members along the ray rd, not only around the point (grid.glsl's
+;; gridCellAlong).
+(var along? false)
+
 ;; The tape's rows the code emitted since `reset-reads!` reads (row -> true): only
 ;; those are copied once per pixel (see load-once in src/render/codegen.fnl).
 (var rows-read {})
@@ -251,10 +256,22 @@ could not lower d."
           (indented [(bank-point o)
                      "int gridStart;"
                      "int gridCount;"
-                     (.. "float gridBound = gridCell(" g ", pg, gridStart, gridCount);")
+                     (if along?
+                         (.. "float gridBound = gridCellAlong(" g ", pg, rd, gridStart, gridCount);")
+                         (.. "float gridBound = gridCell(" g ", pg, gridStart, gridCount);"))
                      "d = min(d, gridBound);"
                      "for (int k = 0; k < gridCount; k++) {"
-                     (indented ["int i = gridMember(gridStart + k);" block])
+                     (indented ["int i = gridMember(gridStart + k);"
+                                ;; A march skips a member it is far from by the ray's
+                                ;; entry into its bounding sphere (gridSkip).
+                                (if along?
+                                    [(.. "float gridStep = gridSkip(" g ", i, pg, rd);")
+                                     "if (gridStep >= 0.0) {"
+                                     "    d = min(d, gridStep);"
+                                     "    continue;"
+                                     "}"]
+                                    [])
+                                block])
                      "}"])
           "}"]
          o.instances
@@ -274,11 +291,15 @@ members. `id`: the object's number as GLSL (see id-expr)."
 (fn objects-of [tape ?which]
   (icollect [_ o (ipairs tape.objects)] (when (or (not ?which) (?which o)) o)))
 
-(fn distance-terms [tape ?which]
+(fn distance-terms [tape ?which ?along?]
   "Lines for map(): each tree object's distance (each for which `?which` is true),
-folded into d."
-  (icollect [_ o (ipairs (objects-of tape ?which))]
-    (object-block o 0 false open-block #[(.. "d = min(d, " o.dout ");")])))
+folded into d. With `?along?`, a march's: rd is its ray's direction, and a grid's
+bound reaches along it (see gridCellAlong)."
+  (set along? (= true ?along?))
+  (let [(ok? lines) (pcall #(icollect [_ o (ipairs (objects-of tape ?which))]
+                              (object-block o 0 false open-block #[(.. "d = min(d, " o.dout ");")])))]
+    (set along? false)
+    (if ok? lines (error lines 0))))
 
 (fn others-terms [tape first]
   "Lines for mapOthers(): map's minimum, each object but the one gObject numbers

@@ -81,12 +81,11 @@
             (neighbours k (fn [j] (tset least 1 (min (. least 1) (. dist j)))))
             (min far (+ 1 (. least 1))))))))
 
-(fn build [boxes ?options]
-  "The grid of the members whose world boxes are `boxes` ({:lo [x y z] :hi [x y z]},
-in member order). Options: :cells-per-member. Returns {:count :lo (world) :dims
-[nx ny nz] :cell [sx sy sz] :size :reach :start :count-of (per cell, 1-based; a
-list's first slot 0-based) :clearance (per cell: the cells' skip, in world units)
-:records (member numbers, 0-based, per cell in order)}."
+(fn frame [boxes ?options]
+  "The cells over the world boxes `boxes` ({:lo [x y z] :hi [x y z]}): about
+cells-per-member (or the option :cells-per-member) a box, their box grown by the
+reach. {:lo :dims [nx ny nz] :cell [sx sy sz] :size :reach :smallest (cell side)}.
+Grids built on one frame share their walls, so a ray crosses one set of them."
   (let [options (or ?options {})
         n (length boxes)]
     (var (lx ly lz hx hy hz) (values math.huge math.huge math.huge (- math.huge) (- math.huge) (- math.huge)))
@@ -98,54 +97,93 @@ list's first slot 0-based) :clearance (per cell: the cells' skip, in world units
           smallest (min (/ (- hx lx) nx) (/ (- hy ly) ny) (/ (- hz lz) nz))
           smallest (if (> smallest 0) smallest 1e-3)
           reach (* reach-fraction smallest)
-          lo [(- lx reach) (- ly reach) (- lz reach)]
-          size [(+ (- hx lx) (* 2 reach)) (+ (- hy ly) (* 2 reach)) (+ (- hz lz) (* 2 reach))]
-          cell [(/ (. size 1) nx) (/ (. size 2) ny) (/ (. size 3) nz)]
-          cells (* nx ny nz)
-          count-of (fcollect [_ 1 cells] 0)
-          ranges (icollect [_ {:lo blo :hi bhi} (ipairs boxes)]
-                   (fcollect [a 1 3]
-                     (let [d (. [nx ny nz] a)
-                           s (. cell a)
-                           o (. lo a)]
-                       [(max 0 (min (- d 1) (floor (/ (- (. blo a) reach o) s))))
-                        (max 0 (min (- d 1) (floor (/ (+ (. bhi a) reach (- o)) s))))])))
-          visit (fn [r f]
-                  (let [[[x0 x1] [y0 y1] [z0 z1]] r]
-                    (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
-                      (f (+ 1 x (* nx (+ y (* ny z))))))))))
-          _ (each [_ r (ipairs ranges)]
-              (visit r #(tset count-of $ (+ 1 (. count-of $)))))
-          start []
-          fill []
-          records []]
-      (var at 0)
-      (for [k 1 cells]
-        (tset start k at)
-        (tset fill k at)
-        (set at (+ at (. count-of k))))
-      (each [m r (ipairs ranges)]
-        (visit r (fn [k]
-                   (tset records (+ 1 (. fill k)) (- m 1))
-                   (tset fill k (+ 1 (. fill k))))))
-      (let [rings (clearances [nx ny nz] count-of)
-            ;; (k - 1) cells of the smallest side past the point's own walls: no
-            ;; listing cell nearer, so no member; at most the grid's diagonal.
-            diagonal (math.sqrt (+ (^ (. size 1) 2) (^ (. size 2) 2) (^ (. size 3) 2)))]
-        {:count n : lo :dims [nx ny nz] : cell : size : reach : start : count-of : records
-         :clearance (icollect [_ k (ipairs rings)] (min diagonal (* (- k 1) smallest)))}))))
+          size [(+ (- hx lx) (* 2 reach)) (+ (- hy ly) (* 2 reach)) (+ (- hz lz) (* 2 reach))]]
+      {:lo [(- lx reach) (- ly reach) (- lz reach)] :dims [nx ny nz] : size : reach
+       :cell [(/ (. size 1) nx) (/ (. size 2) ny) (/ (. size 3) nz)]
+       :smallest (min (/ (. size 1) nx) (/ (. size 2) ny) (/ (. size 3) nz))})))
 
-(fn query [g x y z]
+(fn build [boxes ?frame ?options]
+  "The grid of the members whose world boxes are `boxes` ({:lo [x y z] :hi [x y z]},
+in member order), on the cells `?frame` (see `frame`; by default their own). Returns
+the frame's fields and :count, :start :count-of (per cell, 1-based; a list's first
+slot 0-based), :clearance (per cell: the cells' skip, in world units) and :records
+(member numbers, 0-based, per cell in order)."
+  (let [{: lo : dims : cell : size : reach : smallest &as f} (or ?frame (frame boxes ?options))
+        [nx ny nz] dims
+        cells (* nx ny nz)
+        count-of (fcollect [_ 1 cells] 0)
+        ranges (icollect [_ {:lo blo :hi bhi} (ipairs boxes)]
+                 (fcollect [a 1 3]
+                   (let [d (. dims a)
+                         s (. cell a)
+                         o (. lo a)]
+                     [(max 0 (min (- d 1) (floor (/ (- (. blo a) reach o) s))))
+                      (max 0 (min (- d 1) (floor (/ (+ (. bhi a) reach (- o)) s))))])))
+        visit (fn [r f]
+                (let [[[x0 x1] [y0 y1] [z0 z1]] r]
+                  (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
+                    (f (+ 1 x (* nx (+ y (* ny z))))))))))
+        _ (each [_ r (ipairs ranges)]
+            (visit r #(tset count-of $ (+ 1 (. count-of $)))))
+        start []
+        fill []
+        records []]
+    (var at 0)
+    (for [k 1 cells]
+      (tset start k at)
+      (tset fill k at)
+      (set at (+ at (. count-of k))))
+    (each [m r (ipairs ranges)]
+      (visit r (fn [k]
+                 (tset records (+ 1 (. fill k)) (- m 1))
+                 (tset fill k (+ 1 (. fill k))))))
+    (let [rings (clearances dims count-of)
+          ;; (k - 1) cells of the smallest side past the point's own walls: no
+          ;; listing cell nearer, so no member; at most the grid's diagonal.
+          diagonal (math.sqrt (+ (^ (. size 1) 2) (^ (. size 2) 2) (^ (. size 3) 2)))]
+      {:count (length boxes) : lo : dims : cell : size : reach : start : count-of : records
+       ;; Each member's bounding sphere (world centre, radius), flat: a march skips a
+       ;; member whose sphere it is far from by the ray's entry into it.
+       :spheres (let [out []]
+                  (each [_ {:lo [x0 y0 z0] :hi [x1 y1 z1]} (ipairs boxes)]
+                    (each [_ v (ipairs [(* 0.5 (+ x0 x1)) (* 0.5 (+ y0 y1)) (* 0.5 (+ z0 z1))
+                                        (* 0.5 (math.sqrt (+ (^ (- x1 x0) 2) (^ (- y1 y0) 2) (^ (- z1 z0) 2))))])]
+                      (table.insert out v)))
+                  out)
+       :clearance (icollect [_ k (ipairs rings)] (min diagonal (* (- k 1) smallest)))})))
+
+(local tiny 0.000001)
+
+(fn slab-entry [qx qy qz sx sy sz dx dy dz]
+  ;; Where the ray q + t d (q outside the box from 0 to s) enters the box, or nil when
+  ;; it never does (gridCellAlong's slab test: tiny direction components replaced).
+  (let [safe #(if (< (math.abs $) tiny) tiny $)
+        ax (safe dx) ay (safe dy) az (safe dz)
+        ta-x (/ (- qx) ax) tb-x (/ (- sx qx) ax)
+        ta-y (/ (- qy) ay) tb-y (/ (- sy qy) ay)
+        ta-z (/ (- qz) az) tb-z (/ (- sz qz) az)
+        enter (max (min ta-x tb-x) (min ta-y tb-y) (min ta-z tb-z))
+        leave (min (max ta-x tb-x) (max ta-y tb-y) (max ta-z tb-z))]
+    (when (and (<= enter leave) (> leave 0)) enter)))
+
+(fn query [g x y z ?dx ?dy ?dz ?far]
   "The cell of grid `g` at world point x y z: its list (first slot 0-based, count) and
-the lower bound for every member it does not list, as the shader's gridCell: outside
-the grid, the distance to its box plus the reach; inside, the distance to the cell's
-walls plus the reach or its clearance, whichever is more."
+the lower bound for every member it does not list, as the shader's gridCellAlong:
+outside the grid, the distance to its box plus the reach; inside, the distance to the
+cell's walls plus the reach or its clearance, whichever is more. With a ray direction
+?dx ?dy ?dz (a unit vector), the bound is at least how far the ray may go before it
+can meet an unlisted member: to the grid's box from outside (?far, the draw
+distance, when it misses it), to the cell's far wall from inside."
   (let [[lx ly lz] g.lo
         [sx sy sz] g.size
         qx (- x lx) qy (- y ly) qz (- z lz)
-        ox (max (- qx) (- qx sx) 0) oy (max (- qy) (- qy sy) 0) oz (max (- qz) (- qz sz) 0)]
+        ox (max (- qx) (- qx sx) 0) oy (max (- qy) (- qy sy) 0) oz (max (- qz) (- qz sz) 0)
+        along? (and ?dx (not (and (= ?dx 0) (= ?dy 0) (= ?dz 0))))]
     (if (> (max ox oy oz) 0)
-        (values 0 0 (+ (math.sqrt (+ (* ox ox) (* oy oy) (* oz oz))) g.reach))
+        (let [bound (+ (math.sqrt (+ (* ox ox) (* oy oy) (* oz oz))) g.reach)]
+          (values 0 0 (if along?
+                          (max bound (or (slab-entry qx qy qz sx sy sz ?dx ?dy ?dz) ?far))
+                          bound)))
         (let [[nx ny nz] g.dims
               [cx cy cz] g.cell
               ix (max 0 (min (- nx 1) (floor (/ qx cx))))
@@ -153,36 +191,66 @@ walls plus the reach or its clearance, whichever is more."
               iz (max 0 (min (- nz 1) (floor (/ qz cz))))
               k (+ 1 ix (* nx (+ iy (* ny iz))))
               wx (- qx (* ix cx)) wy (- qy (* iy cy)) wz (- qz (* iz cz))
-              wall (min wx (- cx wx) wy (- cy wy) wz (- cz wz))]
-          (values (. g.start k) (. g.count-of k) (+ wall (max g.reach (. g.clearance k))))))))
+              bound (+ (min wx (- cx wx) wy (- cy wy) wz (- cz wz))
+                       (max g.reach (. g.clearance k)))
+              ahead (fn [w c d] (/ (if (>= d 0) (- c w) w) (max (math.abs d) tiny)))]
+          (values (. g.start k) (. g.count-of k)
+                  (if along?
+                      (max bound (min (ahead wx cx ?dx) (ahead wy cy ?dy) (ahead wz cz ?dz)))
+                      bound))))))
+
+(fn skip [g member x y z dx dy dz far]
+  "How far a march along the unit vector dx dy dz from world point x y z may go before
+it can meet member `member` (0-based) of grid `g` without evaluating it, or nil when
+the point is within the grid's reach of the member's bounding sphere (gridSkip): its
+entry into the sphere (`far` when it never enters), and at least its distance to it."
+  (let [i (+ 1 (* 4 member))
+        s g.spheres
+        r (. s (+ i 3))
+        ox (- x (. s i)) oy (- y (. s (+ i 1))) oz (- z (. s (+ i 2)))
+        e (- (math.sqrt (+ (* ox ox) (* oy oy) (* oz oz))) r)]
+    (when (> e g.reach)
+      (let [b (+ (* ox dx) (* oy dy) (* oz dz))
+            cx (- ox (* b dx)) cy (- oy (* b dy)) cz (- oz (* b dz))
+            disc (- (* r r) (+ (* cx cx) (* cy cy) (* cz cz)))]
+        (max e (if (or (< disc 0) (> b 0)) far (- (- b) (math.sqrt disc))))))))
 
 (fn texture [texels data]
   {:width texture-width :height (max 1 (math.ceil (/ texels texture-width))) : data})
 
-(fn textures [grids bank-values]
+(fn textures [grids bank-values [ax ay az]]
   "The textures of a plan's grids and its instance bank: {:cells (per cell of every
 grid in turn: first slot of its list, count, clearance, 0) :lists (member numbers, one
-a texel) :bank (the rows `bank-values`, flat, 4 a row)} and :offsets (each grid's first
-cell and first list slot), or nil and a message when one would not fit."
+a texel) :spheres (every grid's members' bounding spheres in turn, centre about the
+anchor [ax ay az], radius) :bank (the rows `bank-values`, flat, 4 a row)} and :offsets
+(each grid's first cell, list slot and sphere), or nil and a message when one would
+not fit."
   (let [cells []
         lists []
+        spheres []
         offsets []]
     (var cell-at 0)
     (each [_ g (ipairs grids)]
       (let [list-at (/ (length lists) 4)]
-        (table.insert offsets {:cell cell-at :list list-at})
+        (table.insert offsets {:cell cell-at :list list-at :sphere (/ (length spheres) 4)})
+        (for [i 1 (length g.spheres) 4]
+          (let [s g.spheres]
+            (each [_ v (ipairs [(- (. s i) ax) (- (. s (+ i 1)) ay) (- (. s (+ i 2)) az) (. s (+ i 3))])]
+              (table.insert spheres v))))
         (each [k s (ipairs g.start)]
           (each [_ v (ipairs [(+ s list-at) (. g.count-of k) (. g.clearance k) 0])]
             (table.insert cells v)))
         (each [_ r (ipairs g.records)]
           (each [_ v (ipairs [r 0 0 0])] (table.insert lists v)))
         (set cell-at (+ cell-at (length g.start)))))
-    (let [sizes {:cells cell-at :lists (/ (length lists) 4) :bank (/ (length bank-values) 4)}
+    (let [sizes {:cells cell-at :lists (/ (length lists) 4) :bank (/ (length bank-values) 4)
+                 :spheres (/ (length spheres) 4)}
           over (accumulate [o nil name n (pairs sizes)] (if (> n max-texels) name o))]
       (if over
           (values nil (string.format "the grids' %s need %d texels, more than a texture holds (%d)"
                                      over (. sizes over) max-texels))
           {:cells (texture cell-at cells) :lists (texture (. sizes :lists) lists)
+           :spheres (texture sizes.spheres spheres)
            :bank (texture (. sizes :bank) bank-values) : offsets}))))
 
-{: build : query : textures : min-members : texture-width}
+{: frame : build : query : skip : textures : min-members : texture-width}

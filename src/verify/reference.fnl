@@ -95,20 +95,24 @@ Positions are in world coordinates."
                    (set j (+ j n))))
                out)]
 
-    (fn tape-min [d x y z finite? skip]
+    (fn tape-min [d x y z finite? skip ?dx ?dy ?dz]
       ;; d lowered by the tape's objects at x y z (the finite ones with `finite?`),
-      ;; skipping tape object number `skip` (or none).
+      ;; skipping tape object number `skip` (or none); grids bound their unlisted
+      ;; members along the ray ?dx ?dy ?dz when a march gives one (mapFiniteAlong).
       (var d d)
       (each [_ r (ipairs runs)]
         (when (not (and finite? r.half-space?))
           (if r.grid
-              (let [(start count bound) (grid.query r.grid x y z)
+              (let [(start count bound) (grid.query r.grid x y z ?dx ?dy ?dz draw)
                     records r.grid.records]
                 (when (< bound d) (set d bound))
                 (for [s (+ start 1) (+ start count)]
-                  (let [i (+ r.first (. records s))]
+                  (let [member (. records s)
+                        i (+ r.first member)]
                     (when (not= i skip)
-                      (let [di ((. tape-distance i) x y z)]
+                      ;; A march skips members it is far from (gridSkip).
+                      (let [di (or (and ?dx (grid.skip r.grid member x y z ?dx ?dy ?dz draw))
+                                   ((. tape-distance i) x y z))]
                         (when (< di d) (set d di)))))))
               (for [i r.first r.last]
                 (when (not= i skip)
@@ -130,19 +134,20 @@ Positions are in world coordinates."
               (when (< ((. tape-distance i) x y z) reach) (set near (+ near 1))))))
       near)
 
-    (fn map [x y z]
+    (fn map [x y z ?dx ?dy ?dz]
+      ;; (Along the ray ?dx ?dy ?dz in a march: see tape-min.)
       (var d draw)
       (when fd
         (let [df (field.distance fd x y z)]
           (when (< df d) (set d df))))
-      (tape-min d x y z false nil))
+      (tape-min d x y z false nil ?dx ?dy ?dz))
 
     ;; With bounds (src/render/bounds.fnl), as the shader: the half-spaces met in
     ;; closed form, the other objects marched over the span of their bounding spheres.
     (local planes (fcollect [i 1 m] (when (. half-space i) i)))
 
-    (fn map-finite [x y z]
-      (tape-min draw x y z true nil))
+    (fn map-finite [x y z ?dx ?dy ?dz]
+      (tape-min draw x y z true nil ?dx ?dy ?dz))
 
     (fn planes-hit [ox oy oz dx dy dz]
       ;; A half-space's distance s at the origin over the ray's rate v along its
@@ -262,7 +267,7 @@ Positions are in world coordinates."
               (set state 1)
               (set cell-end (math.min next-x next-y next-z))))
           (let [px (+ ox (* dx t)) py (+ oy (* dy t)) pz (+ oz (* dz t))]
-            (var d (map-finite px py pz))
+            (var d (map-finite px py pz dx dy dz))
             (when (and first? (= t 0) (> t0 0)) (set start-half (start-limit d)))
             (set first? false)
             (var evaluated? others?)
@@ -329,7 +334,7 @@ Positions are in world coordinates."
         (var done? (and bound-spheres (>= t t-end)))
         (when done? (set t t-past))
         (for [i 0 (- max-steps 1) &until done?]
-          (let [d (f (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)))]
+          (let [d (f (+ ox (* dx t)) (+ oy (* dy t)) (+ oz (* dz t)) dx dy dz)]
             (set steps (+ i 1))
             (when (and (= i 0) (= t 0) (> t0 0)) (set start-half (start-limit d)))
             (if (and (> omega 1) (< (+ (abs d) r-prev) (- t t-prev)))

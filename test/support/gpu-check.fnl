@@ -28,7 +28,8 @@
 (fn prepare [file ?options]
   "Scene, plan, camera, sampled pixels and their reference results for `file`.
 Options: :view, :render (fields overriding the scene's :render), :size [w h],
-:camera (fn [cam] cam) to move the camera, :plan (options for plan.scene->plan)."
+:camera (fn [cam] cam) to move the camera, :plan (options for plan.scene->plan),
+:seed (the sampled pixels' seed, default 1)."
   (let [options (or ?options {})
         [width height] (or options.size default-size)
         (s err) (scene.load-file file)
@@ -38,7 +39,9 @@ Options: :view, :render (fields overriding the scene's :render), :size [w h],
                                              (tset :view (or options.view :shaded))))
         _ (assert p perr)
         cam ((or options.camera #$) (camera.from-scene s))
-        pixels (compare.sample-pixels s p cam width height sample-options)]
+        pixels (compare.sample-pixels s p cam width height
+                                      (doto (collect [k v (pairs sample-options)] k v)
+                                        (tset :seed (or options.seed sample-options.seed))))]
     {:scene s :plan p :cam cam :pixels pixels : width : height
      :expected (reference.render-pixels s p cam width height pixels)}))
 
