@@ -27,10 +27,21 @@
 
 (fn written-nodes [tape]
   ;; The nodes of the tape's objects as written in the shader: each object's, an
-  ;; instance group's once; not the translations lowering adds (:implicit?).
+  ;; instance group's once; not the translations lowering adds (:implicit?). Also
+  ;; the object that writes the most, and how many.
   (fn count [info]
     (accumulate [n (if info.implicit? 0 1) _ c (ipairs (or info.children []))] (+ n (count c))))
-  (accumulate [n 0 _ o (ipairs tape.objects)] (+ n (count o.info))))
+  (var (total most most-n) (values 0 nil 0))
+  (each [_ o (ipairs tape.objects)]
+    (let [n (count o.info)]
+      (set total (+ total n))
+      (when (> n most-n) (set (most most-n) (values o n)))))
+  (values total most most-n))
+
+(fn nodes-message [scene tape]
+  (let [(total most most-n) (written-nodes tape)]
+    (string.format "%s: %s: the shader would hold %d tree nodes written out, more than %d (compiling grows faster than their number); this object writes %d of them. Objects of one structure (the same kinds and fields, other numbers) share one loop: make more of them alike, or remove some"
+                   scene.file most.info.path total max-written-nodes most-n)))
 
 ;; Adaptive supersampling's edge tests (shaders/pipeline/adaptive.glsl and the
 ;; reference's needs-samples?): a pixel's footprint further along the centre ray, a
@@ -313,8 +324,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
         (scene->plan scene (doto (collect [k v (pairs options)] k v) (tset :field? false)))
         lower-error (values nil (.. scene.file ": " lower-error))
         (> (written-nodes plan.tape) max-written-nodes)
-        (values nil (string.format "%s: objects: the shader would hold %d tree nodes written out, more than %d (compiling grows faster than their number); objects of one structure (the same kinds and fields, other numbers) share one loop: make more of them alike, or remove some"
-                                   scene.file (written-nodes plan.tape) max-written-nodes))
+        (values nil (nodes-message scene plan.tape))
         (> plan.uniform-vectors limit) (values nil (budget-message scene plan limit))
         plan)))
 
