@@ -49,7 +49,7 @@
                  (tset g.specials :local (fn [] (error "hijacked")))
                  (tset g.macros :evil (fn [] nil))
                  (real-compile ...)))
-          (let [(s err) (scene.load-string "{:objects []}" "t.fnl")]
+          (let [(s err) (scene.load-string "(let [x 1] {:objects []})" "t.fnl")]
             (set fennel.compile-string real-compile)
             (assert.is_nil s)
             (assert.are.equal "t.fnl: the scene changed the Fennel compiler and was refused" err))
@@ -201,23 +201,34 @@
 
 (describe "sandbox: the file before it is parsed"
   (fn []
-    (it "refuses a file over 512 KB, reading no more than the limit"
+    (it "refuses a file of code over 512 KB, saying why it is not plain data"
+      (fn []
+        (let [path "test/out/sandbox-big.fnl"]
+          (os.execute "mkdir -p test/out")
+          (write-file path (.. "{:objects []\n :name (.. :a :b)}\n" (string.rep ";; padding\n" 100000)))
+          (let [(s err) (scene.load-file path)]
+            (os.remove path)
+            (assert.is_nil s)
+            (assert.are.equal (.. path ":2: the file is over 524288 bytes (512 KB), the most for a scene"
+                                  " file with code, and this is not plain data (a list (...): code); a"
+                                  " file of plain data (numbers, strings, :keywords, true, false, [...]"
+                                  " and {...}) may have up to 16 MB")
+                              err)))))
+
+    (it "loads a file of plain data over 512 KB: comments do not make it code"
       (fn []
         (let [path "test/out/sandbox-big.fnl"]
           (os.execute "mkdir -p test/out")
           (write-file path (.. "{:objects []}\n" (string.rep ";; padding\n" 100000)))
-          (let [(s err) (scene.load-file path)]
+          (let [s (scene.load-file path)]
             (os.remove path)
-            (assert.is_nil s)
-            (assert.are.equal (.. path ": the file is over 524288 bytes (512 KB), the most a scene file may have"
-                                  "; make many objects with a loop, like (fcollect [i 1 n] {:kind :sphere ...})")
-                              err)))))
+            (assert.are.same [] (. (assert s) :objects))))))
 
-    (it "refuses /dev/zero without reading it"
+    (it "refuses /dev/zero, reading no more than the limit of plain data"
       (fn []
         (let [(s err) (scene.load-file "/dev/zero")]
           (assert.is_nil s)
-          (assert.are.equal (.. "/dev/zero: the file is over 524288 bytes (512 KB), the most a scene file may have"
+          (assert.are.equal (.. "/dev/zero: the file is over 16777216 bytes (16 MB), the most a scene file may have"
                                 "; make many objects with a loop, like (fcollect [i 1 n] {:kind :sphere ...})")
                             err))))
 

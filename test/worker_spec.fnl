@@ -74,7 +74,7 @@
     (it "animates a scene again after another load, and after it was killed"
       (fn []
         (let [a (assert (worker.load-source "{:objects [{:kind :sphere :radius (fn [t] (+ 1 t))}]}" "a.fnl"))]
-          (assert (worker.load-file "scenes/seed.fnl"))
+          (assert (worker.load-file "scenes/organic.fnl"))
           (assert.is_true (worker.animate a 2))
           (assert.are.equal 3 (. a.objects 1 :radius))
           (worker.kill!)
@@ -113,19 +113,19 @@
               (ok? err) (worker.load-source text "big.fnl")]
           (assert.is_nil ok?)
           (assert.are.equal "big.fnl: the scene needs more memory than the scene worker has (512 MB)" err)
-          (assert (worker.load-file "scenes/seed.fnl")))))
+          (assert (worker.load-file "scenes/organic.fnl")))))
 
     (it "kills a worker that does not answer a load within its deadline; the next load starts another"
       (fn []
         (with-deadline :load 1
           #(with-command (fake :hang-load)
              (fn []
-               (let [(seconds ok? err) (timed #(worker.load-file "scenes/seed.fnl"))]
+               (let [(seconds ok? err) (timed #(worker.load-file "scenes/organic.fnl"))]
                  (assert.is_nil ok?)
-                 (assert.are.equal "scenes/seed.fnl: loading the scene took more than 1 s of CPU (a library call that never returns?); the scene worker was stopped" err)
+                 (assert.are.equal "scenes/organic.fnl: loading the scene took more than 1 s of CPU (a library call that never returns?); the scene worker was stopped" err)
                  (assert.is_true (< seconds 30) (.. seconds " s"))
                  (worker.set-command! nil)
-                 (assert (worker.load-file "scenes/seed.fnl"))))))))
+                 (assert (worker.load-file "scenes/organic.fnl"))))))))
 
     (it "kills a worker whose functions of time do not answer; asking without waiting stays responsive"
       (fn []
@@ -149,16 +149,16 @@
     (it "refuses answers that are not wire data, and workers that never start"
       (fn []
         (with-command (fake :garbage)
-          #(let [(ok? err) (worker.load-file "scenes/seed.fnl")]
+          #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
              (assert.is_nil ok?)
-             (assert.are.equal "scenes/seed.fnl: the scene worker's answer was refused: malformed data: bad header (not \"SDW1 \")" err)))
+             (assert.are.equal "scenes/organic.fnl: the scene worker's answer was refused: malformed data: bad header (not \"SDW1 \")" err)))
         (with-command ["false"]
-          #(let [(ok? err) (worker.load-file "scenes/seed.fnl")]
+          #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
              (assert.is_nil ok?)
-             (assert.are.equal "scenes/seed.fnl: the scene worker did not start (false): it ended at once" err)))
+             (assert.are.equal "scenes/organic.fnl: the scene worker did not start (false): it ended at once" err)))
         (with-deadline :start 0.5
           #(with-command (fake :silent)
-             #(let [(ok? err) (worker.load-file "scenes/seed.fnl")]
+             #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
                 (assert.is_nil ok?)
                 (assert.truthy (err:find "did not start .*: no answer after 0.5 s of CPU$") err))))))
 
@@ -185,7 +185,7 @@
 
     (it "says what it gave up"
       (fn []
-        (assert (worker.load-file "scenes/seed.fnl"))
+        (assert (worker.load-file "scenes/organic.fnl"))
         (let [info (worker.info)]
           (assert.are.same [] info.missing)
           (assert.are.equal 6 (length info.applied)))))
