@@ -104,15 +104,16 @@
 
     (it "refuses one allocation past its address space, and goes on working"
       (fn []
-        ;; 32 MB made by doubling (within the sandbox's 96 MB), then one `..` of 30 of
-        ;; them: a single 960 MB allocation, which no step or memory hook sees coming.
+        ;; 64 MB made by doubling (within the sandbox's 512 MB), then one `..` of 30
+        ;; of them: a single 1920 MB allocation (just within LuaJIT's largest string),
+        ;; which no step or memory hook sees coming.
         (let [text "(var s (string.rep :x 1048576))
-(for [i 1 5] (set s (.. s s)))
+(for [i 1 6] (set s (.. s s)))
 (local big (.. s s s s s s s s s s s s s s s s s s s s s s s s s s s s s s))
 {:objects [{:kind :sphere :radius (length big)}]}"
               (ok? err) (worker.load-source text "big.fnl")]
           (assert.is_nil ok?)
-          (assert.are.equal "big.fnl: the scene needs more memory than the scene worker has (512 MB)" err)
+          (assert.are.equal "big.fnl: the scene needs more memory than the scene worker has (1536 MB)" err)
           (assert (worker.load-file "scenes/organic.fnl")))))
 
     (it "kills a worker that does not answer a load within its deadline; the next load starts another"

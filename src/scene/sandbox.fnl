@@ -16,14 +16,19 @@
    :data-bytes (* 16 1024 1024)
    :data-memory-mb 128
    :nesting 100                   ; brackets inside brackets (a tree 32 nodes deep takes 66)
-   :steps 20000000                ; Lua VM instructions (about a second here): 100,000
-                                  ; generated objects at 200 steps each; generators
-                                  ; tried take 74 to 127 steps per object
-   :memory-mb 96                  ; Lua memory the scene may build: 100,000 boxes
-                                  ; take 44 MB, 67 MB at the peak when built with
-                                  ; vector helpers that leave garbage
+   :steps 20000000                ; Lua VM instructions before the scene has built
+                                  ; anything (an endless loop: about 0.4 s here) ...
+   :steps-per-kb 500              ; ... and this many more per KB of memory it has
+                                  ; reached. A sphere made by a loop keeps about
+                                  ; 340 bytes and takes 74 to 127 steps (99 in
+                                  ; test/fixtures/spheres-100000.fnl): 170 allowed.
+                                  ; The most any scene gets: 20 + 500 x 524,288 KB =
+                                  ; 282 million steps (about 6 s here)
+   :memory-mb 512                 ; Lua memory the scene may build, garbage included:
+                                  ; 1,000,000 spheres made by a loop keep 342 MB
    :string-bytes (* 1024 1024)    ; one string made by a library call
    :cpu-seconds 5                 ; a backstop: the step limit trips long before
+                                  ; (while a scene runs it grows as its steps do)
    ;; Compiling (the compiler is Lua code too; a macro can copy its arguments
    ;; without end: nested case-try, 4 KB, took 1.3 GB and more). A 512 KB file of
    ;; 6310 spheres written out compiles in 39 million steps (0.46 s) and 43 MB at
@@ -383,36 +388,50 @@ the file system, the process, the loader or the compiler."
   "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
 message past the step or memory limit. Returns true and the value, or false and an
 error (a string from the scene's code, or a sandbox error); third, about how many
-steps it took (counted every limits.hook-every). `?options`: :steps (a smaller step
-limit, for the functions of time called every frame) and :collect? (false: no full
-garbage collection afterwards, also for those calls)."
+steps it took (counted every limits.hook-every). The step limit grows with the data
+the scene builds: limits.steps, and limits.steps-per-kb more for each KB of Lua
+memory it has reached (its highest count, garbage included); the time backstop grows
+with it. `?options`: :steps (a fixed step limit, for the functions of time called
+every frame) and :collect? (false: no full garbage collection afterwards, also for
+those calls)."
   (var hooks 0)
   (var stopped nil)
   (let [options (or ?options {})
         steps (or options.steps limits.steps)
-        memory-ceiling (+ (gc :count) (* 1024 limits.memory-mb))
-        max-hooks (/ steps limits.hook-every)
+        start-kb (gc :count)
+        memory-ceiling (+ start-kb (* 1024 limits.memory-mb))
+        base-hooks (/ steps limits.hook-every)
+        hooks-per-kb (if options.steps 0 (/ limits.steps-per-kb limits.hook-every))
         cpu-start (cpu-clock)
         stop! (fn [message]
                 ;; Raise once: a hook firing again on the way out of pcall (before the
                 ;; hook is removed) must not raise outside it.
                 (set stopped message)
-                (stop message))
-        ;; The hook runs every few instructions, most of a generated scene's load:
-        ;; upvalues and locals only, and the rare tests last.
-        hook (fn []
-               (when (not stopped)
-                 (set hooks (+ hooks 1))
-                 (if (> hooks max-hooks)
-                     (stop! (.. file ": the scene ran for more than " (steps-text steps)
-                                " steps and was stopped (an endless loop?)"))
-                     (> (gc :count) memory-ceiling)
-                     (stop! (.. file ": the scene built more than " limits.memory-mb
-                                " MB of data and was stopped"))
-                     (and (= 0 (% hooks 65536))
-                          (> (- (cpu-clock) cpu-start) limits.cpu-seconds))
-                     (stop! (.. file ": the scene ran for more than " limits.cpu-seconds
-                                " s and was stopped")))))
+                (stop message))]
+    (var max-hooks base-hooks)
+    (var peak-kb start-kb)
+    (let [;; The hook runs every few instructions, most of a generated scene's load:
+          ;; upvalues and locals only, and the rare tests last.
+          hook (fn []
+                 (when (not stopped)
+                   (set hooks (+ hooks 1))
+                   (let [kb (gc :count)]
+                     (when (> kb peak-kb)
+                       (set peak-kb kb)
+                       (set max-hooks (+ base-hooks (* hooks-per-kb (- kb start-kb)))))
+                     (if (> hooks max-hooks)
+                         (stop! (.. file ": the scene ran for more than "
+                                    (steps-text (* max-hooks limits.hook-every))
+                                    " steps and was stopped (an endless loop?)"))
+                         (> kb memory-ceiling)
+                         (stop! (.. file ": the scene built more than " limits.memory-mb
+                                    " MB of data and was stopped"))
+                         (and (= 0 (% hooks 65536))
+                              (> (- (cpu-clock) cpu-start)
+                                 (* limits.cpu-seconds (/ max-hooks base-hooks))))
+                         (stop! (.. file ": the scene ran for more than "
+                                    (math.floor (* limits.cpu-seconds (/ max-hooks base-hooks)))
+                                    " s and was stopped"))))))
         string-meta (getmetatable "")
         real-index string-meta.__index]
     (when jit (jit.off chunk true))
@@ -433,7 +452,7 @@ garbage collection afterwards, also for those calls)."
       (let [used (* hooks limits.hook-every)]
         (if stopped (values false {:sandbox marker :message stopped} used)
             (not outer-ok?) (values false ok? used)
-            (values ok? value used))))))
+            (values ok? value used)))))))
 
 (fn error-message [e]
   "The text of an error raised while loading: a sandbox message, a string, or a

@@ -23,7 +23,7 @@
 ;; under LÖVE here); a load of 200,000 objects takes about 2 s (the sandbox stops a
 ;; scene's own code at 20 million steps, about a second); one frame of functions of
 ;; time is held to 1 million steps (about 11 ms).
-(local deadlines {:start 10 :load 5 :animate 1})
+(local deadlines {:start 10 :load 20 :animate 1})
 ;; The deadlines count the worker's CPU time (from /proc), not the wall clock: on a
 ;; machine shared with other work a load may wait for a core without being stuck,
 ;; and a call that never returns spends CPU all the same. A worker that spends
