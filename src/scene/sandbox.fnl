@@ -398,7 +398,10 @@ those calls)."
   (var stopped nil)
   (let [options (or ?options {})
         steps (or options.steps limits.steps)
-        start-kb (gc :count)
+        ;; Garbage left from before (the compile's) collected first: the step limit
+        ;; grows with memory above this count, and garbage collected while the scene
+        ;; runs would otherwise have to be built again before its data earned a step.
+        start-kb (if options.steps (gc :count) (do (gc) (gc :count)))
         memory-ceiling (+ start-kb (* 1024 limits.memory-mb))
         base-hooks (/ steps limits.hook-every)
         hooks-per-kb (if options.steps 0 (/ limits.steps-per-kb limits.hook-every))
