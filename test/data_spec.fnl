@@ -151,6 +151,14 @@
                             small)
           (assert.truthy (large:find "^t.fnl:7003: the file is not UTF%-8 text %(byte 0xFF") large))))
 
+    (it "refuses a large file whose tables take too much memory"
+      (fn []
+        (let [memory sandbox.limits.data-memory-mb]
+          (set sandbox.limits.data-memory-mb 16)
+          (let [(_ err) (scene.load-string (.. "{:objects []\n :x [" (string.rep "[] " 1000000) "]}") "t.fnl")]
+            (set sandbox.limits.data-memory-mb memory)
+            (assert.truthy (err:find "^t.fnl:2: the file's data takes more than 16 MB of memory$") err)))))
+
     (it "refuses nesting too deep in a large file with the sandbox's message"
       (fn []
         (let [(_ err) (scene.load-string (.. "{:objects [\n" (table.concat (sphere-lines 7000) "\n")

@@ -212,7 +212,7 @@
             (assert.are.equal (.. path ":2: the file is over 524288 bytes (512 KB), the most for a scene"
                                   " file with code, and this is not plain data (a list (...): code); a"
                                   " file of plain data (numbers, strings, :keywords, true, false, [...]"
-                                  " and {...}) may have up to 16 MB")
+                                  " and {...}) may have up to 32 MB")
                               err)))))
 
     (it "loads a file of plain data over 512 KB: comments do not make it code"
@@ -228,7 +228,7 @@
       (fn []
         (let [(s err) (scene.load-file "/dev/zero")]
           (assert.is_nil s)
-          (assert.are.equal (.. "/dev/zero: the file is over 16777216 bytes (16 MB), the most a scene file may have"
+          (assert.are.equal (.. "/dev/zero: the file is over 33554432 bytes (32 MB), the most a scene file may have"
                                 "; make many objects with a loop, like (fcollect [i 1 n] {:kind :sphere ...})")
                             err))))
 

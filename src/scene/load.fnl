@@ -809,9 +809,10 @@ code: whatever it holds, it then loads as it always did); or nil and a message."
           msg (if (<= size limits.file-bytes) :code (values nil msg))
           _ (case (data.read source {:max-depth limits.nesting
                                      :max-memory-mb limits.data-memory-mb})
-              (nil _ why pos)
+              (nil kind why pos)
               (if (<= size limits.file-bytes) :code
                   (= why :too-deep) (values nil (sandbox.nesting-message file (sandbox.nesting-line source)))
+                  (= kind :refused) (values nil (.. file ":" (data.line-at source pos) ": " why))
                   (values nil (.. file ":" (data.line-at source pos) ": the file is over "
                                   limits.file-bytes " bytes (" (/ limits.file-bytes 1024)
                                   " KB), the most for a scene file with code, and this is not plain data ("
