@@ -56,6 +56,19 @@
             (assert.is_not_nil v (.. text ": " (tostring why)))
             (assert.are.same (fennel-value text) (plain v))))))
 
+    (it "reads every data file of scenes/ and test/corpus/ as Fennel's parser does"
+      (fn []
+        (var n 0)
+        (with-open [ls (io.popen "ls scenes/*.fnl test/corpus/*.fnl")]
+          (each [path (ls:lines)]
+            (let [text (read-all path)
+                  v (data.read text)]
+              ;; Files Fennel cannot parse (the corpus has some) are never data.
+              (when (not= nil v)
+                (set n (+ n 1))
+                (assert.are.same (fennel-value text) (plain v) path)))))
+        (assert.is_true (> n 50) (.. n " data files"))))
+
     (it "leaves to Fennel whatever is not plain data, saying why"
       (fn []
         (each [text why (pairs {"{:a (+ 1 2)}" "a list (...): code"

@@ -21,10 +21,11 @@
 ;; while a scene runs, 128 MB while it compiles).
 (local limits
   {;; Address space: LÖVE with no modules and LuaJIT map about 40 MB; a scene of
-   ;; 1,000,000 spheres made by a loop peaks near MEASURE MB with its encoded answer.
+   ;; 1,000,000 spheres made by a loop peaks at 1.3 GB resident (its own tables,
+   ;; the checked copy and the encoded answer, 90 MB); 1024 MB is not enough.
    :memory-mb 1536
-   ;; CPU a request may take: a load of 1,000,000 objects takes about MEASURE s
-   ;; here; the sandbox's own backstop grows with the scene's steps.
+   ;; CPU a request may take: a load of 1,000,000 spheres takes about 4 s here;
+   ;; the sandbox's own backstop grows with the scene's steps.
    :cpu-seconds 30
    ;; Memory the functions of time may keep between frames (the sandbox's memory
    ;; limit for a scene's code: what one call may build).

@@ -20,9 +20,10 @@
 (local scene-mod (require :src.scene.load))
 
 ;; Seconds of the worker's CPU before it is killed. A start compiles the loader (0.3 s
-;; under LÖVE here); a load of 200,000 objects takes about 2 s (the sandbox stops a
-;; scene's own code at 20 million steps, about a second); one frame of functions of
-;; time is held to 1 million steps (about 11 ms).
+;; under LÖVE here); a load of 1,000,000 spheres made by a loop takes about 4 s (the
+;; loop 1.9 s; the sandbox lets a scene's code take 20 million steps and 500 more for
+;; each KB it builds, at most about 6 s); one frame of functions of time is held to 1
+;; million steps (about 11 ms).
 (local deadlines {:start 10 :load 20 :animate 1})
 ;; The deadlines count the worker's CPU time (from /proc), not the wall clock: on a
 ;; machine shared with other work a load may wait for a core without being stuck,
