@@ -56,6 +56,27 @@
             (assert.is_not_nil v (.. text ": " (tostring why)))
             (assert.are.same (fennel-value text) (plain v))))))
 
+    (it "reads numbers bit for bit as tonumber does (digits, points, signs, exponents)"
+      (fn []
+        ;; A fixed generator: 20,000 numbers of 1 to 20 digits, the point anywhere,
+        ;; some negative, some with an exponent (those take the token path).
+        (var seed 7)
+        (fn rnd [n]
+          (set seed (% (+ (* seed 1103515245) 12345) 2147483648))
+          (% (math.floor (/ seed 65536)) n))
+        (let [words (fcollect [_ 1 20000]
+                      (let [digits (fcollect [_ 1 (+ 1 (rnd 20))] (tostring (rnd 10)))
+                            at (rnd (+ 2 (length digits)))]
+                        (when (<= at (length digits)) (table.insert digits (+ at 1) "."))
+                        (.. (if (= 0 (rnd 3)) "-" "") (table.concat digits)
+                            (if (= 0 (rnd 10)) (.. "e" (- (rnd 40) 20)) ""))))
+              v (assert (data.read (.. "[" (table.concat words " ") "]")))]
+          (each [i w (ipairs words)]
+            (let [want (tonumber w)]
+              (assert.is_true (and (= want (. v i)) (= (/ 1 want) (/ 1 (. v i))))
+                              (.. w ": " (string.format "%.17g" (. v i)) ", tonumber "
+                                  (string.format "%.17g" want))))))))
+
     (it "reads every data file of scenes/ and test/corpus/ as Fennel's parser does"
       (fn []
         (var n 0)

@@ -39,8 +39,19 @@
 
 ;; A symbol's bytes, as Fennel's parser reads them: above space, not a bracket, not
 ;; DEL, not " ' ~ ; , @ `. A keyword is a colon and one or more of them.
-(local keyword-pattern "^:([^%c ()%[%]{}\"'~;,@`]+)()")
 (local token-pattern "^([^%c ()%[%]{}\"'~;,@`]+)()")
+;; The same as a table: true for the bytes that end a symbol (0 stands for the end).
+(local symbol-end
+  (let [t {}]
+    (for [b 0 32] (tset t b true))
+    (each [_ b (ipairs [127 40 41 91 93 123 125 34 39 126 59 44 64 96])] (tset t b true))
+    t))
+;; The bytes after which a plain number ends here: the end, whitespace, a closing
+;; bracket, a comment. (Any other byte: the token is read whole and looked at.)
+(local number-end {9 true 10 true 11 true 12 true 13 true 32 true 41 true 93 true
+                   125 true 59 true})
+;; Powers of ten, exact as doubles up to 1e22: (. powers (+ k 1)) is 10^k.
+(local powers (fcollect [k 0 22] (^ 10 k)))
 
 ;; The string escapes read here, each the byte it stands for (Lua's own meaning).
 ;; Others (\x, \z, \u{}, a backslash before a line break) send the file to Fennel.
@@ -136,26 +147,65 @@ as the parser gives them, for the loader's messages)."
                       (not-data "a string escape this reader leaves to Fennel" p))))))
         (if (= 1 (length parts)) (. parts 1) (concat parts))))
 
+    (fn read-plain-number []
+      ;; At `pos`: a number of at most 15 digits with an optional minus sign and
+      ;; point and nothing else, read byte by byte; else nil (the token is read whole).
+      ;; Exact: the digits as a whole number (below 2^53) divided by a power of ten
+      ;; (exact up to 1e22) is one correctly rounded division, as tonumber's result is.
+      (var i pos)
+      (var c (sbyte source i))
+      (var mantissa 0)
+      (var digits 0)
+      (var fraction 0)
+      (let [negative? (= c 45)]
+        (when negative? (set i (+ i 1)) (set c (sbyte source i)))
+        (while (and c (<= 48 c 57))
+          (set mantissa (+ (* mantissa 10) (- c 48)))
+          (set digits (+ digits 1))
+          (set i (+ i 1))
+          (set c (sbyte source i)))
+        (when (= c 46)
+          (set i (+ i 1))
+          (set c (sbyte source i))
+          (while (and c (<= 48 c 57))
+            (set mantissa (+ (* mantissa 10) (- c 48)))
+            (set digits (+ digits 1))
+            (set fraction (+ fraction 1))
+            (set i (+ i 1))
+            (set c (sbyte source i))))
+        (when (and (< 0 digits 16) (or (= c nil) (. number-end c)))
+          (set pos i)
+          (let [x (if (= fraction 0) mantissa (/ mantissa (. powers (+ fraction 1))))]
+            (if negative? (- x) x)))))
+
+    (fn read-token [start c]
+      ;; A whole token: true, false or a number tonumber reads.
+      (case (smatch source token-pattern pos)
+        (tok after)
+        (do (set pos after)
+            (if (= tok "true") true
+                (= tok "false") false
+                ;; Plain decimal numbers only: no hex, no underscores, no .inf.
+                (and (smatch tok "^[-+]?%.?%d") (not (sfind tok "[^%d%.eE+-]")))
+                (case (tonumber tok)
+                  x x
+                  _ (not-data (.. "the token " tok) start))
+                (not-data (if (= tok "nil") "nil" (.. "the symbol " tok)) start)))
+        _ (not-data (.. "the character " (schar c)) start)))
+
     (fn read-atom []
       ;; A number, a :keyword, true or false.
       (let [start pos
             c (sbyte source pos)]
         (if (= c colon)
-            (case (smatch source keyword-pattern pos)
-              (word after) (do (set pos after) word)
-              _ (not-data "a colon that is not a keyword" start))
-            (case (smatch source token-pattern pos)
-              (tok after)
-              (do (set pos after)
-                  (if (= tok "true") true
-                      (= tok "false") false
-                      ;; Plain decimal numbers only: no hex, no underscores, no .inf.
-                      (and (smatch tok "^[-+]?%.?%d") (not (sfind tok "[^%d%.eE+-]")))
-                      (case (tonumber tok)
-                        x x
-                        _ (not-data (.. "the token " tok) start))
-                      (not-data (if (= tok "nil") "nil" (.. "the symbol " tok)) start)))
-              _ (not-data (.. "the character " (schar c)) start)))))
+            (do (var i (+ pos 1))
+                (while (not (. symbol-end (or (sbyte source i) 0)))
+                  (set i (+ i 1)))
+                (when (= i (+ pos 1)) (not-data "a colon that is not a keyword" start))
+                (set pos i)
+                (ssub source (+ start 1) (- i 1)))
+            (let [x (when (or (= c 45) (= c 46) (<= 48 c 57)) (read-plain-number))]
+              (if (= x nil) (read-token start c) x)))))
 
     (var read-value nil)
 
