@@ -12,10 +12,11 @@
                                   ; so it stays); larger scenes come from a loop, and
                                   ; 100,000 spheres made by one load in 0.6 s
    ;; A file of plain data (src/scene/data.fnl) is read without the compiler, at
-   ;; about 16 MB/s here: 360,000 spheres written out take 31 MB, 1.9 s to read and
-   ;; 153 MB as tables (100,000: 8.7 MB, 0.55 s, 39 MB). Denser text (`[] [] ...`,
-   ;; a table every 3 bytes) makes more tables a byte: the memory they take is
-   ;; checked as they are made.
+   ;; about 50 MB/s here: 360,000 spheres written out take 31 MB, 0.55 s to read
+   ;; (1.2 s with the checks) and 153 MB as tables (100,000: 8.7 MB, 0.17 s, 39 MB).
+   ;; Denser text makes more tables a byte (`[] [] ...`, one every 3 bytes): the
+   ;; memory they take is checked as they are made, and 33 MB of that is refused
+   ;; after 1 s at 466 MB resident.
    :data-bytes (* 32 1024 1024)
    :data-memory-mb 256
    :nesting 100                   ; brackets inside brackets (a tree 32 nodes deep takes 66)
