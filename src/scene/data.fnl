@@ -33,7 +33,7 @@
 (local close-square 93)
 (local open-paren 40)
 (local double-quote 34)
-(local backslash 92)
+(local close-paren 41)
 (local semicolon 59)
 (local colon 58)
 
@@ -225,7 +225,7 @@ as the parser gives them, for the loader's messages)."
                 c (sbyte source pos)]
             (if (= c nil) (not-data "an unclosed bracket" pos)
                 (= c closer) (do (set pos (+ pos 1)) (set open? false))
-                (or (= c close-curly) (= c close-square) (= c 41))
+                (or (= c close-curly) (= c close-square) (= c close-paren))
                 (not-data "a mismatched closing bracket" pos)
                 (not (or spaced? skipped?))
                 (not-data "two forms with no space between them" pos)

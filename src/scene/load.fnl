@@ -791,7 +791,7 @@ message."
         (values nil (safe-message result.scene-error))
         (error result))))
 
-(fn too-large [file size limit]
+(fn too-large [file limit]
   (string.format "%s: the file is over %d bytes (%s), the most a scene file may have; make many objects with a loop, like (fcollect [i 1 n] {:kind :sphere ...})"
                  file limit (if (< limit (* 1024 1024)) (.. (/ limit 1024) " KB")
                                 (.. (/ limit 1024 1024) " MB"))))
@@ -804,7 +804,7 @@ code: whatever it holds, it then loads as it always did); or nil and a message."
   (let [limits sandbox.limits
         source (if (= (source:sub 1 3) "\239\187\191") (source:sub 4) source)
         size (length source)]
-    (if (> size limits.data-bytes) (values nil (too-large file size limits.data-bytes))
+    (if (> size limits.data-bytes) (values nil (too-large file limits.data-bytes))
         (case (sandbox.check-encoding source file)
           msg (if (<= size limits.file-bytes) :code (values nil msg))
           _ (case (data.read source {:max-depth limits.nesting
