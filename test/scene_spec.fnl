@@ -143,7 +143,7 @@
           (assert.are.same {:pos [0 -10 2] :yaw 90 :pitch 0 :fov 60} d.camera)
           (assert.are.same {:pos [-30 20 20]} d.light)
           (assert.are.equal 500 d.render.max-steps)
-          (assert.are.same {:max-reflections 16 :max-steps 100000 :max-objects 200000
+          (assert.are.same {:max-reflections 16 :max-steps 100000 :max-objects 1000000
                             :world 1e7 :min-length 1e-6 :max-epsilon 10 :min-fov 0.1
                             :max-fov 179 :max-name 80 :max-depth 32 :max-nodes 1000000}
                            scene.limits))))))
@@ -268,17 +268,18 @@
 
     (it "rejects more than the object limit, saying how many objects to remove"
       (fn []
-        ;; One object table listed many times: cheap to build, counted all the same.
+        ;; One object table listed many times: cheap to build, counted all the same
+        ;; (before any object is checked).
         (assert.are.equal
-          "t.fnl:1: objects: has 200001 objects; at most 200000 are allowed (remove 1)"
-          (load-error "(let [o {:kind :sphere}] {:objects (fcollect [i 1 200001] o)})"))
+          "t.fnl:1: objects: has 1000001 objects; at most 1000000 are allowed (remove 1)"
+          (load-error "(let [o {:kind :sphere}] {:objects (fcollect [i 1 1000001] o)})"))
         (assert.are.equal
-          "t.fnl:1: objects: has 250000 objects; at most 200000 are allowed (remove 50000)"
-          (load-error "(let [o {:kind :box}] {:objects (fcollect [i 1 250000] o)})"))
-        (assert.are.equal 200000 (length (. (assert (scene.load-string
-                                                    "(let [o {:kind :plane}] {:objects (fcollect [i 1 200000] o)})"
-                                                    "t.fnl"))
-                                            :objects)))))
+          "t.fnl:1: objects: has 1250000 objects; at most 1000000 are allowed (remove 250000)"
+          (load-error "(let [o {:kind :box}] {:objects (fcollect [i 1 1250000] o)})"))
+        (assert.are.equal 1000000 (length (. (assert (scene.load-string
+                                                     "(let [o {:kind :plane}] {:objects (fcollect [i 1 1000000] o)})"
+                                                     "t.fnl"))
+                                             :objects)))))
 
     (it "names the first of several bad keys in a stable order, not pairs order"
       (fn []

@@ -74,7 +74,7 @@
     (it "animates a scene again after another load, and after it was killed"
       (fn []
         (let [a (assert (worker.load-source "{:objects [{:kind :sphere :radius (fn [t] (+ 1 t))}]}" "a.fnl"))]
-          (assert (worker.load-file "scenes/seed.fnl"))
+          (assert (worker.load-file "scenes/organic.fnl"))
           (assert.is_true (worker.animate a 2))
           (assert.are.equal 3 (. a.objects 1 :radius))
           (worker.kill!)
@@ -104,28 +104,29 @@
 
     (it "refuses one allocation past its address space, and goes on working"
       (fn []
-        ;; 32 MB made by doubling (within the sandbox's 96 MB), then one `..` of 30 of
-        ;; them: a single 960 MB allocation, which no step or memory hook sees coming.
+        ;; 64 MB made by doubling (within the sandbox's 512 MB), then one `..` of 30
+        ;; of them: a single 1920 MB allocation (just within LuaJIT's largest string),
+        ;; which no step or memory hook sees coming.
         (let [text "(var s (string.rep :x 1048576))
-(for [i 1 5] (set s (.. s s)))
+(for [i 1 6] (set s (.. s s)))
 (local big (.. s s s s s s s s s s s s s s s s s s s s s s s s s s s s s s))
 {:objects [{:kind :sphere :radius (length big)}]}"
               (ok? err) (worker.load-source text "big.fnl")]
           (assert.is_nil ok?)
-          (assert.are.equal "big.fnl: the scene needs more memory than the scene worker has (512 MB)" err)
-          (assert (worker.load-file "scenes/seed.fnl")))))
+          (assert.are.equal "big.fnl: the scene needs more memory than the scene worker has (1536 MB)" err)
+          (assert (worker.load-file "scenes/organic.fnl")))))
 
     (it "kills a worker that does not answer a load within its deadline; the next load starts another"
       (fn []
         (with-deadline :load 1
           #(with-command (fake :hang-load)
              (fn []
-               (let [(seconds ok? err) (timed #(worker.load-file "scenes/seed.fnl"))]
+               (let [(seconds ok? err) (timed #(worker.load-file "scenes/organic.fnl"))]
                  (assert.is_nil ok?)
-                 (assert.are.equal "scenes/seed.fnl: loading the scene took more than 1 s of CPU (a library call that never returns?); the scene worker was stopped" err)
+                 (assert.are.equal "scenes/organic.fnl: loading the scene took more than 1 s of CPU (a library call that never returns?); the scene worker was stopped" err)
                  (assert.is_true (< seconds 30) (.. seconds " s"))
                  (worker.set-command! nil)
-                 (assert (worker.load-file "scenes/seed.fnl"))))))))
+                 (assert (worker.load-file "scenes/organic.fnl"))))))))
 
     (it "kills a worker whose functions of time do not answer; asking without waiting stays responsive"
       (fn []
@@ -149,16 +150,16 @@
     (it "refuses answers that are not wire data, and workers that never start"
       (fn []
         (with-command (fake :garbage)
-          #(let [(ok? err) (worker.load-file "scenes/seed.fnl")]
+          #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
              (assert.is_nil ok?)
-             (assert.are.equal "scenes/seed.fnl: the scene worker's answer was refused: malformed data: bad header (not \"SDW1 \")" err)))
+             (assert.are.equal "scenes/organic.fnl: the scene worker's answer was refused: malformed data: bad header (not \"SDW1 \")" err)))
         (with-command ["false"]
-          #(let [(ok? err) (worker.load-file "scenes/seed.fnl")]
+          #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
              (assert.is_nil ok?)
-             (assert.are.equal "scenes/seed.fnl: the scene worker did not start (false): it ended at once" err)))
+             (assert.are.equal "scenes/organic.fnl: the scene worker did not start (false): it ended at once" err)))
         (with-deadline :start 0.5
           #(with-command (fake :silent)
-             #(let [(ok? err) (worker.load-file "scenes/seed.fnl")]
+             #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
                 (assert.is_nil ok?)
                 (assert.truthy (err:find "did not start .*: no answer after 0.5 s of CPU$") err))))))
 
@@ -185,7 +186,7 @@
 
     (it "says what it gave up"
       (fn []
-        (assert (worker.load-file "scenes/seed.fnl"))
+        (assert (worker.load-file "scenes/organic.fnl"))
         (let [info (worker.info)]
           (assert.are.same [] info.missing)
           (assert.are.equal 6 (length info.applied)))))

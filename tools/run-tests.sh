@@ -12,6 +12,7 @@ if [ "${1:-}" = "--check" ]; then
   export CORPUS_SAMPLE=1 FUZZ_CASES="${FUZZ_CASES:-2000}"
   set -- "$@" test/adaptive_spec.fnl test/animation_spec.fnl test/article_spec.fnl \
     test/bounds_spec.fnl test/camera_spec.fnl test/codegen_spec.fnl test/corpus_spec.fnl \
+    test/data_spec.fnl \
     test/field_spec.fnl test/fuzz_spec.fnl test/operations_spec.fnl test/params_spec.fnl \
     test/plan_spec.fnl test/png_spec.fnl test/primitives_spec.fnl \
     test/probe_input_spec.fnl test/progress_spec.fnl test/reference_spec.fnl \

@@ -8,6 +8,7 @@
 (local lower (require :src.sdf.lower))
 (local custom (require :src.sdf.custom))
 (local sandbox (require :src.scene.sandbox))
+(local data (require :src.scene.data))
 (local params (require :src.scene.params))
 (local files (require :src.util.files))
 (local text (require :src.util.text))
@@ -104,10 +105,10 @@ scene never changes another's defaults."
 (local top-level-keys [:name :camera :light :environment :render :lighting :objects])
 
 (local limits {:max-reflections 16 :max-steps 100000
-               ;; Flat objects (sphere, box, plane): 100,000 made by a loop load in
-               ;; 0.6 to 1 s here (sandbox and validation), 200,000 in twice that.
-               ;; Objects with a tree count against :max-nodes as well.
-               :max-objects 200000
+               ;; Flat objects (sphere, box, plane): 1,000,000 made by a loop load in
+               ;; 2.4 s here in this process (sandbox 1.9 s, validation), 100,000
+               ;; in 0.24 s. Objects with a tree count against :max-nodes as well.
+               :max-objects 1000000
                ;; Coordinates and lengths: float32 holds them with room to spare
                ;; (positions are sent camera-relative), and the image stays meaningful.
                :world 1e7 :min-length 1e-6 :max-epsilon 10 :min-fov 0.1 :max-fov 179
@@ -195,9 +196,16 @@ Long words get none: no name is that long, and the distance would cost time."
           (let [(_ newlines) (: (text:sub 1 at) :gsub "\n" "")]
             (+ src.line newlines)))))))
 
+(fn ast-of [ctx]
+  ;; The parsed last form; a plain data file's is read again with source fields the
+  ;; first time a message needs a line (the load itself does without them).
+  (when (and (= nil ctx.ast) ctx.ast-fn)
+    (set ctx.ast (ctx.ast-fn)))
+  ctx.ast)
+
 (fn line-for [ctx path]
   "Best known line for `path`: the line of the deepest literal that matches it."
-  (var node ctx.ast)
+  (var node (ast-of ctx))
   (var line (and node (= (type node) :table) (node-line node)))
   (var done? (not= (type node) :table))
   (each [_ key (ipairs path) &until done?]
@@ -772,14 +780,59 @@ message."
                                         (values nil (clean-fennel-message
                                                      (sandbox.error-message value) file)))))))))))
 
-(fn load-string [source ?file ?options]
-  "Evaluate scene `source` in a sandbox and validate it.
-Returns the scene (plain data, defaults filled in) or nil and a message
-'file:line: field: reason'. `?options.overrides` maps parameter names to the values
-their (param ...) calls give instead of the file's; the scene's :params lists them
-(see src/scene/params.fnl) and its :source is the text, to load it again with others."
-  (let [file (or ?file "scene")
-        rec (params.collector (?. ?options :overrides))
+(fn validated [value ctx]
+  "The scene `value` validated with `ctx` (see `validate`), or nil and a message."
+  (let [(ok? result) (pcall validate value ctx)]
+    (if ok?
+        (do (when (> (length ctx.animated) 0)
+              (set result.animated ctx.animated))
+            result)
+        (and (= (type result) :table) result.scene-error)
+        (values nil (safe-message result.scene-error))
+        (error result))))
+
+(fn too-large [file limit]
+  (string.format "%s: the file is over %d bytes (%s), the most a scene file may have; make many objects with a loop, like (fcollect [i 1 n] {:kind :sphere ...})"
+                 file limit (if (< limit (* 1024 1024)) (.. (/ limit 1024) " KB")
+                                (.. (/ limit 1024 1024) " MB"))))
+
+(fn read-data [source file]
+  "Scene `source` read as plain data (src/scene/data.fnl), no compiler and no
+sandbox: :data, the value and the text read (a byte order mark dropped); or :code
+when it is not plain data and goes to the compiler (a file within the size limit of
+code: whatever it holds, it then loads as it always did); or nil and a message."
+  (let [limits sandbox.limits
+        source (if (= (source:sub 1 3) "\239\187\191") (source:sub 4) source)
+        size (length source)]
+    (if (> size limits.data-bytes) (values nil (too-large file limits.data-bytes))
+        (case (sandbox.check-encoding source file)
+          msg (if (<= size limits.file-bytes) :code (values nil msg))
+          _ (case (data.read source {:max-depth limits.nesting
+                                     :max-memory-mb limits.data-memory-mb})
+              (nil kind why pos)
+              (if (<= size limits.file-bytes) :code
+                  (= why :too-deep) (values nil (sandbox.nesting-message file (sandbox.nesting-line source)))
+                  (= kind :refused) (values nil (.. file ":" (data.line-at source pos) ": " why))
+                  (values nil (.. file ":" (data.line-at source pos) ": the file is over "
+                                  limits.file-bytes " bytes (" (/ limits.file-bytes 1024)
+                                  " KB), the most for a scene file with code, and this is not plain data ("
+                                  why "); a file of plain data (numbers, strings, :keywords, true, false, [...] and {...}) may have up to "
+                                  (/ limits.data-bytes 1024 1024) " MB")))
+              value (values :data value source))))))
+
+(fn load-data [source ?file]
+  "Scene `source` loaded when it is plain data (see read-data): the scene, or nil and
+a message; or false when it is code (load it with load-string, in the worker)."
+  (let [file (or ?file "scene")]
+    (case (read-data source file)
+      :code false
+      (:data value text)
+      (validated value {: file :source text :animated [] :time-budget {:left frame-steps}
+                        :ast-fn #(data.read text {:positions? true})})
+      (nil msg) (values nil (safe-message msg)))))
+
+(fn load-code [source file ?options]
+  (let [rec (params.collector (?. ?options :overrides))
         (ok? value forms checked-source env) (evaluate source file rec)
         (sites-ok? site-err) (if (> (length rec.list) 0) (params.sites source file) true)]
     (if (and (not ok?) rec.failed)
@@ -790,19 +843,26 @@ their (param ...) calls give instead of the file's; the scene's :params lists th
         (not sites-ok?)
         (values nil (safe-message site-err))
         ;; Field lines come from the last form: the table the file evaluates to.
-        (let [ctx {: file :source checked-source :ast (and forms (. forms (length forms))) : forms
-                   : env :animated [] :time-budget {:left frame-steps}}
-              (ok? result) (pcall validate value ctx)]
-          (if ok?
-              (do (when (> (length ctx.animated) 0)
-                    (set result.animated ctx.animated))
-                  (when (> (length rec.list) 0)
-                    (set result.params rec.list)
-                    (set result.source source))
-                  result)
-              (and (= (type result) :table) result.scene-error)
-              (values nil (safe-message result.scene-error))
-              (error result))))))
+        (case (validated value {: file :source checked-source :ast (and forms (. forms (length forms)))
+                                : forms : env :animated [] :time-budget {:left frame-steps}})
+          (nil msg) (values nil msg)
+          result (do (when (> (length rec.list) 0)
+                       (set result.params rec.list)
+                       (set result.source source))
+                     result)))))
+
+(fn load-string [source ?file ?options]
+  "Evaluate scene `source` in a sandbox and validate it.
+Returns the scene (plain data, defaults filled in) or nil and a message
+'file:line: field: reason'. A file of plain data is read without the compiler (see
+read-data). `?options.overrides` maps parameter names to the values
+their (param ...) calls give instead of the file's; the scene's :params lists them
+(see src/scene/params.fnl) and its :source is the text, to load it again with others."
+  (let [file (or ?file "scene")]
+    (case (load-data source file)
+      false (load-code source file ?options)
+      (nil msg) (values nil msg)
+      scene scene)))
 
 (fn target-of [scene path]
   ;; The table and key in the validated scene that `path` (a field path of the file)
@@ -837,7 +897,7 @@ reason' (a value out of range, a function that fails or runs too long)."
 (fn read-capped [path]
   "The text of the file at `path` (see files.read-user), reading at most one byte past
 the size limit (so /dev/zero or a huge file costs nothing)."
-  (files.read-user path (+ sandbox.limits.file-bytes 1)))
+  (files.read-user path (+ sandbox.limits.data-bytes 1)))
 
 (fn load-file [path ?read ?options]
   "Read and load the scene file at `path` (see load-string, which takes `?options`).
@@ -858,6 +918,6 @@ the app can read through love.filesystem."
   "The sandbox's limits (file size, nesting, steps, memory)."
   sandbox.limits)
 
-{: load-string : load-file : read-capped : animate : animated? : limits-of-files : defaults : limits : default-environment
+{: load-string : load-data : load-file : read-capped : animate : animated? : limits-of-files : defaults : limits : default-environment
  : safe-message : target-of : time-text
  : hit-tests : normal-methods}

@@ -11,15 +11,28 @@
                                   ; to parse and compile (10,000 take 780 KB and 3 s,
                                   ; so it stays); larger scenes come from a loop, and
                                   ; 100,000 spheres made by one load in 0.6 s
+   ;; A file of plain data (src/scene/data.fnl) is read without the compiler, at
+   ;; about 50 MB/s here: 360,000 spheres written out take 31 MB, 0.55 s to read
+   ;; (1.2 s with the checks) and 153 MB as tables (100,000: 8.7 MB, 0.17 s, 39 MB).
+   ;; Denser text makes more tables a byte (`[] [] ...`, one every 3 bytes): the
+   ;; memory they take is checked as they are made, and 33 MB of that is refused
+   ;; after 1 s at 466 MB resident.
+   :data-bytes (* 32 1024 1024)
+   :data-memory-mb 256
    :nesting 100                   ; brackets inside brackets (a tree 32 nodes deep takes 66)
-   :steps 20000000                ; Lua VM instructions (about a second here): 100,000
-                                  ; generated objects at 200 steps each; generators
-                                  ; tried take 74 to 127 steps per object
-   :memory-mb 96                  ; Lua memory the scene may build: 100,000 boxes
-                                  ; take 44 MB, 67 MB at the peak when built with
-                                  ; vector helpers that leave garbage
+   :steps 20000000                ; Lua VM instructions before the scene has built
+                                  ; anything (an endless loop: about 0.4 s here) ...
+   :steps-per-kb 500              ; ... and this many more per KB of memory it has
+                                  ; reached. A sphere made by a loop keeps about
+                                  ; 340 bytes and takes 74 to 127 steps (99 in
+                                  ; test/fixtures/spheres-100000.fnl): 170 allowed.
+                                  ; The most any scene gets: 20 + 500 x 524,288 KB =
+                                  ; 282 million steps (about 6 s here)
+   :memory-mb 512                 ; Lua memory the scene may build, garbage included:
+                                  ; 1,000,000 spheres made by a loop keep 342 MB
    :string-bytes (* 1024 1024)    ; one string made by a library call
    :cpu-seconds 5                 ; a backstop: the step limit trips long before
+                                  ; (while a scene runs it grows as its steps do)
    ;; Compiling (the compiler is Lua code too; a macro can copy its arguments
    ;; without end: nested case-try, 4 KB, took 1.3 GB and more). A 512 KB file of
    ;; 6310 spheres written out compiles in 39 million steps (0.46 s) and 43 MB at
@@ -48,7 +61,8 @@
 
 (fn check-encoding [source file]
   "A message when `source` is not UTF-8 text (or holds NUL bytes), else nil."
-  (case (text.first-invalid-byte source)
+  ;; Plain ASCII without NUL, the usual scene, is settled by one search.
+  (case (and (source:find "[\128-\255%z]") (text.first-invalid-byte source))
     pos (let [line (line-of source pos)
               line-start (or (: (source:sub 1 pos) :match ".*\n()") 1)]
           (string.format "%s:%d: the file is not UTF-8 text (byte 0x%02X at column %d); scene files are Fennel source"
@@ -81,6 +95,10 @@ parser would recurse on until the stack overflows."
             (or (= c 41) (= c 93) (= c 125)) (set depth (math.max 0 (- depth 1))))
         (set i (+ i 1)))))
   (values deepest deepest-line))
+
+(fn nesting-line [source]
+  "The line where `source` first reaches its deepest nesting."
+  (let [(_ line) (nesting-depth source)] line))
 
 (fn nesting-message [file line]
   (.. file (if line (.. ":" line) "") ": the scene nests deeper than " limits.nesting
@@ -374,36 +392,53 @@ the file system, the process, the loader or the compiler."
   "Call `chunk` with the JIT off (so the count hook fires) and stop it with a clear
 message past the step or memory limit. Returns true and the value, or false and an
 error (a string from the scene's code, or a sandbox error); third, about how many
-steps it took (counted every limits.hook-every). `?options`: :steps (a smaller step
-limit, for the functions of time called every frame) and :collect? (false: no full
-garbage collection afterwards, also for those calls)."
+steps it took (counted every limits.hook-every). The step limit grows with the data
+the scene builds: limits.steps, and limits.steps-per-kb more for each KB of Lua
+memory it has reached (its highest count, garbage included); the time backstop grows
+with it. `?options`: :steps (a fixed step limit, for the functions of time called
+every frame) and :collect? (false: no full garbage collection afterwards, also for
+those calls)."
   (var hooks 0)
   (var stopped nil)
   (let [options (or ?options {})
         steps (or options.steps limits.steps)
-        memory-ceiling (+ (gc :count) (* 1024 limits.memory-mb))
-        max-hooks (/ steps limits.hook-every)
+        ;; Garbage left from before (the compile's) collected first: the step limit
+        ;; grows with memory above this count, and garbage collected while the scene
+        ;; runs would otherwise have to be built again before its data earned a step.
+        start-kb (if options.steps (gc :count) (do (gc) (gc :count)))
+        memory-ceiling (+ start-kb (* 1024 limits.memory-mb))
+        base-hooks (/ steps limits.hook-every)
+        hooks-per-kb (if options.steps 0 (/ limits.steps-per-kb limits.hook-every))
         cpu-start (cpu-clock)
         stop! (fn [message]
                 ;; Raise once: a hook firing again on the way out of pcall (before the
                 ;; hook is removed) must not raise outside it.
                 (set stopped message)
-                (stop message))
-        ;; The hook runs every few instructions, most of a generated scene's load:
-        ;; upvalues and locals only, and the rare tests last.
-        hook (fn []
-               (when (not stopped)
-                 (set hooks (+ hooks 1))
-                 (if (> hooks max-hooks)
-                     (stop! (.. file ": the scene ran for more than " (steps-text steps)
-                                " steps and was stopped (an endless loop?)"))
-                     (> (gc :count) memory-ceiling)
-                     (stop! (.. file ": the scene built more than " limits.memory-mb
-                                " MB of data and was stopped"))
-                     (and (= 0 (% hooks 65536))
-                          (> (- (cpu-clock) cpu-start) limits.cpu-seconds))
-                     (stop! (.. file ": the scene ran for more than " limits.cpu-seconds
-                                " s and was stopped")))))
+                (stop message))]
+    (var max-hooks base-hooks)
+    (var peak-kb start-kb)
+    (let [;; The hook runs every few instructions, most of a generated scene's load:
+          ;; upvalues and locals only, and the rare tests last.
+          hook (fn []
+                 (when (not stopped)
+                   (set hooks (+ hooks 1))
+                   (let [kb (gc :count)]
+                     (when (> kb peak-kb)
+                       (set peak-kb kb)
+                       (set max-hooks (+ base-hooks (* hooks-per-kb (- kb start-kb)))))
+                     (if (> hooks max-hooks)
+                         (stop! (.. file ": the scene ran for more than "
+                                    (steps-text (* max-hooks limits.hook-every))
+                                    " steps and was stopped (an endless loop?)"))
+                         (> kb memory-ceiling)
+                         (stop! (.. file ": the scene built more than " limits.memory-mb
+                                    " MB of data and was stopped"))
+                         (and (= 0 (% hooks 65536))
+                              (> (- (cpu-clock) cpu-start)
+                                 (* limits.cpu-seconds (/ max-hooks base-hooks))))
+                         (stop! (.. file ": the scene ran for more than "
+                                    (math.floor (* limits.cpu-seconds (/ max-hooks base-hooks)))
+                                    " s and was stopped"))))))
         string-meta (getmetatable "")
         real-index string-meta.__index]
     (when jit (jit.off chunk true))
@@ -424,7 +459,7 @@ garbage collection afterwards, also for those calls)."
       (let [used (* hooks limits.hook-every)]
         (if stopped (values false {:sandbox marker :message stopped} used)
             (not outer-ok?) (values false ok? used)
-            (values ok? value used))))))
+            (values ok? value used)))))))
 
 (fn error-message [e]
   "The text of an error raised while loading: a sandbox message, a string, or a
@@ -433,5 +468,5 @@ fixed description for anything else (never calling a metamethod of it)."
       (= (type e) :string) e
       "the scene raised an error that is not a message"))
 
-{: limits : check-source : check-forms : parse : compile : safe-env : run
+{: limits : check-source : check-encoding : nesting-message : nesting-line : check-forms : parse : compile : safe-env : run
  : error-message : sandbox-error?}

@@ -20,10 +20,11 @@
 (local scene-mod (require :src.scene.load))
 
 ;; Seconds of the worker's CPU before it is killed. A start compiles the loader (0.3 s
-;; under LÖVE here); a load of 200,000 objects takes about 2 s (the sandbox stops a
-;; scene's own code at 20 million steps, about a second); one frame of functions of
-;; time is held to 1 million steps (about 11 ms).
-(local deadlines {:start 10 :load 5 :animate 1})
+;; under LÖVE here); a load of 1,000,000 spheres made by a loop takes about 4 s (the
+;; loop 1.9 s; the sandbox lets a scene's code take 20 million steps and 500 more for
+;; each KB it builds, at most about 6 s); one frame of functions of time is held to 1
+;; million steps (about 11 ms).
+(local deadlines {:start 10 :load 20 :animate 1})
 ;; The deadlines count the worker's CPU time (from /proc), not the wall clock: on a
 ;; machine shared with other work a load may wait for a core without being stuck,
 ;; and a call that never returns spends CPU all the same. A worker that spends
@@ -192,29 +193,38 @@ nil when none is running."
     (io.stderr:write "note: the scene worker cannot run here; scene files run inside the sandbox in this process\n"))
   (scene-mod.load-string source file ?options))
 
+(fn load-code [source file ?options]
+  ;; Scene `source` evaluated in the worker (see load-source).
+  (case (start)
+    (nil err) (values nil (scene-mod.safe-message (.. file ": " err)))
+    w (let [request {:op :load : source : file :overrides (?. ?options :overrides)}]
+        (if (not (settle! w))
+            (load-code source file ?options)
+            (do (set w.scene nil)
+                (case (request! w request)
+                  (nil why) (values nil (failure w why file "sending the scene" deadlines.load))
+                  _ (case (answer w (budget w deadlines.load))
+                      (nil why) (values nil (failure w why file "loading the scene" deadlines.load))
+                      value (if (not (valid-answer? value))
+                                (values nil (failure w "the answer is not a scene" file "" 0))
+                                (= value.ok false) (values nil value.message)
+                                (let [scene (from-worker value)]
+                                  (set w.scene scene)
+                                  (tset requests scene request)
+                                  scene)))))))))
+
 (fn load-source [source file ?options]
   "Evaluate scene `source` (named `file` in messages) in the worker and validate it,
 as scene-mod.load-string does (same `?options`, same results): the scene, or nil and
 a message. A scene the worker had to stop is refused with a message that says why."
   (if (not (process.supported?))
       (in-process source file ?options)
-      (case (start)
-        (nil err) (values nil (scene-mod.safe-message (.. file ": " err)))
-        w (let [request {:op :load : source : file :overrides (?. ?options :overrides)}]
-            (if (not (settle! w))
-                (load-source source file ?options)
-                (do (set w.scene nil)
-                    (case (request! w request)
-                      (nil why) (values nil (failure w why file "sending the scene" deadlines.load))
-                      _ (case (answer w (budget w deadlines.load))
-                          (nil why) (values nil (failure w why file "loading the scene" deadlines.load))
-                          value (if (not (valid-answer? value))
-                                    (values nil (failure w "the answer is not a scene" file "" 0))
-                                    (= value.ok false) (values nil value.message)
-                                    (let [scene (from-worker value)]
-                                      (set w.scene scene)
-                                      (tset requests scene request)
-                                      scene))))))))))
+      ;; A file of plain data runs nothing: read here (src/scene/data.fnl), it skips
+      ;; sending 6 MB each way and the worker's copy of the scene.
+      (case (scene-mod.load-data source file)
+        (nil msg) (values nil msg)
+        (where scene scene) (do (case state.worker w (settle! w)) scene)
+        _ (load-code source file ?options))))
 
 (fn load-file [path ?read ?options]
   "Read the scene file at `path` (with `?read`, default scene-mod.read-capped) and load
