@@ -30,7 +30,10 @@
   ;; instance group's once; not the translations lowering adds (:implicit?). Also
   ;; the object that writes the most, and how many.
   (fn count [info]
-    (accumulate [n (if info.implicit? 0 1) _ c (ipairs (or info.children []))] (+ n (count c))))
+    ;; A blend (lower.fnl's :blend) writes one child for all.
+    (accumulate [n (if info.implicit? 0 1) i c (ipairs (or info.children []))
+                 &until (and info.blend? (> i 1))]
+      (+ n (count c))))
   (var (total most most-n) (values 0 nil 0))
   (each [_ o (ipairs tape.objects)]
     (let [n (count o.info)]
@@ -77,7 +80,7 @@
 ;; the same way in lower.fnl), a field's kinds, walk and object count.
 (local parts {:tape (fn [tape] tape.key)
               ;; Which groups have grids (their sizes travel as uniforms).
-              :grids (fn [gs] (icollect [_ e (ipairs gs.list)] e.id))
+              :grids (fn [gs] (icollect [_ e (ipairs gs.list)] (or e.id "blend")))
               :field (fn [fd] {:kinds fd.kinds :walk? fd.walk? :count fd.count})})
 
 (fn key-text [v]
@@ -159,6 +162,14 @@ nil and a message when a texture would not fit."
       (each [_ e (ipairs list)]
         (set e.grid (grid.build e.boxes f))
         (set e.boxes nil)))
+    ;; A blend's children (lower.fnl's :blend) in its own frame, the point's: listed
+    ;; a blend radius further.
+    (each [_ ins (ipairs (or tape.blends []))]
+      (let [g (grid.build ins.boxes nil {:grow ins.grow})]
+        (set ins.grid (length list))
+        (set ins.grid-data g)
+        (set ins.texture? true)
+        (table.insert list {:blend? true :grid g})))
     (when (> (length list) 0)
       (set tape.instances.texture? true)
       (each [_ o (ipairs tape.objects)]

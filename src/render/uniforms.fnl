@@ -119,8 +119,10 @@ every frame, so a backend uploads them once) and their rows' reciprocals."
   (let [{: list : anchor : textures} grids
         [ax ay az] anchor
         rows []]
-    (each [i {: grid} (ipairs list)]
-      (let [[lx ly lz] grid.lo
+    (each [i {: grid : blend?} (ipairs list)]
+      ;; A group's grid is about the anchor, a blend's in its own point's frame.
+      (let [[ax ay az] (if blend? [0 0 0] anchor)
+            [lx ly lz] grid.lo
             [cx cy cz] grid.cell
             [nx ny nz] grid.dims]
         (append! rows [(- lx ax) (- ly ay) (- lz az) grid.reach

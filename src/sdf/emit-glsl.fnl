@@ -39,7 +39,7 @@ with a decimal point or an exponent."
 (fn row-expr [row]
   (if group
       (let [at (+ group.base row)
-            index (.. "i * " group.stride (if (= at 0) "" (.. " + " at)))]
+            index (.. (or group.index "i") " * " group.stride (if (= at 0) "" (.. " + " at)))]
         ;; A bank in a texture (src/sdf/grid.fnl) is read through bankRow.
         (if group.texture? (.. "bankRow(" index ")") (.. "uInstances[" index "]")))
       (do (tset rows-read row true)
@@ -56,7 +56,7 @@ with a decimal point or an exponent."
 (fn reg [name]
   ;; p0 is map()'s own point; a group whose bank is in a texture reads its rows
   ;; about the bank's anchor, so its members are evaluated at pg = p - uBankOrigin.
-  (if (= name "p0") (if (?. group :texture?) "pg" "p") name))
+  (if (= name "p0") (or (?. group :p0) (if (?. group :texture?) "pg" "p")) name))
 
 (fn call [fname first args ?last]
   (let [parts [first (unpack (args-list args))]]
@@ -119,6 +119,39 @@ with a decimal point or an exponent."
                  (table.insert body (.. ins.dout " = min(" ins.dout ", " ins.body-d ");")))
              (each [_ l (ipairs body)] (table.insert out (.. "    " l)))
              (table.insert out "}"))
+    :blend (let [n (ins.dout:sub 2)
+                 j (.. "j" n)
+                 args (args-list ins.args)
+                 fold (fn [da db] (table.concat [da db (unpack args)] ", "))
+                 {: code :d bd :m bm} ins.members
+                 outer group
+                 body (do (set group {:base ins.base :stride ins.stride :index j
+                                      :texture? ins.texture? :p0 (reg "p0")})
+                          (let [(ok? lines) (pcall emit-code [] code materials?)]
+                            (set group outer)
+                            (if ok? lines (error lines 0))))
+                 add (fn [indent line] (table.insert out (.. (string.rep "    " indent) line)))
+                 inner (if ins.grid 2 1)]
+             (add 0 (.. "float " ins.dout " = uDrawDist;"))
+             (when materials? (add 0 (.. mt.type " " ins.mout " = " mt.zero ";")))
+             (if ins.grid
+                 ;; The children the point's cell lists, the others' bound (grid.glsl).
+                 (do (add 0 "{")
+                     (add 1 (.. "int s" n ";"))
+                     (add 1 (.. "int c" n ";"))
+                     (add 1 (.. "float b" n " = gridCell(" ins.grid ", " (reg ins.pin) ", s" n ", c" n ");"))
+                     (add 1 (.. "for (int k" n " = 0; k" n " < c" n "; k" n "++) {"))
+                     (add 2 (.. "int " j " = gridMember(s" n " + k" n ");")))
+                 (add 0 (.. "for (int " j " = 0; " j " < " ins.count "; " j "++) {")))
+             (each [_ l (ipairs body)] (add inner l))
+             (when materials?
+               (add inner (.. ins.mout " = " mt.mix "(" bm ", " ins.mout ", "
+                              (weight-name ins.desc) "(" (fold ins.dout bd) "));")))
+             (add inner (.. ins.dout " = " ins.desc.glsl-name "(" (fold ins.dout bd) ");"))
+             (add (- inner 1) "}")
+             (when ins.grid
+               (add 1 (.. ins.dout " = min(" ins.dout ", b" n ");"))
+               (add 0 "}")))
     _ (error (.. "emit-glsl: unknown instruction " (tostring ins.op)))))
 
 (set emit-code

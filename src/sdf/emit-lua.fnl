@@ -3,6 +3,8 @@
 ;; the GLSL emitter and calls each descriptor's :cpu form where the GLSL calls its
 ;; function, so the two evaluators cannot drift apart.
 
+(local grid (require :src.sdf.grid))
+
 (local max-locals 150)   ; Lua allows 200 locals per function; beyond, a table holds them
 
 ;; Material components: colour and mirror amount, and in the modern model roughness,
@@ -24,8 +26,11 @@
 
 (fn slot [e n]
   ;; S is 1-based and flat: row r, offset o, component k is S[r * 4 + o + k]; in an
-  ;; instance group's function, S[B + ...] with B its member's first (see compile).
-  (if e.group? (.. "S[B + " n "]") (.. "S[" n "]")))
+  ;; instance group's function, S[B + ...] with B its member's first (see compile);
+  ;; in a blend's loop, the instance bank at its child's first (e.bank).
+  (if e.bank (.. e.bank.name "[" e.bank.base " + " n "]")
+      e.group? (.. "S[B + " n "]")
+      (.. "S[" n "]")))
 
 (fn arg-values [e args]
   (let [out []]
@@ -106,6 +111,44 @@
                     (if materials? (.. "; " (material e ins.mout) " = " (material e ins.body-m)) "")
                     " end")))
       (e.line indent "end"))
+    :blend
+    (let [n (ins.dout:sub 2)
+          dout (e.r ins.dout)
+          j (.. "j" n)
+          base (.. "BJ" n)
+          {: code :d bd :m bm} ins.members
+          op-args (fn [] (.. dout ", " (e.r bd)
+                             (table.concat (icollect [_ v (ipairs (arg-values e ins.args))] (.. ", " v)))))
+          g ins.grid-data
+          outer e.bank
+          inner (+ indent 1)]
+      (e.line indent (.. (e.decl ins.dout) " = 1e30"))
+      (when materials? (e.line indent (.. (material-decl e ins.mout) " = "
+                                          (table.concat (icollect [_ _ (ipairs e.comps)] "0") ", "))))
+      (if g
+          ;; The children the point's cell lists, the others' bound (src/sdf/grid.fnl).
+          (let [query (e.fn-ref (fn [x y z] (grid.query g x y z)))]
+            (e.line indent (.. "local s" n ", c" n ", b" n " = " query "(" (point e ins.pin) ")"))
+            (e.line indent (.. "for k" n " = s" n " + 1, s" n " + c" n " do"))
+            (e.line inner (.. "local " j " = " (e.fn-ref g.records) "[k" n "]")))
+          (e.line indent (.. "for " j " = 0, " (- ins.count 1) " do")))
+      (e.line inner (.. "local " base " = (" ins.base " + " j " * " ins.stride ") * 4"))
+      (set e.bank {:name (e.fn-ref e.instances) : base})
+      (emit-code e code materials? inner)
+      (set e.bank outer)
+      (when materials?
+        (let [w (.. "w" n)]
+          (e.line inner (.. "local " w " = " (e.fn-ref ins.desc.cpu-weight) "(" (op-args) ")"))
+          ;; GLSL's mix(mb, m, w) = mb * (1 - w) + m * w.
+          (e.line inner (.. (material e ins.mout) " = "
+                            (table.concat
+                             (icollect [_ c (ipairs e.comps)]
+                               (let [a (e.r (.. ins.mout c)) b (e.r (.. bm c))]
+                                 (.. b " * (1 - " w ") + " a " * " w)))
+                             ", ")))))
+      (e.line inner (.. dout " = " (e.fn-ref ins.desc.cpu) "(" (op-args) ")"))
+      (e.line indent "end")
+      (when g (e.line indent (.. "if b" n " < " dout " then " dout " = b" n " end"))))
     _ (error (.. "emit-lua: unknown instruction " (tostring ins.op)))))
 
 (set emit-code
@@ -116,7 +159,8 @@
   ;; Locals per instruction, at most: a material's components (or a point and a
   ;; distance, fewer).
   (accumulate [n 0 _ ins (ipairs code)]
-    (+ n per (if ins.body (count-registers ins.body per) 0))))
+    (+ n per (if ins.body (count-registers ins.body per) 0)
+       (if ins.members (count-registers ins.members.code per) 0))))
 
 (fn function-lines [e o what]
   ;; The function of object `o` that returns its distance (:distance), that and its
@@ -150,8 +194,9 @@ nz, or false where the object has no exact normal] :source text}."
     (each [_ what (ipairs [:distance :material :gradient])]
       (each [_ o (ipairs tape.objects)]
         (let [group o.instances
-              e (new-emitter (> (count-registers o.code (or tape.material-size 4)) max-locals)
-                             tape.material-size (not= nil group))
+              e (doto (new-emitter (> (count-registers o.code (or tape.material-size 4)) max-locals)
+                                   tape.material-size (not= nil group))
+                  (tset :instances banks.instances))
               into (. out what)]
           (if (and (= what :gradient) (not (?. o :leaf :prim :desc :gradient)))
               (for [_ 1 (if group group.count 1)] (table.insert into false))

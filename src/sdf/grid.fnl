@@ -106,11 +106,15 @@ Grids built on one frame share their walls, so a ray crosses one set of them."
 
 (fn build [boxes ?frame ?options]
   "The grid of the members whose world boxes are `boxes` ({:lo [x y z] :hi [x y z]},
-in member order), on the cells `?frame` (see `frame`; by default their own). Returns
+in member order), on the cells `?frame` (see `frame`; by default their own). Option
+:grow lists members that much further (a smooth union's blend radius). Returns
 the frame's fields and :count, :start :count-of (per cell, 1-based; a list's first
 slot 0-based), :clearance (per cell: the cells' skip, in world units) and :records
 (member numbers, 0-based, per cell in order)."
   (let [{: lo : dims : cell : size : reach : smallest &as f} (or ?frame (frame boxes ?options))
+        ;; A blend's children are listed a blend radius further (option :grow):
+        ;; beyond it a child cannot change a smooth union's value.
+        grow (+ reach (or (?. ?options :grow) 0))
         [nx ny nz] dims
         cells (* nx ny nz)
         count-of (fcollect [_ 1 cells] 0)
@@ -119,8 +123,8 @@ slot 0-based), :clearance (per cell: the cells' skip, in world units) and :recor
                    (let [d (. dims a)
                          s (. cell a)
                          o (. lo a)]
-                     [(max 0 (min (- d 1) (floor (/ (- (. blo a) reach o) s))))
-                      (max 0 (min (- d 1) (floor (/ (+ (. bhi a) reach (- o)) s))))])))
+                     [(max 0 (min (- d 1) (floor (/ (- (. blo a) grow o) s))))
+                      (max 0 (min (- d 1) (floor (/ (+ (. bhi a) grow (- o)) s))))])))
         visit (fn [r f]
                 (let [[[x0 x1] [y0 y1] [z0 z1]] r]
                   (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]

@@ -26,6 +26,14 @@
 ;;   {:op :material :row r :mout m}                  a leaf's colour and mirror
 ;;   {:op :cells :desc D :args A :count n :pin :dout :mout :body [...] :cell-p p
 ;;    :body-d d :body-m m}                           the nearest of n cells
+;;   {:op :blend :desc D :args A :pin :dout :mout :count n :base b :stride s
+;;    :members {:code [...] :d d :m m} :boxes [...] :grow r}
+;;                                                   a union or smooth union of n
+;;                                                   children of one structure: a loop
+;;                                                   over their rows in the instance
+;;                                                   bank (member j at b + j s), with
+;;                                                   a grid (src/sdf/grid.fnl) the
+;;                                                   plan gives it (:grid, :grid-data)
 ;; Each node's info: {:kind :path :class (:exact or :bound) :lipschitz k :bounds :far?}.
 ;;
 ;; The far field. A node whose distance is divided by a Lipschitz factor (twist, bend,
@@ -138,6 +146,16 @@ translate(rotate(scale(node)))."
 
 (var lower-node nil)
 
+;; From this many children of one structure on, a union or a polynomial smooth union
+;; lowers them to one loop (:blend) over their rows: a smooth union of 10,000 spheres
+;; is then one sphere's code. The grid's (src/sdf/grid.fnl) threshold, for the same
+;; reason.
+(local min-blend 16)
+
+;; The blends of the `lower` under way: their children's rows (appended to the
+;; instance bank after the groups') and their instructions.
+(var blends nil)
+
 (fn lower-primitive [st code node desc pin material]
   (let [desc (or (and desc.variant (desc.variant node)) desc)
         dout (fresh! st "d")
@@ -220,10 +238,56 @@ first when `?centre?` (else the box is taken as centred); return the register."
 (fn child-info [st child]
   (when (= nil (. st.infos child))
     (tset st.infos child
-          (. (lower-node (new-state st.modern? st.far-field? st.infos) [] child "p0"
+          (. (lower-node (doto (new-state st.modern? st.far-field? st.infos) (tset :aside? true)) [] child "p0"
                          (if st.modern? modern-material default-material))
              :info)))
   (. st.infos child))
+
+(fn blend! [st code node desc form args-values pin material]
+  "For a union or polynomial smooth union of at least min-blend children of one
+structure (equal keys) that all have a box: append a :blend instruction to `code`
+(one loop over the children's rows in the blend bank, see `blends`) and return what
+lowering the node gives ({:dout :mout :children :blend?}); else nil, and nothing is
+changed."
+  (when (and blends (not st.aside?) (>= (length node.children) min-blend)
+             (or (= desc.kind :union)
+                 (and (= desc.kind :smooth-union) (= form.glsl-name "opSmoothUnion"))))
+    (let [aside (icollect [_ c (ipairs node.children)]
+                  (let [cst (doto (new-state st.modern? st.far-field? st.infos) (tset :aside? true))
+                        r (lower-node cst [] c "p0" material)]
+                    {: cst :info r.info :key (table.concat cst.key " ")}))
+          first (. aside 1)
+          same? (accumulate [ok? true _ a (ipairs aside) &until (not ok?)]
+                  (and (= a.key first.key) (not= nil a.info.box)
+                       (= (length a.cst.rows) (length first.cst.rows))))]
+      (when same?
+        ;; The loop's body: the first child lowered again in this state's register
+        ;; names (its rows from 0, read from the bank), reading the node's point.
+        (let [bst (doto (new-state st.modern? st.far-field? st.infos) (tset :counter st.counter))
+              body []
+              r (lower-node bst body (. node.children 1) pin material)
+              base (length blends.bank.rows)
+              args (alloc-args! st desc args-values)
+              dout (fresh! st "d")
+              mout (fresh! st "m")]
+          (set st.counter (math.max st.counter bst.counter))
+          (set st.counter (+ st.counter 1))
+          (each [_ name (ipairs bst.used-list)] (use! st name (. bst.used name)))
+          (use! st form.glsl-name form)
+          (each [_ a (ipairs aside)]
+            (when a.cst.mirrors? (set st.mirrors? true))
+            (each [_ row (ipairs a.cst.rows)] (table.insert blends.bank.rows row)))
+          (let [ins {:op :blend :desc form : args : pin : dout : mout :count (length aside)
+                     : base :stride (length first.cst.rows)
+                     :members {:code body :d r.dout :m r.mout}
+                     :boxes (icollect [_ a (ipairs aside)] a.info.box)
+                     :grow (if (= desc.kind :smooth-union) node.radius 0)}]
+            (table.insert code ins)
+            (table.insert blends.list ins)
+            ;; Numbered: objects holding blends are never one group (each blend
+            ;; reads its own children's rows).
+            (table.insert st.key (.. "blend#" (length blends.list) "[" first.key "]"))
+            {: dout : mout :blend? true :children (icollect [_ a (ipairs aside)] a.info)}))))))
 
 (fn lower-operation [st code node desc pin material]
   (table.insert st.key (.. desc.kind (if node.kernel (.. "/" node.kernel) "") "("))
@@ -263,18 +327,19 @@ first when `?centre?` (else the box is taken as centred); return the register."
                                 :din child.dout : pin : dout})
             {: dout :mout child.mout :children [child.info]})
           :combine
-          (let [args (alloc-args! st desc args-values)
-                lowered (icollect [_ c (ipairs node.children)]
-                          (lower-node st code c pin material))]
-            (use! st form.glsl-name form)
-            (var (d m) (values (. lowered 1 :dout) (. lowered 1 :mout)))
-            (for [i 2 (length lowered)]
-              (let [dout (fresh! st "d") mout (fresh! st "m")]
-                (table.insert code {:op :combine :desc form : args
-                                    :da d :db (. lowered i :dout)
-                                    :ma m :mb (. lowered i :mout) : dout : mout})
-                (set (d m) (values dout mout))))
-            {:dout d :mout m :children (icollect [_ c (ipairs lowered)] c.info)})
+          (or (blend! st code node desc form args-values pin material)
+              (let [args (alloc-args! st desc args-values)
+                    lowered (icollect [_ c (ipairs node.children)]
+                              (lower-node st code c pin material))]
+                (use! st form.glsl-name form)
+                (var (d m) (values (. lowered 1 :dout) (. lowered 1 :mout)))
+                (for [i 2 (length lowered)]
+                  (let [dout (fresh! st "d") mout (fresh! st "m")]
+                    (table.insert code {:op :combine :desc form : args
+                                        :da d :db (. lowered i :dout)
+                                        :ma m :mb (. lowered i :mout) : dout : mout})
+                    (set (d m) (values dout mout))))
+                {:dout d :mout m :children (icollect [_ c (ipairs lowered)] c.info)}))
           :cells
           (let [args (alloc-args! st desc args-values)
                 count (desc.cells node)
@@ -288,7 +353,7 @@ first when `?centre?` (else the box is taken as centred); return the register."
                                 : body : cell-p :body-d child.dout :body-m child.mout})
             {: dout : mout :children [child.info]}))
         info {:kind node.kind :path node.path :implicit? node.implicit?
-              :children result.children}]
+              :children result.children :blend? result.blend?}]
     (set info.class (desc.class-of node result.children))
     (set info.bounds (desc.bounds-of node result.children))
     (set info.lipschitz (if desc.lipschitz-of (desc.lipschitz-of node result.children) 1))
@@ -553,6 +618,7 @@ rows (:material-size 8); :far-field? false leaves out far fields and guards (the
 benchmark's before); :fold? true writes every value but the camera-relative rows (and
 those of `hand-in`) into the code as constants (:literal on arguments and materials),
 and into the key; an instance group's values stay in its bank."
+  (set blends {:bank (new-bank) :list []})
   (let [options (or ?options {})
         infos {}
         (ok? lowered) (pcall #(icollect [_ node (ipairs objects)]
@@ -606,6 +672,9 @@ and into the key; an instance group's values stay in its bank."
               (for [m 2 (length states)] (append-rows! group-bank (. states m)))
               (set o.instances {:count (length states) : base
                                 :stride (length (. states 1 :rows))})))
+          ;; The blends' children's rows after the groups' (see blend!).
+          (let [offset (append-rows! group-bank blends.bank)]
+            (each [_ ins (ipairs blends.list)] (set ins.base (+ ins.base offset))))
           (let [st (doto (new-state options.modern?)
                      (tset :rows tape-bank.rows) (tset :relative tape-bank.relative)
                      (tset :inner tape-bank.inner) (tset :derived tape-bank.derived)
@@ -616,6 +685,7 @@ and into the key; an instance group's values stay in its bank."
             (when options.modern? (table.insert key "materials:8"))
             {:objects out :count id :rows tape-bank.rows :relative tape-bank.relative
              :inner tape-bank.inner :derived tape-bank.derived :instances group-bank
+             :blends blends.list
              : mirrors?
              :material-size (if options.modern? 8 4)
              :used (icollect [_ name (ipairs used-list)] {: name :desc (. used name)})
