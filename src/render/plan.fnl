@@ -163,9 +163,9 @@ nil and a message when a texture would not fit."
         (set e.grid (grid.build e.boxes f))
         (set e.boxes nil)))
     ;; A blend's children (lower.fnl's :blend) in its own frame, the point's: listed
-    ;; a blend radius further.
+    ;; a blend radius further, on finer cells.
     (each [_ ins (ipairs (or tape.blends []))]
-      (let [g (grid.build ins.boxes nil {:grow ins.grow})]
+      (let [g (grid.build ins.boxes nil {:grow ins.grow :cells-per-member grid.blend-cells-per-member})]
         (set ins.grid (length list))
         (set ins.grid-data g)
         (set ins.texture? true)

@@ -139,7 +139,10 @@ with a decimal point or an exponent."
                  (do (add 0 "{")
                      (add 1 (.. "int s" n ";"))
                      (add 1 (.. "int c" n ";"))
-                     (add 1 (.. "float b" n " = gridCell(" ins.grid ", " (reg ins.pin) ", s" n ", c" n ");"))
+                     (add 1 (.. "float b" n " = "
+                                (if (and along? ins.along?)
+                                    (.. "gridCellAlong(" ins.grid ", " (reg ins.pin) ", rd, s" n ", c" n ");")
+                                    (.. "gridCell(" ins.grid ", " (reg ins.pin) ", s" n ", c" n ");"))))
                      (add 1 (.. "for (int k" n " = 0; k" n " < c" n "; k" n "++) {"))
                      (add 2 (.. "int " j " = gridMember(s" n " + k" n ");")))
                  (add 0 (.. "for (int " j " = 0; " j " < " ins.count "; " j "++) {")))

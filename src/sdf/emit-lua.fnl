@@ -127,8 +127,13 @@
                                           (table.concat (icollect [_ _ (ipairs e.comps)] "0") ", "))))
       (if g
           ;; The children the point's cell lists, the others' bound (src/sdf/grid.fnl).
-          (let [query (e.fn-ref (fn [x y z] (grid.query g x y z)))]
-            (e.line indent (.. "local s" n ", c" n ", b" n " = " query "(" (point e ins.pin) ")"))
+          ;; Along a march's ray dx dy dz when its point is the evaluator's
+          ;; translated (gridCellAlong's), else around the point.
+          (let [query (e.fn-ref (if ins.along?
+                                    (fn [x y z dx dy dz] (grid.query g x y z dx dy dz 1e30))
+                                    (fn [x y z] (grid.query g x y z))))]
+            (e.line indent (.. "local s" n ", c" n ", b" n " = " query "(" (point e ins.pin)
+                               (if ins.along? ", dx, dy, dz" "") ")"))
             (e.line indent (.. "for k" n " = s" n " + 1, s" n " + c" n " do"))
             (e.line inner (.. "local " j " = " (e.fn-ref g.records) "[k" n "]")))
           (e.line indent (.. "for " j " = 0, " (- ins.count 1) " do")))
@@ -165,7 +170,8 @@
 (fn function-lines [e o what]
   ;; The function of object `o` that returns its distance (:distance), that and its
   ;; material (:material), or its exact normal (:gradient, a leaf's; see lower.fnl).
-  (e.line 0 "FN[#FN + 1] = function(x, y, z)")
+  ;; (dx dy dz: a march's ray direction, or nil; see :blend.)
+  (e.line 0 "FN[#FN + 1] = function(x, y, z, dx, dy, dz)")
   (when e.table-mode? (e.line 1 "local R = {}"))
   (if (= what :gradient)
       (let [{: points : prim} o.leaf]

@@ -29,7 +29,11 @@
 (local min-members 16)
 
 ;; Cells per member: about this many cells in all per member. Lists grow as cells grow.
+;; Measured on llvmpipe at 640x360 (one interleaved run each): 10,000 tori, capsules and
+;; boxes 0.125: 1.86x the time of 2, 0.5: 1.16x; a smooth union of 10,000 spheres
+;; (blend-cells-per-member) 0.5: 1.46x the time of 2, 1: 1.16x, 4: 0.92x, 8: 0.94x.
 (local cells-per-member 2)
+(local blend-cells-per-member 4)
 (local max-cells-per-axis 256)
 
 ;; A member is listed in every cell its box comes within `reach` of: a quarter of the
@@ -259,4 +263,5 @@ not fit."
            :spheres (texture sizes.spheres spheres)
            :bank (texture (. sizes :bank) bank-values) : offsets}))))
 
-{: frame : build : query : skip : textures : min-members : texture-width}
+{: frame : build : query : skip : textures : min-members : blend-cells-per-member
+ : texture-width}

@@ -65,6 +65,9 @@
 
 (fn new-state [?modern? ?far-field? ?infos]
   {:rows [] :relative [] :inner [] :derived [] :used {} :used-list [] :counter 0 :key []
+   ;; Point registers that are the shader's point translated only (a blend's grid
+   ;; may then bound its children along a march's ray: see blend!).
+   :translated {}
    :modern? ?modern? :far-field? (not= false ?far-field?) :infos (or ?infos {})})
 
 (fn fresh! [st prefix]
@@ -148,9 +151,9 @@ translate(rotate(scale(node)))."
 
 ;; From this many children of one structure on, a union or a polynomial smooth union
 ;; lowers them to one loop (:blend) over their rows: a smooth union of 10,000 spheres
-;; is then one sphere's code. The grid's (src/sdf/grid.fnl) threshold, for the same
-;; reason.
-(local min-blend 16)
+;; is then one sphere's code. The grid's threshold (src/sdf/grid.fnl), for the same
+;; reason: a loop with a grid costs less than the children written out from there.
+(local min-blend (. (require :src.sdf.grid) :min-members))
 
 ;; The blends of the `lower` under way: their children's rows (appended to the
 ;; instance bank after the groups') and their instructions.
@@ -281,7 +284,10 @@ changed."
                      : base :stride (length first.cst.rows)
                      :members {:code body :d r.dout :m r.mout}
                      :boxes (icollect [_ a (ipairs aside)] a.info.box)
-                     :grow (if (= desc.kind :smooth-union) node.radius 0)}]
+                     :grow (if (= desc.kind :smooth-union) node.radius 0)
+                     ;; Its point is the shader's translated: a march's ray direction
+                     ;; holds there too.
+                     :along? (or (= pin "p0") (= true (. st.translated pin)))}]
             (table.insert code ins)
             (table.insert blends.list ins)
             ;; Numbered: objects holding blends are never one group (each blend
@@ -308,6 +314,8 @@ changed."
           (let [pout (fresh! st "p")
                 args (alloc-args! st desc args-values)
                 _ (table.insert code {:op :point :desc form : args : pin : pout})
+                _ (when (and (= desc.kind :translate) (or (= pin "p0") (. st.translated pin)))
+                    (tset st.translated pout true))
                 child (lower-node st code (. node.children 1) pout material)
                 children [child.info]]
             (use! st form.glsl-name form)

@@ -116,7 +116,7 @@ Positions are in world coordinates."
                         (when (< di d) (set d di)))))))
               (for [i r.first r.last]
                 (when (not= i skip)
-                  (let [di ((. tape-distance i) x y z)]
+                  (let [di ((. tape-distance i) x y z ?dx ?dy ?dz)]
                     (when (< di d) (set d di))))))))
       d)
 
