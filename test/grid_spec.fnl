@@ -179,7 +179,7 @@
               source (codegen.shader p :core)]
           (assert.are.equal 2000 (. p.grids.list 1 :grid :count))
           (assert.truthy (source:find "gridCellAlong(0, pg, rd" 1 true))
-          (assert.truthy (source:find "gridSkip(0, i, pg, rd)" 1 true))
+          (assert.truthy (source:find "gridSkip(0, gridStart + k, pg, rd)" 1 true))
           (assert.truthy (source:find "float mapFiniteAlong(vec3 p, vec3 rd)" 1 true))
           (assert.is_nil (source:find "uniform vec4 uInstances" 1 true)))))
 

@@ -5,7 +5,7 @@
 uniform sampler2D uBankRows;   // the instance groups' rows, about the anchor
 uniform sampler2D uGridCells;  // per cell: first list slot, count, clearance
 uniform sampler2D uGridLists;  // per list slot: a member's number
-uniform sampler2D uGridSpheres;  // per member of each grid: bounding sphere about the anchor
+uniform sampler2D uGridSpheres;  // per list slot: its member's bounding sphere about the anchor
 uniform vec3 uBankOrigin;      // the anchor, camera-relative
 uniform vec4 uGridRows;        // 1 / rows of the bank, cells, lists and spheres textures
 
@@ -21,12 +21,14 @@ int gridMember(int slot) {
     return int(gridTexel(uGridLists, uGridRows.z, slot).x);
 }
 
-// How far a march along rd (a unit vector) from q may go before it can meet member i
-// of grid g, without evaluating it, or -1.0 when q is within the grid's reach of the
-// member's bounding sphere (then its distance must be evaluated): where the ray enters
-// the sphere (the draw distance when it never does), and at least q's distance to it.
-float gridSkip(int g, int i, vec3 q, vec3 rd) {
-    vec4 s = gridTexel(uGridSpheres, uGridRows.w, int(uGrids[3 * g + 2].w) + i);
+// How far a march along rd (a unit vector) from q may go before it can meet the member
+// of list slot `slot` of grid g, without evaluating it, or -1.0 when q is within the
+// grid's reach of the member's bounding sphere (then its distance must be evaluated):
+// where the ray enters the sphere (the draw distance when it never does), and at least
+// q's distance to it. The sphere sits at the slot: the member's number is read only
+// when it is needed.
+float gridSkip(int g, int slot, vec3 q, vec3 rd) {
+    vec4 s = gridTexel(uGridSpheres, uGridRows.w, slot);
     vec3 oc = q - s.xyz;
     float e = length(oc) - s.w;
     float b = dot(oc, rd);
@@ -48,7 +50,7 @@ float gridSkip(int g, int i, vec3 q, vec3 rd) {
 float gridCellAlong(int g, vec3 q, vec3 rd, out int start, out int count) {
     vec4 a = uGrids[3 * g];      // low corner (about the anchor), reach
     vec4 b = uGrids[3 * g + 1];  // one cell's extents, first cell in uGridCells
-    vec3 dims = uGrids[3 * g + 2].xyz;  // cells along each axis; .w: first sphere
+    vec3 dims = uGrids[3 * g + 2].xyz;  // cells along each axis
     vec3 local = q - a.xyz;
     vec3 size = b.xyz * dims;
     vec3 outside = max(max(-local, local - size), 0.0);

@@ -127,7 +127,7 @@ every frame, so a backend uploads them once) and their rows' reciprocals."
             [nx ny nz] grid.dims]
         (append! rows [(- lx ax) (- ly ay) (- lz az) grid.reach
                        cx cy cz (. textures.offsets i :cell)
-                       nx ny nz (. textures.offsets i :sphere)])))
+                       nx ny nz 0])))
     [{:name "uGrids" :type :vec4 :count (* 3 (length list)) :values rows}
      {:name "uBankOrigin" :type :vec3 :values (relative anchor cam-pos)}
      {:name "uGridRows" :type :vec4 :values [(/ 1 textures.bank.height) (/ 1 textures.cells.height)

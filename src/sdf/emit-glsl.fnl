@@ -297,16 +297,16 @@ could not lower d."
                          (.. "float gridBound = gridCell(" g ", pg, gridStart, gridCount);"))
                      "d = min(d, gridBound);"
                      "for (int k = 0; k < gridCount; k++) {"
-                     (indented ["int i = gridMember(gridStart + k);"
-                                ;; A march skips a member it is far from by the ray's
-                                ;; entry into its bounding sphere (gridSkip).
+                     (indented [;; A march skips a member it is far from by the
+                                ;; ray's entry into its bounding sphere (gridSkip).
                                 (if along?
-                                    [(.. "float gridStep = gridSkip(" g ", i, pg, rd);")
+                                    [(.. "float gridStep = gridSkip(" g ", gridStart + k, pg, rd);")
                                      "if (gridStep >= 0.0) {"
                                      "    d = min(d, gridStep);"
                                      "    continue;"
                                      "}"]
                                     [])
+                                "int i = gridMember(gridStart + k);"
                                 block])
                      "}"])
           "}"]

@@ -231,10 +231,9 @@ entry into the sphere (`far` when it never enters), and at least its distance to
 (fn textures [grids bank-values [ax ay az]]
   "The textures of a plan's grids and its instance bank: {:cells (per cell of every
 grid in turn: first slot of its list, count, clearance, 0) :lists (member numbers, one
-a texel) :spheres (every grid's members' bounding spheres in turn, centre about the
-anchor [ax ay az], radius) :bank (the rows `bank-values`, flat, 4 a row)} and :offsets
-(each grid's first cell, list slot and sphere), or nil and a message when one would
-not fit."
+a texel) :spheres (per list slot, its member's bounding sphere: centre about the anchor
+[ax ay az], radius) :bank (the rows `bank-values`, flat, 4 a row)} and :offsets (each
+grid's first cell and list slot), or nil and a message when one would not fit."
   (let [cells []
         lists []
         spheres []
@@ -242,9 +241,12 @@ not fit."
     (var cell-at 0)
     (each [_ g (ipairs grids)]
       (let [list-at (/ (length lists) 4)]
-        (table.insert offsets {:cell cell-at :list list-at :sphere (/ (length spheres) 4)})
-        (for [i 1 (length g.spheres) 4]
-          (let [s g.spheres]
+        (table.insert offsets {:cell cell-at :list list-at})
+        ;; A list slot's member's sphere at the same slot: a march reads it first and
+        ;; the member's number only when it cannot skip the member (gridSkip).
+        (each [_ m (ipairs g.records)]
+          (let [s g.spheres
+                i (+ 1 (* 4 m))]
             (each [_ v (ipairs [(- (. s i) ax) (- (. s (+ i 1)) ay) (- (. s (+ i 2)) az) (. s (+ i 3))])]
               (table.insert spheres v))))
         (each [k s (ipairs g.start)]
