@@ -20,6 +20,15 @@
 ;; {:lo :hi}, a box tighter than the symmetric bounds (see box-of in src/sdf/lower.fnl);
 ;; :bounds-of (fn [o children]) -> half extents
 ;; or nil (unbounded).
+;; A :cells node may say how few cells need the child itself (see src/sdf/lower.fnl):
+;; :own-cell? (fn [o child]) true when the point's own cell always holds the nearest
+;; copy; :boxed-neighbours? (fn [o child]) true when a copy's box, in the neighbour
+;; cells, is a bound good enough to take the copy's place there. `child`: the
+;; lowered child's info ({:even :box :children}).
+;; :keeps-even: true, or (fn [o axis]) -> boolean, when the node's distance is even
+;; and never decreasing along that axis wherever its children's are (see a
+;; primitive's :even in src/sdf/primitives.fnl): min and max of such functions, and
+;; moves that leave that coordinate alone, are too.
 
 (local {: sqrt : abs : min : max : floor : sin : cos : log : exp : atan2 : pi} math)
 
@@ -96,6 +105,30 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     (and b (accumulate [ok? true i v (ipairs o.period)]
              (and ok? (or (= v 0) (<= (. b i) (* 0.5 v))))))))
 
+(fn repeat-own-cell? [o child]
+  ;; A child even and never decreasing along every repeated axis, about the cell's
+  ;; centre: the copy in the point's own cell (the rounded one, clamped when
+  ;; limited) is nearest, as |v - id period| is least there on each axis.
+  (accumulate [ok? (not= nil child.even) i v (ipairs o.period)]
+    (and ok? (or (= v 0) (. child.even i)))))
+
+;; The share of a period a copy's box must leave free on each side of its cell for
+;; the neighbours to be drawn by their boxes: the bound there is then at least this
+;; much of a period (fewer, longer steps between the copies).
+(local neighbour-margin 0.1)
+
+(fn repeat-boxed-neighbours? [o child]
+  ;; A child that is a tree (a box costs less than it) whose box stays inside its
+  ;; cell with a margin: from any point of its own cell, a neighbour's box is at
+  ;; least that margin away, so its distance there is a bound for the neighbour
+  ;; that never makes a hit of it.
+  (let [box child.box]
+    (and box (> (length child.children) 0)
+         (accumulate [ok? true i v (ipairs o.period)]
+           (and ok? (or (= v 0)
+                        (<= (math.max (- (. box.lo i)) (. box.hi i))
+                            (* v (- 0.5 neighbour-margin)))))))))
+
 (fn repeat-bounds [o children]
   (let [b (. children 1 :bounds)]
     (when (and b (not o.count))
@@ -153,6 +186,7 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     return p - t;
 }"
     :cpu (fn [x y z tx ty tz] (values (- x tx) (- y ty) (- z tz)))
+    :keeps-even (fn [o axis] (= 0 (. o.offset axis)))
     :class-of first-class
     :bounds-of (fn [o children]
                  (let [b (. children 1 :bounds)]
@@ -237,6 +271,23 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     :cpu (fn [x y z nx ny nz]
            (let [k (* 2 (min (+ (* x nx) (* y ny) (* z nz)) 0))]
              (values (- x (* k nx)) (- y (* k ny)) (- z (* k nz)))))
+    ;; A normal across the axis leaves that coordinate alone.
+    :keeps-even (fn [o axis] (= 0 (. o.normal axis)))
+    ;; The box of the child's box and its mirror image: holds the kept half and its
+    ;; image (tighter than the bounds' circle about the normal).
+    :box-of (fn [o [child]]
+              (let [[nx ny nz] o.normal
+                    lo [math.huge math.huge math.huge]
+                    hi [(- math.huge) (- math.huge) (- math.huge)]]
+                (each [_ x (ipairs [(. child.lo 1) (. child.hi 1)])]
+                  (each [_ y (ipairs [(. child.lo 2) (. child.hi 2)])]
+                    (each [_ z (ipairs [(. child.lo 3) (. child.hi 3)])]
+                      (let [k (* 2 (+ (* x nx) (* y ny) (* z nz)))]
+                        (each [_ q (ipairs [[x y z] [(- x (* k nx)) (- y (* k ny)) (- z (* k nz))]])]
+                          (for [i 1 3]
+                            (tset lo i (min (. lo i) (. q i)))
+                            (tset hi i (max (. hi i) (. q i)))))))))
+                {: lo : hi}))
     ;; Exact when the child lies on the normal's side; otherwise still a bound.
     :class-of bound-class
     :bounds-of (fn [o children]
@@ -354,6 +405,8 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     :glsl-name "opRepeat"
     :glsl repeat-glsl
     :cpu repeat-cell
+    :own-cell? repeat-own-cell?
+    :boxed-neighbours? repeat-boxed-neighbours?
     :class-of (fn [o children] (if (fits-cell? o children) (. children 1 :class) :bound))
     :bounds-of repeat-bounds}
    {:kind :polar :role :cells
@@ -400,6 +453,7 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     return d - r;
 }"
     :cpu (fn [d _ _ _ r] (- d r))
+    :keeps-even true
     :class-of first-class
     :bounds-of (fn [o children] (grow-bounds (. children 1 :bounds) o.radius))}
    {:kind :onion :role :distance
@@ -448,6 +502,7 @@ float wUnion(float a, float b) {
 }"
     :cpu (fn [a b] (min a b))
     :cpu-weight (fn [a b] (if (<= a b) 1 0))
+    :keeps-even true
     :class-of all-exact
     :bounds-of merge-bounds}
    {:kind :intersection :role :combine
@@ -465,6 +520,7 @@ float wIntersection(float a, float b) {
 }"
     :cpu (fn [a b] (max a b))
     :cpu-weight (fn [a b] (if (>= a b) 1 0))
+    :keeps-even true
     :class-of bound-class
     :bounds-of (fn [_ children]
                  (var out nil)
