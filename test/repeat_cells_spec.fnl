@@ -94,6 +94,21 @@
         ;; its neighbours whole.
         (assert.is_nil (. (cells-of (plan-of "{:kind :repeat :period [4 0 0] :children [{:kind :subtraction :children [{:kind :box :size [3.4 1 2]} {:kind :sphere :radius 0.4}]}]}")) :near?))))
 
+    (it "writes a repetition's GLSL for the axes it repeats along, without a loop"
+      (fn []
+        (let [codegen (require :src.render.codegen)
+              p (plan-of "{:kind :repeat :period [2 0 3] :children [{:kind :torus}]}")
+              text (assert (codegen.shader p :core))
+              body (text:match "vec3 opRepeatXZ%(.-\n}")]
+          (assert.is_string body)
+          (assert.falsy (body:find "for (" 1 true))
+          (assert.falsy (body:find "p.y" 1 true))
+          (assert.falsy (text:find "vec3 opRepeat(" 1 true))
+          ;; Which axes is structure: another set is another key, the same set with
+          ;; other periods the same key.
+          (assert.are_not.equal p.tape.key (. (plan-of "{:kind :repeat :period [2 3 0] :children [{:kind :torus}]}") :tape :key))
+          (assert.are.equal p.tape.key (. (plan-of "{:kind :repeat :period [5 0 1] :children [{:kind :torus}]}") :tape :key)))))
+
     (it "bounds a mirror by its child's box and that box's image"
       (fn []
         (let [p (plan-of "{:kind :mirror :normal [0 1 0] :children [{:kind :union :pos [0 2 0] :children [{:kind :box :size [1 1 1]} {:kind :torus}]}]}")

@@ -240,8 +240,9 @@ first when `?centre?` (else the box is taken as centred); return the register."
   (. st.infos child))
 
 (fn lower-operation [st code node desc pin material]
-  (table.insert st.key (.. desc.kind (if node.kernel (.. "/" node.kernel) "") "("))
   (let [form (operations.variant desc node)
+        _ (table.insert st.key (.. desc.kind (if node.kernel (.. "/" node.kernel) "")
+                                   (if desc.variant-of (.. "/" form.glsl-name) "") "("))
         ;; Twist and bend pack their child's radius: lower the child once aside.
         args-values (if desc.needs-bounds
                         (let [child (child-info st (. node.children 1))
