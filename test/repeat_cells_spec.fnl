@@ -109,6 +109,34 @@
           (assert.are_not.equal p.tape.key (. (plan-of "{:kind :repeat :period [2 3 0] :children [{:kind :torus}]}") :tape :key))
           (assert.are.equal p.tape.key (. (plan-of "{:kind :repeat :period [5 0 1] :children [{:kind :torus}]}") :tape :key)))))
 
+    (it "turns a polar repetition's point by series within 60 degrees, from 3 sectors on"
+      (fn []
+        (let [codegen (require :src.render.codegen)
+              operations (require :src.sdf.operations)
+              polar (operations.lookup :polar)
+              narrow (operations.variant polar {:count 12})
+              shader #(assert (codegen.shader (plan-of (.. "{:kind :polar :count " $ " :children [{:kind :sphere :radius 0.2 :pos [1 0 0]}]}")) :core))]
+          (assert.truthy (: (shader 3) :find "opPolarNarrow(" 1 true))
+          (assert.falsy (: (shader 2) :find "opPolarNarrow(" 1 true))
+          ;; The series as the GLSL writes them (Horner in b^2), against math.sin and
+          ;; math.cos over the widest angle they meet (half of a third of a turn):
+          ;; within float32's rounding there.
+          (fn series [name]
+            (let [line (narrow.glsl:match (.. "float " name " = ([^;]+);"))
+                  coefficients (icollect [v (line:gmatch "[-]?%d+%.%d+e?[-+]?%d*")] (tonumber v))]
+              ;; Up to b^11 for sin, b^12 for cos.
+              (assert.are.equal (if (= name "s") 6 7) (length coefficients))
+              (fn [b]
+                (var acc 0)
+                (for [i (length coefficients) 1 -1]
+                  (set acc (+ (. coefficients i) (* b b acc))))
+                (if (= name "s") (* b acc) acc))))
+          (let [sin-series (series "s") cos-series (series "c")]
+            (for [i -100 100]
+              (let [b (* (/ i 100) (/ math.pi 3))]
+                (assert.is_true (< (abs (- (sin-series b) (math.sin b))) 1e-8))
+                (assert.is_true (< (abs (- (cos-series b) (math.cos b))) 1e-8))))))))
+
     (it "bounds a mirror by its child's box and that box's image"
       (fn []
         (let [p (plan-of "{:kind :mirror :normal [0 1 0] :children [{:kind :union :pos [0 2 0] :children [{:kind :box :size [1 1 1]} {:kind :torus}]}]}")
