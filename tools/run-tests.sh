@@ -16,7 +16,7 @@ if [ "${1:-}" = "--check" ]; then
     test/field_spec.fnl test/fuzz_spec.fnl test/operations_spec.fnl test/params_spec.fnl \
     test/plan_spec.fnl test/png_spec.fnl test/primitives_spec.fnl \
     test/probe_input_spec.fnl test/progress_spec.fnl test/reference_spec.fnl \
-    test/sandbox_spec.fnl test/scene_spec.fnl test/states_spec.fnl \
+    test/repeat_cells_spec.fnl test/sandbox_spec.fnl test/scene_spec.fnl test/states_spec.fnl \
     test/tape_spec.fnl test/translate_spec.fnl test/uniforms_spec.fnl test/watch_spec.fnl \
     test/worker_spec.fnl test/wire_spec.fnl test/mesh_spec.fnl
 fi

@@ -75,6 +75,50 @@ with a decimal point or an exponent."
 
 (var mt (. material-types 4))
 
+(fn emit-cells [out ins materials?]
+  ;; The child in each cell, the nearest kept.
+  (let [c (.. "c" (ins.dout:sub 2))
+      body []]
+    (table.insert out (.. "float " ins.dout " = 10000000000.0;"))
+    (when materials? (table.insert out (.. mt.type " " ins.mout " = " mt.zero ";")))
+    (table.insert out (.. "for (int " c " = 0; " c " < " ins.count "; " c "++) {"))
+    ;; The cell index is the last argument.
+    (table.insert body (.. "vec3 " ins.cell-p " = "
+                           (call ins.desc.glsl-name (reg ins.pin) ins.args c) ";"))
+    (emit-code body ins.body materials?)
+    (if materials?
+        (table.insert body (.. "if (" ins.body-d " < " ins.dout ") { " ins.dout " = "
+                               ins.body-d "; " ins.mout " = " ins.body-m "; }"))
+        (table.insert body (.. ins.dout " = min(" ins.dout ", " ins.body-d ");")))
+    (each [_ l (ipairs body)] (table.insert out (.. "    " l)))
+    (table.insert out "}")))
+
+(fn emit-near-cells [out ins materials?]
+  ;; The child in the point's own cell (0), each neighbour's copy by its box (see
+  ;; :near? in src/sdf/lower.fnl); a neighbour clamped onto the own cell (past the
+  ;; end of a limited repetition) counts no box.
+  (let [c (.. "c" (ins.dout:sub 2))
+        {: p : code : bout} ins.near?
+        body []
+        near []]
+    (table.insert out (.. "float " ins.dout ";"))
+    (when materials? (table.insert out (.. mt.type " " ins.mout ";")))
+    (table.insert out "{")
+    (table.insert body (.. "vec3 " ins.cell-p " = "
+                           (call ins.desc.glsl-name (reg ins.pin) ins.args "0") ";"))
+    (emit-code body ins.body materials?)
+    (table.insert body (.. ins.dout " = " ins.body-d ";"))
+    (when materials? (table.insert body (.. ins.mout " = " ins.body-m ";")))
+    (table.insert body (.. "for (int " c " = 1; " c " < " ins.count "; " c "++) {"))
+    (table.insert near (.. "vec3 " p " = " (call ins.desc.glsl-name (reg ins.pin) ins.args c) ";"))
+    (emit-code near code false)
+    (table.insert near (.. ins.dout " = min(" ins.dout ", " p " == " ins.cell-p
+                           " ? 10000000000.0 : " bout ");"))
+    (each [_ l (ipairs near)] (table.insert body (.. "    " l)))
+    (table.insert body "}")
+    (each [_ l (ipairs body)] (table.insert out (.. "    " l)))
+    (table.insert out "}")))
+
 (fn emit-instr [out ins materials?]
   (case ins.op
     :prim (table.insert out (.. "float " ins.dout " = "
@@ -104,21 +148,7 @@ with a decimal point or an exponent."
                  (table.insert out (.. mt.type " " ins.mout " = " mt.mix "(" ins.mb ", " ins.ma ", "
                                        (call (weight-name ins.desc) (.. ins.da ", " ins.db) ins.args)
                                        ");"))))
-    :cells (let [c (.. "c" (ins.dout:sub 2))
-                 body []]
-             (table.insert out (.. "float " ins.dout " = 10000000000.0;"))
-             (when materials? (table.insert out (.. mt.type " " ins.mout " = " mt.zero ";")))
-             (table.insert out (.. "for (int " c " = 0; " c " < " ins.count "; " c "++) {"))
-             ;; The cell index is the last argument.
-             (table.insert body (.. "vec3 " ins.cell-p " = "
-                                    (call ins.desc.glsl-name (reg ins.pin) ins.args c) ";"))
-             (emit-code body ins.body materials?)
-             (if materials?
-                 (table.insert body (.. "if (" ins.body-d " < " ins.dout ") { " ins.dout " = "
-                                        ins.body-d "; " ins.mout " = " ins.body-m "; }"))
-                 (table.insert body (.. ins.dout " = min(" ins.dout ", " ins.body-d ");")))
-             (each [_ l (ipairs body)] (table.insert out (.. "    " l)))
-             (table.insert out "}"))
+    :cells (if ins.near? (emit-near-cells out ins materials?) (emit-cells out ins materials?))
     :blend (let [n (ins.dout:sub 2)
                  j (.. "j" n)
                  args (args-list ins.args)

@@ -96,6 +96,27 @@
                                   (.. b " * (1 - " (e.r w) ") + " a " * " (e.r w))))
                               ", "))))))
     :cells
+    (if ins.near?
+        ;; The own cell's child, each neighbour by its copy's box (see emit-glsl).
+        (let [c (.. "c" (ins.dout:sub 2))
+              dout (e.r ins.dout)
+              {: p : code : bout} ins.near?
+              same (.. (e.r (.. p "x")) " == " (e.r (.. ins.cell-p "x")) " and "
+                       (e.r (.. p "y")) " == " (e.r (.. ins.cell-p "y")) " and "
+                       (e.r (.. p "z")) " == " (e.r (.. ins.cell-p "z")))]
+          (e.line indent (.. (point-decl e ins.cell-p) " = "
+                             (call e ins.desc.cpu (.. "0, " (point e ins.pin)) ins.args)))
+          (emit-code e ins.body materials? indent)
+          (e.line indent (.. (e.decl ins.dout) " = " (e.r ins.body-d)))
+          (when materials?
+            (e.line indent (.. (material-decl e ins.mout) " = " (material e ins.body-m))))
+          (e.line indent (.. "for " c " = 1, " (- ins.count 1) " do"))
+          (e.line (+ indent 1) (.. (point-decl e p) " = "
+                                   (call e ins.desc.cpu (.. c ", " (point e ins.pin)) ins.args)))
+          (emit-code e code false (+ indent 1))
+          (e.line (+ indent 1) (.. "if not (" same ") and " (e.r bout) " < " dout " then "
+                                   dout " = " (e.r bout) " end"))
+          (e.line indent "end"))
     (let [c (.. "c" (ins.dout:sub 2))
           dout (e.r ins.dout)]
       (e.line indent (.. (e.decl ins.dout) " = 1e30"))
@@ -110,7 +131,7 @@
                 (.. "if " bd " < " dout " then " dout " = " bd
                     (if materials? (.. "; " (material e ins.mout) " = " (material e ins.body-m)) "")
                     " end")))
-      (e.line indent "end"))
+      (e.line indent "end")))
     :blend
     (let [n (ins.dout:sub 2)
           dout (e.r ins.dout)
@@ -165,7 +186,8 @@
   ;; distance, fewer).
   (accumulate [n 0 _ ins (ipairs code)]
     (+ n per (if ins.body (count-registers ins.body per) 0)
-       (if ins.members (count-registers ins.members.code per) 0))))
+       (if ins.members (count-registers ins.members.code per) 0)
+       (if ins.near? (count-registers ins.near?.code per) 0))))
 
 (fn function-lines [e o what]
   ;; The function of object `o` that returns its distance (:distance), that and its

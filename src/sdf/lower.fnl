@@ -25,7 +25,11 @@
 ;;                                                   (b a box's signed distance, a :prim)
 ;;   {:op :material :row r :mout m}                  a leaf's colour and mirror
 ;;   {:op :cells :desc D :args A :count n :pin :dout :mout :body [...] :cell-p p
-;;    :body-d d :body-m m}                           the nearest of n cells
+;;    :body-d d :body-m m :near?}                    the nearest of n cells
+;;   {... :near? {:p q :code [...] :bout b}}         ... the child in cell 0 (the
+;;                                                   point's own) only; each other
+;;                                                   cell's point in q, whose copy's
+;;                                                   box distance `code` puts in b
 ;;   {:op :blend :desc D :args A :pin :dout :mout :count n :base b :stride s
 ;;    :members {:code [...] :d d :m m} :boxes [...] :grow r}
 ;;                                                   a union or smooth union of n
@@ -34,7 +38,17 @@
 ;;                                                   bank (member j at b + j s), with
 ;;                                                   a grid (src/sdf/grid.fnl) the
 ;;                                                   plan gives it (:grid, :grid-data)
-;; Each node's info: {:kind :path :class (:exact or :bound) :lipschitz k :bounds :far?}.
+;; Each node's info: {:kind :path :class (:exact or :bound) :lipschitz k :bounds :far?
+;; :even}.
+;;
+;; Repetitions. A :cells node evaluates its child in the point's own cell and the
+;; neighbours (2 to 8 cells along the repeated axes, 2 around a polar one). Two
+;; properties of the child cut that down (see :own-cell? and :boxed-neighbours? in
+;; src/sdf/operations.fnl): a child even and never decreasing along the repeated
+;; axes (:even, a box or a cylinder about the cell's centre) is nearest in its own
+;; cell, so one cell is the same minimum; a costly child whose box keeps clear of its
+;; cell's walls is evaluated in its own cell only, each neighbour's copy replaced by
+;; its box's distance, a bound for it (never a hit, the box being a margin away).
 ;;
 ;; The far field. A node whose distance is divided by a Lipschitz factor (twist, bend,
 ;; displace) is a weak bound far from it: twist's and bend's factor grows with the
@@ -171,7 +185,7 @@ translate(rotate(scale(node)))."
     {: dout : mout
      :info (let [bounds (and desc.bounds (desc.bounds node))]
              {:kind node.kind :path node.path :class desc.class :lipschitz desc.lipschitz
-              : bounds :box (symmetric-box bounds) :children []
+              : bounds :box (symmetric-box bounds) :children [] :even desc.even
               :radius (when desc.bounding-radius (desc.bounding-radius node))})}))
 
 (fn box-of [node desc info children]
@@ -296,8 +310,9 @@ changed."
             {: dout : mout :blend? true :children (icollect [_ a (ipairs aside)] a.info)}))))))
 
 (fn lower-operation [st code node desc pin material]
-  (table.insert st.key (.. desc.kind (if node.kernel (.. "/" node.kernel) "") "("))
   (let [form (operations.variant desc node)
+        _ (table.insert st.key (.. desc.kind (if node.kernel (.. "/" node.kernel) "")
+                                   (if desc.variant-of (.. "/" form.glsl-name) "") "("))
         ;; Twist and bend pack their child's radius: lower the child once aside.
         args-values (if desc.needs-bounds
                         (let [child (child-info st (. node.children 1))
@@ -350,19 +365,33 @@ changed."
                 {:dout d :mout m :children (icollect [_ c (ipairs lowered)] c.info)}))
           :cells
           (let [args (alloc-args! st desc args-values)
-                count (desc.cells node)
                 cell-p (fresh! st "p")
                 body []
                 child (lower-node st body (. node.children 1) cell-p material)
+                own? (and desc.own-cell? (desc.own-cell? node child.info))
+                count (if own? 1 (desc.cells node))
+                near (when (and (not own?) (> count 1) desc.boxed-neighbours?
+                                (desc.boxed-neighbours? node child.info))
+                       (let [q (fresh! st "p")
+                             box-code []
+                             bout (box-bound! st box-code q child.info.box true)]
+                         {:p q :code box-code : bout}))
                 dout (fresh! st "d") mout (fresh! st "m")]
             (use! st form.glsl-name form)
-            (table.insert st.key (.. "x" count))
+            (table.insert st.key (.. "x" count (if near "near" "")))
             (table.insert code {:op :cells :desc form : args : count : pin : dout : mout
-                                : body : cell-p :body-d child.dout :body-m child.mout})
-            {: dout : mout :children [child.info]}))
+                                : body : cell-p :body-d child.dout :body-m child.mout
+                                :near? near})
+            {: dout : mout :children [child.info] :near? (not= nil near)}))
         info {:kind node.kind :path node.path :implicit? node.implicit?
               :children result.children :blend? result.blend?}]
-    (set info.class (desc.class-of node result.children))
+    ;; Neighbours drawn by their boxes give a bound, not the distance.
+    (set info.class (if result.near? :bound (desc.class-of node result.children)))
+    (set info.even (when desc.keeps-even
+                     (fcollect [i 1 3]
+                       (and (accumulate [ok? true _ c (ipairs result.children)]
+                              (and ok? (= true (?. c :even i))))
+                            (or (= true desc.keeps-even) (desc.keeps-even node i))))))
     (set info.bounds (desc.bounds-of node result.children))
     (set info.lipschitz (if desc.lipschitz-of (desc.lipschitz-of node result.children) 1))
     (set info.box (box-of node desc info result.children))
@@ -420,7 +449,8 @@ is a translation or a plane; else nil."
             [:prim :ground] (let [[nh] ins.args]
                               (table.insert found.planes {:row nh.row :height nh}))
             _ (set ok? false)))
-        (when ins.body (walk ins.body))))
+        (when ins.body (walk ins.body))
+        (when ins.near? (walk ins.near?.code))))
     (when ok? (walk (icollect [i ins (ipairs code)] (when (> i 1) ins))))
     (when (and ok? (or (> (length found.translations) 0) (> (length found.planes) 0)))
       found)))
@@ -552,7 +582,8 @@ tape's :fold? in `lower`)."
             (set ref.literal (fcollect [k 1 ref.size] (. st.rows (+ ref.row 1) (+ ref.offset k))))))
         (when (= ins.op :material)
           (set ins.literal (row-values ins.row (if st.modern? 8 4))))
-        (when ins.body (walk ins.body))))
+        (when ins.body (walk ins.body))
+        (when ins.near? (walk ins.near?.code))))
     (each [_ o (ipairs objects)] (walk o.code))
     ;; The values are part of the code now: they are part of its key.
     (table.insert st.key "fold:")
@@ -587,7 +618,8 @@ own fields) the same leaf as a node, placed by :pos and coloured by :color."
         (tset seen ref true)
         (set ref.row (+ ref.row offset))))
     (when (= ins.op :material) (set ins.row (+ ins.row offset)))
-    (when ins.body (relocate! ins.body offset seen))))
+    (when ins.body (relocate! ins.body offset seen))
+    (when ins.near? (relocate! ins.near?.code offset seen))))
 
 (fn new-bank [] {:rows [] :relative [] :inner [] :derived []})
 

@@ -20,6 +20,15 @@
 ;; {:lo :hi}, a box tighter than the symmetric bounds (see box-of in src/sdf/lower.fnl);
 ;; :bounds-of (fn [o children]) -> half extents
 ;; or nil (unbounded).
+;; A :cells node may say how few cells need the child itself (see src/sdf/lower.fnl):
+;; :own-cell? (fn [o child]) true when the point's own cell always holds the nearest
+;; copy; :boxed-neighbours? (fn [o child]) true when a copy's box, in the neighbour
+;; cells, is a bound good enough to take the copy's place there. `child`: the
+;; lowered child's info ({:even :box :children}).
+;; :keeps-even: true, or (fn [o axis]) -> boolean, when the node's distance is even
+;; and never decreasing along that axis wherever its children's are (see a
+;; primitive's :even in src/sdf/primitives.fnl): min and max of such functions, and
+;; moves that leave that coordinate alone, are too.
 
 (local {: sqrt : abs : min : max : floor : sin : cos : log : exp : atan2 : pi} math)
 
@@ -96,6 +105,30 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     (and b (accumulate [ok? true i v (ipairs o.period)]
              (and ok? (or (= v 0) (<= (. b i) (* 0.5 v))))))))
 
+(fn repeat-own-cell? [o child]
+  ;; A child even and never decreasing along every repeated axis, about the cell's
+  ;; centre: the copy in the point's own cell (the rounded one, clamped when
+  ;; limited) is nearest, as |v - id period| is least there on each axis.
+  (accumulate [ok? (not= nil child.even) i v (ipairs o.period)]
+    (and ok? (or (= v 0) (. child.even i)))))
+
+;; The share of a period a copy's box must leave free on each side of its cell for
+;; the neighbours to be drawn by their boxes: the bound there is then at least this
+;; much of a period (fewer, longer steps between the copies).
+(local neighbour-margin 0.1)
+
+(fn repeat-boxed-neighbours? [o child]
+  ;; A child that is a tree (a box costs less than it) whose box stays inside its
+  ;; cell with a margin: from any point of its own cell, a neighbour's box is at
+  ;; least that margin away, so its distance there is a bound for the neighbour
+  ;; that never makes a hit of it.
+  (let [box child.box]
+    (and box (> (length child.children) 0)
+         (accumulate [ok? true i v (ipairs o.period)]
+           (and ok? (or (= v 0)
+                        (<= (math.max (- (. box.lo i)) (. box.hi i))
+                            (* v (- 0.5 neighbour-margin)))))))))
+
 (fn repeat-bounds [o children]
   (let [b (. children 1 :bounds)]
     (when (and b (not o.count))
@@ -140,6 +173,67 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     return q;
 }")
 
+;; The repetition's GLSL for the axes it repeats along (a variant per set of axes):
+;; the same arithmetic as repeat-glsl, axis by axis, without its loop over the three
+;; axes and its branches on the period and the limit, which llvmpipe runs for every
+;; axis, masked (colonnade: 18% of a frame).
+(fn repeat-variant [axes]
+  (let [name (.. "opRepeat" (table.concat (icollect [_ a (ipairs axes)] (a:upper))))
+        lines [(.. "vec3 " name "(vec3 p, vec3 period, vec3 limit, int cell) {")
+               "    vec3 q = p;"]]
+    (each [k a (ipairs axes)]
+      (let [id (.. "id" (a:upper))
+            bit (. [1 2 4] k)]
+        (table.insert lines (.. "    float " id " = floor(p." a " / period." a " + 0.5);"))
+        (table.insert lines (.. "    " id " += float((cell / " bit ") % 2) * (p." a " - " id
+                                " * period." a " >= 0.0 ? 1.0 : -1.0);"))
+        (table.insert lines (.. "    " id " = limit." a " >= 0.0 ? clamp(" id ", -limit." a
+                                ", limit." a ") : " id ";"))
+        (table.insert lines (.. "    q." a " = p." a " - " id " * period." a ";"))))
+    (table.insert lines "    return q;")
+    (table.insert lines "}")
+    {:glsl-name name :glsl (table.concat lines "\n") :cpu repeat-cell}))
+
+(local repeat-variants
+  (collect [_ axes (ipairs [["x"] ["y"] ["z"] ["x" "y"] ["x" "z"] ["y" "z"] ["x" "y" "z"]])]
+    (table.concat axes) (repeat-variant axes)))
+
+(fn repeat-axes [o]
+  ;; "x", "xz", ...: the axes `o` repeats along.
+  (table.concat (icollect [i v (ipairs o.period)] (when (> v 0) (. ["x" "y" "z"] i)))))
+
+(fn polar-cell [cell x y z sector]
+  ;; The point in the frame of the sector it lies in (cell 0) or of the neighbour
+  ;; sector on its side (cell 1).
+  (let [a (atan2 y x)
+        id (round (/ a sector))
+        side (if (>= (- a (* id sector)) 0) 1 -1)
+        id (+ id (* cell side))
+        b (- a (* id sector))
+        r (sqrt (+ (* x x) (* y y)))]
+    (values (* r (cos b)) (* r (sin b)) z)))
+
+;; Taylor coefficients of sin (odd powers to 11) and cos (even powers to 12): within
+;; 60 degrees the first term left out is under 3e-10.
+(local polar-narrow
+  {:glsl-name "opPolarNarrow"
+   :glsl "vec3 opPolarNarrow(vec3 p, float sector, vec2 turn, int cell) {
+    float a = atan(p.y, p.x);
+    float id = floor(a / sector + 0.5);
+    float b = a - id * sector;
+    float side = b >= 0.0 ? 1.0 : -1.0;
+    float r = length(p.xy);
+    float b2 = b * b;
+    float s = b * (1.0 + b2 * (-0.16666666666666666 + b2 * (0.008333333333333333 + b2 * (-0.0001984126984126984 + b2 * (2.7557319223985893e-06 + b2 * -2.505210838544172e-08)))));
+    float c = 1.0 + b2 * (-0.5 + b2 * (0.041666666666666664 + b2 * (-0.001388888888888889 + b2 * (2.48015873015873e-05 + b2 * (-2.755731922398589e-07 + b2 * 2.08767569878681e-09)))));
+    vec2 q = r * vec2(c, s);
+    float k = float(cell);
+    float tc = mix(1.0, turn.x, k);
+    float ts = turn.y * side * k;
+    return vec3(tc * q.x + ts * q.y, tc * q.y - ts * q.x, p.z);
+}"
+   :cpu polar-cell})
+
 (local operations
   [;;; Transforms
    {:kind :translate :role :point
@@ -153,6 +247,7 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     return p - t;
 }"
     :cpu (fn [x y z tx ty tz] (values (- x tx) (- y ty) (- z tz)))
+    :keeps-even (fn [o axis] (= 0 (. o.offset axis)))
     :class-of first-class
     :bounds-of (fn [o children]
                  (let [b (. children 1 :bounds)]
@@ -237,6 +332,23 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     :cpu (fn [x y z nx ny nz]
            (let [k (* 2 (min (+ (* x nx) (* y ny) (* z nz)) 0))]
              (values (- x (* k nx)) (- y (* k ny)) (- z (* k nz)))))
+    ;; A normal across the axis leaves that coordinate alone.
+    :keeps-even (fn [o axis] (= 0 (. o.normal axis)))
+    ;; The box of the child's box and its mirror image: holds the kept half and its
+    ;; image (tighter than the bounds' circle about the normal).
+    :box-of (fn [o [child]]
+              (let [[nx ny nz] o.normal
+                    lo [math.huge math.huge math.huge]
+                    hi [(- math.huge) (- math.huge) (- math.huge)]]
+                (each [_ x (ipairs [(. child.lo 1) (. child.hi 1)])]
+                  (each [_ y (ipairs [(. child.lo 2) (. child.hi 2)])]
+                    (each [_ z (ipairs [(. child.lo 3) (. child.hi 3)])]
+                      (let [k (* 2 (+ (* x nx) (* y ny) (* z nz)))]
+                        (each [_ q (ipairs [[x y z] [(- x (* k nx)) (- y (* k ny)) (- z (* k nz))]])]
+                          (for [i 1 3]
+                            (tset lo i (min (. lo i) (. q i)))
+                            (tset hi i (max (. hi i) (. q i)))))))))
+                {: lo : hi}))
     ;; Exact when the child lies on the normal's side; otherwise still a bound.
     :class-of bound-class
     :bounds-of (fn [o children]
@@ -354,6 +466,9 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     :glsl-name "opRepeat"
     :glsl repeat-glsl
     :cpu repeat-cell
+    :variant-of (fn [o] (. repeat-variants (repeat-axes o)))
+    :own-cell? repeat-own-cell?
+    :boxed-neighbours? repeat-boxed-neighbours?
     :class-of (fn [o children] (if (fits-cell? o children) (. children 1 :class) :bound))
     :bounds-of repeat-bounds}
    {:kind :polar :role :cells
@@ -361,10 +476,17 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     :doc "Repeats its child :count times around the z axis (the child's copy at angle 0 lies along +x)."
     :params [{:name :count :type :count :min 1 :max 256 :default 6}]
     :children [1 1]
-    :args [{:name :sector :type :float}] :pack (fn [o] [(/ (* 2 pi) o.count)])
+    ;; The sector's angle, and its cosine and sine (the turn to a neighbour sector).
+    :args [{:name :sector :type :float} {:name :turn :type :vec2}]
+    :pack (fn [o] (let [s (/ (* 2 pi) o.count)] [s (cos s) (sin s)]))
     :cells (fn [o] (if (> o.count 1) 2 1))
+    ;; From 3 sectors on, the point's angle within its sector is at most 60 degrees
+    ;; either way: its sine and cosine by their series there (exact to float), and
+    ;; the neighbour sector's point turned from the own one by the sector (llvmpipe's
+    ;; sin and cos cost more; colonnade: 6% of a frame).
+    :variant-of (fn [o] (when (>= o.count 3) polar-narrow))
     :glsl-name "opPolar"
-    :glsl "vec3 opPolar(vec3 p, float sector, int cell) {
+    :glsl "vec3 opPolar(vec3 p, float sector, vec2 turn, int cell) {
     float a = atan(p.y, p.x);
     float id = floor(a / sector + 0.5);
     float side = a - id * sector >= 0.0 ? 1.0 : -1.0;
@@ -373,14 +495,7 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     float r = length(p.xy);
     return vec3(r * cos(b), r * sin(b), p.z);
 }"
-    :cpu (fn [cell x y z sector]
-           (let [a (atan2 y x)
-                 id (round (/ a sector))
-                 side (if (>= (- a (* id sector)) 0) 1 -1)
-                 id (+ id (* cell side))
-                 b (- a (* id sector))
-                 r (sqrt (+ (* x x) (* y y)))]
-             (values (* r (cos b)) (* r (sin b)) z)))
+    :cpu polar-cell
     :class-of (fn [_ children] (. children 1 :class))
     :bounds-of (fn [_ children]
                  (let [b (. children 1 :bounds)]
@@ -400,6 +515,7 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     return d - r;
 }"
     :cpu (fn [d _ _ _ r] (- d r))
+    :keeps-even true
     :class-of first-class
     :bounds-of (fn [o children] (grow-bounds (. children 1 :bounds) o.radius))}
    {:kind :onion :role :distance
@@ -448,6 +564,7 @@ float wUnion(float a, float b) {
 }"
     :cpu (fn [a b] (min a b))
     :cpu-weight (fn [a b] (if (<= a b) 1 0))
+    :keeps-even true
     :class-of all-exact
     :bounds-of merge-bounds}
    {:kind :intersection :role :combine
@@ -465,6 +582,7 @@ float wIntersection(float a, float b) {
 }"
     :cpu (fn [a b] (max a b))
     :cpu-weight (fn [a b] (if (>= a b) 1 0))
+    :keeps-even true
     :class-of bound-class
     :bounds-of (fn [_ children]
                  (var out nil)
@@ -642,8 +760,11 @@ float wStairsUnion(float a, float b, float r, float n) {
 (local by-kind (collect [_ d (ipairs operations)] d.kind d))
 
 (fn variant [d o]
-  "The GLSL and CPU forms of operation `d` for node `o` (kernel variants)."
-  (if d.variants (. d.variants (or o.kernel :poly)) d))
+  "The GLSL and CPU forms of operation `d` for node `o` (kernel variants; a
+repetition's for the axes it repeats along)."
+  (if d.variants (. d.variants (or o.kernel :poly))
+      d.variant-of (or (d.variant-of o) d)
+      d))
 
 (fn lookup [kind]
   "The descriptor of operation `kind`, or nil."

@@ -14,6 +14,11 @@
 ;;   :class       :exact (the exact signed distance, at least outside the shape) or
 ;;                :bound (never more than the distance: safe to march, slower)
 ;;   :lipschitz   optional, default 1
+;;   :even        optional [x y z] booleans: along each true axis the distance is even
+;;                (the same at -v as at v) and never decreases as |v| grows, the other
+;;                coordinates held (a box, a sphere, a cylinder along z). A repetition
+;;                of a centred child like that needs only the point's own cell: every
+;;                other copy is farther (see src/sdf/lower.fnl)
 ;;   :args        [{:name :type}] the arguments of the GLSL function after p, with
 ;;                GLSL types :float :vec2 :vec3 :vec4
 ;;   :pack        (fn [o]) -> flat list of numbers for :args, in order

@@ -6,6 +6,9 @@
  :doc "Box with full extents :size."
  :params [{:name :size :type :size3 :default [1 1 1]}]
  :class :exact
+ ;; Even in each coordinate and never decreasing as its size grows (see :even in
+ ;; src/sdf/primitives.fnl): a centred copy in a repetition is the nearest one.
+ :even [true true true]
  :args [{:name :h :type :vec3}]
  :pack (fn [o] (let [[x y z] o.size] [(* x 0.5) (* y 0.5) (* z 0.5)]))
  :glsl-name "sdBox"

@@ -6,6 +6,9 @@
  :params [{:name :radius :type :positive :default 0.5}
           {:name :height :type :positive :default 1}]
  :class :exact
+ ;; Even in each coordinate and never decreasing as its size grows (see :even in
+ ;; src/sdf/primitives.fnl): a centred copy in a repetition is the nearest one.
+ :even [true true true]
  :args [{:name :r :type :float} {:name :h :type :float}]
  :pack (fn [o] [o.radius (* o.height 0.5)])
  :glsl-name "sdCappedCylinder"

@@ -14,6 +14,9 @@
               (values :radius (string.format "must be less than half the smallest :size (%g)"
                                              half)))))
  :class :exact
+ ;; Even in each coordinate and never decreasing as its size grows (see :even in
+ ;; src/sdf/primitives.fnl): a centred copy in a repetition is the nearest one.
+ :even [true true true]
  :args [{:name :b :type :vec3} {:name :r :type :float}]
  :pack (fn [o]
          (let [[x y z] o.size r o.radius]

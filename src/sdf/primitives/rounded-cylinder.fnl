@@ -13,6 +13,9 @@
               (values :rounding (string.format "must be less than half the :height (%g)"
                                                (* o.height 0.5)))))
  :class :exact
+ ;; Even in each coordinate and never decreasing as its size grows (see :even in
+ ;; src/sdf/primitives.fnl): a centred copy in a repetition is the nearest one.
+ :even [true true true]
  :args [{:name :ra :type :float} {:name :h :type :float} {:name :rb :type :float}]
  :pack (fn [o] [(- o.radius o.rounding) (- (* o.height 0.5) o.rounding) o.rounding])
  :glsl-name "sdRoundedCylinder"

@@ -3,6 +3,9 @@
  :doc "Sphere of :radius."
  :params [{:name :radius :type :positive :default 1}]
  :class :exact
+ ;; Even in each coordinate and never decreasing as its size grows (see :even in
+ ;; src/sdf/primitives.fnl): a centred copy in a repetition is the nearest one.
+ :even [true true true]
  :args [{:name :r :type :float}]
  :pack (fn [o] [o.radius])
  :glsl-name "sdSphere"
