@@ -195,7 +195,7 @@
             (assert.are.same o.color [(. tex.objects.data (+ 12 9)) (. tex.objects.data (+ 12 10))
                                       (. tex.objects.data (+ 12 11))])))))
 
-    (it "give a field of spheres a walk texture: a cell's one sphere, or where its list starts"
+    (it "give a field of spheres a walk texture: a cell's one sphere, where its list starts, or its clearance"
       (fn []
         (let [fd (. (assert (plan.scene->plan (scattered 400 nil nil true))) :field)
               walk fd.walk
@@ -212,8 +212,11 @@
             (let [first (. walk.start k)
                   n (. walk.count k)]
               (case n
-                0 (do (tset seen :empty (+ seen.empty 1))
-                      (assert.are.same [0 0 0 0] (texel (- k 1))))
+                ;; (its clearance: see the next test)
+                0 (let [[clearance & rest] (texel (- k 1))]
+                    (tset seen :empty (+ seen.empty 1))
+                    (assert.is_true (>= clearance 1))
+                    (assert.are.same [0 0 0] rest))
                 1 (do (tset seen :one (+ seen.one 1))
                       (assert.are.same (sphere (. walk.records (+ first 1))) (texel (- k 1))))
                 _ (do (tset seen :several (+ seen.several 1))
@@ -314,6 +317,81 @@
                 us (collect [_ u (ipairs (uniforms.pack s p (camera.from-scene s) 160 90))] u.name u)]
             (assert.are.equal (. (field.textures p.field) :walk) (. us :uFieldWalk :texture))
             (assert.are.same [p.field.turns] (. us :uFieldTurns :values))))))
+
+    (it "give each empty cell of a walk its clearance: the cube within it is empty"
+      (fn []
+        ;; walk-texture: an empty cell's texel is its clearance k and 0 (w): every
+        ;; cell within k - 1 of it along each axis is empty, and one at k lists a
+        ;; sphere (unless none does within the grid). Checked cell by cell by brute
+        ;; force over a fine grid, where clearances of several cells occur.
+        (let [s (scattered 300 nil nil true)
+              fd (assert (field.build (field.members s.objects) {:cells-per-object 40}))
+              [nx ny nz] fd.dims
+              data (. (field.textures fd) :walk :data)
+              occupied? (fn [x y z]
+                          (> (. fd.walk.count (+ 1 x (* nx (+ y (* ny z))))) 0))
+              ;; The greatest distance along an axis from (x y z) to a cell that
+              ;; lists a sphere, or nil.
+              nearest (fn [x y z]
+                        (var best nil)
+                        (for [c 0 (- nz 1)] (for [b 0 (- ny 1)] (for [a 0 (- nx 1)]
+                          (when (occupied? a b c)
+                            (let [d (math.max (math.abs (- a x)) (math.abs (- b y)) (math.abs (- c z)))]
+                              (when (or (not best) (< d best)) (set best d)))))))
+                        best)]
+          (var wide 0)
+          (var checked 0)
+          ;; Every 7th cell (the brute force is cubic in the cells).
+          (for [k 1 (* nx ny nz) 7]
+            (when (= 0 (. fd.walk.count k))
+              (let [i (- k 1)
+                    x (% i nx) y (% (math.floor (/ i nx)) ny) z (math.floor (/ i (* nx ny)))
+                    at (* 4 i)
+                    clearance (. data (+ at 1))]
+                (set checked (+ checked 1))
+                (assert.are.equal 0 (. data (+ at 4)))
+                (assert.are.equal (or (nearest x y z) (math.max nx ny nz)) clearance)
+                (when (>= clearance 3) (set wide (+ wide 1))))))
+          (assert.is_true (> checked 100) (.. checked " empty cells checked"))
+          (assert.is_true (> wide 20) (.. wide " cells of clearance 3 or more")))))
+
+    (it "walk a field of spheres as the shader does, jumping across empty cells, to the first sphere"
+      (fn []
+        ;; field.walk, march-field-spheres.glsl on the CPU (the walk texture as the
+        ;; shader reads it): the ray's first sphere as brute force finds it, at the
+        ;; benchmark's grid and at finer ones whose empty cells have wide clearances
+        ;; (the walk jumps across several cells at once).
+        (let [s (scattered 2000 nil nil true)
+              members (field.members s.objects)
+              draw s.render.draw-distance
+              origins (points 300)
+              targets (points 300 11)]
+          (each [_ per-object (ipairs [2 16 64])]
+            (let [fd (assert (field.build members {:cells-per-object per-object}))]
+              (assert.is_true fd.walk?)
+              (var hits 0)
+              (each [i [ox oy oz] (ipairs origins)]
+                (let [oz (math.max oz 0.01)
+                      [tx ty tz] (. targets i)
+                      (a b c) (values (- tx ox) (- ty oy) (- tz oz))
+                      len (math.sqrt (+ (* a a) (* b b) (* c c)))
+                      (dx dy dz) (values (/ a len) (/ b len) (/ c len))
+                      plane (if (< dz 0) (/ (- oz) dz) draw)
+                      t-past (math.min plane draw)
+                      expected (math.min (field.brute-entry fd ox oy oz dx dy dz draw) t-past)
+                      t (field.walk fd ox oy oz dx dy dz t-past 1e9)]
+                  (when (< expected t-past) (set hits (+ hits 1)))
+                  (assert.is_true (< (math.abs (- t expected)) 1e-9)
+                                  (string.format "%d cells an object, ray %d: walked to %s, the first sphere is at %.12g"
+                                                 per-object i (tostring t) expected))))
+              (assert.is_true (> hits 30) (.. hits " rays meet a sphere"))))
+          ;; Out of steps: where the walk stopped, after max-steps cells that list
+          ;; something.
+          (let [fd (assert (field.build members))
+                (t steps stop) (field.walk fd -25 0 5 1 0 0 draw 1)]
+            (assert.are.equal :out t)
+            (assert.are.equal 1 steps)
+            (assert.is_true (> stop 0))))))
 
     (it "walk beside other objects as brute force marches them"
       (fn []

@@ -37,19 +37,27 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
         left = starts ? int(texel.y) : max(left - 1, 0);
         steps += (!inList && texel.w != 0.0) ? 1 : 0;
         if (left == 0) {
-            // The cell is done: an entry inside it is the hit; else on to the next.
-            float cellEnd = min(tNext.x, min(tNext.y, tNext.z));
+            // The cell is done: an entry inside it is the hit; else on to the next,
+            // or from an empty cell of clearance k (texel.x) past the empty cube of
+            // cells within k - 1 of it: where the ray leaves the cube (cellEnd),
+            // the walls it has crossed along each axis by then (m), at most k.
+            float far = (!inList && texel.w == 0.0) ? max(texel.x - 1.0, 0.0) : 0.0;
+            vec3 wall = tNext + far * tDelta;
+            float cellEnd = min(wall.x, min(wall.y, wall.z));
             if (hit <= cellEnd && hit < tEnd) {
                 return hit;
             }
-            t = max(t, cellEnd);
-            if (t >= tEnd) {
+            if (cellEnd >= tEnd) {
                 return tPast;
             }
             if (steps >= uMaxSteps) {
+                // (Where the walk stopped: the walls' crossings only grow.)
+                t = max(t, cellEnd);
                 break;
             }
-            fieldNextCell(tNext, index, tDelta, stride);
+            vec3 m = clamp(floor((cellEnd - tNext) / tDelta) + 1.0, 0.0, far + 1.0);
+            tNext += m * tDelta;
+            index += int(dot(m, stride));
             hit = uDrawDist;
         }
     }

@@ -40,6 +40,15 @@
 ;; Grid cells per object (the grid's resolution): more cells mean shorter lists and
 ;; more cells to cross. Chosen on the scaling scenes of the benchmark at 640x360.
 (local cells-per-object 2)
+
+(fn walk-cells-per-object [n]
+  ;; The same for a field of spheres only, whose walk jumps across empty cells
+  ;; (clearances below): finer grids for more spheres, where a ray's cells are mostly
+  ;; empty and a cell's lists long. Measured with tools/scaling-ab.sh (640x360,
+  ;; llvmpipe, one interleaved run each): 1,000 spheres alike from 1 to 4 cells each,
+  ;; 18% slower at 8; 10,000 alike from 1.5 to 4; 100,000 alike from 6 to 12, 3% slower
+  ;; at 4 and 10% at 2 (and the walk's texture 4 times as large at 8 as at 2).
+  (max cells-per-object (min 8 (* cells-per-object (^ (/ n 10000) 0.6)))))
 (local max-cells-per-axis 256)
 
 ;; An object is listed in every cell its box comes within `reach` of. The march needs
@@ -133,6 +142,35 @@ there are fewer than min-objects of them."
       (tset :cell-count count)
       (tset :records records))))
 
+(fn clearances [[nx ny nz] count]
+  ;; Per cell (1-based), how far the walk may jump from it: 0 when it lists a sphere;
+  ;; else k >= 1 when every cell within k - 1 of it along each axis (the cube of
+  ;; 2 k - 1 cells about it) is empty, the largest such k (the distance in cells, the
+  ;; greatest along an axis, to the nearest cell that lists a sphere; the grid's size
+  ;; when none does). Breadth first from the cells that list a sphere.
+  (let [cells (* nx ny nz)
+        out (fcollect [k 1 cells] (if (> (. count k) 0) 0 -1))
+        queue (icollect [k d (ipairs out)] (when (= d 0) k))]
+    (var head 1)
+    (while (<= head (length queue))
+      (let [k (. queue head)
+            i (- k 1)
+            x (% i nx)
+            y (% (floor (/ i nx)) ny)
+            z (floor (/ i (* nx ny)))
+            d (+ (. out k) 1)]
+        (set head (+ head 1))
+        (for [c (max 0 (- z 1)) (min (- nz 1) (+ z 1))]
+          (for [b (max 0 (- y 1)) (min (- ny 1) (+ y 1))]
+            (for [a (max 0 (- x 1)) (min (- nx 1) (+ x 1))]
+              (let [j (+ 1 a (* nx (+ b (* ny c))))]
+                (when (= (. out j) -1)
+                  (tset out j d)
+                  (table.insert queue j))))))))
+    (let [whole (max nx ny nz)]
+      (for [k 1 cells] (when (= (. out k) -1) (tset out k whole))))
+    out))
+
 (fn with-walk [field walk-ranges]
   ;; A field of spheres only walks one texture of cells and lists (walk-texture)
   ;; when they fit in one: :walk (its lists, from `walk-ranges`), :walk? and :turns,
@@ -155,7 +193,8 @@ there are fewer than min-objects of them."
   "The field of `objects` (members, in order): the grid and the texture data.
 Options: :reach-at-least (a distance queries must see exactly, e.g. the ambient
 occlusion radius), :wide? (soft shadows: a quarter cell's reach), :cells-per-object
-(the grid's resolution; the benchmark's). Returns {:count :objects :lo [x y z] (world) :dims [nx ny nz]
+(the grid's resolution; by default 2, or for spheres only walk-cells-per-object's).
+Returns {:count :objects :lo [x y z] (world) :dims [nx ny nz]
 :cell [sx sy sz] :size [x y z] :reach :crossings (cells a ray can cross, at most)
 :cell-start :cell-count (per cell, 0-based) :records (object numbers, 1-based, per
 cell in order) :shapes (per object: cx cy cz hx hy hz r, field-local) :colors
@@ -171,8 +210,10 @@ texture."
       (let [(cx cy cz ax ay az r) (shape o)]
         (set lx (min lx (- cx ax r))) (set ly (min ly (- cy ay r))) (set lz (min lz (- cz az r)))
         (set hx (max hx (+ cx ax r))) (set hy (max hy (+ cy ay r))) (set hz (max hz (+ cz az r)))))
-    (let [[nx ny nz] (grid-dims (- hx lx) (- hy ly) (- hz lz) n
-                                (or options.cells-per-object cells-per-object))
+    (let [spheres-only? (accumulate [all? true _ o (ipairs objects)] (and all? (= o.kind :sphere)))
+          [nx ny nz] (grid-dims (- hx lx) (- hy ly) (- hz lz) n
+                                (or options.cells-per-object
+                                    (if spheres-only? (walk-cells-per-object n) cells-per-object)))
           smallest (min (/ (- hx lx) nx) (/ (- hy ly) ny) (/ (- hz lz) nz))
           smallest (if (> smallest 0) smallest 1e-3)
           fraction (if options.wide? wide-reach-fraction reach-fraction)
@@ -231,12 +272,15 @@ texture."
   ;; the cells then every list, a texel each. A cell listing one sphere holds it
   ;; (centre, radius; when the radius is over tiny-radius, so that it stays above 0
   ;; in float); a cell listing more holds where its list starts in this
-  ;; texture, its length, 0 and -1; an empty cell 0. A record is its sphere's centre
-  ;; and radius. The walk then reads one texel per cell it crosses, plus one per
-  ;; sphere in a cell that lists several.
+  ;; texture, its length, 0 and -1; an empty cell its clearance k (clearances: the
+  ;; cells within k - 1 of it are empty too) and 0. A record is its sphere's centre
+  ;; and radius. The walk then reads one texel per cell it crosses that lists a
+  ;; sphere, one per sphere in a cell that lists several, and one per jump across
+  ;; empty cells.
   (let [walk []
         {: start : count : records} field.walk
         cells (length start)
+        clear (clearances field.dims count)
         put (fn [texel a b c d]
               (let [at (* 4 texel)]
                 (tset walk (+ at 1) a) (tset walk (+ at 2) b)
@@ -244,7 +288,7 @@ texture."
     (for [k 1 cells]
       (let [first (. start k)
             n (. count k)]
-        (if (= n 0) (put (- k 1) 0 0 0 0)
+        (if (= n 0) (put (- k 1) (. clear k) 0 0 0)
             (and (= n 1) (> (. field.shapes (. records (+ first 1)) 7) tiny-radius))
             (let [[cx cy cz _ _ _ r] (. field.shapes (. records (+ first 1)))]
               (put (- k 1) cx cy cz r))
@@ -427,6 +471,74 @@ A value edit then uploads only the texels it touched."
                 (set last texel)))))
         (when first (table.insert out [row first last])))
       out)))
+(fn walk [field ox oy oz dx dy dz t-past max-steps]
+  "march-field-spheres.glsl's walk on the CPU, reading the walk texture as the shader
+does (its cells' spheres, lists and clearances) with the same steps: where the ray
+from world (ox oy oz) along the unit vector (dx dy dz) first enters a sphere of a
+field of spheres only (field.walk?) before `t-past` (the nearest plane or the
+ray's end), else `t-past`; with the cells it met that list something (the
+shader's steps). After `max-steps` of those: :out and where it stopped."
+  (let [data (. (textures field) :walk :data)
+        texel (fn [i] (let [at (* 4 i)]
+                        (values (. data (+ at 1)) (. data (+ at 2)) (. data (+ at 3)) (. data (+ at 4)))))
+        [lx ly lz] field.lo
+        [wx wy wz] field.size
+        [sx sy sz] field.cell
+        [nx ny nz] field.dims
+        qx (- ox lx) qy (- oy ly) qz (- oz lz)
+        (ix iy iz) (reciprocal dx dy dz)
+        near (fn [q w i] (min (* (- q) i) (* (- w q) i)))
+        far (fn [q w i] (max (* (- q) i) (* (- w q) i)))
+        grid-in (max (near qx wx ix) (near qy wy iy) (near qz wz iz) 0)
+        t-end (min (far qx wx ix) (far qy wy iy) (far qz wz iz) t-past)]
+    (if (>= grid-in t-end) (values t-past 0)
+        (let [c (fn [q s n] (max 0 (min (- n 1) (floor (/ q s)))))
+              cx (c (+ qx (* dx grid-in)) sx nx)
+              cy (c (+ qy (* dy grid-in)) sy ny)
+              cz (c (+ qz (* dz grid-in)) sz nz)
+              up (fn [i] (if (> i 0) 1 0))
+              delta [(* sx (abs ix)) (* sy (abs iy)) (* sz (abs iz))]
+              stride [(if (> ix 0) 1 -1) (if (> iy 0) nx (- nx)) (if (> iz 0) (* nx ny) (- (* nx ny)))]
+              t-next [(* (- (* (+ cx (up ix)) sx) qx) ix)
+                      (* (- (* (+ cy (up iy)) sy) qy) iy)
+                      (* (- (* (+ cz (up iz)) sz) qz) iz)]]
+          (var index (+ cx (* nx (+ cy (* ny cz)))))
+          (var next 0)
+          (var left 0)
+          (var hit math.huge)
+          (var steps 0)
+          (var result nil)
+          (var stop grid-in)
+          (for [_ 0 field.turns &until result]
+            (let [in-list? (> left 0)
+                  (x y z w) (texel (if in-list? next index))]
+              (when (or in-list? (> w 0))
+                (set hit (min hit (entry qx qy qz dx dy dz ix iy iz x y z 0 0 0 w math.huge))))
+              (let [starts? (and (not in-list?) (< w 0))]
+                (set next (if starts? x (+ next 1)))
+                (set left (if starts? y (max (- left 1) 0))))
+              (when (and (not in-list?) (not= w 0)) (set steps (+ steps 1)))
+              (when (= left 0)
+                ;; From an empty cell of clearance k (its x): past the empty cube of
+                ;; cells within k - 1 of it.
+                (let [reach (if (and (not in-list?) (= w 0)) (max (- x 1) 0) 0)
+                      cell-end (accumulate [m math.huge a tn (ipairs t-next)]
+                                 (min m (+ tn (* reach (. delta a)))))]
+                  (if (and (<= hit cell-end) (< hit t-end)) (set result hit)
+                      (>= cell-end t-end) (set result t-past)
+                      (>= steps max-steps) (do (set stop (max stop cell-end))
+                                               (set result :out))
+                      (do
+                        (for [a 1 3]
+                          (let [m (max 0 (min (+ reach 1)
+                                              (+ 1 (floor (/ (- cell-end (. t-next a)) (. delta a))))))]
+                            (tset t-next a (+ (. t-next a) (* m (. delta a))))
+                            (set index (+ index (* m (. stride a))))))
+                        (set hit math.huge)))))))
+          ;; Out of steps or turns: the shader's out-of-steps slot.
+          (if (and result (not= result :out)) (values result steps)
+              (values :out steps stop))))))
+
 (fn brute-entry [field ox oy oz dx dy dz far]
   "The test oracle of the walk: where the ray from world (ox oy oz) along the unit
 vector (dx dy dz) first enters any object of the field, in closed form, or `far`."
@@ -437,5 +549,5 @@ vector (dx dy dz) first enters any object of the field, in closed form, or `far`
       (set t (min t (entry (- ox lx) (- oy ly) (- oz lz) dx dy dz ix iy iz cx cy cz ax ay az r far))))
     t))
 
-{: member? : members : brute-entry : reciprocal : tiny : normal : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
+{: member? : members : brute-entry : walk : reciprocal : tiny : normal : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
  : distance : brute-distance : rounded-box : min-objects : texture-width}
