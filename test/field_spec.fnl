@@ -212,11 +212,11 @@
             (let [first (. walk.start k)
                   n (. walk.count k)]
               (case n
-                ;; (its clearance: see the next test)
-                0 (let [[clearance & rest] (texel (- k 1))]
+                ;; (clearances of at least 1 in each octant: see the next test)
+                0 (let [[a b c w] (texel (- k 1))]
                     (tset seen :empty (+ seen.empty 1))
-                    (assert.is_true (>= clearance 1))
-                    (assert.are.same [0 0 0] rest))
+                    (assert.is_true (and (>= a 65793) (>= b 65793) (>= c 257)))
+                    (assert.are.equal 0 w))
                 1 (do (tset seen :one (+ seen.one 1))
                       (assert.are.same (sphere (. walk.records (+ first 1))) (texel (- k 1))))
                 _ (do (tset seen :several (+ seen.several 1))
@@ -318,42 +318,55 @@
             (assert.are.equal (. (field.textures p.field) :walk) (. us :uFieldWalk :texture))
             (assert.are.same [p.field.turns] (. us :uFieldTurns :values))))))
 
-    (it "give each empty cell of a walk its clearance: the cube within it is empty"
+    (it "give each empty cell of a walk its clearances: the largest empty cubes on from it"
       (fn []
-        ;; walk-texture: an empty cell's texel is its clearance k and 0 (w): every
-        ;; cell within k - 1 of it along each axis is empty, and one at k lists a
-        ;; sphere (unless none does within the grid). Checked cell by cell by brute
-        ;; force over a fine grid, where clearances of several cells occur.
+        ;; walk-texture: an empty cell's texel holds, for each octant of ray
+        ;; directions (o = (x < 0) + 2 (y < 0) + 4 (z < 0); 8 bits each, three to a
+        ;; float) and 0 (w), its clearance k: the cube of k cells along each axis
+        ;; from the cell on in the octant's directions is empty (past the grid
+        ;; counts as empty), and the cube of k + 1 is not (or k is 255). Checked by
+        ;; brute force over a fine grid, where clearances of several cells occur.
         (let [s (scattered 300 nil nil true)
               fd (assert (field.build (field.members s.objects) {:cells-per-object 40}))
               [nx ny nz] fd.dims
               data (. (field.textures fd) :walk :data)
               occupied? (fn [x y z]
-                          (> (. fd.walk.count (+ 1 x (* nx (+ y (* ny z))))) 0))
-              ;; The greatest distance along an axis from (x y z) to a cell that
-              ;; lists a sphere, or nil.
-              nearest (fn [x y z]
-                        (var best nil)
-                        (for [c 0 (- nz 1)] (for [b 0 (- ny 1)] (for [a 0 (- nx 1)]
-                          (when (occupied? a b c)
-                            (let [d (math.max (math.abs (- a x)) (math.abs (- b y)) (math.abs (- c z)))]
-                              (when (or (not best) (< d best)) (set best d)))))))
-                        best)]
+                          (and (>= x 0) (< x nx) (>= y 0) (< y ny) (>= z 0) (< z nz)
+                               (> (. fd.walk.count (+ 1 x (* nx (+ y (* ny z))))) 0)))
+              ;; Whether the cube of n cells from (x y z) on along (sx sy sz) is empty
+              ;; (its cells in the grid).
+              last (fn [q s n dim] (if (> s 0) (math.min (- n 1) (- dim 1 q)) (math.min (- n 1) q)))
+              empty-cube? (fn [x y z sx sy sz n]
+                            (var empty? true)
+                            (for [c 0 (last z sz n nz) &until (not empty?)]
+                              (for [b 0 (last y sy n ny) &until (not empty?)]
+                                (for [a 0 (last x sx n nx) &until (not empty?)]
+                                  (when (occupied? (+ x (* sx a)) (+ y (* sy b)) (+ z (* sz c)))
+                                    (set empty? false)))))
+                            empty?)]
           (var wide 0)
           (var checked 0)
-          ;; Every 7th cell (the brute force is cubic in the cells).
-          (for [k 1 (* nx ny nz) 7]
+          (for [k 1 (* nx ny nz) 13]
             (when (= 0 (. fd.walk.count k))
               (let [i (- k 1)
                     x (% i nx) y (% (math.floor (/ i nx)) ny) z (math.floor (/ i (* nx ny)))
-                    at (* 4 i)
-                    clearance (. data (+ at 1))]
-                (set checked (+ checked 1))
+                    at (* 4 i)]
                 (assert.are.equal 0 (. data (+ at 4)))
-                (assert.are.equal (or (nearest x y z) (math.max nx ny nz)) clearance)
-                (when (>= clearance 3) (set wide (+ wide 1))))))
-          (assert.is_true (> checked 100) (.. checked " empty cells checked"))
-          (assert.is_true (> wide 20) (.. wide " cells of clearance 3 or more")))))
+                (for [o 0 7]
+                  (let [sx (if (= 0 (% o 2)) 1 -1)
+                        sy (if (= 0 (% (math.floor (/ o 2)) 2)) 1 -1)
+                        sz (if (< o 4) 1 -1)
+                        packed (. data (+ at 1 (math.floor (/ o 3))))
+                        clearance (% (math.floor (/ packed (^ 256 (% o 3)))) 256)]
+                    (set checked (+ checked 1))
+                    (assert.is_true (>= clearance 1))
+                    (assert.is_true (empty-cube? x y z sx sy sz clearance)
+                                    (string.format "cell %d %d %d, octant %d: %d" x y z o clearance))
+                    (assert.is_true (or (= clearance 255) (not (empty-cube? x y z sx sy sz (+ clearance 1))))
+                                    (string.format "cell %d %d %d, octant %d: more than %d" x y z o clearance))
+                    (when (>= clearance 3) (set wide (+ wide 1))))))))
+          (assert.is_true (> checked 1000) (.. checked " clearances checked"))
+          (assert.is_true (> wide 100) (.. wide " clearances of 3 or more")))))
 
     (it "walk a field of spheres as the shader does, jumping across empty cells, to the first sphere"
       (fn []

@@ -20,6 +20,11 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
         return tPast;
     }
     float t = gridIn;
+    // Where the clearance of the ray's octant is in an empty cell's texel: which
+    // float (pick) and which 8 bits of it (scale).
+    int octant = (stride.x < 0.0 ? 1 : 0) + (stride.y < 0.0 ? 2 : 0) + (stride.z < 0.0 ? 4 : 0);
+    vec3 pick = vec3(equal(ivec3(octant / 3), ivec3(0, 1, 2)));
+    float scale = octant % 3 == 0 ? 1.0 : (octant % 3 == 1 ? 1.0 / 256.0 : 1.0 / 65536.0);
     // The list being met: the texel of its next sphere, and how many are left. The
     // nearest entry into the cell's spheres so far.
     int next = 0;
@@ -38,10 +43,13 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
         steps += (!inList && texel.w != 0.0) ? 1 : 0;
         if (left == 0) {
             // The cell is done: an entry inside it is the hit; else on to the next,
-            // or from an empty cell of clearance k (texel.x) past the empty cube of
-            // cells within k - 1 of it: where the ray leaves the cube (cellEnd),
-            // the walls it has crossed along each axis by then (m), at most k.
-            float far = (!inList && texel.w == 0.0) ? max(texel.x - 1.0, 0.0) : 0.0;
+            // or from an empty cell of clearance k (in the ray's octant) past the
+            // empty cube of k cells on from it: where the ray leaves the cube
+            // (cellEnd), the walls it has crossed along each axis by then (m), at
+            // most k.
+            float octantBits = floor(dot(texel.xyz, pick) * scale);
+            float k = octantBits - 256.0 * floor(octantBits / 256.0);
+            float far = (!inList && texel.w == 0.0) ? max(k - 1.0, 0.0) : 0.0;
             vec3 wall = tNext + far * tDelta;
             float cellEnd = min(wall.x, min(wall.y, wall.z));
             if (hit <= cellEnd && hit < tEnd) {

@@ -44,11 +44,13 @@
 (fn walk-cells-per-object [n]
   ;; The same for a field of spheres only, whose walk jumps across empty cells
   ;; (clearances below): finer grids for more spheres, where a ray's cells are mostly
-  ;; empty and a cell's lists long. Measured with tools/scaling-ab.sh (640x360,
-  ;; llvmpipe, one interleaved run each): 1,000 spheres alike from 1 to 4 cells each,
-  ;; 18% slower at 8; 10,000 alike from 1.5 to 4; 100,000 alike from 6 to 12, 3% slower
-  ;; at 4 and 10% at 2 (and the walk's texture 4 times as large at 8 as at 2).
-  (max cells-per-object (min 8 (* cells-per-object (^ (/ n 10000) 0.6)))))
+  ;; empty and a cell's lists long; at most 2 million cells (the textures' memory).
+  ;; Measured with tools/scaling-ab.sh's dumps (640x360, llvmpipe, one interleaved
+  ;; run each; CELLS): 1,000 spheres alike at 2 and 4 cells each, 5% slower at 8;
+  ;; 10,000 7% faster at 4 to 8 than at 2; 100,000 alike at 8 and 12, 4% slower at 4,
+  ;; 9% at 16 (on a busy machine: the figures move by a few per cent).
+  (max cells-per-object (min 8 (* 4 (^ (/ n 10000) 0.3)) (/ 2e6 n))))
+
 (local max-cells-per-axis 256)
 
 ;; An object is listed in every cell its box comes within `reach` of. The march needs
@@ -142,33 +144,48 @@ there are fewer than min-objects of them."
       (tset :cell-count count)
       (tset :records records))))
 
+(local max-clearance 255)
+
 (fn clearances [[nx ny nz] count]
-  ;; Per cell (1-based), how far the walk may jump from it: 0 when it lists a sphere;
-  ;; else k >= 1 when every cell within k - 1 of it along each axis (the cube of
-  ;; 2 k - 1 cells about it) is empty, the largest such k (the distance in cells, the
-  ;; greatest along an axis, to the nearest cell that lists a sphere; the grid's size
-  ;; when none does). Breadth first from the cells that list a sphere.
-  (let [cells (* nx ny nz)
-        out (fcollect [k 1 cells] (if (> (. count k) 0) 0 -1))
-        queue (icollect [k d (ipairs out)] (when (= d 0) k))]
-    (var head 1)
-    (while (<= head (length queue))
-      (let [k (. queue head)
-            i (- k 1)
-            x (% i nx)
-            y (% (floor (/ i nx)) ny)
-            z (floor (/ i (* nx ny)))
-            d (+ (. out k) 1)]
-        (set head (+ head 1))
-        (for [c (max 0 (- z 1)) (min (- nz 1) (+ z 1))]
-          (for [b (max 0 (- y 1)) (min (- ny 1) (+ y 1))]
-            (for [a (max 0 (- x 1)) (min (- nx 1) (+ x 1))]
-              (let [j (+ 1 a (* nx (+ b (* ny c))))]
-                (when (= (. out j) -1)
-                  (tset out j d)
-                  (table.insert queue j))))))))
-    (let [whole (max nx ny nz)]
-      (for [k 1 cells] (when (= (. out k) -1) (tset out k whole))))
+  ;; Per cell (1-based), how far the walk may jump from it, for each octant of ray
+  ;; directions o = (x < 0) + 2 (y < 0) + 4 (z < 0): 0 when the cell lists a sphere;
+  ;; else k >= 1 when the cube of k cells along each axis that has the cell at its
+  ;; corner and goes on in the octant's directions is empty (cells past the grid's
+  ;; walls count as empty), the largest such k up to max-clearance. A ray in that
+  ;; octant stays in the cube until it leaves through one of the cube's far walls.
+  ;; By the largest-cube recurrence, from the far corner back: 1 + the least of the
+  ;; seven neighbours' toward the octant. Returns a list per octant (1-based: o + 1).
+  (let [out []]
+    (for [o 0 7]
+      (let [sx (if (= 0 (% o 2)) 1 -1)
+            sy (if (= 0 (% (floor (/ o 2)) 2)) 1 -1)
+            sz (if (< o 4) 1 -1)
+            k-of []
+            get (fn [x y z]
+                  (if (and (>= x 0) (< x nx) (>= y 0) (< y ny) (>= z 0) (< z nz))
+                      (. k-of (+ 1 x (* nx (+ y (* ny z)))))
+                      max-clearance))]
+        (for [zi 0 (- nz 1)] (for [yi 0 (- ny 1)] (for [xi 0 (- nx 1)]
+          (let [z (if (> sz 0) (- nz 1 zi) zi)
+                y (if (> sy 0) (- ny 1 yi) yi)
+                x (if (> sx 0) (- nx 1 xi) xi)
+                k (+ 1 x (* nx (+ y (* ny z))))]
+            (tset k-of k
+                  (if (> (. count k) 0) 0
+                      (min max-clearance
+                           (+ 1 (min (get (+ x sx) y z) (get x (+ y sy) z) (get x y (+ z sz))
+                                     (get (+ x sx) (+ y sy) z) (get (+ x sx) y (+ z sz))
+                                     (get x (+ y sy) (+ z sz)) (get (+ x sx) (+ y sy) (+ z sz)))))))))))
+        (tset out (+ o 1) k-of)))
+    out))
+
+(fn packed-clearances [per-octant k]
+  ;; Cell k's clearances as an empty cell's texel holds them: octant o in float
+  ;; o // 3 (1-based: + 1), 8 bits from bit 8 (o % 3) (integers a float holds exactly).
+  (let [out [0 0 0]]
+    (for [o 0 7]
+      (let [i (+ 1 (floor (/ o 3)))]
+        (tset out i (+ (. out i) (* (. per-octant (+ o 1) k) (^ 256 (% o 3)))))))
     out))
 
 (fn with-walk [field walk-ranges]
@@ -272,8 +289,8 @@ texture."
   ;; the cells then every list, a texel each. A cell listing one sphere holds it
   ;; (centre, radius; when the radius is over tiny-radius, so that it stays above 0
   ;; in float); a cell listing more holds where its list starts in this
-  ;; texture, its length, 0 and -1; an empty cell its clearance k (clearances: the
-  ;; cells within k - 1 of it are empty too) and 0. A record is its sphere's centre
+  ;; texture, its length, 0 and -1; an empty cell its clearances (how many cells on
+  ;; the walk may jump, per octant of directions: clearances, packed-clearances) and 0. A record is its sphere's centre
   ;; and radius. The walk then reads one texel per cell it crosses that lists a
   ;; sphere, one per sphere in a cell that lists several, and one per jump across
   ;; empty cells.
@@ -288,7 +305,7 @@ texture."
     (for [k 1 cells]
       (let [first (. start k)
             n (. count k)]
-        (if (= n 0) (put (- k 1) (. clear k) 0 0 0)
+        (if (= n 0) (let [[a b c] (packed-clearances clear k)] (put (- k 1) a b c 0))
             (and (= n 1) (> (. field.shapes (. records (+ first 1)) 7) tiny-radius))
             (let [[cx cy cz _ _ _ r] (. field.shapes (. records (+ first 1)))]
               (put (- k 1) cx cy cz r))
@@ -479,6 +496,11 @@ field of spheres only (field.walk?) before `t-past` (the nearest plane or the
 ray's end), else `t-past`; with the cells it met that list something (the
 shader's steps). After `max-steps` of those: :out and where it stopped."
   (let [data (. (textures field) :walk :data)
+        ;; Where the ray's octant's clearance is in an empty cell's texel.
+        octant (let [(ix iy iz) (reciprocal dx dy dz)]
+                 (+ (if (< ix 0) 1 0) (if (< iy 0) 2 0) (if (< iz 0) 4 0)))
+        channel (+ 1 (floor (/ octant 3)))
+        scale (^ 256 (- (% octant 3)))
         texel (fn [i] (let [at (* 4 i)]
                         (values (. data (+ at 1)) (. data (+ at 2)) (. data (+ at 3)) (. data (+ at 4)))))
         [lx ly lz] field.lo
@@ -519,9 +541,11 @@ shader's steps). After `max-steps` of those: :out and where it stopped."
                 (set left (if starts? y (max (- left 1) 0))))
               (when (and (not in-list?) (not= w 0)) (set steps (+ steps 1)))
               (when (= left 0)
-                ;; From an empty cell of clearance k (its x): past the empty cube of
-                ;; cells within k - 1 of it.
-                (let [reach (if (and (not in-list?) (= w 0)) (max (- x 1) 0) 0)
+                ;; From an empty cell of clearance k in the ray's octant: past the
+                ;; empty cube of k cells on from it.
+                (let [packed (floor (* (. [x y z] channel) scale))
+                      k (- packed (* 256 (floor (/ packed 256))))
+                      reach (if (and (not in-list?) (= w 0)) (max (- k 1) 0) 0)
                       cell-end (accumulate [m math.huge a tn (ipairs t-next)]
                                  (min m (+ tn (* reach (. delta a)))))]
                   (if (and (<= hit cell-end) (< hit t-end)) (set result hit)
