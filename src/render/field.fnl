@@ -147,46 +147,50 @@ there are fewer than min-objects of them."
 (local max-clearance 255)
 
 (fn clearances [[nx ny nz] count]
-  ;; Per cell (1-based), how far the walk may jump from it, for each octant of ray
-  ;; directions o = (x < 0) + 2 (y < 0) + 4 (z < 0): 0 when the cell lists a sphere;
-  ;; else k >= 1 when the cube of k cells along each axis that has the cell at its
-  ;; corner and goes on in the octant's directions is empty (cells past the grid's
-  ;; walls count as empty), the largest such k up to max-clearance. A ray in that
-  ;; octant stays in the cube until it leaves through one of the cube's far walls.
-  ;; By the largest-cube recurrence, from the far corner back: 1 + the least of the
-  ;; seven neighbours' toward the octant. Returns a list per octant (1-based: o + 1).
-  (let [out []]
+  ;; Per cell, how far the walk may jump from it, for each octant of ray directions
+  ;; o = (x < 0) + 2 (y < 0) + 4 (z < 0): 0 when the cell lists a sphere; else k >= 1
+  ;; when the cube of k cells along each axis that has the cell at its corner and
+  ;; goes on in the octant's directions is empty (cells past the grid's walls count
+  ;; as empty), the largest such k up to max-clearance. A ray in that octant stays
+  ;; in the cube until it leaves through one of the cube's far walls. By the
+  ;; largest-cube recurrence, from the far corner back: 1 + the least of the seven
+  ;; neighbours' toward the octant. Returned packed as an empty cell's texel holds
+  ;; them: three lists (per cell, 1-based), octant o in list o // 3 + 1, 8 bits from
+  ;; bit 8 (o % 3) (integers a float holds exactly).
+  (let [cells (* nx ny nz)
+        packed [(fcollect [_ 1 cells] 0) (fcollect [_ 1 cells] 0) (fcollect [_ 1 cells] 0)]
+        k-of []
+        plane (* nx ny)]
     (for [o 0 7]
       (let [sx (if (= 0 (% o 2)) 1 -1)
             sy (if (= 0 (% (floor (/ o 2)) 2)) 1 -1)
             sz (if (< o 4) 1 -1)
-            k-of []
-            get (fn [x y z]
-                  (if (and (>= x 0) (< x nx) (>= y 0) (< y ny) (>= z 0) (< z nz))
-                      (. k-of (+ 1 x (* nx (+ y (* ny z)))))
-                      max-clearance))]
-        (for [zi 0 (- nz 1)] (for [yi 0 (- ny 1)] (for [xi 0 (- nx 1)]
+            out (. packed (+ 1 (floor (/ o 3))))
+            weight (^ 256 (% o 3))
+            dx sx dy (* sy nx) dz (* sz plane)]
+        (for [zi 0 (- nz 1)]
           (let [z (if (> sz 0) (- nz 1 zi) zi)
-                y (if (> sy 0) (- ny 1 yi) yi)
-                x (if (> sx 0) (- nx 1 xi) xi)
-                k (+ 1 x (* nx (+ y (* ny z))))]
-            (tset k-of k
-                  (if (> (. count k) 0) 0
-                      (min max-clearance
-                           (+ 1 (min (get (+ x sx) y z) (get x (+ y sy) z) (get x y (+ z sz))
-                                     (get (+ x sx) (+ y sy) z) (get (+ x sx) y (+ z sz))
-                                     (get x (+ y sy) (+ z sz)) (get (+ x sx) (+ y sy) (+ z sz)))))))))))
-        (tset out (+ o 1) k-of)))
-    out))
-
-(fn packed-clearances [per-octant k]
-  ;; Cell k's clearances as an empty cell's texel holds them: octant o in float
-  ;; o // 3 (1-based: + 1), 8 bits from bit 8 (o % 3) (integers a float holds exactly).
-  (let [out [0 0 0]]
-    (for [o 0 7]
-      (let [i (+ 1 (floor (/ o 3)))]
-        (tset out i (+ (. out i) (* (. per-octant (+ o 1) k) (^ 256 (% o 3)))))))
-    out))
+                in-z? (< -1 (+ z sz) nz)]
+            (for [yi 0 (- ny 1)]
+              (let [y (if (> sy 0) (- ny 1 yi) yi)
+                    in-y? (< -1 (+ y sy) ny)]
+                (for [xi 0 (- nx 1)]
+                  (let [x (if (> sx 0) (- nx 1 xi) xi)
+                        in-x? (< -1 (+ x sx) nx)
+                        k (+ 1 x (* nx y) (* plane z))
+                        v (if (> (. count k) 0) 0
+                              (let [far max-clearance
+                                    a (if in-x? (. k-of (+ k dx)) far)
+                                    b (if in-y? (. k-of (+ k dy)) far)
+                                    c (if in-z? (. k-of (+ k dz)) far)
+                                    ab (if (and in-x? in-y?) (. k-of (+ k dx dy)) far)
+                                    ac (if (and in-x? in-z?) (. k-of (+ k dx dz)) far)
+                                    bc (if (and in-y? in-z?) (. k-of (+ k dy dz)) far)
+                                    abc (if (and in-x? in-y? in-z?) (. k-of (+ k dx dy dz)) far)]
+                                (min max-clearance (+ 1 (min a b c ab ac bc abc)))))]
+                    (tset k-of k v)
+                    (tset out k (+ (. out k) (* v weight)))))))))))
+    packed))
 
 (fn with-walk [field walk-ranges]
   ;; A field of spheres only walks one texture of cells and lists (walk-texture)
@@ -288,11 +292,11 @@ texture."
   ;; A field of spheres only: the texture its walk reads (march-field-spheres.glsl),
   ;; the cells then every list, a texel each. A cell listing one sphere holds it
   ;; (centre, radius; when the radius is over tiny-radius, so that it stays above 0
-  ;; in float); a cell listing more holds where its list starts in this
-  ;; texture, its length, 0 and -1; an empty cell its clearances (how many cells on
-  ;; the walk may jump, per octant of directions: clearances, packed-clearances) and 0. A record is its sphere's centre
-  ;; and radius. The walk then reads one texel per cell it crosses that lists a
-  ;; sphere, one per sphere in a cell that lists several, and one per jump across
+  ;; in float); a cell listing more holds where its list starts in this texture,
+  ;; its length, 0 and -1; an empty cell its clearances (how many cells on the walk
+  ;; may jump, per octant of directions: clearances) and 0. A record is its sphere's
+  ;; centre and radius. The walk then reads one texel per cell it crosses that lists
+  ;; a sphere, one per sphere in a cell that lists several, and one per jump across
   ;; empty cells.
   (let [walk []
         {: start : count : records} field.walk
@@ -305,7 +309,7 @@ texture."
     (for [k 1 cells]
       (let [first (. start k)
             n (. count k)]
-        (if (= n 0) (let [[a b c] (packed-clearances clear k)] (put (- k 1) a b c 0))
+        (if (= n 0) (put (- k 1) (. clear 1 k) (. clear 2 k) (. clear 3 k) 0)
             (and (= n 1) (> (. field.shapes (. records (+ first 1)) 7) tiny-radius))
             (let [[cx cy cz _ _ _ r] (. field.shapes (. records (+ first 1)))]
               (put (- k 1) cx cy cz r))
