@@ -31,18 +31,34 @@ for n in "${counts[@]}"; do
     dumps+=("$out/$side-$n.lua")
   done
 done
-SDL_VIDEODRIVER=offscreen love "$here/tools/ab-run" "$w" "$h" "${FRAMES:-7}" "${dumps[@]}" \
+AB_FRAMES=1 SDL_VIDEODRIVER=offscreen love "$here/tools/ab-run" "$w" "$h" "${FRAMES:-7}" "${dumps[@]}" \
   | awk -v size="$size" '
-    / median / {
-      name = $1; sub(/.*\//, "", name); sub(/\.lua$/, "", name)
-      split(name, p, "-"); ms[p[1], p[2]] = $3; if (!(p[2] in seen)) { seen[p[2]] = 1; order[++k] = p[2] }
+    # Per dump its frame times, round by round; the ratio of a count is the median
+    # over the rounds of its frame over the frame of the first count in the same
+    # round (the rounds are drawn in turn, so a busy moment slows both).
+    function median(a, n,   i, j, t) {
+      for (i = 2; i <= n; i++) { t = a[i]; for (j = i - 1; j >= 1 && a[j] > t; j--) a[j + 1] = a[j]; a[j + 1] = t }
+      return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2
+    }
+    $1 == "frames" {
+      name = $2; sub(/.*\//, "", name); sub(/\.lua$/, "", name)
+      split(name, p, "-"); side = p[1]; n = p[2]
+      if (!(n in seen)) { seen[n] = 1; order[++k] = n }
+      rounds = NF - 2
+      for (i = 3; i <= NF; i++) t[side, n, i - 2] = $i
     }
     END {
       first = order[1]
-      printf "spheres  %s: base ms (x base %s)   new ms (x new %s)   new/base\n", size, first, first
-      for (i = 1; i <= k; i++) {
-        n = order[i]
-        printf "%7d  %10.1f (%5.2fx)   %10.1f (%5.2fx)   %.2f\n", n, ms["base", n], ms["base", n] / ms["base", first],
-               ms["new", n], ms["new", n] / ms["new", first], ms["new", n] / ms["base", n]
+      printf "spheres  %s, median ms and median ratio to %d spheres (same code, same round)\n", size, first
+      printf "         %-22s %-22s new/base\n", "base", "new"
+      for (c = 1; c <= k; c++) {
+        n = order[c]
+        for (s = 1; s <= 2; s++) {
+          side = s == 1 ? "base" : "new"
+          for (i = 1; i <= rounds; i++) { a[i] = t[side, n, i]; r[i] = t[side, n, i] / t[side, first, i] }
+          ms[side] = median(a, rounds); x[side] = median(r, rounds)
+        }
+        for (i = 1; i <= rounds; i++) r[i] = t["new", n, i] / t["base", n, i]
+        printf "%7d  %8.1f ms (%5.2fx)     %8.1f ms (%5.2fx)     %.2f\n", n, ms["base"], x["base"], ms["new"], x["new"], median(r, rounds)
       }
     }'
