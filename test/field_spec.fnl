@@ -195,7 +195,7 @@
             (assert.are.same o.color [(. tex.objects.data (+ 12 9)) (. tex.objects.data (+ 12 10))
                                       (. tex.objects.data (+ 12 11))])))))
 
-    (it "give a field of spheres a walk texture: a cell's one sphere, where its list starts, or its clearance"
+    (it "give a field of spheres a walk texture: a cell's one sphere, where its list starts, or its clearances"
       (fn []
         (let [fd (. (assert (plan.scene->plan (scattered 400 nil nil true))) :field)
               walk fd.walk
@@ -207,7 +207,7 @@
               seen {:empty 0 :one 0 :several 0}]
           (assert.is_true fd.walk?)
           (assert.is_true (>= fd.turns fd.crossings))
-          (assert.are.equal (* 4 (+ cells (length walk.records))) (length data))
+          (var at cells)
           (for [k 1 cells]
             (let [first (. walk.start k)
                   n (. walk.count k)]
@@ -219,11 +219,19 @@
                     (assert.are.equal 0 w))
                 1 (do (tset seen :one (+ seen.one 1))
                       (assert.are.same (sphere (. walk.records (+ first 1))) (texel (- k 1))))
-                _ (do (tset seen :several (+ seen.several 1))
-                      (assert.are.same [(+ cells first) n 0 -1] (texel (- k 1)))
-                      (for [j 1 n]
-                        (assert.are.same (sphere (. walk.records (+ first j)))
-                                         (texel (+ cells first j -1))))))))
+                ;; A list of several: the sphere about them (radius negated), then
+                ;; each, the lists one after another in their cells' order.
+                _ (let [[bx by bz br] (texel at)]
+                    (tset seen :several (+ seen.several 1))
+                    (assert.are.same [at (+ n 1) 0 -1] (texel (- k 1)))
+                    (assert.is_true (< br 0))
+                    (for [j 1 n]
+                      (let [[cx cy cz r &as s] (sphere (. walk.records (+ first j)))]
+                        (assert.are.same s (texel (+ at j)))
+                        (assert.is_true (<= (+ r (math.sqrt (+ (^ (- cx bx) 2) (^ (- cy by) 2) (^ (- cz bz) 2))))
+                                            (- br)))))
+                    (set at (+ at n 1))))))
+          (assert.are.equal (* 4 at) (length data))
           (assert.is_true (and (> seen.empty 0) (> seen.one 0) (> seen.several 0)))
           ;; Its lists are the field's, but grown by less: never longer, and every
           ;; sphere still in each cell its box meets.

@@ -311,6 +311,15 @@
                         broken (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "field of spheres, lists never started" broken))
                     (assert.is_false (passes? broken budget)))
+                  ;; A walk that leaves every list after the sphere about its
+                  ;; spheres misses them.
+                  (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
+                                      "bool past = bound && entry > min%(tNext%.x, min%(tNext%.y, tNext%.z%)%);"
+                                      "bool past = bound;")
+                        _ (assert.are.equal 1 n)
+                        broken (compare-image prepared (gpu-render ctx prepared {:source #source}))]
+                    (print (report-line "field of spheres, lists left at their bound" broken))
+                    (assert.is_false (passes? broken budget)))
                   ;; A walk that jumps one cell past an empty cell's clearance passes
                   ;; over cells that list spheres.
                   (let [(source n) (: (codegen.shader prepared.plan :core) :gsub

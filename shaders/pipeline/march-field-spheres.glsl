@@ -25,6 +25,7 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     int octant = (stride.x < 0.0 ? 1 : 0) + (stride.y < 0.0 ? 2 : 0) + (stride.z < 0.0 ? 4 : 0);
     vec3 pick = vec3(equal(ivec3(octant / 3), ivec3(0, 1, 2)));
     float scale = octant % 3 == 0 ? 1.0 : (octant % 3 == 1 ? 1.0 / 256.0 : 1.0 / 65536.0);
+    int cells = int(uFieldDims.x * uFieldDims.y * uFieldDims.z);
     // The list being met: the texel of its next sphere, and how many are left. The
     // nearest entry into the cell's spheres so far.
     int next = 0;
@@ -33,13 +34,18 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
     for (int i = 0; i <= uFieldTurns; i++) {
         bool inList = left > 0;
         vec4 texel = fieldRead(uFieldWalk, uFieldRows.w, inList ? next : index);
-        // A sphere: the next of the list, or the cell's one (radius > 0).
-        bool sphere = inList || texel.w > 0.0;
-        hit = min(hit, sphere ? fieldSphereEntry(q0, rd, texel) : uDrawDist);
+        // A sphere: the next of the list, or the cell's one (radius > 0); or the
+        // sphere about a long list's spheres, its first texel (radius < 0): when
+        // the ray enters it past the cell (or not at all), none of them is the hit.
+        bool bound = inList && texel.w < 0.0;
+        float entry = fieldSphereEntry(q0, rd, vec4(texel.xyz, abs(texel.w)));
+        bool sphere = (inList && !bound) || (!inList && texel.w > 0.0);
+        hit = min(hit, sphere ? entry : uDrawDist);
+        bool past = bound && entry > min(tNext.x, min(tNext.y, tNext.z));
         // A cell's list to meet: from the next turn on.
         bool starts = !inList && texel.w < 0.0;
         next = starts ? int(texel.x) : next + 1;
-        left = starts ? int(texel.y) : max(left - 1, 0);
+        left = starts ? int(texel.y) : (past ? 0 : max(left - 1, 0));
         steps += (!inList && texel.w != 0.0) ? 1 : 0;
         if (left == 0) {
             // The cell is done: an entry inside it is the hit; else on to the next,
@@ -67,6 +73,11 @@ float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {
             tNext += m * tDelta;
             index += int(dot(m, stride));
             hit = uDrawDist;
+            // (A ray that leaves the grid where its far wall rounds to just before
+            // tEnd must not read the lists as cells.)
+            if (index < 0 || index >= cells) {
+                return tPast;
+            }
         }
     }
     // @slot out-of-steps
