@@ -331,8 +331,8 @@
 
             (it "renders 100,000 spheres as the reference does"
               (fn []
-                ;; test/fixtures/spheres-100000.fnl: a field of 100,000 (grid 256 x 256 x 4,
-                ;; 396,166 records; its walk jumps across empty cells). Measured: 0 pixels over, max 0.5/255; the budget
+                ;; test/fixtures/spheres-100000.fnl: a field of 100,000 (grid 256 x 256 x 3,
+                ;; 355,083 records). Measured: 0 pixels over, max 0.5/255; the budget
                 ;; allows a flipped silhouette pixel or two.
                 (let [prepared (prepare "test/fixtures/spheres-100000.fnl" {:view :shaded :size [160 90]})
                       st (compare-image prepared (gpu-render ctx prepared))]

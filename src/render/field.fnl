@@ -38,18 +38,12 @@
 (local max-records (/ max-texels 2))
 
 ;; Grid cells per object (the grid's resolution): more cells mean shorter lists and
-;; more cells to cross. Chosen on the scaling scenes of the benchmark at 640x360.
+;; more cells to cross. Chosen on the scaling scenes of the benchmark at 640x360; for
+;; a field of spheres (whose walk jumps across empty cells and skips a list whose
+;; bound the ray misses) measured again with tools/scaling-ab.sh's dumps, one
+;; interleaved run each: 1,000 spheres alike at 1, 2 and 4; 10,000 alike at 2, 4 and
+;; 8; 100,000 173 ms at 2, 181 at 4, 188 at 8, 212 at 12.
 (local cells-per-object 2)
-
-(fn walk-cells-per-object [n]
-  ;; The same for a field of spheres only, whose walk jumps across empty cells
-  ;; (clearances below): finer grids for more spheres, where a ray's cells are mostly
-  ;; empty and a cell's lists long; at most 2 million cells (the textures' memory).
-  ;; Measured with tools/scaling-ab.sh's dumps (640x360, llvmpipe, one interleaved
-  ;; run each; CELLS): 1,000 spheres alike at 2 and 4 cells each, 5% slower at 8;
-  ;; 10,000 7% faster at 4 to 8 than at 2; 100,000 alike at 8 and 12, 4% slower at 4,
-  ;; 9% at 16 (on a busy machine: the figures move by a few per cent).
-  (max cells-per-object (min 8 (* 4 (^ (/ n 10000) 0.3)) (/ 2e6 n))))
 
 (local max-cells-per-axis 256)
 
@@ -224,8 +218,7 @@ there are fewer than min-objects of them."
   "The field of `objects` (members, in order): the grid and the texture data.
 Options: :reach-at-least (a distance queries must see exactly, e.g. the ambient
 occlusion radius), :wide? (soft shadows: a quarter cell's reach), :cells-per-object
-(the grid's resolution; by default 2, or for spheres only walk-cells-per-object's).
-Returns {:count :objects :lo [x y z] (world) :dims [nx ny nz]
+(the grid's resolution; the benchmark's). Returns {:count :objects :lo [x y z] (world) :dims [nx ny nz]
 :cell [sx sy sz] :size [x y z] :reach :crossings (cells a ray can cross, at most)
 :cell-start :cell-count (per cell, 0-based) :records (object numbers, 1-based, per
 cell in order) :shapes (per object: cx cy cz hx hy hz r, field-local) :colors
@@ -241,10 +234,8 @@ texture."
       (let [(cx cy cz ax ay az r) (shape o)]
         (set lx (min lx (- cx ax r))) (set ly (min ly (- cy ay r))) (set lz (min lz (- cz az r)))
         (set hx (max hx (+ cx ax r))) (set hy (max hy (+ cy ay r))) (set hz (max hz (+ cz az r)))))
-    (let [spheres-only? (accumulate [all? true _ o (ipairs objects)] (and all? (= o.kind :sphere)))
-          [nx ny nz] (grid-dims (- hx lx) (- hy ly) (- hz lz) n
-                                (or options.cells-per-object
-                                    (if spheres-only? (walk-cells-per-object n) cells-per-object)))
+    (let [[nx ny nz] (grid-dims (- hx lx) (- hy ly) (- hz lz) n
+                                (or options.cells-per-object cells-per-object))
           smallest (min (/ (- hx lx) nx) (/ (- hy ly) ny) (/ (- hz lz) nz))
           smallest (if (> smallest 0) smallest 1e-3)
           fraction (if options.wide? wide-reach-fraction reach-fraction)
