@@ -1,11 +1,14 @@
 // The lean grid walk of march-field-alone.glsl for a field of spheres only: the same
-// cells in the same order, the same tests and results, in one loop whose every turn
-// reads one texel of uFieldWalk (src/render/field.fnl's walk-texture). A turn either
-// crosses a cell (its texel: the one sphere it lists, or where its list starts, or
-// nothing) or meets the next sphere of the list of the cell it is in. On llvmpipe
-// every turn runs all of its code, branches included, and a loop nested in the walk
-// runs its body at least once per cell: one texel and one sphere test per turn is
-// the least a cell can cost.
+// cells in the same order but the empty ones it jumps across, the same tests and
+// results, in one loop whose every turn reads one texel of uFieldWalk
+// (src/render/field.fnl's walk-texture; field.walk is this walk on the CPU). A turn
+// either crosses a cell (its texel: the one sphere it lists, or where its list
+// starts, or for an empty cell how far on the cells are empty, so it jumps there) or
+// meets the next texel of the list of the cell it is in (a long list's first is the
+// sphere about its spheres: missed, the cell is done). On llvmpipe every turn runs
+// all of its code, branches included, and a loop nested in the walk runs its body at
+// least once per turn (measured: even a loop of no turns cost a quarter of the
+// frame): one texel and one sphere test per turn is the least a cell can cost.
 uniform sampler2D uFieldWalk;  // cells, then their lists: a texel each
 uniform int uFieldTurns;       // turns a walk can take, at most
 
