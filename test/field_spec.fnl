@@ -195,7 +195,7 @@
             (assert.are.same o.color [(. tex.objects.data (+ 12 9)) (. tex.objects.data (+ 12 10))
                                       (. tex.objects.data (+ 12 11))])))))
 
-    (it "give a field of spheres a walk texture: a cell's one sphere, or where its list starts"
+    (it "give a field of spheres a walk texture: a cell's one sphere, where its list starts, or its clearances"
       (fn []
         (let [fd (. (assert (plan.scene->plan (scattered 400 nil nil true))) :field)
               walk fd.walk
@@ -207,20 +207,31 @@
               seen {:empty 0 :one 0 :several 0}]
           (assert.is_true fd.walk?)
           (assert.is_true (>= fd.turns fd.crossings))
-          (assert.are.equal (* 4 (+ cells (length walk.records))) (length data))
+          (var at cells)
           (for [k 1 cells]
             (let [first (. walk.start k)
                   n (. walk.count k)]
               (case n
-                0 (do (tset seen :empty (+ seen.empty 1))
-                      (assert.are.same [0 0 0 0] (texel (- k 1))))
+                ;; (clearances of at least 1 in each octant: see the next test)
+                0 (let [[a b c w] (texel (- k 1))]
+                    (tset seen :empty (+ seen.empty 1))
+                    (assert.is_true (and (>= a 65793) (>= b 65793) (>= c 257)))
+                    (assert.are.equal 0 w))
                 1 (do (tset seen :one (+ seen.one 1))
                       (assert.are.same (sphere (. walk.records (+ first 1))) (texel (- k 1))))
-                _ (do (tset seen :several (+ seen.several 1))
-                      (assert.are.same [(+ cells first) n 0 -1] (texel (- k 1)))
-                      (for [j 1 n]
-                        (assert.are.same (sphere (. walk.records (+ first j)))
-                                         (texel (+ cells first j -1))))))))
+                ;; A list of several: the sphere about them (radius negated), then
+                ;; each, the lists one after another in their cells' order.
+                _ (let [[bx by bz br] (texel at)]
+                    (tset seen :several (+ seen.several 1))
+                    (assert.are.same [at (+ n 1) 0 -1] (texel (- k 1)))
+                    (assert.is_true (< br 0))
+                    (for [j 1 n]
+                      (let [[cx cy cz r &as s] (sphere (. walk.records (+ first j)))]
+                        (assert.are.same s (texel (+ at j)))
+                        (assert.is_true (<= (+ r (math.sqrt (+ (^ (- cx bx) 2) (^ (- cy by) 2) (^ (- cz bz) 2))))
+                                            (- br)))))
+                    (set at (+ at n 1))))))
+          (assert.are.equal (* 4 at) (length data))
           (assert.is_true (and (> seen.empty 0) (> seen.one 0) (> seen.several 0)))
           ;; Its lists are the field's, but grown by less: never longer, and every
           ;; sphere still in each cell its box meets.
@@ -314,6 +325,94 @@
                 us (collect [_ u (ipairs (uniforms.pack s p (camera.from-scene s) 160 90))] u.name u)]
             (assert.are.equal (. (field.textures p.field) :walk) (. us :uFieldWalk :texture))
             (assert.are.same [p.field.turns] (. us :uFieldTurns :values))))))
+
+    (it "give each empty cell of a walk its clearances: the largest empty cubes on from it"
+      (fn []
+        ;; walk-texture: an empty cell's texel holds, for each octant of ray
+        ;; directions (o = (x < 0) + 2 (y < 0) + 4 (z < 0); 8 bits each, three to a
+        ;; float) and 0 (w), its clearance k: the cube of k cells along each axis
+        ;; from the cell on in the octant's directions is empty (past the grid
+        ;; counts as empty), and the cube of k + 1 is not (or k is 255). Checked by
+        ;; brute force over a fine grid, where clearances of several cells occur.
+        (let [s (scattered 300 nil nil true)
+              fd (assert (field.build (field.members s.objects) {:cells-per-object 40}))
+              [nx ny nz] fd.dims
+              data (. (field.textures fd) :walk :data)
+              occupied? (fn [x y z]
+                          (and (>= x 0) (< x nx) (>= y 0) (< y ny) (>= z 0) (< z nz)
+                               (> (. fd.walk.count (+ 1 x (* nx (+ y (* ny z))))) 0)))
+              ;; Whether the cube of n cells from (x y z) on along (sx sy sz) is empty
+              ;; (its cells in the grid).
+              last (fn [q s n dim] (if (> s 0) (math.min (- n 1) (- dim 1 q)) (math.min (- n 1) q)))
+              empty-cube? (fn [x y z sx sy sz n]
+                            (var empty? true)
+                            (for [c 0 (last z sz n nz) &until (not empty?)]
+                              (for [b 0 (last y sy n ny) &until (not empty?)]
+                                (for [a 0 (last x sx n nx) &until (not empty?)]
+                                  (when (occupied? (+ x (* sx a)) (+ y (* sy b)) (+ z (* sz c)))
+                                    (set empty? false)))))
+                            empty?)]
+          (var wide 0)
+          (var checked 0)
+          (for [k 1 (* nx ny nz) 13]
+            (when (= 0 (. fd.walk.count k))
+              (let [i (- k 1)
+                    x (% i nx) y (% (math.floor (/ i nx)) ny) z (math.floor (/ i (* nx ny)))
+                    at (* 4 i)]
+                (assert.are.equal 0 (. data (+ at 4)))
+                (for [o 0 7]
+                  (let [sx (if (= 0 (% o 2)) 1 -1)
+                        sy (if (= 0 (% (math.floor (/ o 2)) 2)) 1 -1)
+                        sz (if (< o 4) 1 -1)
+                        packed (. data (+ at 1 (math.floor (/ o 3))))
+                        clearance (% (math.floor (/ packed (^ 256 (% o 3)))) 256)]
+                    (set checked (+ checked 1))
+                    (assert.is_true (>= clearance 1))
+                    (assert.is_true (empty-cube? x y z sx sy sz clearance)
+                                    (string.format "cell %d %d %d, octant %d: %d" x y z o clearance))
+                    (assert.is_true (or (= clearance 255) (not (empty-cube? x y z sx sy sz (+ clearance 1))))
+                                    (string.format "cell %d %d %d, octant %d: more than %d" x y z o clearance))
+                    (when (>= clearance 3) (set wide (+ wide 1))))))))
+          (assert.is_true (> checked 1000) (.. checked " clearances checked"))
+          (assert.is_true (> wide 100) (.. wide " clearances of 3 or more")))))
+
+    (it "walk a field of spheres as the shader does, jumping across empty cells, to the first sphere"
+      (fn []
+        ;; field.walk, march-field-spheres.glsl on the CPU (the walk texture as the
+        ;; shader reads it): the ray's first sphere as brute force finds it, at the
+        ;; benchmark's grid and at finer ones whose empty cells have wide clearances
+        ;; (the walk jumps across several cells at once).
+        (let [s (scattered 2000 nil nil true)
+              members (field.members s.objects)
+              draw s.render.draw-distance
+              origins (points 300)
+              targets (points 300 11)]
+          (each [_ per-object (ipairs [2 16 64])]
+            (let [fd (assert (field.build members {:cells-per-object per-object}))]
+              (assert.is_true fd.walk?)
+              (var hits 0)
+              (each [i [ox oy oz] (ipairs origins)]
+                (let [oz (math.max oz 0.01)
+                      [tx ty tz] (. targets i)
+                      (a b c) (values (- tx ox) (- ty oy) (- tz oz))
+                      len (math.sqrt (+ (* a a) (* b b) (* c c)))
+                      (dx dy dz) (values (/ a len) (/ b len) (/ c len))
+                      plane (if (< dz 0) (/ (- oz) dz) draw)
+                      t-past (math.min plane draw)
+                      expected (math.min (field.brute-entry fd ox oy oz dx dy dz draw) t-past)
+                      t (field.walk fd ox oy oz dx dy dz t-past 1e9)]
+                  (when (< expected t-past) (set hits (+ hits 1)))
+                  (assert.is_true (< (math.abs (- t expected)) 1e-9)
+                                  (string.format "%d cells an object, ray %d: walked to %s, the first sphere is at %.12g"
+                                                 per-object i (tostring t) expected))))
+              (assert.is_true (> hits 30) (.. hits " rays meet a sphere"))))
+          ;; Out of steps: where the walk stopped, after max-steps cells that list
+          ;; something.
+          (let [fd (assert (field.build members))
+                (t steps stop) (field.walk fd -25 0 5 1 0 0 draw 1)]
+            (assert.are.equal :out t)
+            (assert.are.equal 1 steps)
+            (assert.is_true (> stop 0))))))
 
     (it "walk beside other objects as brute force marches them"
       (fn []

@@ -310,6 +310,23 @@
                         _ (assert.are.equal 1 n)
                         broken (compare-image prepared (gpu-render ctx prepared {:source #source}))]
                     (print (report-line "field of spheres, lists never started" broken))
+                    (assert.is_false (passes? broken budget)))
+                  ;; A walk that leaves every list after the sphere about its
+                  ;; spheres misses them.
+                  (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
+                                      "bool past = bound && entry > min%(tNext%.x, min%(tNext%.y, tNext%.z%)%);"
+                                      "bool past = bound;")
+                        _ (assert.are.equal 1 n)
+                        broken (compare-image prepared (gpu-render ctx prepared {:source #source}))]
+                    (print (report-line "field of spheres, lists left at their bound" broken))
+                    (assert.is_false (passes? broken budget)))
+                  ;; A walk that jumps one cell past an empty cell's clearance passes
+                  ;; over cells that list spheres.
+                  (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
+                                      "%? max%(k %- 1%.0, 0%.0%) :" "? k :")
+                        _ (assert.are.equal 1 n)
+                        broken (compare-image prepared (gpu-render ctx prepared {:source #source}))]
+                    (print (report-line "field of spheres, jumps a cell too far" broken))
                     (assert.is_false (passes? broken budget))))))
 
             (it "renders 100,000 spheres as the reference does"

@@ -38,8 +38,13 @@
 (local max-records (/ max-texels 2))
 
 ;; Grid cells per object (the grid's resolution): more cells mean shorter lists and
-;; more cells to cross. Chosen on the scaling scenes of the benchmark at 640x360.
+;; more cells to cross. Chosen on the scaling scenes of the benchmark at 640x360; for
+;; a field of spheres (whose walk jumps across empty cells and skips a list whose
+;; bound the ray misses) measured again with tools/scaling-ab.sh's dumps, one
+;; interleaved run each: 1,000 spheres alike at 1, 2 and 4; 10,000 alike at 2, 4 and
+;; 8; 100,000 173 ms at 2, 181 at 4, 188 at 8, 212 at 12.
 (local cells-per-object 2)
+
 (local max-cells-per-axis 256)
 
 ;; An object is listed in every cell its box comes within `reach` of. The march needs
@@ -133,6 +138,61 @@ there are fewer than min-objects of them."
       (tset :cell-count count)
       (tset :records records))))
 
+(local max-clearance 255)
+
+(fn clearances [[nx ny nz] count]
+  ;; Per cell, how far the walk may jump from it, for each octant of ray directions
+  ;; o = (x < 0) + 2 (y < 0) + 4 (z < 0): 0 when the cell lists a sphere; else k >= 1
+  ;; when the cube of k cells along each axis that has the cell at its corner and
+  ;; goes on in the octant's directions is empty (cells past the grid's walls count
+  ;; as empty), the largest such k up to max-clearance. A ray in that octant stays
+  ;; in the cube until it leaves through one of the cube's far walls. By the
+  ;; largest-cube recurrence, from the far corner back: 1 + the least of the seven
+  ;; neighbours' toward the octant. Returned packed as an empty cell's texel holds
+  ;; them: three lists (per cell, 1-based), octant o in list o // 3 + 1, 8 bits from
+  ;; bit 8 (o % 3) (integers a float holds exactly).
+  (let [cells (* nx ny nz)
+        packed [(fcollect [_ 1 cells] 0) (fcollect [_ 1 cells] 0) (fcollect [_ 1 cells] 0)]
+        k-of []
+        plane (* nx ny)]
+    (for [o 0 7]
+      (let [sx (if (= 0 (% o 2)) 1 -1)
+            sy (if (= 0 (% (floor (/ o 2)) 2)) 1 -1)
+            sz (if (< o 4) 1 -1)
+            out (. packed (+ 1 (floor (/ o 3))))
+            weight (^ 256 (% o 3))
+            dx sx dy (* sy nx) dz (* sz plane)]
+        (for [zi 0 (- nz 1)]
+          (let [z (if (> sz 0) (- nz 1 zi) zi)
+                in-z? (< -1 (+ z sz) nz)]
+            (for [yi 0 (- ny 1)]
+              (let [y (if (> sy 0) (- ny 1 yi) yi)
+                    in-y? (< -1 (+ y sy) ny)]
+                (for [xi 0 (- nx 1)]
+                  (let [x (if (> sx 0) (- nx 1 xi) xi)
+                        in-x? (< -1 (+ x sx) nx)
+                        k (+ 1 x (* nx y) (* plane z))
+                        v (if (> (. count k) 0) 0
+                              (let [far max-clearance
+                                    a (if in-x? (. k-of (+ k dx)) far)
+                                    b (if in-y? (. k-of (+ k dy)) far)
+                                    c (if in-z? (. k-of (+ k dz)) far)
+                                    ab (if (and in-x? in-y?) (. k-of (+ k dx dy)) far)
+                                    ac (if (and in-x? in-z?) (. k-of (+ k dx dz)) far)
+                                    bc (if (and in-y? in-z?) (. k-of (+ k dy dz)) far)
+                                    abc (if (and in-x? in-y? in-z?) (. k-of (+ k dx dy dz)) far)]
+                                (min max-clearance (+ 1 (min a b c ab ac bc abc)))))]
+                    (tset k-of k v)
+                    (tset out k (+ (. out k) (* v weight)))))))))))
+    packed))
+
+;; A list of this many spheres or more starts with the sphere about them (walk-texture):
+;; a ray that misses it, or enters it past the cell, is done with the cell in one turn.
+;; Measured on the benchmark's scaling scenes (tools/scaling-ab.sh's dumps, one
+;; interleaved run): 100,000 spheres (in clusters along lines: cells list up to 20)
+;; 34% faster with it from 3, 9% more from 2; 10,000 (mostly pairs) 7% faster from 2.
+(local bound-from 2)
+
 (fn with-walk [field walk-ranges]
   ;; A field of spheres only walks one texture of cells and lists (walk-texture)
   ;; when they fit in one: :walk (its lists, from `walk-ranges`), :walk? and :turns,
@@ -140,8 +200,11 @@ there are fewer than min-objects of them."
   (when (not field.kinds.boxes?)
     (let [walk (list-cells field.dims walk-ranges)
           cells (length walk.start)
-          listed (length walk.records)
-          longest (accumulate [m 0 _ n (ipairs walk.count)] (max m n))]
+          ;; (each list's texels: its spheres and, from bound-from on, the sphere
+          ;; about them)
+          texels (fn [n] (if (>= n bound-from) (+ n 1) n))
+          listed (accumulate [sum 0 _ n (ipairs walk.count)] (+ sum (if (> n 1) (texels n) n)))
+          longest (accumulate [m 0 _ n (ipairs walk.count)] (max m (texels n)))]
       (when (<= (+ cells listed) max-texels)
         (set field.walk walk)
         (set field.walk? true)
@@ -230,29 +293,50 @@ texture."
   ;; A field of spheres only: the texture its walk reads (march-field-spheres.glsl),
   ;; the cells then every list, a texel each. A cell listing one sphere holds it
   ;; (centre, radius; when the radius is over tiny-radius, so that it stays above 0
-  ;; in float); a cell listing more holds where its list starts in this
-  ;; texture, its length, 0 and -1; an empty cell 0. A record is its sphere's centre
-  ;; and radius. The walk then reads one texel per cell it crosses, plus one per
-  ;; sphere in a cell that lists several.
+  ;; in float); a cell listing more holds where its list starts in this texture,
+  ;; its length, 0 and -1; an empty cell its clearances (how many cells on the walk
+  ;; may jump, per octant of directions: clearances) and 0. A record is its sphere's
+  ;; centre and radius; a list of bound-from or more starts with the sphere about
+  ;; its spheres, radius negated. The walk then reads one texel per cell it crosses
+  ;; that lists a sphere, one per sphere in a cell that lists several (but one for
+  ;; all when the ray misses the sphere about them), and one per jump across empty
+  ;; cells.
   (let [walk []
         {: start : count : records} field.walk
         cells (length start)
+        clear (clearances field.dims count)
         put (fn [texel a b c d]
               (let [at (* 4 texel)]
                 (tset walk (+ at 1) a) (tset walk (+ at 2) b)
                 (tset walk (+ at 3) c) (tset walk (+ at 4) d)))]
+    ;; The cells, then the lists in their cells' order. A list's sphere about its
+    ;; spheres: centre the mean of theirs, radius the farthest one's reach from it,
+    ;; grown by a ten-thousandth of that and of the centre's distance from the
+    ;; grid's corner, so that it holds them still with everything rounded to float.
+    (var at cells)
     (for [k 1 cells]
       (let [first (. start k)
             n (. count k)]
-        (if (= n 0) (put (- k 1) 0 0 0 0)
+        (if (= n 0) (put (- k 1) (. clear 1 k) (. clear 2 k) (. clear 3 k) 0)
             (and (= n 1) (> (. field.shapes (. records (+ first 1)) 7) tiny-radius))
             (let [[cx cy cz _ _ _ r] (. field.shapes (. records (+ first 1)))]
               (put (- k 1) cx cy cz r))
-            (put (- k 1) (+ cells first) n 0 -1))))
-    (each [j i (ipairs records)]
-      (let [[cx cy cz _ _ _ r] (. field.shapes i)]
-        (put (+ cells j -1) cx cy cz r)))
-    (texture (+ cells (length records)) walk)))
+            (let [shapes (fcollect [j 1 n] (. field.shapes (. records (+ first j))))
+                  bounded? (>= n bound-from)]
+              (put (- k 1) at (if bounded? (+ n 1) n) 0 -1)
+              (when bounded?
+                (var (mx my mz) (values 0 0 0))
+                (each [_ [cx cy cz] (ipairs shapes)]
+                  (set (mx my mz) (values (+ mx (/ cx n)) (+ my (/ cy n)) (+ mz (/ cz n)))))
+                (let [reach (accumulate [m 0 _ [cx cy cz _ _ _ r] (ipairs shapes)]
+                              (max m (+ r (sqrt (+ (* (- cx mx) (- cx mx)) (* (- cy my) (- cy my))
+                                                   (* (- cz mz) (- cz mz)))))))]
+                  (put at mx my mz (- (+ reach (* 1e-4 (+ reach (max (abs mx) (abs my) (abs mz)))))))
+                  (set at (+ at 1))))
+              (each [_ [cx cy cz _ _ _ r] (ipairs shapes)]
+                (put at cx cy cz r)
+                (set at (+ at 1)))))))
+    (texture at walk)))
 
 (fn textures [field]
   "The field's float textures (made once, then kept in the field):
@@ -427,6 +511,89 @@ A value edit then uploads only the texels it touched."
                 (set last texel)))))
         (when first (table.insert out [row first last])))
       out)))
+(fn walk [field ox oy oz dx dy dz t-past max-steps]
+  "march-field-spheres.glsl's walk on the CPU, reading the walk texture as the shader
+does (its cells' spheres, lists and clearances) with the same steps: where the ray
+from world (ox oy oz) along the unit vector (dx dy dz) first enters a sphere of a
+field of spheres only (field.walk?) before `t-past` (the nearest plane or the
+ray's end), else `t-past`; with the cells it met that list something (the
+shader's steps). After `max-steps` of those: :out and where it stopped."
+  (let [data (. (textures field) :walk :data)
+        ;; Where the ray's octant's clearance is in an empty cell's texel.
+        octant (let [(ix iy iz) (reciprocal dx dy dz)]
+                 (+ (if (< ix 0) 1 0) (if (< iy 0) 2 0) (if (< iz 0) 4 0)))
+        channel (+ 1 (floor (/ octant 3)))
+        scale (^ 256 (- (% octant 3)))
+        texel (fn [i] (let [at (* 4 i)]
+                        (values (. data (+ at 1)) (. data (+ at 2)) (. data (+ at 3)) (. data (+ at 4)))))
+        [lx ly lz] field.lo
+        [wx wy wz] field.size
+        [sx sy sz] field.cell
+        [nx ny nz] field.dims
+        qx (- ox lx) qy (- oy ly) qz (- oz lz)
+        (ix iy iz) (reciprocal dx dy dz)
+        near (fn [q w i] (min (* (- q) i) (* (- w q) i)))
+        far (fn [q w i] (max (* (- q) i) (* (- w q) i)))
+        grid-in (max (near qx wx ix) (near qy wy iy) (near qz wz iz) 0)
+        t-end (min (far qx wx ix) (far qy wy iy) (far qz wz iz) t-past)]
+    (if (>= grid-in t-end) (values t-past 0)
+        (let [c (fn [q s n] (max 0 (min (- n 1) (floor (/ q s)))))
+              cx (c (+ qx (* dx grid-in)) sx nx)
+              cy (c (+ qy (* dy grid-in)) sy ny)
+              cz (c (+ qz (* dz grid-in)) sz nz)
+              up (fn [i] (if (> i 0) 1 0))
+              delta [(* sx (abs ix)) (* sy (abs iy)) (* sz (abs iz))]
+              stride [(if (> ix 0) 1 -1) (if (> iy 0) nx (- nx)) (if (> iz 0) (* nx ny) (- (* nx ny)))]
+              t-next [(* (- (* (+ cx (up ix)) sx) qx) ix)
+                      (* (- (* (+ cy (up iy)) sy) qy) iy)
+                      (* (- (* (+ cz (up iz)) sz) qz) iz)]]
+          (var index (+ cx (* nx (+ cy (* ny cz)))))
+          (var next 0)
+          (var left 0)
+          (var hit math.huge)
+          (var steps 0)
+          (var result nil)
+          (var stop grid-in)
+          (for [_ 0 field.turns &until result]
+            (let [in-list? (> left 0)
+                  (x y z w) (texel (if in-list? next index))]
+              ;; A list's first texel may be the sphere about its spheres (radius
+              ;; negated): entered past the cell or not at all, none is the hit.
+              (let [bound? (and in-list? (< w 0))
+                    e (when (or in-list? (> w 0))
+                        (entry qx qy qz dx dy dz ix iy iz x y z 0 0 0 (abs w) math.huge))
+                    past? (and bound? (> e (min (. t-next 1) (. t-next 2) (. t-next 3))))
+                    starts? (and (not in-list?) (< w 0))]
+                (when (and e (not bound?)) (set hit (min hit e)))
+                (set next (if starts? x (+ next 1)))
+                (set left (if starts? y past? 0 (max (- left 1) 0))))
+              (when (and (not in-list?) (not= w 0)) (set steps (+ steps 1)))
+              (when (= left 0)
+                ;; From an empty cell of clearance k in the ray's octant: past the
+                ;; empty cube of k cells on from it.
+                (let [packed (floor (* (. [x y z] channel) scale))
+                      k (- packed (* 256 (floor (/ packed 256))))
+                      reach (if (and (not in-list?) (= w 0)) (max (- k 1) 0) 0)
+                      cell-end (accumulate [m math.huge a tn (ipairs t-next)]
+                                 (min m (+ tn (* reach (. delta a)))))]
+                  (if (and (<= hit cell-end) (< hit t-end)) (set result hit)
+                      (>= cell-end t-end) (set result t-past)
+                      (>= steps max-steps) (do (set stop (max stop cell-end))
+                                               (set result :out))
+                      (do
+                        (for [a 1 3]
+                          (let [m (max 0 (min (+ reach 1)
+                                              (+ 1 (floor (/ (- cell-end (. t-next a)) (. delta a))))))]
+                            (tset t-next a (+ (. t-next a) (* m (. delta a))))
+                            (set index (+ index (* m (. stride a))))))
+                        (set hit math.huge)
+                        ;; (out of the grid where its far wall rounds to before t-end)
+                        (when (or (< index 0) (>= index (* nx ny nz)))
+                          (set result t-past))))))))
+          ;; Out of steps or turns: the shader's out-of-steps slot.
+          (if (and result (not= result :out)) (values result steps)
+              (values :out steps stop))))))
+
 (fn brute-entry [field ox oy oz dx dy dz far]
   "The test oracle of the walk: where the ray from world (ox oy oz) along the unit
 vector (dx dy dz) first enters any object of the field, in closed form, or `far`."
@@ -437,5 +604,5 @@ vector (dx dy dz) first enters any object of the field, in closed form, or `far`
       (set t (min t (entry (- ox lx) (- oy ly) (- oz lz) dx dy dz ix iy iz cx cy cz ax ay az r far))))
     t))
 
-{: member? : members : brute-entry : reciprocal : tiny : normal : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
+{: member? : members : brute-entry : walk : reciprocal : tiny : normal : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
  : distance : brute-distance : rounded-box : min-objects : texture-width}

@@ -46,6 +46,15 @@ function love.load(args)
   end
   for _, v in ipairs(vs) do frame(v) end
   for r = 1, frames do for _, v in ipairs(vs) do v.times[#v.times + 1] = frame(v) end end
+  -- AB_FRAMES=1: each dump's frame times in the order drawn (one line each), before
+  -- the medians: ratios round by round (tools/scaling-ab.sh).
+  if os.getenv("AB_FRAMES") then
+    for _, v in ipairs(vs) do
+      local ts = {}
+      for i, t in ipairs(v.times) do ts[i] = string.format("%.2f", t) end
+      print("frames " .. v.name .. " " .. table.concat(ts, " "))
+    end
+  end
   for _, v in ipairs(vs) do
     table.sort(v.times)
     print(string.format("%-40s median %.1f ms (min %.1f, max %.1f)", v.name, v.times[math.floor((#v.times + 1) / 2)], v.times[1], v.times[#v.times]))
