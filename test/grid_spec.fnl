@@ -150,6 +150,26 @@
           (assert.are.same a.cell b.cell)
           (assert.are.same a.dims b.dims))))))
 
+(fn with-and-without-grids [file]
+  ;; The CPU reference's results on 400 pixels of a 160 x 120 image of `file`, with
+  ;; its grids and without them (every member and child evaluated at every step):
+  ;; how many show the same object, how many are within 2/255, and both plans.
+  (let [s (assert (scene.load-file file))
+        cam (camera.from-scene s)
+        pg (assert (plan.scene->plan s))
+        pb (assert (plan.scene->plan s {:grids? false :uniform-limit 1e6}))
+        pixels (fcollect [i 0 399] [(% (* i 37) 160) (% (* i 53) 120)])
+        a (reference.render-pixels s pg cam 160 120 pixels)
+        b (reference.render-pixels s pb cam 160 120 pixels)
+        same (accumulate [n 0 i ra (ipairs a)] (if (= ra.object (. b i :object)) (+ n 1) n))
+        close (accumulate [n 0 i ra (ipairs a)]
+                (if (<= (math.max (math.abs (- (. ra.color 1) (. b i :color 1)))
+                                  (math.abs (- (. ra.color 2) (. b i :color 2)))
+                                  (math.abs (- (. ra.color 3) (. b i :color 3))))
+                        (/ 2 255))
+                    (+ n 1) n))]
+    (values same close pg pb)))
+
 (fn tori [n ?extra]
   (assert (scene.load-string
            (.. "{:objects (let [o [{:kind :plane :height 0}" (or ?extra "") "]] (for [i 1 " n "]
@@ -217,14 +237,7 @@
         ;; same object under 398-400 of them; the grid's march steps to cell walls
         ;; and skips members by their bounding spheres, so a ray grazing a surface
         ;; within the hit threshold can count a hit at another step.
-        (let [s (assert (scene.load-file "test/fixtures/grid-mixed.fnl"))
-              cam (camera.from-scene s)
-              pg (assert (plan.scene->plan s))
-              pb (assert (plan.scene->plan s {:grids? false :uniform-limit 1e6}))
-              pixels (fcollect [i 0 399] [(% (* i 37) 160) (% (* i 53) 120)])
-              a (reference.render-pixels s pg cam 160 120 pixels)
-              b (reference.render-pixels s pb cam 160 120 pixels)
-              same (accumulate [n 0 i ra (ipairs a)] (if (= ra.object (. b i :object)) (+ n 1) n))]
+        (let [(same _ pg pb) (with-and-without-grids "test/fixtures/grid-mixed.fnl")]
           (assert.truthy pg.grids)
           (assert.is_nil pb.grids)
           (assert.is_true (>= same 396) (.. same " of 400 pixels show the same object")))))))
@@ -284,20 +297,7 @@
         ;; object at all 400, 399 within 2/255 (a child beyond the reach and blend
         ;; radius of a cell changes a smooth union only through the order of the
         ;; fold: a hair at a shadow's edge).
-        (let [s (assert (scene.load-file "test/fixtures/blend-200.fnl"))
-              cam (camera.from-scene s)
-              pg (assert (plan.scene->plan s))
-              pb (assert (plan.scene->plan s {:grids? false :uniform-limit 1e6}))
-              pixels (fcollect [i 0 399] [(% (* i 37) 160) (% (* i 53) 120)])
-              a (reference.render-pixels s pg cam 160 120 pixels)
-              b (reference.render-pixels s pb cam 160 120 pixels)
-              same (accumulate [n 0 i ra (ipairs a)] (if (= ra.object (. b i :object)) (+ n 1) n))
-              close (accumulate [n 0 i ra (ipairs a)]
-                      (if (<= (math.max (math.abs (- (. ra.color 1) (. b i :color 1)))
-                                        (math.abs (- (. ra.color 2) (. b i :color 2)))
-                                        (math.abs (- (. ra.color 3) (. b i :color 3))))
-                              (/ 2 255))
-                          (+ n 1) n))]
+        (let [(same close pg pb) (with-and-without-grids "test/fixtures/blend-200.fnl")]
           (assert.truthy (. (blends-of pg) 1 :grid))
           (assert.is_nil (. (blends-of pb) 1 :grid))
           (assert.are.equal 400 same)
