@@ -39,7 +39,7 @@
   ;; every step. Returns the field's plan and both result lists.
   (let [cam (camera.from-scene s)
         pf (assert (plan.scene->plan s))
-        pb (assert (plan.scene->plan s {:field? false :uniform-limit 1e6}))
+        pb (assert (plan.scene->plan s {:field? false :grids? false :uniform-limit 1e6}))
         pixels (fcollect [i 0 (- n 1)] [(% (* i 37) 160) (% (* i 53) 90)])]
     (values pf (reference.render-pixels s pf cam 160 90 pixels)
             (reference.render-pixels s pb cam 160 90 pixels))))

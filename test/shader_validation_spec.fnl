@@ -104,12 +104,13 @@
               (assert.are.equal plan-mod.default-uniform-limit
                                 (. (headless.limits ctx) :max-fragment-uniform-vectors))))))
 
-    ;; Spheres in uniform arrays (:field? false): from 16 on a scene's spheres form a
-    ;; field in textures, which takes no uniforms (test/field_spec.fnl).
+    ;; Spheres in uniform arrays (:field? false, :grids? false): from 16 on a scene's
+    ;; spheres form a field in textures, and an instance group has a grid and its rows
+    ;; in a texture; neither takes per-object uniforms (field_spec, grid_spec).
     (it "fits the largest scene, which compiles, and refuses one more object clearly"
       (fn []
         (let [scene (assert (scene-mod.load-string (many-spheres largest) "big.fnl"))
-              p (assert (plan-mod.scene->plan scene {:field? false}))
+              p (assert (plan-mod.scene->plan scene {:field? false :grids? false}))
               (ctx why) (headless.context)]
           (assert.are.equal plan-mod.default-uniform-limit p.uniform-vectors)
           (when ctx
@@ -117,7 +118,7 @@
               (assert (not= nil prog) (tostring err))
               (headless.release ctx prog)))
           (let [bigger (assert (scene-mod.load-string (many-spheres (+ largest 1)) "big.fnl"))
-                (none msg) (plan-mod.scene->plan bigger {:field? false})]
+                (none msg) (plan-mod.scene->plan bigger {:field? false :grids? false})]
             (assert.is_nil none)
             (assert.are.equal
              "big.fnl: objects: the scene needs 4098 uniform vectors but the driver allows 4096 (32 are reserved); remove objects worth 2 vectors (a sphere takes 2)"
