@@ -454,7 +454,8 @@ only when the plan has it."
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
     (when plan.bounds
       (table.insert sections (bounded-lines plan)))
-    (table.insert sections (along-lines plan))
+    (when plan.grids
+      (table.insert sections (along-lines plan)))
     ;; Only the glow and heat views read the step count; elsewhere it is not kept.
     (let [count-step (if (or plan.glow? (= view :glow) (= view :heat))
                          ["steps = i + 1;"] [])]
