@@ -6,6 +6,8 @@ uniform sampler2D uBankRows;   // the instance groups' rows, about the anchor
 uniform sampler2D uGridCells;  // per cell: first list slot, count, clearance
 uniform sampler2D uGridLists;  // per list slot: a member's number
 uniform sampler2D uGridSpheres;  // per list slot: its member's bounding sphere about the anchor
+uniform sampler2D uGridFirsts;  // per list slot: its member's first row in the bank
+uniform float uGridFirstRows;  // 1 / rows of uGridFirsts
 uniform vec3 uBankOrigin;      // the anchor, camera-relative
 uniform vec4 uGridRows;        // 1 / rows of the bank, cells, lists and spheres textures
 
@@ -15,6 +17,13 @@ vec4 gridTexel(sampler2D s, float rows, int i) {
 
 vec4 bankRow(int i) {
     return gridTexel(uBankRows, uGridRows.x, i);
+}
+
+// The first row of the member of list slot `slot` (bankRow of its first row): a loop
+// over a cell's list reads it without the member's number, which a member whose code
+// reads its first row only (a sphere's place and radius) then never reads.
+vec4 gridFirst(int slot) {
+    return gridTexel(uGridFirsts, uGridFirstRows, slot);
 }
 
 int gridMember(int slot) {

@@ -156,7 +156,7 @@ nil and a message when a texture would not fit."
           (when (= (length boxes) o.instances.count)
             (set o.instances.grid (length list))
             (each [_ b (ipairs boxes)] (table.insert all b))
-            (table.insert list {:id o.id : boxes})))))
+            (table.insert list {:id o.id : boxes :layout o.instances})))))
     ;; One frame for every grid: a ray crosses one set of walls.
     (let [f (when (> (length list) 0) (grid.frame all))]
       (each [_ e (ipairs list)]
@@ -169,14 +169,15 @@ nil and a message when a texture would not fit."
         (set ins.grid (length list))
         (set ins.grid-data g)
         (set ins.texture? true)
-        (table.insert list {:blend? true :grid g})))
+        (table.insert list {:blend? true :grid g :layout ins})))
     (when (> (length list) 0)
       (set tape.instances.texture? true)
       (each [_ o (ipairs tape.objects)]
         (when o.instances (set o.instances.texture? true)))
       (let [anchor (. list 1 :grid :lo)]
         (case (grid.textures (icollect [_ e (ipairs list)] e.grid)
-                             (uniforms.tape-values tape.instances anchor) anchor)
+                             (uniforms.tape-values tape.instances anchor) anchor
+                             (icollect [_ e (ipairs list)] {:base e.layout.base :stride e.layout.stride}))
           tex {: list : anchor :textures tex}
           (nil err) (values nil err))))))
 

@@ -133,6 +133,8 @@ every frame, so a backend uploads them once) and their rows' reciprocals."
      {:name "uGridRows" :type :vec4 :values [(/ 1 textures.bank.height) (/ 1 textures.cells.height)
                                             (/ 1 textures.lists.height) (/ 1 textures.spheres.height)]}
      {:name "uGridSpheres" :type :texture :texture textures.spheres}
+     {:name "uGridFirsts" :type :texture :texture textures.firsts}
+     {:name "uGridFirstRows" :type :float :values [(/ 1 textures.firsts.height)]}
      {:name "uBankRows" :type :texture :texture textures.bank}
      {:name "uGridCells" :type :texture :texture textures.cells}
      {:name "uGridLists" :type :texture :texture textures.lists}]))

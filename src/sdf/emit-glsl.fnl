@@ -40,8 +40,11 @@ with a decimal point or an exponent."
   (if group
       (let [at (+ group.base row)
             index (.. (or group.index "i") " * " group.stride (if (= at 0) "" (.. " + " at)))]
-        ;; A bank in a texture (src/sdf/grid.fnl) is read through bankRow.
-        (if group.texture? (.. "bankRow(" index ")") (.. "uInstances[" index "]")))
+        ;; In a loop over a grid cell's list, a member's first row sits at its slot;
+        ;; a bank in a texture (src/sdf/grid.fnl) is read through bankRow.
+        (if (and group.slot (= row 0)) (.. "gridFirst(" group.slot ")")
+            group.texture? (.. "bankRow(" index ")")
+            (.. "uInstances[" index "]")))
       (do (tset rows-read row true)
           (.. "uTape[" row "]"))))
 
@@ -156,7 +159,8 @@ with a decimal point or an exponent."
                  {: code :d bd :m bm} ins.members
                  outer group
                  body (do (set group {:base ins.base :stride ins.stride :index j
-                                      :texture? ins.texture? :p0 (reg "p0")})
+                                      :texture? ins.texture? :p0 (reg "p0")
+                                      :slot (when ins.grid (.. "s" n " + k" n))})
                           (let [(ok? lines) (pcall emit-code [] code materials?)]
                             (set group outer)
                             (if ok? lines (error lines 0))))
@@ -297,9 +301,10 @@ could not lower d."
   ;; from `first`.
   (if o.instances (.. (+ first o.id) " + i") (tostring (+ first o.id))))
 
-(fn in-group [o lines-fn]
-  ;; `(lines-fn)` emitted with `o`'s rows (an instance group's bank while it runs).
-  (set group o.instances)
+(fn in-group [o lines-fn ?slot]
+  ;; `(lines-fn)` emitted with `o`'s rows (an instance group's bank while it runs;
+  ;; in a loop over a grid cell's list, the first row at the list slot ?slot).
+  (set group (if ?slot (doto (collect [k v (pairs o.instances)] k v) (tset :slot ?slot)) o.instances))
   (let [(ok? lines) (pcall lines-fn)]
     (set group nil)
     (if ok? lines (error lines 0))))
@@ -314,8 +319,8 @@ could not lower d."
   ;; (src/sdf/grid.fnl) loops over the members its cell at pg lists, after folding
   ;; the lower bound of the others into d (in mapColor too: it lowers d, never the
   ;; colour, as no surface is nearer than it).
-  (let [block (in-group o block-fn)
-        g (?. o :instances :grid)]
+  (let [g (?. o :instances :grid)
+        block (in-group o block-fn (when g "gridStart + k"))]
     [(object-comment o)
      (if g
          ["{"

@@ -228,15 +228,18 @@ entry into the sphere (`far` when it never enters), and at least its distance to
 (fn texture [texels data]
   {:width texture-width :height (max 1 (math.ceil (/ texels texture-width))) : data})
 
-(fn textures [grids bank-values [ax ay az]]
+(fn textures [grids bank-values [ax ay az] ?layouts]
   "The textures of a plan's grids and its instance bank: {:cells (per cell of every
 grid in turn: first slot of its list, count, clearance, 0) :lists (member numbers, one
 a texel) :spheres (per list slot, its member's bounding sphere: centre about the anchor
-[ax ay az], radius) :bank (the rows `bank-values`, flat, 4 a row)} and :offsets (each
-grid's first cell and list slot), or nil and a message when one would not fit."
+[ax ay az], radius) :firsts (per list slot, its member's first row in the bank, from
+`?layouts`, each grid's {:base :stride}: a loop reads it without the member's number)
+:bank (the rows `bank-values`, flat, 4 a row)} and :offsets (each grid's first cell
+and list slot), or nil and a message when one would not fit."
   (let [cells []
         lists []
         spheres []
+        firsts []
         offsets []]
     (var cell-at 0)
     (each [_ g (ipairs grids)]
@@ -249,6 +252,10 @@ grid's first cell and list slot), or nil and a message when one would not fit."
                 i (+ 1 (* 4 m))]
             (each [_ v (ipairs [(- (. s i) ax) (- (. s (+ i 1)) ay) (- (. s (+ i 2)) az) (. s (+ i 3))])]
               (table.insert spheres v))))
+        (let [{: base : stride} (or (?. ?layouts (length offsets)) {:base 0 :stride 0})]
+          (each [_ m (ipairs g.records)]
+            (let [at (* 4 (+ base (* m stride)))]
+              (for [k 1 4] (table.insert firsts (or (. bank-values (+ at k)) 0))))))
         (each [k s (ipairs g.start)]
           (each [_ v (ipairs [(+ s list-at) (. g.count-of k) (. g.clearance k) 0])]
             (table.insert cells v)))
@@ -256,13 +263,14 @@ grid's first cell and list slot), or nil and a message when one would not fit."
           (each [_ v (ipairs [r 0 0 0])] (table.insert lists v)))
         (set cell-at (+ cell-at (length g.start)))))
     (let [sizes {:cells cell-at :lists (/ (length lists) 4) :bank (/ (length bank-values) 4)
-                 :spheres (/ (length spheres) 4)}
+                 :spheres (/ (length spheres) 4) :firsts (/ (length firsts) 4)}
           over (accumulate [o nil name n (pairs sizes)] (if (> n max-texels) name o))]
       (if over
           (values nil (string.format "the grids' %s need %d texels, more than a texture holds (%d)"
                                      over (. sizes over) max-texels))
           {:cells (texture cell-at cells) :lists (texture (. sizes :lists) lists)
            :spheres (texture sizes.spheres spheres)
+           :firsts (texture sizes.firsts firsts)
            :bank (texture (. sizes :bank) bank-values) : offsets}))))
 
 {: frame : build : query : skip : textures : min-members : blend-cells-per-member
