@@ -164,12 +164,17 @@ nil and a message when a texture would not fit."
         (set e.boxes nil)))
     ;; A blend's children (lower.fnl's :blend) in its own frame, the point's: listed
     ;; a blend radius further, on finer cells.
+    ;; (Only a blend lower.fnl found prunable: one inside a smooth union, say, loops
+    ;; over all its children.)
     (each [_ ins (ipairs (or tape.blends []))]
-      (let [g (grid.build ins.boxes nil {:grow ins.grow :cells-per-member grid.blend-cells-per-member})]
-        (set ins.grid (length list))
-        (set ins.grid-data g)
-        (set ins.texture? true)
-        (table.insert list {:blend? true :grid g :layout ins})))
+      (when ins.prunable?
+        (let [g (grid.build ins.boxes nil {:grow ins.grow :cells-per-member grid.blend-cells-per-member})]
+          (set ins.grid (length list))
+          (set ins.grid-data g)
+          (table.insert list {:blend? true :grid g :layout ins}))))
+    ;; With grids the bank is a texture, which every blend reads.
+    (when (> (length list) 0)
+      (each [_ ins (ipairs (or tape.blends []))] (set ins.texture? true)))
     (when (> (length list) 0)
       (set tape.instances.texture? true)
       (each [_ o (ipairs tape.objects)]

@@ -260,15 +260,41 @@ first when `?centre?` (else the box is taken as centred); return the register."
              :info)))
   (. st.infos child))
 
+(fn min-context [node ?marks]
+  "The paths of the nodes of object tree `node` whose value reaches the object's
+through unions and point operations only (translations, rotations, mirrors: no
+distance step after them), as a set: where a blend may stand (see blend!)."
+  (let [marks (or ?marks {})
+        desc (operations.lookup node.kind)]
+    (tset marks node.path true)
+    (when (and desc (= nil node.scale)
+               (or (= desc.kind :union) (and (= desc.role :point) (= nil desc.post))))
+      (each [_ c (ipairs (or node.children []))] (min-context c marks)))
+    marks))
+
+(fn blend-inside? [marks node]
+  ;; Whether a node inside `node` will be a blend itself (a union or smooth union of
+  ;; children enough, where a blend may stand).
+  (accumulate [found? false _ c (ipairs (or node.children [])) &until found?]
+    (or (and (. marks c.path) (or (= c.kind :union) (= c.kind :smooth-union))
+             (>= (length (or c.children [])) min-blend))
+        (blend-inside? marks c))))
+
 (fn blend! [st code node desc form args-values pin material]
   "For a union or polynomial smooth union of at least min-blend children of one
 structure (equal keys) that all have a box: append a :blend instruction to `code`
 (one loop over the children's rows in the blend bank, see `blends`) and return what
 lowering the node gives ({:dout :mout :children :blend?}); else nil, and nothing is
 changed."
-  (when (and blends (not st.aside?) (>= (length node.children) min-blend)
+  ;; Only where its value reaches the object's through unions and point operations
+  ;; (st.min-context: a grid's lower bound for unlisted children then only shortens
+  ;; steps); and not when a node inside will be a blend itself: its rows, lowered
+  ;; aside, would not be laid out as the loop's body reads them.
+  (when (and blends (not st.aside?) (. (or st.min-context {}) node.path)
+             (>= (length node.children) min-blend)
              (or (= desc.kind :union)
-                 (and (= desc.kind :smooth-union) (= form.glsl-name "opSmoothUnion"))))
+                 (and (= desc.kind :smooth-union) (= form.glsl-name "opSmoothUnion")))
+             (not (blend-inside? st.min-context node)))
     (let [aside (icollect [_ c (ipairs node.children)]
                   (let [cst (doto (new-state st.modern? st.far-field? st.infos) (tset :aside? true))
                         r (lower-node cst [] c "p0" material)]
@@ -299,9 +325,10 @@ changed."
                      :members {:code body :d r.dout :m r.mout}
                      :boxes (icollect [_ a (ipairs aside)] a.info.box)
                      :grow (if (= desc.kind :smooth-union) node.radius 0)
-                     ;; Its point is the shader's translated: a march's ray direction
-                     ;; holds there too.
-                     :along? (or (= pin "p0") (= true (. st.translated pin)))}]
+                     ;; Whether a march may bound its unlisted children along the
+                     ;; ray: lower-object says (only a blend that is its object's
+                     ;; value, at the shader's point translated).
+                     :along? false}]
             (table.insert code ins)
             (table.insert blends.list ins)
             ;; Numbered: objects holding blends are never one group (each blend
@@ -468,6 +495,7 @@ is a translation or a plane; else nil."
                 wrapped)
         code []
         before (length st.rows)
+        _ (set st.min-context (min-context node))
         result (lower-node st code top "p0" (if st.modern? modern-material default-material))
         ;; The placed node's bounds are about the translation's output point, which
         ;; the first instruction computes: the guard's box goes right after it.
@@ -497,6 +525,27 @@ is a translation or a plane; else nil."
                       {:head (+ 1 (length tail)) : bout})))
         dout (if (and guard (not own?)) (far-field! st code result.dout guard.bout)
                  result.dout)]
+    ;; Which blends may be pruned (src/sdf/grid.fnl stands a lower bound in for a
+    ;; cell's unlisted children): those whose value reaches the object's through
+    ;; unions (min), far fields (max with a box) and Lipschitz divisions only. There a
+    ;; lower bound only shortens steps; under a smooth union, a round or any other
+    ;; operation it could move the surface (a smooth union of a bound bulges out).
+    ;; Such a blend whose value is the object's, at the shader's point translated,
+    ;; also bounds its unlisted children along a march's ray (:along?): a step that
+    ;; no child's surface is met within is one no surface of the object is met within.
+    (let [safe {result.dout true dout true}]
+      (for [i (length code) 1 -1]
+        (let [ins (. code i)]
+          (when (. safe ins.dout)
+            (case ins.op
+              :far (tset safe ins.din true)
+              :divide (tset safe ins.din true)
+              (where :combine (= ins.desc.glsl-name "opUnion"))
+              (do (tset safe ins.da true) (tset safe ins.db true))
+              :blend (do (set ins.prunable? true)
+                         (set ins.along? (and (= ins.dout result.dout)
+                                              (or (= ins.pin "p0")
+                                                  (= true (. st.translated ins.pin)))))))))))
     ;; The translate's arguments are the first row this object allocated.
     (table.insert st.relative before)
     (case (hand-in code)
