@@ -87,9 +87,14 @@
           (let [p (assert (plan.scene->plan many))]
             (assert.are.equal field.min-objects p.field.count)
             (assert.is_truthy (p.key:find "field" 1 true))
-            ;; Only the floor is left to the tape.
-            (assert.are.same [:plane] (icollect [_ o (ipairs p.tape.objects)] (. o.info.children 1 :kind)))
-            ;; plan.objects: the field's, in scene order, then the tape's.
+            ;; The field is the tape's first object (a strategy: lower.fnl), its
+            ;; members numbered first; the floor is written out after it.
+            (assert.are.same [:field :plane]
+                             (icollect [_ o (ipairs p.tape.objects)]
+                               (if o.field :field (. o.info.children 1 :kind))))
+            (assert.are.equal field.min-objects (. p.tape.objects 1 :field :count))
+            (assert.are.equal (+ 1 field.min-objects) p.tape.count)
+            ;; plan.objects: the field's, in scene order, then the others.
             (assert.are.equal (. many.objects 2) (. p.objects 1))
             (assert.are.equal (. many.objects 3) (. p.objects 2))
             (assert.are.equal (. many.objects 1) (. p.objects (+ 1 field.min-objects)))))

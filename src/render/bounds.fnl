@@ -47,14 +47,14 @@ near its surface."
 objects a bounded plan marches by them: every tape object's (an instance group's
 members each) but the half-spaces (met in closed form; see lower.fnl); one for an
 instance group with a grid, about its grid; not a field's (its grid bounds them; see
-src/render/field.fnl). plan.objects holds the tape's objects in this order, after
-the field's."
+src/render/field.fnl). plan.objects holds the tape's objects in this order."
   (let [out []]
-    (var at (if plan.field plan.field.count 0))
+    (var at 0)
     (each [_ o (ipairs plan.tape.objects)]
       (let [g (?. o :instances :grid)
-            n (if o.instances o.instances.count 1)]
-        (if g
+            n (if o.instances o.instances.count o.field o.field.count 1)]
+        (if o.field (set at (+ at n))
+            g
             (do (table.insert out (grid-sphere (. plan.grids.list (+ g 1) :grid)))
                 (set at (+ at n)))
             (for [m 1 n]

@@ -79,15 +79,16 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
     (when (= (. out (length out)) "") (table.remove out))
     out))
 
-;;; Objects: the field's, numbered first, then the tape's (src/sdf/emit-glsl.fnl).
+;;; Objects: the tape's, each drawn by its strategy (src/sdf/emit-glsl.fnl).
 
 (fn object-normals? [plan]
   ;; Normals from the nearest object's own distance (see map-object.glsl).
   (and (not= nil plan.normals) (= plan.normals-of :object)))
 
-(fn tape-first [plan]
-  ;; The number gObject gives the tape's first object: after the field's.
-  (if plan.field plan.field.count 0))
+(fn marched? [o]
+  ;; Whether a bounded march steps by tape object `o`'s distance (mapFinite): not
+  ;; a half-space (met in closed form, planesHit) nor a field (its grid is walked).
+  (not (or o.half-space? o.field)))
 
 (fn modern-materials? [plan]
   (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8))))
@@ -129,14 +130,8 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
 ))
     lines))
 
-(fn field-term [plan skip]
-  ;; The field's part of a minimum, skipping object `skip` (a GLSL int expression).
-  (if plan.field
-      ["{" "    int best;" (.. "    d = min(d, fieldMap(p, " skip ", best));") "}"]
-      []))
-
 (fn distance-terms [plan]
-  [(field-term plan "-1") (emit-glsl.distance-terms plan.tape)])
+  (emit-glsl.distance-terms plan.tape))
 
 (fn soft-bounded? [plan]
   ;; See plan.lighting.soft-bounded? in src/render/plan.fnl.
@@ -199,8 +194,7 @@ src/render/bounds.fnl)."
     ["// The finite objects only: the half-spaces are met in closed form by planesHit."
      "float mapFinite(vec3 p) {"
      "    float d = uDrawDist;"
-     ;; (and not the field's objects: march-field.glsl walks its grid)
-     (doto [] (flatten-into "    " (emit-glsl.distance-terms plan.tape #(not $.half-space?))))
+     (doto [] (flatten-into "    " (emit-glsl.distance-terms plan.tape marched?)))
      "    return d;"
      "}"
      ""
@@ -222,38 +216,21 @@ src/render/bounds.fnl)."
        plan.mirrors? "gMirror = 1.0;"
        [])
    (if (object-normals? plan) "gObject = -1;" [])
-   (if plan.field
-       ["{"
-        "    int best;"
-        "    float di = fieldMap(p, -1, best);"
-        "    if (di < d) {"
-        "        d = di;"
-        "        color = best >= 0 ? fieldColor(best) : vec3(0.0);"
-        (if (object-normals? plan) "        gObject = best >= 0 ? best : -1;" [])
-        "    }"
-        "}"]
-       [])
-   (emit-glsl.color-terms plan.tape plan.mirrors? (when (object-normals? plan) (tape-first plan)))])
+   (emit-glsl.color-terms plan.tape plan.mirrors? (when (object-normals? plan) 0))])
 
 (fn others-terms [plan]
   ;; mapOthers' terms: map's, each but gObject's.
-  [(field-term plan "gObject") (emit-glsl.others-terms plan.tape (tape-first plan))])
+  (emit-glsl.others-terms plan.tape 0))
 
 (fn gradient-terms [plan action]
-  ;; Each object's exact normal in closed form, when gObject is its number: a field
-  ;; object's (fieldNormal), a leaf's its primitive's gradient; `action` is "n = "
+  ;; Each object's exact normal in closed form, when gObject is its number (a field
+  ;; member's, a leaf's its primitive's gradient); `action` is "n = "
   ;; (normal-exact.glsl) or "return " (the exact slot of normal-crease.glsl).
-  [(if plan.field
-       [(.. "if (gObject >= 0 && gObject < " plan.field.count ") " action "fieldNormal(p, gObject);")]
-       [])
-   (emit-glsl.gradient-terms plan.tape (tape-first plan) action)])
+  (emit-glsl.gradient-terms plan.tape 0 action))
 
 (fn object-terms [plan]
-  ;; mapObject's cases: the field's object and each tape object by number.
-  [(if plan.field
-       [(.. "if (gObject >= 0 && gObject < " plan.field.count ") return fieldObject(p, gObject);")]
-       [])
-   (emit-glsl.object-terms plan.tape (tape-first plan))])
+  ;; mapObject's cases: each tape object (a field's member) by number.
+  (emit-glsl.object-terms plan.tape 0))
 
 ;;; Features
 
@@ -304,7 +281,7 @@ along the ray (see gridCellAlong in shaders/pipeline/grid.glsl)."
          "// members bounded along the ray rd too."
          (.. "float " (if bounded? "mapFiniteAlong" "mapAlong") "(vec3 p, vec3 rd) {")
          "    float d = uDrawDist;"
-         (doto [] (flatten-into "    " (emit-glsl.distance-terms plan.tape (when bounded? #(not $.half-space?))
+         (doto [] (flatten-into "    " (emit-glsl.distance-terms plan.tape (when bounded? marched?)
                                                               true)))
          "    return d;"
          "}"])

@@ -81,13 +81,8 @@ there are fewer than min-objects of them."
   (let [out (icollect [_ o (ipairs objects)] (when (member? o) o))]
     (when (>= (length out) min-objects) out)))
 
-(fn shape [o]
-  ;; centre x y z, half extents x y z, radius
-  (let [[x y z] o.pos]
-    (if (= o.kind :sphere)
-        (values x y z 0 0 0 o.radius)
-        (let [[sx sy sz] o.size]
-          (values x y z (* 0.5 sx) (* 0.5 sy) (* 0.5 sz) 0)))))
+;; centre x y z, half extents x y z, radius: the round box the field draws.
+(local shape (. (require :src.sdf.lower) :field-shape))
 
 (local round-box-cpu (. ((. (require :src.sdf.primitives) :lookup) :round-box) :cpu))
 

@@ -73,7 +73,7 @@
 ;; travel as uniforms and textures or are counted from the rest. A new field is in the
 ;; key without anyone listing it: at worst a value edit compiles again, never a
 ;; stale shader.
-(local value-fields {:objects true :in-field true :reflections true :uniform-vectors true
+(local value-fields {:objects true :reflections true :uniform-vectors true
                      :key true})
 
 ;; Of nested parts, what the code reads: the tape's key (its own structure, derived
@@ -226,18 +226,20 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                            scene.render.bounds)
                   (field.members scene.objects))
         in-field (collect [_ o (ipairs (or members []))] o true)
-        ;; Every other object is lowered into the tape.
+        ;; Every object is lowered into the tape: the field's members as its first
+        ;; object (a strategy: see lower.fnl), the others each or in groups.
         (tape lower-error) (lower.lower (icollect [_ o (ipairs scene.objects)]
                                           (when (not (. in-field o)) (lower.node-of o)))
                                         {:modern? (not= nil scene.lighting)
+                                         :field members
                                          :far-field? options.far-field?
                                          :fold? options.fold?})
         shaded? (= view :shaded)
-        plan {: view : uber? : in-field
+        plan {: view : uber?
               :load-once? (not= false options.load-once?)
               ;; The objects in shader order (the numbers gObject gives them): the
-              ;; field's, then the tape's (an instance group's members in turn).
-              :objects (let [out (icollect [_ o (ipairs (or members []))] o)
+              ;; tape's (the field's and an instance group's members in turn).
+              :objects (let [out []
                              ;; (A scene may hold some of a file's objects: by index.)
                              by-index (collect [_ o (ipairs scene.objects)] o.index o)]
                          (each [_ o (ipairs (if tape tape.objects []))]

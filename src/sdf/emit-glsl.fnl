@@ -359,6 +359,28 @@ members. `id`: the object's number as GLSL (see id-expr)."
 
 (fn open-block [] "{")
 
+;; A field (lower.fnl's :field strategy): its members are found through its grid by
+;; shaders/pipeline/field.glsl's functions, which number them from 0; `first` is the
+;; number of its first member, o.id counted from the objects' first.
+
+(fn field-number [expr first]
+  ;; A field member's number `expr` (from 0) as an object's number, and back.
+  (if (= first 0) expr (.. expr " + " first)))
+
+(fn field-index [first]
+  ;; gObject as the number of a field's member (from 0).
+  (if (= first 0) "gObject" (.. "gObject - " first)))
+
+(fn field-selected [o first action]
+  ;; `action` (a GLSL expression's prefix) on member gObject when it is the field's.
+  (let [id (+ first o.id)]
+    [(.. "if (gObject >= " id " && gObject < " (+ id o.field.count) ") " action "("
+         (if (= id 0) "p, gObject" (.. "p, gObject - " id)) ");")]))
+
+(fn field-minimum [skip]
+  ;; The field's part of a minimum, skipping its member `skip` (a GLSL int).
+  ["{" "    int best;" (.. "    d = min(d, fieldMap(p, " skip ", best));") "}"])
+
 (fn objects-of [tape ?which]
   (icollect [_ o (ipairs tape.objects)] (when (or (not ?which) (?which o)) o)))
 
@@ -368,7 +390,8 @@ folded into d. With `?along?`, a march's: rd is its ray's direction, and a grid'
 bound reaches along it (see gridCellAlong)."
   (set along? (= true ?along?))
   (let [(ok? lines) (pcall #(icollect [_ o (ipairs (objects-of tape ?which))]
-                              (object-block o 0 false open-block #[(.. "d = min(d, " o.dout ");")])))]
+                              (if o.field (field-minimum "-1")
+                                  (object-block o 0 false open-block #[(.. "d = min(d, " o.dout ");")]))))]
     (set along? false)
     (if ok? lines (error lines 0))))
 
@@ -376,7 +399,8 @@ bound reaches along it (see gridCellAlong)."
   "Lines for mapOthers(): map's minimum, each object but the one gObject numbers
 (objects counted from `first`, as color-terms does)."
   (icollect [_ o (ipairs tape.objects)]
-    (object-block o first false #(.. "if (gObject != " $ ") {") #[(.. "d = min(d, " o.dout ");")])))
+    (if o.field (field-minimum (field-index (+ first o.id)))
+        (object-block o first false #(.. "if (gObject != " $ ") {") #[(.. "d = min(d, " o.dout ");")]))))
 
 (fn color-terms [tape mirrors? ?first]
   "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
@@ -386,12 +410,25 @@ objects are numbered from it in tape order, an instance group's members one each
   (set mt (. material-types tape.material-size))
   (let [modern? (= tape.material-size 8)]
     (icollect [_ o (ipairs tape.objects)]
-      (let [row (if modern? (.. o.mout "[0]") o.mout)]
+      (let [row (when o.mout (if modern? (.. o.mout "[0]") o.mout))]
+        (if o.field
+            ;; (Its members are matte: the mirror amount and material stay.)
+            ["{"
+             "    int best;"
+             "    float di = fieldMap(p, -1, best);"
+             "    if (di < d) {"
+             "        d = di;"
+             "        color = best >= 0 ? fieldColor(best) : vec3(0.0);"
+             (if ?first
+                 (.. "        gObject = best >= 0 ? " (field-number "best" (+ ?first o.id)) " : -1;")
+                 [])
+             "    }"
+             "}"]
         (object-block o (or ?first 0) true open-block
                       #[(.. "if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
                             (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
                             (if modern? (.. " gMaterial = " o.mout "[1];") "")
-                            (if ?first (.. " gObject = " $ ";") "") " }")])))))
+                            (if ?first (.. " gObject = " $ ";") "") " }")]))))))
 
 (fn selected [o first lines-fn]
   ;; Lines run when gObject is object `o`'s number (one of its group's: then with
@@ -412,7 +449,8 @@ objects are numbered from it in tape order, an instance group's members one each
   "Lines for mapObject(): each tree object's distance alone, returned when gObject
 holds its number (numbered from `first` as color-terms does)."
   (icollect [_ o (ipairs tape.objects)]
-    (selected o first #[(emit-code [] o.code false) (.. "return " o.dout ";")])))
+    (if o.field (field-selected o first "return fieldObject")
+        (selected o first #[(emit-code [] o.code false) (.. "return " o.dout ";")]))))
 
 (fn leaf-gradient [o action]
   ;; A leaf object's exact normal: its translations, then its primitive's gradient
@@ -423,14 +461,15 @@ holds its number (numbered from `first` as color-terms does)."
 
 (fn exact? [o]
   "Whether object `o` has its exact normal in closed form: a leaf whose primitive has
-a gradient."
-  (not= nil (?. o :leaf :prim :desc :gradient-glsl)))
+a gradient, or a field (its members' round boxes have their inner box's)."
+  (or (not= nil o.field) (not= nil (?. o :leaf :prim :desc :gradient-glsl))))
 
 (fn gradient-terms [tape first action]
   "Lines for calcNormal: each object with an exact normal (exact?) gives it when
 gObject is its number (counted from `first`); `action` is \"n = \" or \"return \"."
   (icollect [_ o (ipairs tape.objects)]
-    (when (exact? o) (selected o first #(leaf-gradient o action)))))
+    (if o.field (field-selected o first (.. action "fieldNormal"))
+        (exact? o) (selected o first #(leaf-gradient o action)))))
 
 (fn plane-terms [tape]
   "Lines for planesHit(ro, rd): each half-space object (lower.fnl's :half-space?: a

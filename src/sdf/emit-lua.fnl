@@ -4,6 +4,7 @@
 ;; function, so the two evaluators cannot drift apart.
 
 (local grid (require :src.sdf.grid))
+(local box-gradient (. ((. (require :src.sdf.primitives) :lookup) :box) :gradient))
 
 (local max-locals 150)   ; Lua allows 200 locals per function; beyond, a table holds them
 
@@ -210,6 +211,24 @@
       (each [_ v (ipairs row)] (table.insert out v)))
     out))
 
+(fn field-evaluators [f what material-size]
+  ;; A field's members (lower.fnl's :field strategy) by object number: each its shape's
+  ;; round box, by the descriptor's CPU form, matte (the shader's field keeps the
+  ;; mirror amount and material mapColor starts from); its exact normal is its inner
+  ;; box's gradient (the box descriptor's).
+  (let [round-box f.desc.cpu
+        modern? (= material-size 8)]
+    (icollect [i [cx cy cz hx hy hz r] (ipairs f.shapes)]
+      (case what
+        :distance (fn [x y z] (round-box (- x cx) (- y cy) (- z cz) hx hy hz r))
+        :material (let [[cr cg cb] (. f.colors i)]
+                    (if modern?
+                        (fn [x y z]
+                          (values (round-box (- x cx) (- y cy) (- z cz) hx hy hz r) cr cg cb 0 0.5 0 0 0))
+                        (fn [x y z]
+                          (values (round-box (- x cx) (- y cy) (- z cz) hx hy hz r) cr cg cb 1))))
+        :gradient (fn [x y z] (box-gradient (- x cx) (- y cy) (- z cz) hx hy hz))))))
+
 (fn compile [tape]
   "CPU evaluators for `tape`'s objects, in world coordinates and double precision, one
 per object number (an instance group's members one each, in order): {:distance
@@ -222,11 +241,14 @@ nz, or false where the object has no exact normal] :source text}."
     (each [_ what (ipairs [:distance :material :gradient])]
       (each [_ o (ipairs tape.objects)]
         (let [group o.instances
-              e (doto (new-emitter (> (count-registers o.code (or tape.material-size 4)) max-locals)
+              e (doto (new-emitter (> (count-registers (or o.code []) (or tape.material-size 4)) max-locals)
                                    tape.material-size (not= nil group))
                   (tset :instances banks.instances))
               into (. out what)]
-          (if (and (= what :gradient) (not (?. o :leaf :prim :desc :gradient)))
+          (if o.field
+              (each [_ f (ipairs (field-evaluators o.field what tape.material-size))]
+                (table.insert into f))
+              (and (= what :gradient) (not (?. o :leaf :prim :desc :gradient)))
               (for [_ 1 (if group group.count 1)] (table.insert into false))
               (do
                 (e.line 0 "local S, F, FN, first, stride, count = ...")

@@ -41,6 +41,17 @@
 ;; Each node's info: {:kind :path :class (:exact or :bound) :lipschitz k :bounds :far?
 ;; :even}.
 ;;
+;; Strategies. How an object's code runs is a strategy of the tape object that holds
+;; it; every emitter reads the same tape objects:
+;;   - one object written out (its :code);
+;;   - an instance group (:instances): many objects of one structure, one loop over
+;;     their rows, with a grid (src/sdf/grid.fnl) when the plan gives it one;
+;;   - a field (:field {:count :shapes :colors :kinds}): many of the article's flat
+;;     spheres and boxes, each the round-box primitive (a sphere of no extent, a box
+;;     of no radius), found through a uniform grid in float textures that the plan
+;;     builds (src/render/field.fnl) and met along a ray in closed form. It is the
+;;     first object, so its members are numbered first.
+;;
 ;; Repetitions. A :cells node evaluates its child in the point's own cell and the
 ;; neighbours (2 to 8 cells along the repeated axes, 2 around a polar one). Two
 ;; properties of the child cut that down (see :own-cell? and :boxed-neighbours? in
@@ -642,6 +653,34 @@ tape's :fold? in `lower`)."
           (table.insert st.key (table.concat (icollect [_ v (ipairs folded)] (string.format "%.9g" v))
                                              ",")))))))
 
+;;; The field strategy.
+
+(local round-box-desc (primitives.lookup :round-box))
+
+(fn field-shape [o]
+  "Flat sphere or box `o` as the field draws it, the round-box primitive about its
+centre: cx cy cz (world), half extents hx hy hz, radius r."
+  (let [[x y z] o.pos]
+    (if (= o.kind :sphere)
+        (values x y z 0 0 0 o.radius)
+        (let [[sx sy sz] o.size]
+          (values x y z (* 0.5 sx) (* 0.5 sy) (* 0.5 sz) 0)))))
+
+(fn field-object [members]
+  ;; The field's tape object for the flat spheres and boxes `members` (see
+  ;; Strategies above): no code of its own; its members' shapes and colours.
+  (let [kinds {:spheres? false :boxes? false}]
+    (each [_ o (ipairs members)]
+      (tset kinds (if (= o.kind :sphere) :spheres? :boxes?) true))
+    {:field {:count (length members) : kinds
+             :shapes (icollect [_ o (ipairs members)] [(field-shape o)])
+             :colors (icollect [_ o (ipairs members)] o.color)
+             :desc round-box-desc}
+     :indices (icollect [_ o (ipairs members)] o.index)
+     :id 0
+     :info {:kind "field" :field? true :path (.. "objects[" (. members 1 :index) "]") :class :exact
+            :lipschitz 1 :children [] :implicit? false}}))
+
 (fn node-of [o]
   "The scene-tree node that draws scene object `o` (with its :index): its tree, or
 for one of the article's flat objects (a sphere, box or plane written with only its
@@ -706,9 +745,12 @@ child), then that node and the reason alone. Option :modern? gives every materia
 rows (:material-size 8); :far-field? false leaves out far fields and guards (the
 benchmark's before); :fold? true writes every value but the camera-relative rows (and
 those of `hand-in`) into the code as constants (:literal on arguments and materials),
-and into the key; an instance group's values stay in its bank."
+and into the key; an instance group's values stay in its bank. Option :field, a list
+of the article's flat spheres and boxes (scene objects, not in `objects`), draws them
+as a field: the first tape object (see Strategies above)."
   (set blends {:bank (new-bank) :list []})
   (let [options (or ?options {})
+        field (when (and options.field (> (length options.field) 0)) (field-object options.field))
         infos {}
         (ok? lowered) (pcall #(icollect [_ node (ipairs objects)]
                                 (let [(st o) (lower-one options infos node)]
@@ -729,6 +771,11 @@ and into the key; an instance group's values stay in its bank."
               key []]
           (var mirrors? false)
           (var id 0)
+          (when field
+            (table.insert out field)
+            (set id field.field.count)
+            (table.insert key (.. "field:" id (if field.field.kinds.spheres? "s" "")
+                                  (if field.field.kinds.boxes? "b" ""))))
           (each [_ {: st : o :key k} (ipairs lowered)]
             (when st.mirrors? (set mirrors? true))
             (each [_ name (ipairs st.used-list)]
@@ -769,7 +816,7 @@ and into the key; an instance group's values stay in its bank."
                      (tset :inner tape-bank.inner) (tset :derived tape-bank.derived)
                      (tset :key key))]
             (when options.fold?
-              (fold! st (icollect [_ o (ipairs out)] (when (not o.instances) o))))
+              (fold! st (icollect [_ o (ipairs out)] (when (not (or o.instances o.field)) o))))
             (table.insert key (.. "rows:" (length tape-bank.rows)))
             (when options.modern? (table.insert key "materials:8"))
             {:objects out :count id :rows tape-bank.rows :relative tape-bank.relative
@@ -785,8 +832,10 @@ and into the key; an instance group's values stay in its bank."
 each)."
   (let [out {}]
     (each [_ o (ipairs tape.objects)]
-      (each [m index (ipairs (or o.indices [o.index]))]
-        (tset out index (if o.infos (. o.infos m) o.info))))
+      ;; (A field's members have no lowered tree.)
+      (when (not o.field)
+        (each [m index (ipairs (or o.indices [o.index]))]
+          (tset out index (if o.infos (. o.infos m) o.info)))))
     out))
 
 (fn class-label [info]
@@ -800,16 +849,18 @@ each)."
   "Lines describing every node of `tape`'s objects, indented by depth, with its class:
 what `--tree` prints."
   (let [lines []]
-    (fn walk [info depth ?group]
+    (fn walk [info depth ?group ?field]
       (let [b info.bounds
             bounds (if b (string.format "bounds ±%.3g ±%.3g ±%.3g" (. b 1) (. b 2) (. b 3))
+                       info.field? "each member's box"
                        "unbounded")]
         (table.insert lines (.. (string.rep "  " depth) info.kind
                                 (if info.implicit? " (shorthand)" "")
                                 (if ?group (.. " x" ?group.count " (instance group: a loop)") "")
+                                (if ?field (.. " of " ?field.count " spheres and boxes (a grid in textures)") "")
                                 "  " (class-label info) "  " bounds "  " info.path)))
       (each [_ c (ipairs info.children)] (walk c (+ depth 1))))
-    (each [_ o (ipairs tape.objects)] (walk o.info 0 o.instances))
+    (each [_ o (ipairs tape.objects)] (walk o.info 0 o.instances o.field))
     lines))
 
-{: lower : describe : node-of : min-group : infos-by-index}
+{: lower : describe : node-of : min-group : infos-by-index : field-shape}

@@ -66,9 +66,8 @@ Positions are in world coordinates."
         glow? (and shaded? plan.glow?)
         reflections (if (and shaded? plan.reflections?) plan.reflections 0)
         modern? (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8)))
-        ;; A field's objects come first in plan.objects, then the tape's.
+        ;; The field (lower.fnl's :field strategy): its grid, when the tape has one.
         fd plan.field
-        nf (if fd fd.count 0)
         tape (emit-lua.compile plan.tape)
         tape-distance tape.distance
         tape-material tape.material
@@ -78,31 +77,37 @@ Positions are in world coordinates."
         half-space (let [out {}]
                      (var j 0)
                      (each [_ o (ipairs plan.tape.objects)]
-                       (for [_ 1 (if o.instances o.instances.count 1)]
+                       (for [_ 1 (if o.instances o.instances.count o.field o.field.count 1)]
                          (set j (+ j 1))
                          (tset out j o.half-space?)))
                      out)
         ;; The tape's objects as the shader folds them, run by run: an object, an
-        ;; instance group's members, or a group with a grid (src/sdf/grid.fnl): the
-        ;; members its cell lists and the bound of the others, folded in first.
+        ;; instance group's members, a group with a grid (src/sdf/grid.fnl): the
+        ;; members its cell lists and the bound of the others, folded in first, or a
+        ;; field (src/render/field.fnl: its grid's distance, as fieldMap).
         runs (let [out []]
                (var j 0)
                (each [_ o (ipairs plan.tape.objects)]
-                 (let [n (if o.instances o.instances.count 1)
+                 (let [n (if o.instances o.instances.count o.field o.field.count 1)
                        g (?. o :instances :grid)]
                    (table.insert out {:first (+ j 1) :last (+ j n) :half-space? o.half-space?
+                                      :field (when o.field fd)
                                       :grid (when g (. plan.grids.list (+ g 1) :grid))})
                    (set j (+ j n))))
                out)]
 
     (fn tape-min [d x y z finite? skip ?dx ?dy ?dz]
-      ;; d lowered by the tape's objects at x y z (the finite ones with `finite?`),
+      ;; d lowered by the tape's objects at x y z (with `finite?` those a bounded
+      ;; march steps by: not the half-spaces, nor a field, whose grid it walks),
       ;; skipping tape object number `skip` (or none); grids bound their unlisted
       ;; members along the ray ?dx ?dy ?dz when a march gives one (mapFiniteAlong).
       (var d d)
       (each [_ r (ipairs runs)]
-        (when (not (and finite? r.half-space?))
-          (if r.grid
+        (when (not (and finite? (or r.half-space? r.field)))
+          (if r.field
+              (let [df (field.distance r.field x y z (when skip (+ 1 (- skip r.first))))]
+                (when (< df d) (set d df)))
+              r.grid
               (let [(start count bound) (grid.query r.grid x y z ?dx ?dy ?dz draw)
                     records r.grid.records]
                 (when (< bound d) (set d bound))
@@ -136,11 +141,7 @@ Positions are in world coordinates."
 
     (fn map [x y z ?dx ?dy ?dz]
       ;; (Along the ray ?dx ?dy ?dz in a march: see tape-min.)
-      (var d draw)
-      (when fd
-        (let [df (field.distance fd x y z)]
-          (when (< df d) (set d df))))
-      (tape-min d x y z false nil ?dx ?dy ?dz))
+      (tape-min draw x y z false nil ?dx ?dy ?dz))
 
     ;; With bounds (src/render/bounds.fnl), as the shader: the half-spaces met in
     ;; closed form, the other objects marched over the span of their bounding spheres.
@@ -169,23 +170,25 @@ Positions are in world coordinates."
       (var d draw)
       (var best nil)
       (var (r g b mirror rough emit) (values 0 0 0 (if modern? 0 1) 0.5 0))
-      ;; A field's nearest (black, and no object, outside its grid).
-      (when fd
-        (let [(df fb) (field.distance fd x y z)]
-          (when (< df d)
-            (set d df)
-            (set best fb)
-            (let [[cr cg cb] (if fb (. fd.colors fb) [0 0 0])] (set (r g b) (values cr cg cb))))))
       (fn visit [i]
         (let [(di mr mg mb ma mk me) ((. tape-material i) x y z)]
           (when (< di d)
             (set d di)
-            (set best (+ nf i))
+            (set best i)
             (set (r g b mirror) (values mr mg mb ma))
             (when modern? (set (rough emit) (values mk me))))))
       ;; A grid's bound lowers d, not the colour (as emit-glsl's looped).
       (each [_ run (ipairs runs)]
-        (if run.grid
+        (if run.field
+            ;; A field's nearest listed member (black, and no object, outside its
+            ;; grid), as fieldMap and fieldColor.
+            (let [(df fb) (field.distance run.field x y z)]
+              (when (< df d)
+                (set d df)
+                (set best (when fb (+ run.first fb -1)))
+                (let [[cr cg cb] (if fb (. run.field.colors fb) [0 0 0])]
+                  (set (r g b) (values cr cg cb)))))
+            run.grid
             (let [(start count bound) (grid.query run.grid x y z)]
               (when (< bound d) (set d bound))
               (for [s (+ start 1) (+ start count)]
@@ -372,26 +375,19 @@ Positions are in world coordinates."
 
     (fn object-map [i]
       ;; The distance function of plan.objects[i] alone.
-      (if (<= i nf) (fn [x y z] (field.object-distance fd i x y z))
-          (. tape-distance (- i nf))))
+      (. tape-distance i))
 
     (fn crease? [x y z]
       ;; Two objects meet within the normal's finite-difference reach of the point:
       ;; a whole-scene normal there points between their surfaces.
       (let [reach (* 2 (normal-delta x y z))]
-        (var near (near-count x y z reach))
-        (for [i 1 nf]
-          (when (< ((object-map i) x y z) reach) (set near (+ near 1))))
-        (>= near 2)))
+        (>= (near-count x y z reach) 2)))
 
     (fn others-map [i]
       ;; The distance to every object but plan.objects[i] (mapOthers).
       ;; A field's objects through its grid, as the shader's (skipping i's number).
       (fn [x y z]
-        (var d draw)
-        (when fd
-          (let [df (field.distance fd x y z i)] (when (< df d) (set d df))))
-        (tape-min d x y z false (- i nf))))
+        (tape-min draw x y z false i)))
 
     (fn differences [map x y z h]
       (tally :normal (if (= normal-method :central) 6 4))
@@ -423,10 +419,8 @@ Positions are in world coordinates."
             (values 0 0 1)
             (or (= plan.normals-of :scene) (not i))
             (differences map x y z h)
-            (<= i nf)
-            (field.normal fd i x y z)
-            (. tape-gradient (- i nf))
-            ((. tape-gradient (- i nf)) x y z)
+            (. tape-gradient i)
+            ((. tape-gradient i) x y z)
             (let [others (others-map i)
                   other (others x y z)]
               (tally :normal (if (< other (* 2 h)) 7 1))
