@@ -15,7 +15,6 @@
 ;; computed in double.
 
 (local large-radius (. (require :src.sdf.large-sphere) :radius))
-(local box-gradient (. ((. (require :src.sdf.primitives) :lookup) :box) :gradient))
 
 (local sqrt math.sqrt)
 (local floor math.floor)
@@ -446,14 +445,6 @@ and its number k (1-based)."
         x (c qx sx nx) y (c qy sy ny) z (c qz sz nz)]
     (values x y z (+ 1 x (* nx (+ y (* ny z)))))))
 
-(fn normal [field i x y z]
-  "fieldNormal: the exact normal of object `i` (1-based) at world (x y z), its
-distance's gradient: nx ny nz."
-  ;; A rounded box's gradient is its inner box's (a sphere's: a box of no extent).
-  (let [[ox oy oz] field.lo
-        [cx cy cz ax ay az] (. field.shapes i)]
-    (box-gradient (- x ox cx) (- y oy cy) (- z oz cz) ax ay az)))
-
 (fn distance [field x y z ?skip]
   "The field's distance at world (x y z) as the shader's fieldMap gives it: exact
 within the reach of the point's cell, a lower bound beyond (the cell's walls plus
@@ -599,5 +590,5 @@ vector (dx dy dz) first enters any object of the field, in closed form, or `far`
       (set t (min t (entry (- ox lx) (- oy ly) (- oz lz) dx dy dz ix iy iz cx cy cz ax ay az r far))))
     t))
 
-{: member? : members : brute-entry : walk : reciprocal : tiny : normal : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
+{: member? : members : brute-entry : walk : reciprocal : tiny : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
  : distance : brute-distance : rounded-box : min-objects : texture-width}
