@@ -32,6 +32,42 @@
           (assert.truthy (text:find "float opTwistDistance(" 1 true))
           (assert.falsy (text:find "opUnion" 1 true)))))
 
+    (it "holds every object, a field's too: a strategy of the tape, drawn by its emitters"
+      (fn []
+        ;; 20 flat spheres (a field), 20 mirrored ones (a group with a grid) and a torus.
+        (let [spheres (fn [mirror]
+                        (table.concat (fcollect [i 1 20]
+                                        (string.format "{:kind :sphere :pos [%d %d 1] :radius 0.4%s}"
+                                                       (* 2 (% i 5)) (* 2 (math.floor (/ i 5)))
+                                                       (if mirror " :mirror 0.5" "")))
+                                      " "))
+              (p s) (plan-of (.. (spheres false) " " (spheres true) " {:kind :torus :pos [30 0 1]}"))
+              [first second third] p.tape.objects
+              text (assert (codegen.shader p :core))
+              emit-lua (require :src.sdf.emit-lua)
+              tape (emit-lua.compile p.tape)]
+          (assert.are.equal 20 (?. first :field :count))
+          (assert.are.equal 20 (?. second :instances :count))
+          (assert.is_truthy third.leaf)
+          ;; Every object is numbered once, the field's first.
+          (assert.are.equal 41 p.tape.count)
+          (assert.are.equal 41 (length p.objects))
+          (for [i 1 20] (assert.are.equal (. s.objects i) (. p.objects i)))
+          (assert.are.equal (. s.objects 41) (. p.objects 41))
+          ;; The field's part of each function comes from the tape's emitter.
+          (assert.is_truthy (text:find "d = min(d, fieldMap(p, -1, best));" 1 true))
+          (assert.is_truthy (text:find "if (gObject >= 0 && gObject < 20) return fieldNormal(p, gObject);" 1 true))
+          ;; The Lua emitter gives each member the round box's distance and the box's
+          ;; gradient: here a sphere's, |q - c| - r and (q - c) / |q - c|.
+          (for [i 1 20]
+            (let [[cx cy cz] (. s.objects i :pos)
+                  (x y z) (values (+ cx 0.3) (- cy 0.7) (+ cz 1.1))
+                  len (math.sqrt (+ (* 0.3 0.3) (* 0.7 0.7) (* 1.1 1.1)))
+                  (nx _ nz) ((. tape.gradient i) x y z)]
+              (assert.is_true (< (math.abs (- ((. tape.distance i) x y z) (- len 0.4))) 1e-12))
+              (assert.is_true (< (math.abs (- nx (/ 0.3 len))) 1e-12))
+              (assert.is_true (< (math.abs (- nz (/ 1.1 len))) 1e-12)))))))
+
     (it "draws the article's flat objects as tree leaves: one path, whatever their fields"
       (fn []
         (let [flat (plan-of "{:kind :sphere :pos [1 2 3] :radius 2} {:kind :plane :height 1}")
