@@ -527,4 +527,17 @@
                        "t.fnl:1: objects[1].size[3]: must be a positive number from 1e-6 to 1e7, got a function"
                        "{:objects [{:kind :sphere} {:kind :sphere :color [0.5 0.5 1.5]}]}"
                        "t.fnl:1: objects[2].color[3]: must be a colour of three numbers from 0 to 1, got 1.5"})]
-          (assert.are.equal expected (load-error source)))))))
+          (assert.are.equal expected (load-error source)))))
+
+    (it "refuses what only lowering finds at the node's line, and lowers other trees once, in the plan"
+      (fn []
+        (assert.are.equal
+          "t.fnl:3: objects[1].children[2]: :twist needs a child bounded in x and y (its Lipschitz factor grows with the child's size)"
+          (load-error "{:objects [\n {:kind :union :children [{:kind :sphere}\n  {:kind :twist :angle 1\n   :children [{:kind :plane}]}]}]}"))
+        ;; Which trees the loader lowers: those holding a twist, a bend or a custom
+        ;; node, however deep.
+        (let [lower (require :src.sdf.lower)]
+          (assert.is_false (lower.may-refuse? {:kind :union :children [{:kind :sphere} {:kind :torus}]}))
+          (assert.is_true (lower.may-refuse? {:kind :union :children [{:kind :sphere}
+                                                                      {:kind :translate :children [{:kind :bend :children [{:kind :box}]}]}]}))
+          (assert.is_true (lower.may-refuse? {:kind :custom})))))))

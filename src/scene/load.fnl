@@ -683,9 +683,11 @@ into `out`: :custom (the texts), :params, :lipschitz (the factor used)."
       (check-grouped ctx i o)
       (let [node (check-node ctx [:objects i] o 1 counter)]
         ;; What only lowering finds (a twist of an unbounded child) is reported here,
-        ;; where the node's line is known.
-        (case (lower.lower [node])
-          (nil _ bad reason) (fail ctx bad.path-list reason))
+        ;; where the node's line is known; a tree that cannot be refused is lowered
+        ;; once, by the plan.
+        (when (lower.may-refuse? node)
+          (case (lower.lower [node])
+            (nil _ bad reason) (fail ctx bad.path-list reason)))
         {:kind node.kind :index i :tree node :path node.path})))
 
 (fn validate [value ctx]

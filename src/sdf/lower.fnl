@@ -827,6 +827,17 @@ as a field: the first tape object (see Strategies above)."
              :used (icollect [_ name (ipairs used-list)] {: name :desc (. used name)})
              :key (table.concat key " ")})))))
 
+(fn may-refuse? [node]
+  "Whether lowering scene-tree `node` can refuse it (`lower` returning nil and a
+message): only a node whose operation needs a bounded child (twist, bend: the
+descriptor's :needs-bounds) or a custom node (its data is checked), anywhere in the
+tree, can. The loader lowers those alone to report the refusal at the node's line,
+and leaves the others to the plan's one lowering."
+  (let [desc (operations.lookup node.kind)]
+    (or (= node.kind :custom) (not= nil (?. desc :needs-bounds))
+        (accumulate [found? false _ c (ipairs (or node.children [])) &until found?]
+          (may-refuse? c)))))
+
 (fn infos-by-index [tape]
   "Each object's lowered root info by its scene index (an instance group's members'
 each)."
@@ -863,4 +874,4 @@ what `--tree` prints."
     (each [_ o (ipairs tape.objects)] (walk o.info 0 o.instances o.field))
     lines))
 
-{: lower : describe : node-of : min-group : infos-by-index : field-shape}
+{: lower : describe : node-of : min-group : infos-by-index : field-shape : may-refuse?}
