@@ -4,7 +4,7 @@ package.path = "./?.lua;" .. package.path .. ";/usr/share/lua/5.4/?.lua"
 local fennel = require("fennel")
 fennel.path = "./?.fnl;" .. fennel.path
 -- Explicit options: see test/helper.lua.
-table.insert(package.loaders, fennel.makeSearcher({allowedGlobals = false, env = _G, correlate = true}))
+table.insert(package.loaders, fennel.makeSearcher({allowedGlobals = false, env = false, correlate = true}))
 local script = table.remove(arg, 1)
 if not script then
   io.stderr:write("usage: luajit tools/fnl.lua SCRIPT.fnl [args...]\n")
