@@ -44,6 +44,9 @@
               ;; load waiting for its helper ({: path : fresh? : key : start}) and the
               ;; last scene and plan drawn ({: scene : plan}), shown meanwhile.
               :warm nil :pending nil :drawn nil :waiting-since nil
+              ;; Before the first picture: the file being opened ({: path : start})
+              ;; and when the opening screen was last drawn (see show-opening!).
+              :opening nil :opening-shown 0
               ;; The parameter panel: open?, the slider being dragged, and the values
               ;; moved away from the file's, by name ({:value :base}, see params).
               :panel {:open? false :drag nil :overrides {} :status ""}})
@@ -63,6 +66,24 @@ last four are kept), and print it."
     (table.insert state.messages {:text message
                                   :until (+ (love.timer.getTime) (or ?seconds 4))})
     (when (> (length state.messages) 4) (table.remove state.messages 1))))
+
+(fn show-opening! [step ?force?]
+  "While a scene is opened and nothing is on screen yet, what is being done (`step`)
+and for how long, on a plain screen drawn and shown at once: a heavy scene's first
+load, lowering and compile take seconds, and the window would stay black. At most
+ten times a second unless `?force?` (a new step)."
+  (let [now (love.timer.getTime)
+        o state.opening]
+    (when (and o (= nil state.picture) (love.graphics.isActive)
+               (or ?force? (> (- now state.opening-shown) 0.1)))
+      (set state.opening-shown now)
+      (love.graphics.origin)
+      (love.graphics.clear 0.1 0.1 0.12 1)
+      (love.graphics.setColor 1 1 1 1)
+      (love.graphics.printf (text.printable (string.format "opening %s\n%s (%.1f s)" o.path step
+                                                           (- now o.start)))
+                            16 16 (math.max 64 (- (love.graphics.getWidth) 32)))
+      (love.graphics.present))))
 
 (fn changed! []
   "The scene's values changed: a picture of the old ones is of another state."
@@ -145,6 +166,7 @@ On any failure the last good scene keeps running and the error is shown. A shade
 that a helper process is compiling leaves the load pending (state.pending); update
 loads the file again once the helper is done, `?since` the time of the first try."
   (let [start (or ?since (love.timer.getTime))
+        _ (set state.opening {: path : start})
         info (file-info path)
         old state.scene
         ;; Slider positions not yet saved survive an edit of the file (params drops
@@ -162,7 +184,11 @@ loads the file again once the helper is done, `?since` the time of the first try
               reflections (if (file-changed? #$.render.reflections)
                               scene.render.reflections
                               state.reflections)
+              _ (show-opening! (string.format "%d objects read; lowering them into the shader's tape"
+                                              (length scene.objects))
+                               true)
               (plan perr) (plan-with scene reflections)
+              _ (when plan (show-opening! "generating and compiling the shader" true))
               wait? (and plan (compile-waits? scene plan))
               compiles-before state.cache.compiles
               (shader serr) (if wait? (values nil nil)
@@ -197,7 +223,9 @@ loads the file again once the helper is done, `?since` the time of the first try
                 ;; A new shader is ready once the driver has also built the code it
                 ;; runs, at its first draw: that is part of the compile, not of the
                 ;; first picture.
-                (when (> state.cache.compiles compiles-before) (probe! scene plan))
+                (when (> state.cache.compiles compiles-before)
+                  (show-opening! "the driver builds the shader's code at its first draw" true)
+                  (probe! scene plan))
                 (set state.first-picture {:since (love.timer.getTime) : path})
                 (let [ms (* 1000 (- (love.timer.getTime) start))
                       compiled? (> state.cache.compiles compiles-before)]
@@ -964,6 +992,7 @@ reached the screen."
   ;; A load waits for the scene worker (up to its deadline of 5 s): escape and the
   ;; window's close button still quit meanwhile (other input is dropped).
   (worker.set-waiting! (fn []
+                         (show-opening! "running the scene file in the worker")
                          (love.event.pump)
                          (var quit? false)
                          (each [name a (love.event.poll)]
@@ -971,6 +1000,8 @@ reached the screen."
                              (set quit? true)))
                          (when quit? (set state.quitting? true) (love.event.quit 0))
                          quit?))
+  (set state.opening {:path options.scene :start (love.timer.getTime)})
+  (show-opening! "reading the file" true)
   (load! options.scene true)
   ;; Not when quitting: LÖVE exiting a few ms after the helper's thread started
   ;; crashed (exit 139, 2 runs of 2 in tools/check-stuck-worker.sh).
