@@ -152,6 +152,21 @@
           (assert.is_true (folded? "{:kind :ellipsoid :radii [0.5 0.2 0.1] :rotate [0 20 0] :pos [1 0 0]}"))
           (assert.is_true (folded? "{:kind :subtraction :children [{:kind :capped-cylinder :radius 0.3} {:kind :capped-cylinder :radius 0.05 :pos [0.3 0 0]}]}"))
           (assert.falsy (: (shader "{:kind :sphere :radius 0.2 :pos [1 0 0]}") :find "atan(" 1 true))
+          ;; What the lowering calls symmetric in y is: the same distance and
+          ;; material at (x, -y, z) as at (x, y, z), on the CPU evaluator.
+          (each [_ child (ipairs ["{:kind :mirror :normal [0 1 0] :children [{:kind :sphere :radius 0.2 :pos [1 0.3 0]}]}"
+                                  "{:kind :ellipsoid :radii [0.5 0.2 0.1] :rotate [0 20 0] :pos [1 0 0.2]}"
+                                  "{:kind :smooth-subtraction :radius 0.1 :children [{:kind :torus :pos [0 0 0.1]} {:kind :capped-cylinder :radius 0.05 :pos [0.3 0 0]}]}"
+                                  "{:kind :polar :count 5 :children [{:kind :box :size [0.3 0.1 0.1] :pos [1 0 0]}]}"])]
+            (let [p (plan-of child)
+                  info (. p.tape.objects 1 :info)
+                  ev (emit-lua.compile p.tape)
+                  d (. ev.distance 1)
+                  m (. ev.material 1)]
+              (assert.is_true (. info.symmetric 2) child)
+              (each [_ [x y z] (ipairs (points 100 [2 2 1] 11))]
+                (assert.is_true (< (abs (- (d x y z) (d x (- y) z))) 1e-12) child)
+                (assert.are.same [(m x y z)] [(m x (- y) z)]))))
           ;; Not: off the axis, turned about x, displaced (its sines are odd in y).
           (assert.is_false (folded? "{:kind :sphere :radius 0.2 :pos [1 0.1 0]}"))
           (assert.is_false (folded? "{:kind :ellipsoid :radii [0.5 0.2 0.1] :rotate [20 0 0] :pos [1 0 0]}"))
