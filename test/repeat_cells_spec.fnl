@@ -115,7 +115,8 @@
               operations (require :src.sdf.operations)
               polar (operations.lookup :polar)
               narrow (operations.variant polar {:count 12})
-              shader #(assert (codegen.shader (plan-of (.. "{:kind :polar :count " $ " :children [{:kind :sphere :radius 0.2 :pos [1 0 0]}]}")) :core))]
+              ;; Off the x axis: not symmetric in y, so not folded (see below).
+              shader #(assert (codegen.shader (plan-of (.. "{:kind :polar :count " $ " :children [{:kind :sphere :radius 0.2 :pos [1 0.1 0]}]}")) :core))]
           (assert.truthy (: (shader 3) :find "opPolarNarrow(" 1 true))
           (assert.falsy (: (shader 2) :find "opPolarNarrow(" 1 true))
           ;; The series as the GLSL writes them (Horner in b^2), against math.sin and
@@ -136,6 +137,78 @@
               (let [b (* (/ i 100) (/ math.pi 3))]
                 (assert.is_true (< (abs (- (sin-series b) (math.sin b))) 1e-8))
                 (assert.is_true (< (abs (- (cos-series b) (math.cos b))) 1e-8))))))))
+
+    (it "folds a polar repetition of a child symmetric in y into its half sector"
+      (fn []
+        (let [codegen (require :src.render.codegen)
+              operations (require :src.sdf.operations)
+              polar (operations.lookup :polar)
+              shader #(assert (codegen.shader (plan-of (.. "{:kind :polar :count 12 :children [" $ "]}")) :core))
+              folded? #(not= nil (: (shader $) :find "opPolarFold4x2(" 1 true))]
+          ;; Symmetric in y: centred on the x axis, mirrored across y, turned about y,
+          ;; cut by another such child.
+          (assert.is_true (folded? "{:kind :sphere :radius 0.2 :pos [1 0 0]}"))
+          (assert.is_true (folded? "{:kind :mirror :normal [0 1 0] :children [{:kind :sphere :radius 0.2 :pos [1 0.3 0]}]}"))
+          (assert.is_true (folded? "{:kind :ellipsoid :radii [0.5 0.2 0.1] :rotate [0 20 0] :pos [1 0 0]}"))
+          (assert.is_true (folded? "{:kind :subtraction :children [{:kind :capped-cylinder :radius 0.3} {:kind :capped-cylinder :radius 0.05 :pos [0.3 0 0]}]}"))
+          (assert.falsy (: (shader "{:kind :sphere :radius 0.2 :pos [1 0 0]}") :find "atan(" 1 true))
+          ;; What the lowering calls symmetric in y is: the same distance and
+          ;; material at (x, -y, z) as at (x, y, z), on the CPU evaluator.
+          (each [_ child (ipairs ["{:kind :mirror :normal [0 1 0] :children [{:kind :sphere :radius 0.2 :pos [1 0.3 0]}]}"
+                                  "{:kind :ellipsoid :radii [0.5 0.2 0.1] :rotate [0 20 0] :pos [1 0 0.2]}"
+                                  "{:kind :smooth-subtraction :radius 0.1 :children [{:kind :torus :pos [0 0 0.1]} {:kind :capped-cylinder :radius 0.05 :pos [0.3 0 0]}]}"
+                                  "{:kind :polar :count 5 :children [{:kind :box :size [0.3 0.1 0.1] :pos [1 0 0]}]}"])]
+            (let [p (plan-of child)
+                  info (. p.tape.objects 1 :info)
+                  ev (emit-lua.compile p.tape)
+                  d (. ev.distance 1)
+                  m (. ev.material 1)]
+              (assert.is_true (. info.symmetric 2) child)
+              (each [_ [x y z] (ipairs (points 100 [2 2 1] 11))]
+                (assert.is_true (< (abs (- (d x y z) (d x (- y) z))) 1e-12) child)
+                (assert.are.same [(m x y z)] [(m x (- y) z)]))))
+          ;; Not: off the axis, turned about x, displaced (its sines are odd in y).
+          (assert.is_false (folded? "{:kind :sphere :radius 0.2 :pos [1 0.1 0]}"))
+          (assert.is_false (folded? "{:kind :ellipsoid :radii [0.5 0.2 0.1] :rotate [20 0 0] :pos [1 0 0]}"))
+          (assert.is_false (folded? "{:kind :displace :children [{:kind :sphere :radius 0.2 :pos [1 0 0]}]}"))
+          ;; The GLSL's folds, run here as its lines say with the values its form
+          ;; packs, give the point of the copy the CPU form (atan) finds, or that
+          ;; point mirrored in y, for both cells: for every count, on points around.
+          (each [_ n (ipairs [2 3 4 5 6 7 8 9 10 11 12 13 16 24 31 100 255 256])]
+            (let [form (operations.variant polar {:count n} {:symmetric [true true true]})
+                  text form.glsl
+                  v (form.pack {:count n})
+                  [sector tc ts] v
+                  folds (icollect [row part (text:gmatch "min%(dot%(q, fold(%d)%.(%a%a)%), 0%.0%)")]
+                          (let [at (+ 4 (* 4 (- (tonumber row) 1)) (if (= part "zw") 2 0))]
+                            [(. v at) (. v (+ at 1))]))
+                  both? (not= nil (text:find "abs(p.xy)" 1 true))
+                  swap? (not= nil (text:find "max(q.x, q.y), min(q.x, q.y)" 1 true))]
+              (assert.is_true (or both? (not= nil (text:find "vec2(p.x, abs(p.y))" 1 true))))
+              (assert.are.equal (= 0 (% n 2)) both?)
+              (assert.are.equal (= 0 (% n 4)) swap?)
+              (assert.is_true (<= (length folds) 8))
+              (each [_ [x y] (ipairs (points 300 [3 3 0] n))]
+                (var (qx qy) (values (if both? (abs x) x) (abs y)))
+                (when swap? (set (qx qy) (values (max qx qy) (min qx qy))))
+                (each [_ [nx ny] (ipairs folds)]
+                  (let [d (* 2 (min 0 (+ (* qx nx) (* qy ny))))]
+                    (set (qx qy) (values (- qx (* d nx)) (- qy (* d ny))))))
+                (let [(ax ay) (form.cpu 0 x y 0 sector)
+                      (bx by) (form.cpu 1 x y 0 sector)
+                      sign (if (< (abs (- qy ay)) 1e-9) 1 -1)
+                      ;; The neighbour's point: the folded one turned by the sector.
+                      (rx ry) (values (+ (* tc qx) (* ts qy)) (- (* tc qy) (* ts qx)))]
+                  (assert.is_true (< (abs (- qx ax)) 1e-9) (.. n " sectors: x " qx " " ax))
+                  (assert.is_true (< (abs (- qy (* sign ay))) 1e-9) (.. n " sectors: y " qy " " ay))
+                  (assert.is_true (< (abs (- rx bx)) 1e-9) (.. n " sectors, neighbour: x " rx " " bx))
+                  (assert.is_true (< (abs (- ry (* sign by))) 1e-9) (.. n " sectors, neighbour: y " ry " " by))))))
+          ;; The fold is structure (another key); its lines are values (the same GLSL
+          ;; for 12 and 16 sectors: two folds after the three exact ones).
+          (let [key #(. (plan-of (.. "{:kind :polar :count " $ " :children [{:kind :sphere :radius 0.2 :pos [1 " $2 " 0]}]}")) :tape :key)]
+            (assert.are_not.equal (key 12 0) (key 12 0.1))
+            (assert.are.equal (key 12 0) (key 16 0))
+            (assert.are_not.equal (key 12 0) (key 10 0))))))
 
     (it "bounds a mirror by its child's box and that box's image"
       (fn []

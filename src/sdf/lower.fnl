@@ -197,6 +197,7 @@ translate(rotate(scale(node)))."
      :info (let [bounds (and desc.bounds (desc.bounds node))]
              {:kind node.kind :path node.path :class desc.class :lipschitz desc.lipschitz
               : bounds :box (symmetric-box bounds) :children [] :even desc.even
+              :symmetric (or desc.symmetric desc.even)
               :radius (when desc.bounding-radius (desc.bounding-radius node))})}))
 
 (fn box-of [node desc info children]
@@ -347,8 +348,23 @@ changed."
             (table.insert st.key (.. "blend#" (length blends.list) "[" first.key "]"))
             {: dout : mout :blend? true :children (icollect [_ a (ipairs aside)] a.info)}))))))
 
+(fn symmetric-of [desc node children]
+  "Along each axis, whether a node's distance and material are the same at -v as at v
+(about its origin): see :keeps-symmetric in src/sdf/operations.fnl. A combination
+reads only its children's distances."
+  (fcollect [i 1 3]
+    (if desc.symmetric-of (= true (desc.symmetric-of node children i))
+        (let [keeps (or desc.keeps-symmetric desc.keeps-even (= desc.role :combine))]
+          (and (not= nil keeps) (not= false keeps)
+               (or (= true keeps) (= true (keeps node i)))
+               (accumulate [ok? true _ c (ipairs children)]
+                 (and ok? (= true (?. c :symmetric i)))))))))
+
 (fn lower-operation [st code node desc pin material]
-  (let [form (operations.variant desc node)
+  (let [form (operations.variant desc node (when desc.variant-reads-child?
+                                             (child-info st (. node.children 1))))
+        ;; A form packed its own way (a polar fold's lines).
+        desc-args (if form.args form desc)
         _ (table.insert st.key (.. desc.kind (if node.kernel (.. "/" node.kernel) "")
                                    (if desc.variant-of (.. "/" form.glsl-name) "") "("))
         ;; Twist and bend pack their child's radius: lower the child once aside.
@@ -360,12 +376,12 @@ changed."
                             (error {:lower-error (.. node.path ": " reason)
                                     : reason : node}))
                           (desc.pack node child))
-                        (desc.pack node))
+                        (desc-args.pack node))
         result
         (case desc.role
           :point
           (let [pout (fresh! st "p")
-                args (alloc-args! st desc args-values)
+                args (alloc-args! st desc-args args-values)
                 _ (table.insert code {:op :point :desc form : args : pin : pout})
                 _ (when (and (= desc.kind :translate) (or (= pin "p0") (. st.translated pin)))
                     (tset st.translated pout true))
@@ -384,12 +400,12 @@ changed."
                 dout (fresh! st "d")]
             (use! st form.glsl-name form)
             (table.insert code {:op :distance :desc form
-                                :args (alloc-args! st desc args-values)
+                                :args (alloc-args! st desc-args args-values)
                                 :din child.dout : pin : dout})
             {: dout :mout child.mout :children [child.info]})
           :combine
           (or (blend! st code node desc form args-values pin material)
-              (let [args (alloc-args! st desc args-values)
+              (let [args (alloc-args! st desc-args args-values)
                     lowered (icollect [_ c (ipairs node.children)]
                               (lower-node st code c pin material))]
                 (use! st form.glsl-name form)
@@ -402,7 +418,7 @@ changed."
                     (set (d m) (values dout mout))))
                 {:dout d :mout m :children (icollect [_ c (ipairs lowered)] c.info)}))
           :cells
-          (let [args (alloc-args! st desc args-values)
+          (let [args (alloc-args! st desc-args args-values)
                 cell-p (fresh! st "p")
                 body []
                 child (lower-node st body (. node.children 1) cell-p material)
@@ -430,6 +446,7 @@ changed."
                        (and (accumulate [ok? true _ c (ipairs result.children)]
                               (and ok? (= true (?. c :even i))))
                             (or (= true desc.keeps-even) (desc.keeps-even node i))))))
+    (set info.symmetric (symmetric-of desc node result.children))
     (set info.bounds (desc.bounds-of node result.children))
     (set info.lipschitz (if desc.lipschitz-of (desc.lipschitz-of node result.children) 1))
     (set info.box (box-of node desc info result.children))

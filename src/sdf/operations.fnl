@@ -29,6 +29,13 @@
 ;; and never decreasing along that axis wherever its children's are (see a
 ;; primitive's :even in src/sdf/primitives.fnl): min and max of such functions, and
 ;; moves that leave that coordinate alone, are too.
+;; :keeps-symmetric: true, or (fn [o axis]) -> boolean, when the node's distance and
+;; material are the same at -v as at v along that axis (about its origin) wherever
+;; its children's are: :symmetric in a lowered node's info (a primitive's :symmetric
+;; or :even). Functions of the children's distances (unions, subtractions, smooth
+;; blends, round, onion) and point maps that commute with the reflection keep it; a
+;; :keeps-even node keeps it too. :symmetric-of (fn [o children axis]) -> boolean
+;; instead, for a node symmetric whatever its children (a mirror across that axis).
 
 (local {: sqrt : abs : min : max : floor : sin : cos : log : exp : atan2 : pi} math)
 
@@ -234,6 +241,139 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
 }"
    :cpu polar-cell})
 
+(fn fold-schedule [n]
+  ;; How a polar repetition of `n` sectors folds a point into the half sector
+  ;; [0, pi / n] by reflections: across y = 0 (always), x = 0 (n even) and y = x (n a
+  ;; multiple of 4), each exact in float, then across the lines at the angles listed,
+  ;; each halving (rounded up) the number of half sectors the point may lie in. Every
+  ;; line is at a multiple of pi / n: a mirror line of the copies when the child is
+  ;; symmetric in y.
+  (let [pre (if (= 0 (% n 4)) 4 (= 0 (% n 2)) 2 1)
+        angles []]
+    (var left (/ n pre))
+    (while (> left 1)
+      (let [c (math.ceil (/ left 2))]
+        (table.insert angles (* c (/ pi n)))
+        (set left c)))
+    {: pre : angles}))
+
+(local polar-folds {})
+
+(fn polar-fold [n]
+  ;; The polar form for a child symmetric in y (see :variant-of below): the point
+  ;; folded into its half sector, by fold-schedule's reflections, is the child's point
+  ;; in its own sector or its mirror image there, where the child's value is the same
+  ;; (no atan, no sine or cosine: colonnade's 12 flutes, a quarter of a frame). The
+  ;; neighbour sector's point is the folded one turned by the sector. The CPU form is
+  ;; the atan one, the definition the GPU is checked against. Each fold line's normal
+  ;; (sin a, -cos a), pointing to the kept side, two to a row.
+  (let [{: pre : angles} (fold-schedule n)
+        k (length angles)
+        rows (math.ceil (/ k 2))
+        name (.. "opPolarFold" pre "x" k)]
+    (when (not (. polar-folds name))
+      (let [lines [(.. "vec3 " name "(vec3 p, float sector, vec2 turn, "
+                       (table.concat (fcollect [i 1 rows] (.. "vec4 fold" i ", ")))
+                       "int cell) {")
+                   (if (= pre 1) "    vec2 q = vec2(p.x, abs(p.y));" "    vec2 q = abs(p.xy);")]]
+        (when (= pre 4) (table.insert lines "    q = vec2(max(q.x, q.y), min(q.x, q.y));"))
+        (for [i 1 k]
+          (let [n (.. "fold" (math.ceil (/ i 2)) (if (= 1 (% i 2)) ".xy" ".zw"))]
+            (table.insert lines (.. "    q -= 2.0 * min(dot(q, " n "), 0.0) * " n ";"))))
+        (each [_ l (ipairs ["    float k = float(cell);"
+                            "    float tc = mix(1.0, turn.x, k);"
+                            "    float ts = turn.y * k;"
+                            "    return vec3(tc * q.x + ts * q.y, tc * q.y - ts * q.x, p.z);"
+                            "}"])]
+          (table.insert lines l))
+        (tset polar-folds name
+              {:glsl-name name :glsl (table.concat lines "\n") :cpu polar-cell
+               :args (let [args [{:name :sector :type :float} {:name :turn :type :vec2}]]
+                       (for [i 1 rows] (table.insert args {:name (.. "fold" i) :type :vec4}))
+                       args)
+               :pack (fn [o]
+                       (let [s (/ (* 2 pi) o.count)
+                             out [s (cos s) (sin s)]]
+                         (each [_ a (ipairs (. (fold-schedule o.count) :angles))]
+                           (table.insert out (sin a))
+                           (table.insert out (- (cos a))))
+                         (when (= 1 (% k 2)) (table.insert out 0) (table.insert out 0))
+                         out))})))
+    (. polar-folds name)))
+
+(fn symmetric-rotation? [o axis]
+  ;; A rotation that maps the axis onto itself commutes with the reflection along it.
+  (let [rows (rotation-rows o)]
+    (accumulate [ok? true _ i (ipairs [1 2 3])]
+      (and ok? (or (= i axis)
+                   (and (= 0 (. rows (+ (* 3 (- i 1)) axis)))
+                        (= 0 (. rows (+ (* 3 (- axis 1)) i)))))))))
+
+(fn axis-permutation [o]
+  ;; "ZYX" and the like when the rotation only permutes the axes (with signs): each
+  ;; row of the child's matrix has one entry of magnitude 1 (within 1e-12; cos 90
+  ;; degrees is 6e-17 in double) and the rest 0. The letter is the column of row i's
+  ;; entry: the coordinate the child's i-th one is taken from.
+  (let [rows (rotation-rows o)
+        letters []]
+    (for [i 1 3]
+      (var found nil)
+      (var ok? true)
+      (for [j 1 3]
+        (let [v (abs (. rows (+ (* 3 (- i 1)) j)))]
+          (if (< (abs (- v 1)) 1e-12) (if found (set ok? false) (set found j))
+              (>= v 1e-12) (set ok? false))))
+      (table.insert letters (when (and ok? found) (. ["X" "Y" "Z"] found))))
+    (when (= 3 (length letters)) (table.concat letters))))
+
+(local rotate-permutations {})
+
+(fn rotate-permutation [perm]
+  ;; The rotation by swizzles: each coordinate of the child's point is one of the
+  ;; point's times its row's entry there (+-1; the 6e-17 beside it left out: under
+  ;; float32's rounding of the product). 3 multiplications instead of 3 dot products
+  ;; (colonnade's arches, a quarter turn about y: 3% of a frame). The CPU form keeps
+  ;; the whole matrix.
+  (when (not (. rotate-permutations perm))
+    (let [name (.. "opRotate" perm)
+          terms (fcollect [i 1 3]
+                  (let [c (: (perm:sub i i) :lower)]
+                    (.. "r" (- i 1) "." c " * p." c)))]
+      (tset rotate-permutations perm
+            {:glsl-name name
+             :glsl (.. "vec3 " name "(vec3 p, vec3 r0, vec3 r1, vec3 r2) {\n"
+                       "    return vec3(" (table.concat terms ", ") ");\n}")
+             :cpu (fn [x y z a b c d e f g h i]
+                    (values (+ (* a x) (* b y) (* c z)) (+ (* d x) (* e y) (* f z))
+                            (+ (* g x) (* h y) (* i z))))})))
+  (. rotate-permutations perm))
+
+(fn mirror-cpu [x y z nx ny nz]
+  (let [k (* 2 (min (+ (* x nx) (* y ny) (* z nz)) 0))]
+    (values (- x (* k nx)) (- y (* k ny)) (- z (* k nz)))))
+
+;; A mirror across a plane of the axes (a normal of +-1 along one axis, 0 on the
+;; others): the coordinate along it made +-|v|, the same floats as the general form's
+;; p - 2 min(p.n, 0) n, in 1 operation instead of 7 (colonnade's two rows of
+;; columns: 4% of a frame).
+(local mirror-axes
+  (collect [i axis (ipairs ["x" "y" "z"])]
+    i (let [name (.. "opMirror" (axis:upper))
+            parts (icollect [_ a (ipairs ["x" "y" "z"])]
+                    (if (= a axis) (.. "n." a " * abs(p." a ")") (.. "p." a)))]
+        {:glsl-name name
+         :glsl (.. "vec3 " name "(vec3 p, vec3 n) {\n    return vec3("
+                   (table.concat parts ", ") ");\n}")
+         :cpu mirror-cpu})))
+
+(fn mirror-axis [o]
+  ;; 1, 2 or 3 when the normal is +-1 along that axis and 0 along the others.
+  (accumulate [found nil i v (ipairs o.normal)]
+    (if (= 1 (abs v)) (when (= 2 (accumulate [zeros 0 _ w (ipairs o.normal)]
+                                   (if (= 0 w) (+ zeros 1) zeros)))
+                        i)
+        found)))
+
 (local operations
   [;;; Transforms
    {:kind :translate :role :point
@@ -273,6 +413,8 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     :cpu (fn [x y z a b c d e f g h i]
            (values (+ (* a x) (* b y) (* c z)) (+ (* d x) (* e y) (* f z))
                    (+ (* g x) (* h y) (* i z))))
+    :variant-of (fn [o] (let [perm (axis-permutation o)] (when perm (rotate-permutation perm))))
+    :keeps-symmetric symmetric-rotation?
     :class-of first-class
     :bounds-of rotate-bounds}
    {:kind :scale :role :point
@@ -286,6 +428,7 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     return p / s;
 }"
     :cpu (fn [x y z s] (values (/ x s) (/ y s) (/ z s)))
+    :keeps-symmetric true
     :post {:glsl-name "opScaleDistance"
            :glsl "float opScaleDistance(float d, vec3 p, float s) {
     return d * s;
@@ -307,6 +450,7 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     return p / s;
 }"
     :cpu (fn [x y z sx sy sz] (values (/ x sx) (/ y sy) (/ z sz)))
+    :keeps-symmetric true
     ;; d(p / s) changes at most 1 / min(s) per unit: times min(s) it is a bound.
     :post {:glsl-name "opStretchDistance"
            :glsl "float opStretchDistance(float d, vec3 p, vec3 s, float m) {
@@ -329,11 +473,14 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     :glsl "vec3 opMirror(vec3 p, vec3 n) {
     return p - 2.0 * min(dot(p, n), 0.0) * n;
 }"
-    :cpu (fn [x y z nx ny nz]
-           (let [k (* 2 (min (+ (* x nx) (* y ny) (* z nz)) 0))]
-             (values (- x (* k nx)) (- y (* k ny)) (- z (* k nz)))))
+    :cpu mirror-cpu
+    :variant-of (fn [o] (. mirror-axes (mirror-axis o)))
     ;; A normal across the axis leaves that coordinate alone.
     :keeps-even (fn [o axis] (= 0 (. o.normal axis)))
+    ;; Mirrored across that axis itself, symmetric whatever the child.
+    :symmetric-of (fn [o children axis]
+                    (or (= 1 (abs (. o.normal axis)))
+                        (and (= 0 (. o.normal axis)) (= true (?. children 1 :symmetric axis)))))
     ;; The box of the child's box and its mirror image: holds the kept half and its
     ;; image (tighter than the bounds' circle about the normal).
     :box-of (fn [o [child]]
@@ -370,6 +517,7 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     :cpu (fn [x y z hx hy hz]
            (values (- x (max (- hx) (min hx x))) (- y (max (- hy) (min hy y)))
                    (- z (max (- hz) (min hz z)))))
+    :keeps-symmetric true
     ;; Exact outside; inside the inserted part the distance is 0 or the child's.
     :class-of first-class
     :bounds-of (fn [o children]
@@ -483,8 +631,15 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     ;; From 3 sectors on, the point's angle within its sector is at most 60 degrees
     ;; either way: its sine and cosine by their series there (exact to float), and
     ;; the neighbour sector's point turned from the own one by the sector (llvmpipe's
-    ;; sin and cos cost more; colonnade: 6% of a frame).
-    :variant-of (fn [o] (when (>= o.count 3) polar-narrow))
+    ;; sin and cos cost more; colonnade: 6% of a frame). A child symmetric in y (its
+    ;; lowered info, read first) is folded into its half sector instead (polar-fold).
+    :variant-reads-child? true
+    :variant-of (fn [o ?child]
+                  (if (and (> o.count 1) (?. ?child :symmetric 2)) (polar-fold o.count)
+                      (>= o.count 3) polar-narrow))
+    ;; Copies turned about z: symmetric in z as the child is, and in y (the copy at
+    ;; angle a mirrored is the one at -a, the child mirrored).
+    :keeps-symmetric (fn [_ axis] (not= axis 1))
     :glsl-name "opPolar"
     :glsl "vec3 opPolar(vec3 p, float sector, vec2 turn, int cell) {
     float a = atan(p.y, p.x);
@@ -529,6 +684,7 @@ i.e. the transpose, of the rotation): [r1x r1y r1z r2x ... r3z]."
     return abs(d) - t;
 }"
     :cpu (fn [d _ _ _ t] (- (abs d) t))
+    :keeps-symmetric true
     :class-of first-class
     :bounds-of (fn [o children] (grow-bounds (. children 1 :bounds) o.thickness))}
    {:kind :displace :role :distance
@@ -759,11 +915,13 @@ float wStairsUnion(float a, float b, float r, float n) {
 
 (local by-kind (collect [_ d (ipairs operations)] d.kind d))
 
-(fn variant [d o]
+(fn variant [d o ?child]
   "The GLSL and CPU forms of operation `d` for node `o` (kernel variants; a
-repetition's for the axes it repeats along)."
+repetition's for the axes it repeats along; a polar one's for its child, whose
+lowered info `?child` is when `d` has :variant-reads-child?). A form with its own
+:args and :pack is packed by them."
   (if d.variants (. d.variants (or o.kernel :poly))
-      d.variant-of (or (d.variant-of o) d)
+      d.variant-of (or (d.variant-of o ?child) d)
       d))
 
 (fn lookup [kind]

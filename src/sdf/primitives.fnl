@@ -19,6 +19,10 @@
 ;;                coordinates held (a box, a sphere, a cylinder along z). A repetition
 ;;                of a centred child like that needs only the point's own cell: every
 ;;                other copy is farther (see src/sdf/lower.fnl)
+;;   :symmetric   optional [x y z] booleans: along each true axis the distance is the
+;;                same at -v as at v (:even implies it). A polar repetition of a child
+;;                symmetric in y folds the point into its sector by reflections (see
+;;                polar-fold in src/sdf/operations.fnl)
 ;;   :args        [{:name :type}] the arguments of the GLSL function after p, with
 ;;                GLSL types :float :vec2 :vec3 :vec4
 ;;   :pack        (fn [o]) -> flat list of numbers for :args, in order

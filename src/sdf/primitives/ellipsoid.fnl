@@ -15,6 +15,8 @@
  :doc "Ellipsoid with semi-axes :radii along x, y and z."
  :params [{:name :radii :type :size3 :default [1 0.75 0.5]}]
  :class :bound
+ ;; The same at -v as at v in each coordinate (see :symmetric in src/sdf/primitives.fnl).
+ :symmetric [true true true]
  :args [{:name :r :type :vec3} {:name :rmin :type :float}]
  :pack (fn [o] (let [[x y z] o.radii] [x y z (min x y z)]))
  :glsl-name "sdEllipsoid"

@@ -6,6 +6,8 @@
  :params [{:name :radius :type :positive :default 1}
           {:name :thickness :type :positive :default 0.25}]
  :class :exact
+ ;; The same at -v as at v in each coordinate (see :symmetric in src/sdf/primitives.fnl).
+ :symmetric [true true true]
  :args [{:name :r :type :float} {:name :t :type :float}]
  :pack (fn [o] [o.radius o.thickness])
  :glsl-name "sdTorus"
