@@ -48,7 +48,7 @@ int fieldCellIndex(ivec3 c) {
     return c.x + n.x * (c.y + n.y * c.z);
 }
 
-// The start of a lean walk (march-field-alone.glsl, march-field-spheres.glsl): the ray
+// The start of a lean walk (march.glsl's start-walk, before-walk): the ray
 // ro + rd t, field-local q0 + rd t with `inv` the reciprocal of its safe direction,
 // is in the grid from gridIn to tEnd (its exit, or tPast if sooner); false when that
 // span is empty. The cell it enters, by number (`index`); where it next crosses a wall
