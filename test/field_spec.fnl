@@ -291,7 +291,7 @@
               p (assert (plan.scene->plan s))
               text (assert (codegen.shader p :core))]
           (assert.is_truthy (text:find "float fieldMap(vec3 p, int skip, out int best)" 1 true))
-          (assert.is_truthy (text:find "index += int(dot(m, stride));" 1 true))
+          (assert.is_truthy (text:find "fieldNextCell(tNext, index, tDelta, stride);" 1 true))
           ;; Nothing but the field and the floor: the lean walk.
           (assert.is_truthy (text:find "nothing is sphere-traced" 1 true))
           ;; Every object's normal in closed form: the plane's, the field's.

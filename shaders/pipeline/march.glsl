@@ -172,10 +172,7 @@ int evals = 0;
 
 // @part cell-enter
 if (state == 0 && t >= gridIn) {
-    vec3 q = q0 + rd * t;
-    cell = clamp(ivec3(floor(q / uFieldCell)), ivec3(0), dims - 1);
-    vec3 wall = (vec3(cell) + step(vec3(0.0), safe)) * uFieldCell;
-    tNext = (wall - q0) * inv;
+    cell = fieldCellAt(q0, rd, t, safe, inv, tNext);
     state = 1;
     cellEnd = min(tNext.x, min(tNext.y, tNext.z));
 }
@@ -208,10 +205,7 @@ if (t + d < cellEnd) {
     if (state == 0) {
         // (the grid's entry: the cell is found at the top of the loop)
     } else if (state == 1) {
-        // On along the axis (or axes, at a tie) whose wall comes first.
-        vec3 m = step(tNext, min(tNext.yzx, tNext.zxy));
-        tNext += m * tDelta;
-        cell += ivec3(m) * stepDir;
+        cell += ivec3(fieldNextWall(tNext, tDelta)) * stepDir;
         if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, dims))) {
             state = 2;
             cellEnd = uDrawDist;
