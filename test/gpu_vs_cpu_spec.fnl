@@ -349,8 +349,8 @@
                 (let [prepared (prepared-for "scenes/city.fnl" :shaded)
                       budget (budget-for "city" :shaded)
                       (source n) (: (codegen.shader prepared.plan :core) :gsub
-                                    "index %+= int%(dot%(m, stride%)%);"
-                                    "index += int(dot(m * vec3(0.0, 1.0, 1.0), stride));")]
+                                    "index %+= int%(dot%(fieldNextWall%(tNext, tDelta%), stride%)%);"
+                                    "index += int(dot(fieldNextWall(tNext, tDelta) * vec3(0.0, 1.0, 1.0), stride));")]
                   (assert.truthy prepared.plan.field)
                   (assert.are.equal 1 n)
                   (let [st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
