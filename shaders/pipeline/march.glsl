@@ -1,15 +1,17 @@
 // The primary march: every shader's one raymarchTo (raymarch when unbounded), made
 // from this chunk alone by src/render/codegen.fnl (march-lines). Part `march` is the
-// skeleton every form shares: the signature, the start (slot start), steps = 0, what
-// comes before the loop (an early exit, the walk's state), a loop of @{turns} turns
-// whose body is slot step, and what a ray out of turns returns (slot out-of-steps).
-// The other parts fill its slots, one form of the march each:
+// skeleton every form shares: the form's comment (slot about), the signature, the
+// start (slot start), steps = 0, what comes before the loop (an early exit, the
+// walk's state), a loop of @{turns} turns whose body is slot step, and what a ray out
+// of turns returns (slot out-of-steps); bounded, raymarch is raymarchTo up to the
+// draw distance (to-draw-distance). The other parts fill its slots, one form each:
 // - Sphere tracing (about-trace): plain or over-relaxed, unbounded or bounded. Its
 //   distance at each step and its start's hit limit (trace-start, trace-before,
 //   trace-step) are shared with the field's general walk.
 // - Through a field's grid (about-field): the general walk, where other finite
 //   objects are sphere-traced alongside the grid's cells; its start is the bounded
-//   march's with the grid's span joined to the bounding spheres' (grid-span).
+//   march's with the grid's span joined to the bounding spheres' (grid-span), and it
+//   enters and crosses cells as the lean walks do (fieldCellAt, fieldNextWall).
 // - The field's lean walks, where the field is the only finite thing (beside ground
 //   planes), from one start (start-walk, before-walk; fieldWalkStart and
 //   fieldNextCell are in field.glsl): one cell a turn (about-cells, step-cells), or
@@ -155,7 +157,8 @@ vec2 box = fieldBoxSpan(q0, inv);
 float gridIn = box.x;
 float gridOut = box.y;
 bool grid = gridIn < gridOut;
-// (The bounding spheres' span is (draw distance, 0) when the ray meets none.)
+// The grid's span joined to the bounding spheres' (theirs is (draw distance, 0) when
+// the ray meets none).
 span = grid ? vec2(min(span.x, gridIn), max(span.y, gridOut)) : span;
 
 // @part walk-state
