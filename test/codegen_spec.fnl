@@ -420,3 +420,102 @@
       (fn []
         (let [(code) (validate (.. (codegen.shader seed-plan :core) "\nfloat broken( {\n"))]
           (assert.are_not.equal 0 code))))))
+
+(describe "codegen: one primary march"
+  (fn []
+    (fn field-scene [extra spheres-only?]
+      ;; 300 spheres and boxes (only spheres when asked) over a floor: a field, beside
+      ;; the objects `extra` adds.
+      (load (.. "(var seed 7)
+(fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))
+(local objects [{:kind :plane :height 0 :color [0.6 0.6 0.6]} " extra "])
+(for [i 1 300]
+  (let [x (+ -20 (* 40 (rnd))) y (+ -20 (* 40 (rnd))) z (+ 0.5 (* 10 (rnd)))
+        r (+ 0.2 (* 0.5 (rnd)))]
+    (table.insert objects (if (and (= 0 (% i 2)) " (if spheres-only? "false" "true") ")
+                              {:kind :box :pos [x y z] :size [r (* 2 r) r]}
+                              {:kind :sphere :pos [x y z] :radius r}))))
+{:camera {:pos [0 -35 12] :pitch 15} :render {:shadows true :reflections 1} :objects objects}")))
+
+    (fn definition [text signature]
+      ;; The definitions of the function whose first line is `signature`, each up to
+      ;; its closing brace at the start of a line.
+      (let [out []]
+        (var at 1)
+        (while at
+          (let [(s e) (text:find (.. "\n" signature) at true)]
+            (if s
+                (let [(_ close) (text:find "\n}\n" e true)]
+                  (table.insert out (text:sub (+ s 1) close))
+                  (set at close))
+                (set at nil))))
+        out))
+
+    ;; Every form of the march, with what only its march holds.
+    (local forms
+      [["plain, unbounded (the article's)" seed "t += d;\n        if (d < threshold || t >= uDrawDist)"]
+       ["over-relaxed, bounded" (load "{:objects [{:kind :sphere} {:kind :plane}]}") "omega = 1.0;"]
+       ["a field beside a torus" (field-scene "{:kind :torus :pos [0 0 4]}")
+        "fieldListEntry(int(list.x), int(list.y), q0, rd, inv);\n                evaluated = true;"]
+       ["a field alone" (field-scene "")
+        "fieldNextCell(tNext, index, tDelta, stride);"]
+       ["a field of spheres alone" (field-scene "" true)
+        "fieldRead(uFieldWalk, uFieldRows.w, inList ? next : index);"]])
+
+    (it "has one primary march chunk: shaders/pipeline/march.glsl"
+      (fn []
+        (let [p (assert (io.popen "ls shaders/pipeline shaders/pipeline/*/"))
+              marches (icollect [name (p:lines)] (when (name:find "march" 1 true) name))]
+          (p:close)
+          (assert.are.same ["march.glsl"] marches))))
+
+    (it "assembles every form's march from march.glsl's one skeleton"
+      (fn []
+        ;; march.glsl read with a marker line in its skeleton (part march): every
+        ;; shader's one primary march, raymarchTo (bounded) or raymarch, holds it,
+        ;; and nothing else does.
+        (let [marker "// (the skeleton of march.glsl)"
+              signature "float @{march}(vec3 ro, vec3 rd, @{range}out int steps) {\n"
+              marked {:n 0}]
+          (codegen.set-reader!
+           (fn [path]
+             (let [f (assert (io.open path :rb))
+                   text (f:read :*a)]
+               (f:close)
+               (if (= path "shaders/pipeline/march.glsl")
+                   (let [(t n) (text:gsub (signature:gsub "%p" "%%%0")
+                                          (.. signature "    " marker "\n"))]
+                     (set marked.n n)
+                     t)
+                   text))))
+          (let [(ok err)
+                (pcall
+                 #(each [_ [name s only] (ipairs forms)]
+                    (each [_ view (ipairs plan.views)]
+                      (let [p (assert (plan.scene->plan s {: view}))
+                            text (assert (codegen.shader p :core))
+                            bounded? (not= nil p.bounds)
+                            marches (definition text (if bounded?
+                                                         "float raymarchTo(vec3 ro, vec3 rd, float tMax, out int steps) {"
+                                                         "float raymarch(vec3 ro, vec3 rd, out int steps) {"))
+                            (_ markers) (text:gsub (marker:gsub "%p" "%%%0") "")]
+                        (assert (= 1 marked.n) "march.glsl's skeleton signature not found")
+                        (assert (= 1 (length marches)) (.. name ", " view ": " (length marches) " primary marches"))
+                        (assert (= 1 markers) (.. name ", " view ": the marker " markers " times"))
+                        (assert (has? (. marches 1) marker)
+                                (.. name ", " view ": the primary march is not march.glsl's skeleton"))
+                        (assert (has? (. marches 1) only) (.. name ", " view ": not the form's march"))
+                        (when bounded?
+                          (assert.are.same
+                           ["float raymarch(vec3 ro, vec3 rd, out int steps) {\n    return raymarchTo(ro, rd, uDrawDist, steps);\n}\n"]
+                           (definition text "float raymarch(vec3 ro, vec3 rd, out int steps) {")))))))]
+            (codegen.set-reader! (fn [path]
+                                   (case (io.open path :rb)
+                                     f (let [text (f:read :*a)] (f:close) text))))
+            (assert (= true ok) (tostring err))))))
+
+    (it "writes every form's march as glslangValidator accepts it"
+      (fn []
+        (each [_ [name s] (ipairs forms)]
+          (let [(code out) (validate (codegen.shader (assert (plan.scene->plan s)) :core))]
+            (assert (= 0 code) (.. name ": " out))))))))

@@ -296,7 +296,7 @@
               p (assert (plan.scene->plan s))
               text (assert (codegen.shader p :core))]
           (assert.is_truthy (text:find "float fieldMap(vec3 p, int skip, out int best)" 1 true))
-          (assert.is_truthy (text:find "index += int(dot(m, stride));" 1 true))
+          (assert.is_truthy (text:find "fieldNextCell(tNext, index, tDelta, stride);" 1 true))
           ;; Nothing but the field and the floor: the lean walk.
           (assert.is_truthy (text:find "nothing is sphere-traced" 1 true))
           ;; Every object's normal in closed form: the plane's, the field's.
@@ -317,7 +317,7 @@
 
     (it "walk a field of spheres through lists of its own, as brute force finds the first sphere"
       (fn []
-        ;; Spheres alone: march-field-spheres.glsl and its lists (the reference walks
+        ;; Spheres alone: march.glsl's step-spheres and its lists (the reference walks
         ;; them too). 2000 spheres of radius 0.2 to 0.7 leave many cells listing
         ;; several, so the list turns are walked.
         (let [p (walks-as-brute-force (scattered 2000 nil nil true))
@@ -383,7 +383,7 @@
 
     (it "walk a field of spheres as the shader does, jumping across empty cells, to the first sphere"
       (fn []
-        ;; field.walk, march-field-spheres.glsl on the CPU (the walk texture as the
+        ;; field.walk, march.glsl's step-spheres on the CPU (the walk texture as the
         ;; shader reads it): the ray's first sphere as brute force finds it, at the
         ;; benchmark's grid and at finer ones whose empty cells have wide clearances
         ;; (the walk jumps across several cells at once).

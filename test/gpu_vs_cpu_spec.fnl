@@ -255,7 +255,7 @@
 
             (it "walks a field beside other objects (a tree, a ground plane) as the reference does"
               (fn []
-                ;; The general walk (march-field.glsl): the torus is sphere-traced
+                ;; The general walk (march.glsl's step-field): the torus is sphere-traced
                 ;; alongside the field's cells. Measured: 0 of 512 pixels over, max
                 ;; 0.5/255; the budget allows a flipped silhouette pixel or two.
                 (with-open [f (assert (io.open "test/out/field-beside-torus.fnl" :wb))]
@@ -283,7 +283,7 @@
 
             (it "walks a field of spheres as the reference does, and catches a walk that skips lists"
               (fn []
-                ;; march-field-spheres.glsl: 2000 spheres of radius 0.2 to 0.7, so that
+                ;; march.glsl's step-spheres: 2000 spheres of radius 0.2 to 0.7, so that
                 ;; many cells list several (a turn per sphere). A walk that never
                 ;; starts a cell's list misses the spheres of those cells.
                 (with-open [f (assert (io.open "test/out/field-of-spheres.fnl" :wb))]
@@ -349,8 +349,8 @@
                 (let [prepared (prepared-for "scenes/city.fnl" :shaded)
                       budget (budget-for "city" :shaded)
                       (source n) (: (codegen.shader prepared.plan :core) :gsub
-                                    "index %+= int%(dot%(m, stride%)%);"
-                                    "index += int(dot(m * vec3(0.0, 1.0, 1.0), stride));")]
+                                    "index %+= int%(dot%(fieldNextWall%(tNext, tDelta%), stride%)%);"
+                                    "index += int(dot(fieldNextWall(tNext, tDelta) * vec3(0.0, 1.0, 1.0), stride));")]
                   (assert.truthy prepared.plan.field)
                   (assert.are.equal 1 n)
                   (let [st (compare-image prepared (gpu-render ctx prepared {:source #source}))]

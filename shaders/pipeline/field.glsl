@@ -48,7 +48,24 @@ int fieldCellIndex(ivec3 c) {
     return c.x + n.x * (c.y + n.y * c.z);
 }
 
-// The start of a lean walk (march-field-alone.glsl, march-field-spheres.glsl): the ray
+// The cell the ray q0 + rd t (field-local; `safe` its safe direction, `inv` the
+// reciprocal of that) is in at t, clamped to the grid, and where the ray next crosses
+// a wall of it along each axis (tNext): where a walk enters the grid.
+ivec3 fieldCellAt(vec3 q0, vec3 rd, float t, vec3 safe, vec3 inv, out vec3 tNext) {
+    ivec3 cell = clamp(ivec3(floor((q0 + rd * t) / uFieldCell)), ivec3(0), ivec3(uFieldDims) - 1);
+    tNext = ((vec3(cell) + step(vec3(0.0), safe)) * uFieldCell - q0) * inv;
+    return cell;
+}
+
+// A walk's step to the next wall along the ray: the axis (or axes, at a tie) whose
+// wall comes first (1 in m), whose crossing moves on by tDelta.
+vec3 fieldNextWall(inout vec3 tNext, vec3 tDelta) {
+    vec3 m = step(tNext, min(tNext.yzx, tNext.zxy));
+    tNext += m * tDelta;
+    return m;
+}
+
+// The start of a lean walk (march.glsl's start-walk, before-walk): the ray
 // ro + rd t, field-local q0 + rd t with `inv` the reciprocal of its safe direction,
 // is in the grid from gridIn to tEnd (its exit, or tPast if sooner); false when that
 // span is empty. The cell it enters, by number (`index`); where it next crosses a wall
@@ -63,21 +80,16 @@ bool fieldWalkStart(vec3 ro, vec3 rd, float tPast, out vec3 q0, out vec3 inv, ou
     vec2 box = fieldBoxSpan(q0, inv);
     gridIn = box.x;
     tEnd = min(box.y, tPast);
-    ivec3 cell = clamp(ivec3(floor((q0 + rd * gridIn) / uFieldCell)), ivec3(0),
-                       ivec3(uFieldDims) - 1);
+    ivec3 cell = fieldCellAt(q0, rd, gridIn, safe, inv, tNext);
     tDelta = uFieldCell * abs(inv);
-    tNext = ((vec3(cell) + step(vec3(0.0), safe)) * uFieldCell - q0) * inv;
     index = fieldCellIndex(cell);
     stride = sign(safe) * vec3(1.0, uFieldDims.x, uFieldDims.x * uFieldDims.y);
     return gridIn < tEnd;
 }
 
-// A lean walk's step into the next cell: along the axis (or axes, at a tie) whose
-// wall comes first.
+// A lean walk's step into the next cell, by number.
 void fieldNextCell(inout vec3 tNext, inout int index, vec3 tDelta, vec3 stride) {
-    vec3 m = step(tNext, min(tNext.yzx, tNext.zxy));
-    tNext += m * tDelta;
-    index += int(dot(m, stride));
+    index += int(dot(fieldNextWall(tNext, tDelta), stride));
 }
 
 // The nearest object listed in cell `cell` to the field-local point q, skipping

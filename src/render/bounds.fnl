@@ -2,7 +2,7 @@
 ;; sphere for every finite object, and the half-spaces (ground planes) met in closed
 ;; form. A ray then marches only the finite objects, only over the span where it is
 ;; inside some object's bound, and stops at the nearest plane. Pure: runs under plain
-;; LuaJIT; the GLSL (shaders/pipeline/march-bounded.glsl) and the CPU reference
+;; LuaJIT; the GLSL (shaders/pipeline/march.glsl, bounded) and the CPU reference
 ;; (src/verify/reference.fnl) follow the same rules.
 
 ;; From this radius on a sphere loses float32 precision near its surface.

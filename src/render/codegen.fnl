@@ -291,28 +291,70 @@ along the ray (see gridCellAlong in shaders/pipeline/grid.glsl)."
   ;; The march's distance call: map's or mapFinite's, along the ray with grids.
   (.. (if plan.bounds "mapFinite" "map") (if plan.grids "Along" "")))
 
+(fn march-form [plan]
+  ;; The plan's form of the primary march (shaders/pipeline/march.glsl): sphere
+  ;; tracing (:trace), or through a field's grid: the general walk, beside other
+  ;; finite objects (:field), or a lean walk of the field alone: one cell a turn
+  ;; (:cells), or a field of spheres only, one texel a turn (:spheres).
+  (if (not plan.field) :trace
+      (< 0 plan.bounds.count) :field
+      plan.field.walk? :spheres
+      :cells))
+
 (fn march-lines [plan count-step out-of-steps]
-  ;; The primary march (shaders/pipeline/march.glsl) in the form the plan needs:
-  ;; plain or over-relaxed, over the whole scene or bounded (mapFinite over the
-  ;; bounding spheres' span, planes in closed form).
+  "The primary march, raymarchTo (raymarch when unbounded), from
+shaders/pipeline/march.glsl alone: its skeleton (part march) with the slots filled
+by the parts of the plan's form (march-form): sphere tracing, plain or
+over-relaxed, over the whole scene or bounded (mapFinite over the bounding spheres'
+span, planes in closed form); or a walk through a field's grid, the general one
+(the other finite objects sphere-traced alongside) or a lean one. `count-step` and
+`out-of-steps` fill the slots of those names."
   (let [path "shaders/pipeline/march.glsl"
         bounded? (not= nil plan.bounds)
         part #(fill-part path $1 (or $2 {}))
-        step (if plan.relaxed?
-                 (part :step-relaxed {:count-step count-step
-                                      :relaxed-end (part (if bounded? :relaxed-end-bounded
-                                                             :relaxed-end-unbounded))})
-                 (part (if bounded? :step-plain-bounded :step-plain) {:count-step count-step}))]
-    [(part :march {:march (if bounded? "raymarchTo" "raymarch")
-                   :range (if bounded? "float tMax, " "")
-                   :map (march-map plan)
-                   :ray (if plan.grids ", rd" "")
-                   :first (if bounded? "t == 0.0 && " "")
-                   :start [(part (if bounded? :start-bounded :start-unbounded))
-                           (if plan.relaxed? (part :relaxed-state {:t-prev (if bounded? "t" "0.0")}) [])]
-                   :before-loop (if bounded? (part :before-bounded) [])
-                   : step
-                   :out-of-steps out-of-steps})
+        ;; Sphere tracing's distance at each step (the general walk's as well).
+        trace-step #(part :trace-step {:map (march-map plan)
+                                       :ray (if plan.grids ", rd" "")
+                                       :first (if bounded? "t == 0.0 && " "")})
+        slots (case (march-form plan)
+                :trace {:about (part :about-trace)
+                        :start [(part :trace-start)
+                                (if bounded? (part :start-bounded {:grid-span []})
+                                    (part :start-unbounded))
+                                (if plan.relaxed?
+                                    (part :relaxed-state {:t-prev (if bounded? "t" "0.0")})
+                                    [])]
+                        :before-loop [(if bounded? (part :before-bounded) []) (part :trace-before)]
+                        :turns "uMaxSteps"
+                        :step [(trace-step)
+                               (if plan.relaxed?
+                                   (part :step-relaxed
+                                         {:count-step count-step
+                                          :relaxed-end (part (if bounded? :relaxed-end-bounded
+                                                                 :relaxed-end-unbounded))})
+                                   (part (if bounded? :step-plain-bounded :step-plain)
+                                         {:count-step count-step}))]}
+                ;; (A field's forms count their own steps: cells and points evaluated.)
+                :field {:about (part :about-field)
+                        :start [(part :trace-start)
+                                (part :start-bounded {:grid-span (part :grid-span)})]
+                        :before-loop [(part :before-bounded) (part :walk-state) (part :trace-before)]
+                        :turns "uMaxSteps + uFieldCrossings + 1"
+                        :step [(part :cell-enter) (trace-step) (part :step-field)]}
+                :cells {:about (part :about-cells)
+                        :start (part :start-walk)
+                        :before-loop (part :before-walk)
+                        :turns "uFieldCrossings + 1"
+                        :step (part :step-cells)}
+                :spheres {:about (part :about-spheres)
+                          :start (part :start-walk)
+                          :before-loop [(part :before-walk) (part :spheres-state)]
+                          :turns "uFieldTurns + 1"
+                          :step (part :step-spheres)})]
+    [(part :march (doto slots
+                    (tset :march (if bounded? "raymarchTo" "raymarch"))
+                    (tset :range (if bounded? "float tMax, " ""))
+                    (tset :out-of-steps out-of-steps)))
      (if bounded? ["" (part :to-draw-distance)] [])]))
 
 (fn mirror-slots [plan]
@@ -436,18 +478,7 @@ only when the plan has it."
     ;; Only the glow and heat views read the step count; elsewhere it is not kept.
     (let [count-step (if (or plan.glow? (= view :glow) (= view :heat))
                          ["steps = i + 1;"] [])]
-      (table.insert sections
-                    (if plan.field
-                        (fill (if (and (= 0 plan.bounds.count) plan.field.walk?)
-                                  "shaders/pipeline/march-field-spheres.glsl"
-                                  (= 0 plan.bounds.count)
-                                  "shaders/pipeline/march-field-alone.glsl"
-                                  "shaders/pipeline/march-field.glsl")
-                              {:count-step count-step
-                               :map (march-map plan)
-                               :ray (if plan.grids ", rd" "")
-                               :out-of-steps (out-of-steps-lines plan)})
-                        (march-lines plan count-step (out-of-steps-lines plan)))))
+      (table.insert sections (march-lines plan count-step (out-of-steps-lines plan))))
     (when normals?
       (table.insert sections (fill "shaders/pipeline/normal.glsl"
                                    ;; The method differentiates the scene's map, or with

@@ -3,8 +3,9 @@
 ;; in order (a 3D DDA) and sphere-traces only the objects listed in the cell it is in,
 ;; so an empty cell costs one lookup and a full one a few objects, whatever the scene's
 ;; size. Pure: runs under plain LuaJIT. The shader (shaders/pipeline/field.glsl and
-;; march-field.glsl) and the CPU reference (src/verify/reference.fnl) walk the same
-;; grid with the same arithmetic; brute force over every object is the tests' oracle.
+;; march.glsl's field walks) and the CPU reference (src/verify/reference.fnl) walk
+;; the same grid with the same arithmetic; brute force over every object is the
+;; tests' oracle.
 ;;
 ;; Every object of a field is a rounded box: centre c, half extents h, radius r. A
 ;; sphere is h = 0 (distance |p - c| - r, exact); a box is r = 0 (exact). One formula,
@@ -56,7 +57,7 @@
 ;; (up to one cell side).
 (local reach-fraction 0.05)
 (local wide-reach-fraction 0.25)
-;; The walk of a field of spheres only (march-field-spheres.glsl) reads lists of its
+;; The walk of a field of spheres only (march.glsl's step-spheres) reads lists of its
 ;; own, grown by a hundredth of the smallest cell side: the walk meets an object in a
 ;; cell its surface is in, so it needs no reach but a margin for float rounding at
 ;; the walls (an entry computed just past a wall is still met). Shorter lists than
@@ -284,7 +285,7 @@ texture."
 (local tiny-radius 1e-30)
 
 (fn walk-texture [field]
-  ;; A field of spheres only: the texture its walk reads (march-field-spheres.glsl),
+  ;; A field of spheres only: the texture its walk reads (march.glsl's step-spheres),
   ;; the cells then every list, a texel each. A cell listing one sphere holds it
   ;; (centre, radius; when the radius is over tiny-radius, so that it stays above 0
   ;; in float); a cell listing more holds where its list starts in this texture,
@@ -498,8 +499,9 @@ A value edit then uploads only the texels it touched."
         (when first (table.insert out [row first last])))
       out)))
 (fn walk [field ox oy oz dx dy dz t-past max-steps]
-  "march-field-spheres.glsl's walk on the CPU, reading the walk texture as the shader
-does (its cells' spheres, lists and clearances) with the same steps: where the ray
+  "The walk of a field of spheres only (march.glsl's step-spheres) on the CPU,
+reading the walk texture as the shader does (its cells' spheres, lists and
+clearances) with the same steps: where the ray
 from world (ox oy oz) along the unit vector (dx dy dz) first enters a sphere of a
 field of spheres only (field.walk?) before `t-past` (the nearest plane or the
 ray's end), else `t-past`; with the cells it met that list something (the
