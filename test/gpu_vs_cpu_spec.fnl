@@ -256,8 +256,9 @@
             (it "walks a field beside other objects (a tree, a ground plane) as the reference does"
               (fn []
                 ;; The general walk (march.glsl's step-field): the torus is sphere-traced
-                ;; alongside the field's cells. Measured: 0 of 512 pixels over, max
-                ;; 0.5/255; the budget allows a flipped silhouette pixel or two.
+                ;; alongside the field's cells. Measured: 1 of 512 pixels over, max
+                ;; 22.2/255 (a flipped silhouette pixel; the same before the march's
+                ;; forms became one chunk); the budget allows one or two of those.
                 (with-open [f (assert (io.open "test/out/field-beside-torus.fnl" :wb))]
                   (f:write "(var seed 7)
 (fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))

@@ -252,7 +252,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :shadows? (and shaded? (or uber? scene.render.shadows))
               :reflections? (and shaded? (or uber? (> reflections 0)))
               :glow? (and shaded? (or uber? scene.render.glow))
-              ;; A field's march takes plain steps (march-field.glsl).
+              ;; A field's walk takes plain steps (march.glsl's field forms).
               :relaxed? (and (= nil members) (or uber? (> scene.render.relaxation 1)))
               :hit-test scene.render.hit-test
               :out-of-steps (or scene.render.out-of-steps :background)

@@ -223,7 +223,7 @@ Positions are in world coordinates."
                            (bounds.spheres plan [cx cy cz] threshold true)))
 
     (fn march-field [ox oy oz dx dy dz ?t-max]
-      ;; march-field.glsl: the grid's cells in order, each cell's objects met in
+      ;; march.glsl's field walk: the grid's cells in order, each cell's objects met in
       ;; closed form and the other finite objects sphere-traced, a step never past
       ;; the cell's far wall.
       (let [t0 (distance-from-camera ox oy oz)
@@ -231,7 +231,7 @@ Positions are in world coordinates."
             (enter exit) (bounds.span bound-spheres ox oy oz dx dy dz draw)
             ;; kFieldOthers: finite objects beside the field.
             others? (> plan.bounds.count 0)
-            ;; A field of spheres alone walks lists of its own (march-field-spheres.glsl).
+            ;; A field of spheres alone walks lists of its own (march.glsl's spheres' walk).
             walk (when (and fd.walk? (not others?)) fd.walk)
             cell-count (if walk walk.count fd.cell-count)
             [lx ly lz] fd.lo
