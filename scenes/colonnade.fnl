@@ -26,10 +26,11 @@
      :children
      [{:kind :union :pos [0 2 0]
        :children [{:kind :rounded-cylinder :radius 0.5 :height 0.3 :rounding 0.05 :pos [0 0 0.15]}
-                  {:kind :polar :count 12
-                   :children [{:kind :subtraction
-                               :children [{:kind :capped-cylinder :radius 0.34 :height 3.6 :pos [0 0 2.1]}
-                                          {:kind :capped-cylinder :radius 0.06 :height 3.4
+                  ;; The shaft less its twelve flutes (a polar repetition of one).
+                  {:kind :subtraction
+                   :children [{:kind :capped-cylinder :radius 0.34 :height 3.6 :pos [0 0 2.1]}
+                              {:kind :polar :count 12
+                               :children [{:kind :capped-cylinder :radius 0.06 :height 3.4
                                            :pos [0.36 0 2.1]}]}]}
                   {:kind :capped-cone :height 0.3 :radius1 0.36 :radius2 0.5 :pos [0 0 4.05]}
                   {:kind :box :size [1.1 1.1 0.2] :pos [0 0 4.3]}]}]}]}
