@@ -364,7 +364,7 @@ members. `id`: the object's number as GLSL (see id-expr)."
 ;; number of its first member, o.id counted from the objects' first.
 
 (fn field-number [expr first]
-  ;; A field member's number `expr` (from 0) as an object's number, and back.
+  ;; A field member's number `expr` (from 0) as an object's number.
   (if (= first 0) expr (.. expr " + " first)))
 
 (fn field-index [first]
@@ -374,8 +374,8 @@ members. `id`: the object's number as GLSL (see id-expr)."
 (fn field-selected [o first action]
   ;; `action` (a GLSL expression's prefix) on member gObject when it is the field's.
   (let [id (+ first o.id)]
-    [(.. "if (gObject >= " id " && gObject < " (+ id o.field.count) ") " action "("
-         (if (= id 0) "p, gObject" (.. "p, gObject - " id)) ");")]))
+    [(.. "if (gObject >= " id " && gObject < " (+ id o.field.count) ") " action "(p, "
+         (field-index id) ");")]))
 
 (fn field-minimum [skip]
   ;; The field's part of a minimum, skipping its member `skip` (a GLSL int).
