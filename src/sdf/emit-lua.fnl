@@ -5,6 +5,7 @@
 
 (local grid (require :src.sdf.grid))
 (local box-gradient (. ((. (require :src.sdf.primitives) :lookup) :box) :gradient))
+(local field-shape (. (require :src.sdf.lower) :field-shape))
 
 (local max-locals 150)   ; Lua allows 200 locals per function; beyond, a table holds them
 
@@ -218,16 +219,17 @@
   ;; box's gradient (the box descriptor's).
   (let [round-box f.desc.cpu
         modern? (= material-size 8)]
-    (icollect [i [cx cy cz hx hy hz r] (ipairs f.shapes)]
-      (case what
-        :distance (fn [x y z] (round-box (- x cx) (- y cy) (- z cz) hx hy hz r))
-        :material (let [[cr cg cb] (. f.colors i)]
-                    (if modern?
-                        (fn [x y z]
-                          (values (round-box (- x cx) (- y cy) (- z cz) hx hy hz r) cr cg cb 0 0.5 0 0 0))
-                        (fn [x y z]
-                          (values (round-box (- x cx) (- y cy) (- z cz) hx hy hz r) cr cg cb 1))))
-        :gradient (fn [x y z] (box-gradient (- x cx) (- y cy) (- z cz) hx hy hz))))))
+    (icollect [_ m (ipairs f.members)]
+      (let [(cx cy cz hx hy hz r) (field-shape m)]
+        (case what
+          :distance (fn [x y z] (round-box (- x cx) (- y cy) (- z cz) hx hy hz r))
+          :material (let [[cr cg cb] m.color]
+                      (if modern?
+                          (fn [x y z]
+                            (values (round-box (- x cx) (- y cy) (- z cz) hx hy hz r) cr cg cb 0 0.5 0 0 0))
+                          (fn [x y z]
+                            (values (round-box (- x cx) (- y cy) (- z cz) hx hy hz r) cr cg cb 1))))
+          :gradient (fn [x y z] (box-gradient (- x cx) (- y cy) (- z cz) hx hy hz)))))))
 
 (fn compile [tape]
   "CPU evaluators for `tape`'s objects, in world coordinates and double precision, one

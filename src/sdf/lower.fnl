@@ -46,7 +46,7 @@
 ;;   - one object written out (its :code);
 ;;   - an instance group (:instances): many objects of one structure, one loop over
 ;;     their rows, with a grid (src/sdf/grid.fnl) when the plan gives it one;
-;;   - a field (:field {:count :shapes :colors :kinds}): many of the article's flat
+;;   - a field (:field {:count :members :kinds}): many of the article's flat
 ;;     spheres and boxes, each the round-box primitive (a sphere of no extent, a box
 ;;     of no radius), found through a uniform grid in float textures that the plan
 ;;     builds (src/render/field.fnl) and met along a ray in closed form. It is the
@@ -685,13 +685,14 @@ centre: cx cy cz (world), half extents hx hy hz, radius r."
 
 (fn field-object [members]
   ;; The field's tape object for the flat spheres and boxes `members` (see
-  ;; Strategies above): no code of its own; its members' shapes and colours.
+  ;; Strategies above): no code of its own; its members themselves (each one's
+  ;; round box is field-shape's, made where it is needed: a million spheres keep
+  ;; no second copy).
   (let [kinds {:spheres? false :boxes? false}]
     (each [_ o (ipairs members)]
       (tset kinds (if (= o.kind :sphere) :spheres? :boxes?) true))
     {:field {:count (length members) : kinds
-             :shapes (icollect [_ o (ipairs members)] [(field-shape o)])
-             :colors (icollect [_ o (ipairs members)] o.color)
+             : members
              :desc round-box-desc}
      :indices (icollect [_ o (ipairs members)] o.index)
      :id 0
