@@ -455,8 +455,8 @@
     (local forms
       [["plain, unbounded (the article's)" seed "t += d;\n        if (d < threshold || t >= uDrawDist)"]
        ["over-relaxed, bounded" (load "{:objects [{:kind :sphere} {:kind :plane}]}") "omega = 1.0;"]
-       ["a field beside a torus" (field-scene "{:kind :torus :pos [0 0 4]}")
-        "fieldListEntry(int(list.x), int(list.y), q0, rd, inv);\n                evaluated = true;"]
+       ["a field beside a torus" (field-scene "{:kind :union :pos [0 0 4] :children [{:kind :torus}]}")
+        "fieldListEntry(int(list.x), int(list.y), q0, rd, inv, t0);\n                evaluated = true;"]
        ["a field alone" (field-scene "")
         "fieldNextCell(tNext, index, tDelta, stride);"]
        ["a field of spheres alone" (field-scene "" true)

@@ -171,10 +171,13 @@
     (values same close pg pb)))
 
 (fn tori [n ?extra]
+  ;; n rotated tori, each in a union of its own: trees, an instance group (a torus
+  ;; placed and coloured alone would be a field's marched member).
   (assert (scene.load-string
            (.. "{:objects (let [o [{:kind :plane :height 0}" (or ?extra "") "]] (for [i 1 " n "]
-                  (table.insert o {:kind :torus :radius 0.5 :thickness 0.2 :rotate [(* 7 i) 20 0]
-                                   :pos [(* 2 (% i 20)) (* 2 (math.floor (/ i 20))) 1]}))
+                  (table.insert o {:kind :union :rotate [(* 7 i) 20 0]
+                                   :pos [(* 2 (% i 20)) (* 2 (math.floor (/ i 20))) 1]
+                                   :children [{:kind :torus :radius 0.5 :thickness 0.2}]}))
                 o)}")
            "t.fnl")))
 

@@ -34,14 +34,16 @@
 
     (it "holds every object, a field's too: a strategy of the tape, drawn by its emitters"
       (fn []
-        ;; 20 flat spheres (a field), 20 mirrored ones (a group with a grid) and a torus.
+;; 20 flat spheres (a field), 20 mirrored ones (a group with a grid) and a
+        ;; mirrored torus (written out: a torus placed and coloured alone would join
+        ;; the field as a marched member).
         (let [spheres (fn [mirror]
                         (table.concat (fcollect [i 1 20]
                                         (string.format "{:kind :sphere :pos [%d %d 1] :radius 0.4%s}"
                                                        (* 2 (% i 5)) (* 2 (math.floor (/ i 5)))
                                                        (if mirror " :mirror 0.5" "")))
                                       " "))
-              (p s) (plan-of (.. (spheres false) " " (spheres true) " {:kind :torus :pos [30 0 1]}"))
+              (p s) (plan-of (.. (spheres false) " " (spheres true) " {:kind :torus :pos [30 0 1] :mirror 0.5}"))
               [first second third] p.tape.objects
               text (assert (codegen.shader p :core))
               emit-lua (require :src.sdf.emit-lua)

@@ -1,9 +1,11 @@
-// A field: many spheres and boxes in float textures, found through a uniform grid
-// (src/render/field.fnl builds both). Coordinates in the textures are field-local:
-// the grid's low corner is the origin, sent camera-relative each frame.
+// A field: many small objects in float textures, found through a uniform grid
+// (src/render/field.fnl builds both): spheres and boxes, met in closed form, and
+// marched members (field-primitives.glsl, compiled in when the field holds some).
+// Coordinates in the textures are field-local: the grid's low corner is the origin,
+// sent camera-relative each frame.
 uniform sampler2D uFieldCells;    // per cell: first record, record count
 uniform sampler2D uFieldRecords;  // per record: centre, radius; half extents, object
-uniform sampler2D uFieldObjects;  // per object: centre, radius; half extents; colour
+uniform sampler2D uFieldObjects;  // per object: its record; colour; (marched) frame, numbers
 uniform vec3 uFieldOrigin;        // the grid's low corner (camera-relative)
 uniform vec3 uFieldSize;          // the grid's extents
 uniform vec3 uFieldCell;          // one cell's extents
@@ -25,6 +27,13 @@ vec4 fieldRead(sampler2D s, float rows, int i) {
 // sphere has no half extents, a box no radius.
 float sdFieldShape(vec3 q, vec4 centre, vec3 halfSize) {
     return sdRoundBox(q - centre.xyz, halfSize, centre.w);
+}
+
+// @slot marched
+
+// The distance at the field-local q of the member whose record is a, b.
+float fieldMemberDistance(vec3 q, vec4 a, vec4 b) {
+    // @slot member-distance
 }
 
 // A ray direction whose tiny components are replaced by kFieldTiny: its reciprocal
@@ -104,7 +113,7 @@ float fieldCellDistance(int cell, vec3 q, int skip, out int best) {
     for (int k = 0; k < count; k++) {
         vec4 a = fieldRead(uFieldRecords, uFieldRows.y, start + 2 * k);
         vec4 b = fieldRead(uFieldRecords, uFieldRows.y, start + 2 * k + 1);
-        float di = sdFieldShape(q, a, b.xyz);
+        float di = fieldMemberDistance(q, a, b);
         int object = int(b.w);
         if (di < d && object != skip) {
             d = di;
@@ -138,10 +147,11 @@ float fieldBoxEntry(vec3 q0, vec3 inv, vec4 a, vec3 h) {
     return (near > far || far < 0.0) ? uDrawDist : max(near, 0.0);
 }
 
-// The ray's first entry into an object of the list of `count` records from `start`.
+// The ray's first entry into an object of the list of `count` records from `start`
+// (t0: the distance the ray has travelled to q0, for a marched member's hit test).
 // (Only the kinds the field holds are compiled in: on llvmpipe code behind a branch
 // runs for every pixel.)
-float fieldListEntry(int start, int count, vec3 q0, vec3 rd, vec3 inv) {
+float fieldListEntry(int start, int count, vec3 q0, vec3 rd, vec3 inv, float t0) {
     float t = uDrawDist;
     for (int k = 0; k < count; k++) {
         int r = 2 * (start + k);
@@ -170,19 +180,19 @@ float fieldMap(vec3 p, int skip, out int best) {
 
 // One object's distance, by number.
 float fieldObject(vec3 p, int object) {
-    vec4 a = fieldRead(uFieldObjects, uFieldRows.z, 3 * object);
-    vec4 b = fieldRead(uFieldObjects, uFieldRows.z, 3 * object + 1);
-    return sdFieldShape(p - uFieldOrigin, a, b.xyz);
+    vec4 a = fieldRead(uFieldObjects, uFieldRows.z, kFieldObjectTexels * object);
+    vec4 b = fieldRead(uFieldObjects, uFieldRows.z, kFieldObjectTexels * object + 1);
+    return fieldMemberDistance(p - uFieldOrigin, a, b);
 }
 
 vec3 fieldColor(int object) {
-    return fieldRead(uFieldObjects, uFieldRows.z, 3 * object + 2).rgb;
+    return fieldRead(uFieldObjects, uFieldRows.z, kFieldObjectTexels * object + 2).rgb;
 }
 
 // The exact normal of a field object at p: its distance's gradient, which is its
 // inner box's (gradBox, the box descriptor's; a sphere is a box of no extent).
 vec3 fieldNormal(vec3 p, int object) {
-    vec4 a = fieldRead(uFieldObjects, uFieldRows.z, 3 * object);
-    vec3 h = fieldRead(uFieldObjects, uFieldRows.z, 3 * object + 1).xyz;
+    vec4 a = fieldRead(uFieldObjects, uFieldRows.z, kFieldObjectTexels * object);
+    vec3 h = fieldRead(uFieldObjects, uFieldRows.z, kFieldObjectTexels * object + 1).xyz;
     return gradBox(p - uFieldOrigin - a.xyz, h);
 }

@@ -185,7 +185,7 @@ bool evaluated = kFieldOthers;
 if (state == 1) {
     vec4 list = fieldRead(uFieldCells, uFieldRows.x, fieldCellIndex(cell));
     if (list.y > 0.0) {
-        float hit = fieldListEntry(int(list.x), int(list.y), q0, rd, inv);
+        float hit = fieldListEntry(int(list.x), int(list.y), q0, rd, inv, t0);
         evaluated = true;
         if (hit <= min(t + d, cellEnd) && hit < tEnd) {
             steps = evals + 1;
@@ -225,6 +225,7 @@ if (evals >= uMaxSteps) {
 }
 
 // @part start-walk
+float t0 = length(ro);   // the camera is at the origin: distance already travelled
 float tPlane = planesHit(ro, rd);
 float tPast = min(tPlane, tMax);
 vec3 q0, inv, tNext, tDelta, stride;
@@ -247,7 +248,7 @@ float cellEnd = min(tNext.x, min(tNext.y, tNext.z));
 vec4 list = fieldRead(uFieldCells, uFieldRows.x, index);
 // (No branch around an empty cell's test: its loop has nothing to do.)
 steps += list.y > 0.0 ? 1 : 0;
-float hit = fieldListEntry(int(list.x), int(list.y), q0, rd, inv);
+float hit = fieldListEntry(int(list.x), int(list.y), q0, rd, inv, t0);
 if (hit <= cellEnd && hit < tEnd) {
     return hit;
 }

@@ -32,10 +32,11 @@
 Shadertoy fragment shader: every uniform a constant but the resolution (iResolution).
 Returns the text, or nil and a message."
   (case (if plan.field
-            (values nil (.. "export: " scene.name " keeps its " plan.field.count
-                            " spheres and boxes in float textures (a field), which a Shadertoy"
-                            " shader cannot hold; export takes scenes of fewer than "
-                            field.min-objects " spheres and boxes"))
+            (let [things (if (= 0 (length plan.field.kinds.marched)) " spheres and boxes" " objects")]
+              (values nil (.. "export: " scene.name " keeps its " plan.field.count
+                              things " in float textures (a field), which a Shadertoy"
+                              " shader cannot hold; export takes scenes of fewer than "
+                              field.min-objects things)))
             ;; Every uniform declared as a constant of its value, but the resolution.
             (let [values-by-name (collect [_ u (ipairs (uniforms.pack scene plan (camera.from-scene scene) 1 1))]
                                    u.name u)]

@@ -1,4 +1,4 @@
-;; Fields: the many spheres and boxes of a large scene, kept in float textures and found
+;; Fields: the many small objects of a large scene, kept in float textures and found
 ;; through a uniform grid built here on the CPU (issue 12). A ray walks the grid's cells
 ;; in order (a 3D DDA) and sphere-traces only the objects listed in the cell it is in,
 ;; so an empty cell costs one lookup and a full one a few objects, whatever the scene's
@@ -7,15 +7,20 @@
 ;; the same grid with the same arithmetic; brute force over every object is the
 ;; tests' oracle.
 ;;
-;; Every object of a field is a rounded box: centre c, half extents h, radius r. A
-;; sphere is h = 0 (distance |p - c| - r, exact); a box is r = 0 (exact). One formula,
-;; no branch per object.
+;; The article's flat spheres and boxes are each a rounded box: centre c, half extents
+;; h, radius r. A sphere is h = 0 (distance |p - c| - r, exact); a box is r = 0
+;; (exact). One formula, no branch between them, and met along a ray in closed form.
+;; Any other primitive placed by :pos and :rotate (lower.fnl's field-marched) is a
+;; marched member: its bounding sphere stands in for its box in the grid, and a ray
+;; that enters that sphere sphere-traces the primitive's own distance in its frame
+;; (marched-entry; fieldMarchedEntry in the shader), at most marched-turns steps.
 ;;
 ;; Coordinates are field-local (the grid's low corner is the origin), so the textures
 ;; do not change when the camera moves: the shader is sent the corner camera-relative,
 ;; computed in double.
 
 (local large-radius (. (require :src.sdf.large-sphere) :radius))
+(local lower (require :src.sdf.lower))
 
 (local sqrt math.sqrt)
 (local floor math.floor)
@@ -66,14 +71,17 @@
 (local walk-reach-fraction 0.01)
 
 (fn member? [o]
-  "Whether object `o` can be part of a field: a sphere or a box smaller than the
-large-sphere radius. (A planet-sized sphere has its own cancellation-free code; and
-the field's coordinates are relative to its grid's corner, not to the camera, so a
-giant box would stretch the grid and cost small objects their float precision.)"
-  (and (not o.tree)
-       (or (and (= o.kind :box)
-                (let [[sx sy sz] o.size] (< (math.max sx sy sz) large-radius)))
-           (and (= o.kind :sphere) (< o.radius large-radius)))))
+  "Whether object `o` can be part of a field: a flat sphere or box, or a marched
+member (lower.fnl's field-marched), smaller than the large-sphere radius. (A
+planet-sized sphere has its own cancellation-free code; and the field's coordinates
+are relative to its grid's corner, not to the camera, so a giant box would stretch
+the grid and cost small objects their float precision.)"
+  (if o.tree
+      (let [m (lower.field-marched o)]
+        (and (not= nil m) (< m.radius large-radius)))
+      (or (and (= o.kind :box)
+               (let [[sx sy sz] o.size] (< (math.max sx sy sz) large-radius)))
+          (and (= o.kind :sphere) (< o.radius large-radius)))))
 
 (fn members [objects]
   "The objects of the list `objects` that go into a field, in order, or nil when
@@ -82,7 +90,20 @@ there are fewer than min-objects of them."
     (when (>= (length out) min-objects) out)))
 
 ;; centre x y z, half extents x y z, radius: the round box the field draws.
-(local shape (. (require :src.sdf.lower) :field-shape))
+(local shape lower.field-shape)
+
+;; Steps a ray may take sphere-tracing one marched member, from where it enters its
+;; bounding sphere; a ray still short of the hit test then misses it. (At most a few
+;; on the benchmark's tori and capsules but along a grazing ray; 32 of the primitive's
+;; distances cost less than one cell of the field.)
+(local marched-turns 32)
+
+;; Texels per object in the objects texture: centre and radius, half extents (or the
+;; kind, negated) and number, colour; with marched members also their rotation's
+;; three rows and two texels of packed numbers.
+(fn object-texels [field]
+  "Texels per object in the field's objects texture."
+  (if (> (length field.kinds.marched) 0) 8 3))
 
 (local round-box-cpu (. ((. (require :src.sdf.primitives) :lookup) :round-box) :cpu))
 
@@ -192,7 +213,7 @@ there are fewer than min-objects of them."
   ;; A field of spheres only walks one texture of cells and lists (walk-texture)
   ;; when they fit in one: :walk (its lists, from `walk-ranges`), :walk? and :turns,
   ;; the walk's turns at most (a turn crosses a cell or meets a sphere of a list).
-  (when (not field.kinds.boxes?)
+  (when (and (not field.kinds.boxes?) (= 0 (length field.kinds.marched)))
     (let [walk (list-cells field.dims walk-ranges)
           cells (length walk.start)
           ;; (each list's texels: its spheres and, from bound-from on, the sphere
@@ -216,7 +237,9 @@ occlusion radius), :wide? (soft shadows: a quarter cell's reach), :cells-per-obj
 (the grid's resolution; the benchmark's). Returns {:count :objects :lo [x y z] (world) :dims [nx ny nz]
 :cell [sx sy sz] :size [x y z] :reach :crossings (cells a ray can cross, at most)
 :cell-start :cell-count (per cell, 0-based) :records (object numbers, 1-based, per
-cell in order) :shapes (per object: cx cy cz hx hy hz r, field-local) :colors
+cell in order) :shapes (per object: cx cy cz hx hy hz r, field-local; a marched
+member's bounding sphere) :colors :kinds (lower.fnl's field-kinds) :marched (per
+marched member: {:kind (its number, from 1) :desc :args :rows})
 :textures {:cells :records :objects}}; each texture {:width :height :data (flat
 RGBA floats)}; or nil and a message when the grid's lists would not fit in a
 texture."
@@ -244,7 +267,12 @@ texture."
           walk-reach (min reach (* walk-reach-fraction smallest))
           ranges []
           walk-ranges []
-          colors []]
+          colors []
+          ;; Which kinds it holds (only their code is compiled in), and per marched
+          ;; member its kind's number (from 1), primitive, numbers and rotation.
+          kinds (lower.field-kinds objects)
+          kind-number (collect [k name (ipairs kinds.marched)] name k)
+          marched {}]
       ;; Shapes in field-local coordinates, and the cells each object's grown box
       ;; covers.
       (each [i o (ipairs objects)]
@@ -259,7 +287,11 @@ texture."
                             (z0 z1) (span cz az sz nz grow)]
                         [x0 x1 y0 y1 z0 z1]))]
           (tset shapes i [cx cy cz ax ay az r])
-          (tset colors i o.color)
+          (if o.tree
+              (let [{: desc : args : rows} (lower.field-marched o)]
+                (tset marched i {:kind (. kind-number o.kind) : desc : args : rows})
+                (tset colors i (or o.tree.color [1 1 1])))
+              (tset colors i o.color))
           (tset ranges i (cover reach))
           (tset walk-ranges i (cover walk-reach))))
       ;; Every object is listed in each cell it covers: a texture holds at most
@@ -273,12 +305,9 @@ texture."
                                        n total max-records))
             (with-walk (lists {:count n : objects : lo :dims [nx ny nz] : cell : size : reach
                     ;; Which kinds it holds: only their code is compiled in.
-                    :kinds {:spheres? (accumulate [any? false _ o (ipairs objects)]
-                                        (or any? (= o.kind :sphere)))
-                            :boxes? (accumulate [any? false _ o (ipairs objects)]
-                                      (or any? (= o.kind :box)))}
+                    : kinds
                     :crossings (+ nx ny nz 1)
-                    : shapes : colors}
+                    : shapes : colors : marched}
                    ranges)
                        walk-ranges))))))
 
@@ -339,8 +368,11 @@ texture."
   :walk     a field of spheres only: the cells and lists as its walk reads
             them, a texel each (see walk-texture); nil for other fields
   :records  two texels per record: centre and radius, half extents and the
-            object's number (0-based)
-  :objects  three texels per object: centre and radius, half extents, colour
+            object's number (0-based); a marched member's bounding sphere, its
+            kind's number negated (then 0, 0) and its number
+  :objects  per object (object-texels): its record's two texels, its colour;
+            with marched members also a marched member's rotation, three rows,
+            and its packed numbers, two texels
 Each {:width :height :data} with data flat RGBA floats, row after row."
   (when (not field.textures)
     (let [cells [] records [] objects []]
@@ -352,46 +384,70 @@ Each {:width :height :data} with data flat RGBA floats, row after row."
           (tset cells (+ at 4) 0)))
       (each [j i (ipairs field.records)]
         (let [[cx cy cz ax ay az r] (. field.shapes i)
+              m (. field.marched i)
               at (* 8 (- j 1))]
           (tset records (+ at 1) cx) (tset records (+ at 2) cy) (tset records (+ at 3) cz)
           (tset records (+ at 4) r)
-          (tset records (+ at 5) ax) (tset records (+ at 6) ay) (tset records (+ at 7) az)
+          (tset records (+ at 5) (if m (- m.kind) ax)) (tset records (+ at 6) ay)
+          (tset records (+ at 7) az)
           (tset records (+ at 8) (- i 1))))
-      (each [i [cx cy cz ax ay az r] (ipairs field.shapes)]
-        (let [[cr cg cb] (. field.colors i)
-              at (* 12 (- i 1))]
-          (each [j v (ipairs [cx cy cz r ax ay az 0 cr cg cb 0])]
-            (tset objects (+ at j) v))))
+      (let [stride (object-texels field)]
+        (each [i [cx cy cz ax ay az r] (ipairs field.shapes)]
+          (let [[cr cg cb] (. field.colors i)
+                m (. field.marched i)
+                at (* 4 stride (- i 1))]
+            (each [j v (ipairs [cx cy cz r (if m (- m.kind) ax) ay az (- i 1) cr cg cb 0])]
+              (tset objects (+ at j) v))
+            (when (> stride 3)
+              (let [[a b c d e f g h k] (if m m.rows [1 0 0 0 1 0 0 0 1])
+                    args (if m m.args [])]
+                (each [j v (ipairs [a b c 0 d e f 0 g h k 0])]
+                  (tset objects (+ at 12 j) v))
+                (for [j 1 8]
+                  (tset objects (+ at 24 j) (or (. args j) 0))))))))
       (set field.textures
            {:cells (texture (length field.cell-start) cells)
             :records (texture (* 2 (length field.records)) records)
-            :objects (texture (* 3 field.count) objects)})
+            :objects (texture (* (object-texels field) field.count) objects)})
       (when field.walk?
         (set field.textures.walk (walk-texture field)))))
   field.textures)
 
 ;;; Queries (the CPU side of shaders/pipeline/field.glsl), in world coordinates.
 
+(local unpack (or table.unpack _G.unpack))
+
+(fn marched-distance [m qx qy qz cx cy cz]
+  ;; fieldMarchedDistance: marched member `m` (about its origin c) at q, in its frame.
+  (let [[a b c d e f g h k] m.rows
+        x (- qx cx) y (- qy cy) z (- qz cz)]
+    (m.desc.cpu (+ (* a x) (* b y) (* c z)) (+ (* d x) (* e y) (* f z)) (+ (* g x) (* h y) (* k z))
+                (unpack m.args))))
+
+(fn member-distance [field i qx qy qz]
+  "fieldMemberDistance: the field's object `i` (1-based) at field-local (qx qy qz)."
+  (let [[cx cy cz ax ay az r] (. field.shapes i)
+        m (. field.marched i)]
+    (if m (marched-distance m qx qy qz cx cy cz)
+        (rounded-box qx qy qz cx cy cz ax ay az r))))
+
 (fn object-distance [field i x y z]
   "Distance from world point (x y z) to the field's object `i` (1-based)."
-  (let [[ox oy oz] field.lo
-        [cx cy cz ax ay az r] (. field.shapes i)]
-    (rounded-box (- x ox) (- y oy) (- z oz) cx cy cz ax ay az r)))
+  (let [[ox oy oz] field.lo]
+    (member-distance field i (- x ox) (- y oy) (- z oz))))
 
 (fn cell-distance [field k qx qy qz ?skip]
   "Nearest listed object of cell `k` (1-based) to field-local (qx qy qz), skipping
 object `?skip`: distance (math.huge when none) and object number (or nil). Ties go
 to the earlier record."
-  (let [shapes field.shapes
-        records field.records
+  (let [records field.records
         start (. field.cell-start k)]
     (var d math.huge)
     (var best nil)
     (for [j (+ start 1) (+ start (. field.cell-count k))]
       (let [i (. records j)]
         (when (not= i ?skip)
-          (let [[cx cy cz ax ay az r] (. shapes i)
-                di (rounded-box qx qy qz cx cy cz ax ay az r)]
+          (let [di (member-distance field i qx qy qz)]
             (when (< di d) (set d di) (set best i))))))
     (values d best)))
 
@@ -423,18 +479,60 @@ the shader's fieldSafeDirection: ix iy iz (their signs are the walk's steps)."
             far* (min (max x1 x2) (max y1 y2) (max z1 z2))]
         (if (or (> near far*) (< far* 0)) far (max near 0)))))
 
-(fn list-entry [field k qx qy qz dx dy dz ix iy iz far ?lists]
+(fn marched-entry [field i qx qy qz dx dy dz far hit]
+  "fieldMarchedEntry: where the ray (field-local origin q, unit direction d) first
+meets marched member `i` (1-based), or `far`: from where it enters the member's
+bounding sphere (at t >= 0), the member's distance sphere-traced in its frame until
+a step is under the hit test, at most marched-turns steps and no farther than the
+sphere's exit. `hit` gives the hit test: {:t0 (the distance travelled to q)
+:threshold (fn [distance from the camera]) :start-limit (fn [d at the ray's
+start])}, a march's: a secondary ray's own start is no hit."
+  (let [[cx cy cz _ _ _ r] (. field.shapes i)
+        m (. field.marched i)
+        ox (- qx cx) oy (- qy cy) oz (- qz cz)
+        b (+ (* ox dx) (* oy dy) (* oz dz))
+        px (- ox (* b dx)) py (- oy (* b dy)) pz (- oz (* b dz))
+        disc (- (* r r) (+ (* px px) (* py py) (* pz pz)))
+        s (sqrt (max disc 0))
+        t-out (- s b)]
+    (if (or (< disc 0) (< t-out 0)) far
+        (let [[ra rb rc rd re rf rg rh rk] m.rows
+              cpu m.desc.cpu
+              args m.args
+              ;; The ray in the member's frame.
+              lx (+ (* ra ox) (* rb oy) (* rc oz)) ly (+ (* rd ox) (* re oy) (* rf oz))
+              lz (+ (* rg ox) (* rh oy) (* rk oz))
+              ux (+ (* ra dx) (* rb dy) (* rc dz)) uy (+ (* rd dx) (* re dy) (* rf dz))
+              uz (+ (* rg dx) (* rh dy) (* rk dz))
+              t0 hit.t0]
+          (var t (max (- (- b) s) 0))
+          (var limit math.huge)
+          (var result nil)
+          (for [turn 1 marched-turns &until result]
+            (let [d (cpu (+ lx (* ux t)) (+ ly (* uy t)) (+ lz (* uz t)) (unpack args))]
+              (when (and (= turn 1) (= t 0) (> t0 0)) (set limit (hit.start-limit d)))
+              (if (< d (min (hit.threshold (+ t0 t)) limit)) (set result t)
+                  (do (set t (+ t d))
+                      (when (> t t-out) (set result far))))))
+          (or result far)))))
+
+(fn list-entry [field k qx qy qz dx dy dz ix iy iz far ?lists ?hit]
   "fieldListEntry: where the ray (field-local origin q, unit direction d, reciprocal
 i) first enters an object listed in cell `k` (1-based), or `far`. The lists are
-the field's, or `?lists` ({:start :count :records}, the walk's)."
+the field's, or `?lists` ({:start :count :records}, the walk's). `?hit`, a
+march's hit test (see marched-entry), is needed when the field has marched members."
   (let [shapes field.shapes
+        marched field.marched
         records (if ?lists ?lists.records field.records)
         start (. (if ?lists ?lists.start field.cell-start) k)
         count (. (if ?lists ?lists.count field.cell-count) k)]
     (var t far)
     (for [j (+ start 1) (+ start count)]
-      (let [[cx cy cz ax ay az r] (. shapes (. records j))]
-        (set t (min t (entry qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far)))))
+      (let [i (. records j)]
+        (set t (min t (if (. marched i)
+                          (marched-entry field i qx qy qz dx dy dz far ?hit)
+                          (let [[cx cy cz ax ay az r] (. shapes i)]
+                            (entry qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far)))))))
     t))
 
 (fn cell-of [field qx qy qz]
@@ -582,15 +680,20 @@ shader's steps). After `max-steps` of those: :out and where it stopped."
           (if (and result (not= result :out)) (values result steps)
               (values :out steps stop))))))
 
-(fn brute-entry [field ox oy oz dx dy dz far]
+(fn brute-entry [field ox oy oz dx dy dz far ?hit]
   "The test oracle of the walk: where the ray from world (ox oy oz) along the unit
-vector (dx dy dz) first enters any object of the field, in closed form, or `far`."
+vector (dx dy dz) first enters any object of the field, in closed form (a marched
+member's by marched-entry, with the hit test `?hit`), or `far`."
   (let [[lx ly lz] field.lo
+        qx (- ox lx) qy (- oy ly) qz (- oz lz)
         (ix iy iz) (reciprocal dx dy dz)]
     (var t far)
-    (each [_ [cx cy cz ax ay az r] (ipairs field.shapes)]
-      (set t (min t (entry (- ox lx) (- oy ly) (- oz lz) dx dy dz ix iy iz cx cy cz ax ay az r far))))
+    (each [i [cx cy cz ax ay az r] (ipairs field.shapes)]
+      (set t (min t (if (. field.marched i)
+                        (marched-entry field i qx qy qz dx dy dz far ?hit)
+                        (entry qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far)))))
     t))
 
-{: member? : members : brute-entry : walk : reciprocal : tiny : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
+{: member? : members : brute-entry : marched-entry : marched-turns : object-texels
+ : member-distance : walk : reciprocal : tiny : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
  : distance : brute-distance : rounded-box : min-objects : texture-width}

@@ -461,14 +461,16 @@ holds its number (numbered from `first` as color-terms does)."
 
 (fn exact? [o]
   "Whether object `o` has its exact normal in closed form: a leaf whose primitive has
-a gradient, or a field (its members' round boxes have their inner box's)."
-  (or (not= nil o.field) (not= nil (?. o :leaf :prim :desc :gradient-glsl))))
+a gradient, or a field of spheres and boxes only (their round boxes have their inner
+box's; a field with marched members takes differences for all of them)."
+  (if o.field (= 0 (length o.field.kinds.marched))
+      (not= nil (?. o :leaf :prim :desc :gradient-glsl))))
 
 (fn gradient-terms [tape first action]
   "Lines for calcNormal: each object with an exact normal (exact?) gives it when
 gObject is its number (counted from `first`); `action` is \"n = \" or \"return \"."
   (icollect [_ o (ipairs tape.objects)]
-    (if o.field (field-selected o first (.. action "fieldNormal"))
+    (if o.field (when (exact? o) (field-selected o first (.. action "fieldNormal")))
         (exact? o) (selected o first #(leaf-gradient o action)))))
 
 (fn plane-terms [tape]

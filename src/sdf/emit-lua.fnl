@@ -6,6 +6,7 @@
 (local grid (require :src.sdf.grid))
 (local box-gradient (. ((. (require :src.sdf.primitives) :lookup) :box) :gradient))
 (local field-shape (. (require :src.sdf.lower) :field-shape))
+(local field-marched (. (require :src.sdf.lower) :field-marched))
 
 (local max-locals 150)   ; Lua allows 200 locals per function; beyond, a table holds them
 
@@ -212,24 +213,42 @@
       (each [_ v (ipairs row)] (table.insert out v)))
     out))
 
+(local unpack (or table.unpack _G.unpack))
+
+(fn marched-distance [m cx cy cz]
+  ;; A marched field member's distance (lower.fnl's field-marched `m`, its origin c):
+  ;; its primitive's CPU form in its frame.
+  (let [[a b c d e f g h k] m.rows
+        cpu m.desc.cpu
+        args m.args]
+    (fn [x y z]
+      (let [x (- x cx) y (- y cy) z (- z cz)]
+        (cpu (+ (* a x) (* b y) (* c z)) (+ (* d x) (* e y) (* f z)) (+ (* g x) (* h y) (* k z))
+             (unpack args))))))
+
 (fn field-evaluators [f what material-size]
   ;; A field's members (lower.fnl's :field strategy) by object number: each its shape's
-  ;; round box, by the descriptor's CPU form, matte (the shader's field keeps the
-  ;; mirror amount and material mapColor starts from); its exact normal is its inner
-  ;; box's gradient (the box descriptor's).
+  ;; round box, by the descriptor's CPU form, or a marched member's own primitive in
+  ;; its frame; matte (the shader's field keeps the mirror amount and material
+  ;; mapColor starts from). A round box's exact normal is its inner box's gradient
+  ;; (the box descriptor's), except in a field with marched members: none has one
+  ;; there (emit-glsl's exact?).
   (let [round-box f.desc.cpu
-        modern? (= material-size 8)]
+        modern? (= material-size 8)
+        exact? (= 0 (length f.kinds.marched))]
     (icollect [_ m (ipairs f.members)]
-      (let [(cx cy cz hx hy hz r) (field-shape m)]
+      (let [(cx cy cz hx hy hz r) (field-shape m)
+            marched (when m.tree (field-marched m))
+            distance (if marched (marched-distance marched cx cy cz)
+                         (fn [x y z] (round-box (- x cx) (- y cy) (- z cz) hx hy hz r)))]
         (case what
-          :distance (fn [x y z] (round-box (- x cx) (- y cy) (- z cz) hx hy hz r))
-          :material (let [[cr cg cb] m.color]
+          :distance distance
+          :material (let [[cr cg cb] (if marched (or m.tree.color [1 1 1]) m.color)]
                       (if modern?
-                          (fn [x y z]
-                            (values (round-box (- x cx) (- y cy) (- z cz) hx hy hz r) cr cg cb 0 0.5 0 0 0))
-                          (fn [x y z]
-                            (values (round-box (- x cx) (- y cy) (- z cz) hx hy hz r) cr cg cb 1))))
-          :gradient (fn [x y z] (box-gradient (- x cx) (- y cy) (- z cz) hx hy hz)))))))
+                          (fn [x y z] (values (distance x y z) cr cg cb 0 0.5 0 0 0))
+                          (fn [x y z] (values (distance x y z) cr cg cb 1))))
+          :gradient (if (not exact?) false
+                        (fn [x y z] (box-gradient (- x cx) (- y cy) (- z cz) hx hy hz))))))))
 
 (fn compile [tape]
   "CPU evaluators for `tape`'s objects, in world coordinates and double precision, one

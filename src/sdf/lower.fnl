@@ -46,10 +46,13 @@
 ;;   - one object written out (its :code);
 ;;   - an instance group (:instances): many objects of one structure, one loop over
 ;;     their rows, with a grid (src/sdf/grid.fnl) when the plan gives it one;
-;;   - a field (:field {:count :members :kinds}): many of the article's flat
-;;     spheres and boxes, each the round-box primitive (a sphere of no extent, a box
-;;     of no radius), found through a uniform grid in float textures that the plan
-;;     builds (src/render/field.fnl) and met along a ray in closed form. It is the
+;;   - a field (:field {:count :members :kinds :descs}): many small objects found
+;;     through a uniform grid in float textures that the plan builds
+;;     (src/render/field.fnl). The article's flat spheres and boxes are each the
+;;     round-box primitive (a sphere of no extent, a box of no radius), met along a
+;;     ray in closed form; any other primitive placed by :pos and :rotate and
+;;     coloured by :color alone is marched: its bounding sphere met in closed form,
+;;     then its own distance sphere-traced in its frame (field-marched). It is the
 ;;     first object, so its members are numbered first.
 ;;
 ;; Repetitions. A :cells node evaluates its child in the point's own cell and the
@@ -673,30 +676,92 @@ tape's :fold? in `lower`)."
 ;;; The field strategy.
 
 (local round-box-desc (primitives.lookup :round-box))
+(local rotate-desc (operations.lookup :rotate))
+
+;; A marched field member's packed numbers, at most: two texels of the field's
+;; objects texture (shaders/pipeline/field.glsl's fieldMarched).
+(local max-marched-args 8)
+
+(fn marched-leaf [o]
+  ;; The primitive leaf a marched field member is (see field-marched), or nil.
+  (let [leaf o.tree
+        desc (and leaf (primitives.lookup leaf.kind))]
+    (when (and desc (not desc.half-space?) desc.bounds
+               (not (and desc.variant (desc.variant leaf)))
+               (= 1 (or desc.lipschitz 1)))
+      (var plain? true)
+      (each [k (pairs leaf)]
+        (when (not (or (= k :kind) (= k :path) (= k :path-list) (= k :pos) (= k :rotate)
+                       (= k :color) (= k :index)
+                       (accumulate [param? false _ p (ipairs desc.params)]
+                         (or param? (= p.name k)))))
+          (set plain? false)))
+      (when (and plain? (desc.bounds leaf)
+                 (<= (length (desc.pack leaf)) max-marched-args))
+        leaf))))
+
+(fn field-marched [o]
+  "Scene object `o` as a marched field member, or nil when it is not one: a primitive
+leaf (no tree around it) placed by :pos and :rotate, coloured by :color alone (its
+material the default, as a flat sphere's), bounded, of Lipschitz factor 1 and at
+most max-marched-args numbers. Returns {:desc :args (its packed numbers) :rows (the
+rotation into its frame, 9 numbers, rows first) :radius (its bounding sphere's,
+about its origin)}."
+  (let [leaf (marched-leaf o)]
+    (when leaf
+      (let [desc (primitives.lookup leaf.kind)
+            [hx hy hz] (desc.bounds leaf)]
+        {: desc :args (desc.pack leaf)
+         :rows (if leaf.rotate
+                   (rotate-desc.pack {:angles leaf.rotate :angle 0})
+                   [1 0 0 0 1 0 0 0 1])
+         :radius (math.sqrt (+ (* hx hx) (* hy hy) (* hz hz)))}))))
 
 (fn field-shape [o]
-  "Flat sphere or box `o` as the field draws it, the round-box primitive about its
-centre: cx cy cz (world), half extents hx hy hz, radius r."
-  (let [[x y z] o.pos]
+  "Field member `o` as the field's round box about its centre: cx cy cz (world), half
+extents hx hy hz, radius r. The article's flat sphere or box is that primitive
+exactly; a marched member (field-marched) is its bounding sphere."
+  (let [[x y z] (or o.pos (?. o :tree :pos) [0 0 0])]
     (if (= o.kind :sphere)
         (values x y z 0 0 0 o.radius)
+        o.tree
+        (values x y z 0 0 0 (. (field-marched o) :radius))
         (let [[sx sy sz] o.size]
           (values x y z (* 0.5 sx) (* 0.5 sy) (* 0.5 sz) 0)))))
 
-(fn field-object [members]
-  ;; The field's tape object for the flat spheres and boxes `members` (see
-  ;; Strategies above): no code of its own; its members themselves (each one's
-  ;; round box is field-shape's, made where it is needed: a million spheres keep
-  ;; no second copy).
-  (let [kinds {:spheres? false :boxes? false}]
+(fn field-kinds [members]
+  "Which kinds the field members `members` hold: {:spheres? :boxes? :marched (the
+marched members' kinds, in order of first appearance: a member's kind number is its
+place there)}. Only their code is compiled in."
+  (let [kinds {:spheres? false :boxes? false :marched []}
+        seen {}]
     (each [_ o (ipairs members)]
-      (tset kinds (if (= o.kind :sphere) :spheres? :boxes?) true))
+      (if o.tree
+          (when (not (. seen o.kind))
+            (tset seen o.kind true)
+            (table.insert kinds.marched o.kind))
+          (tset kinds (if (= o.kind :sphere) :spheres? :boxes?) true)))
+    kinds))
+
+(fn field-object [members]
+  ;; The field's tape object for `members` (see Strategies above): no code of its
+  ;; own; its members themselves (each one's round box is field-shape's, made where
+  ;; it is needed: a million spheres keep no second copy). Its kinds: whether it
+  ;; holds spheres, boxes, and which primitives are marched (:marched, in order of
+  ;; first appearance: a member's kind number is its place there); :descs, the
+  ;; primitives whose GLSL it calls.
+  (let [kinds (field-kinds members)]
     {:field {:count (length members) : kinds
              : members
-             :desc round-box-desc}
+             :desc round-box-desc
+             :descs (doto (icollect [_ k (ipairs kinds.marched)] (primitives.lookup k))
+                      (table.insert 1 round-box-desc))}
      :indices (icollect [_ o (ipairs members)] o.index)
      :id 0
-     :info {:kind "field" :field? true :path (.. "objects[" (. members 1 :index) "]") :class :exact
+     :info {:kind "field" :field? true :path (.. "objects[" (. members 1 :index) "]")
+            :class (if (accumulate [bound? false _ k (ipairs kinds.marched)]
+                         (or bound? (= :bound (. (primitives.lookup k) :class))))
+                       :bound :exact)
             :lipschitz 1 :children [] :implicit? false}}))
 
 (fn node-of [o]
@@ -793,7 +858,9 @@ as a field: the first tape object (see Strategies above)."
             (table.insert out field)
             (set id field.field.count)
             (table.insert key (.. "field:" id (if field.field.kinds.spheres? "s" "")
-                                  (if field.field.kinds.boxes? "b" ""))))
+                                  (if field.field.kinds.boxes? "b" "")
+                                  (table.concat (icollect [_ k (ipairs field.field.kinds.marched)]
+                                                  (.. "," k))))))
           (each [_ {: st : o :key k} (ipairs lowered)]
             (when st.mirrors? (set mirrors? true))
             (each [_ name (ipairs st.used-list)]
@@ -886,10 +953,11 @@ what `--tree` prints."
         (table.insert lines (.. (string.rep "  " depth) info.kind
                                 (if info.implicit? " (shorthand)" "")
                                 (if ?group (.. " x" ?group.count " (instance group: a loop)") "")
-                                (if ?field (.. " of " ?field.count " spheres and boxes (a grid in textures)") "")
+                                (if ?field (.. " of " ?field.count " objects (a grid in textures)") "")
                                 "  " (class-label info) "  " bounds "  " info.path)))
       (each [_ c (ipairs info.children)] (walk c (+ depth 1))))
     (each [_ o (ipairs tape.objects)] (walk o.info 0 o.instances o.field))
     lines))
 
-{: lower : describe : node-of : min-group : infos-by-index : field-shape : may-refuse?}
+{: lower : describe : node-of : min-group : infos-by-index : field-shape : field-marched : field-kinds
+ : may-refuse?}

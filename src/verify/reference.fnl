@@ -222,11 +222,15 @@ Positions are in world coordinates."
     (local bound-spheres (when plan.bounds
                            (bounds.spheres plan [cx cy cz] threshold true)))
 
+    ;; A field's marched members' hit test (field.fnl's marched-entry): the march's.
+    (local field-hit {:t0 0 : threshold : start-limit})
+
     (fn march-field [ox oy oz dx dy dz ?t-max]
       ;; march.glsl's field walk: the grid's cells in order, each cell's objects met in
-      ;; closed form and the other finite objects sphere-traced, a step never past
-      ;; the cell's far wall.
+      ;; closed form (a marched member sphere-traced alone) and the other finite
+      ;; objects sphere-traced, a step never past the cell's far wall.
       (let [t0 (distance-from-camera ox oy oz)
+            _ (set field-hit.t0 t0)
             t-plane (planes-hit ox oy oz dx dy dz)
             (enter exit) (bounds.span bound-spheres ox oy oz dx dy dz draw)
             ;; kFieldOthers: finite objects beside the field.
@@ -279,7 +283,7 @@ Positions are in world coordinates."
                 (when (> (. cell-count k) 0)
                   ;; The cell's objects in closed form (fieldListEntry): an entry in
                   ;; the cell, before any other object can be, is the hit.
-                  (let [hit (field.list-entry fd k qx qy qz dx dy dz ix iy iz draw walk)]
+                  (let [hit (field.list-entry fd k qx qy qz dx dy dz ix iy iz draw walk field-hit)]
                     (set evaluated? true)
                     (when (and (<= hit (math.min (+ t d) cell-end)) (< hit t-end))
                       (set evals (+ evals 1))
