@@ -517,6 +517,36 @@
             (assert.is_true (< (math.abs (- (at x y z) (- R torus.tree.thickness))) 1e-12))
             (assert.is_false (. tape.gradient 1))))))
 
+    (it "see a primitive placed by explicit operations as its shorthands place it"
+      (fn []
+        ;; Translations and rotations written as operations of one child, in either
+        ;; order and with the shorthands inside: the field's evaluator (the chain's
+        ;; rows and origin, lower.fnl's field-marched) against the tree lowered as
+        ;; usual (no field), at 200 points.
+        (let [shapes ["{:kind :translate :offset [1 2 3] :children [{:kind :rotate :angles [10 40 70] :children [{:kind :torus :radius 0.6 :thickness 0.2}]}]}"
+                      "{:kind :rotate :axis [0.6 0 0.8] :angle 33 :children [{:kind :translate :offset [-2 1 0.5] :children [{:kind :capsule :a [0 0 0] :b [0.5 0.2 0] :radius 0.2 :pos [0.3 0 0] :rotate [0 20 0]}]}]}"
+                      "{:kind :rotate :angles [0 0 90] :pos [4 4 1] :color [1 0 0] :children [{:kind :octahedron :size 0.5 :rotate [30 0 0]}]}"]
+              text (table.concat (fcollect [i 1 18] (. shapes (+ 1 (% i 3)))) " ")
+              s (assert (scene.load-string (.. "{:objects [" text "]}") "t.fnl"))
+              emit-lua (require :src.sdf.emit-lua)
+              pf (assert (plan.scene->plan s))
+              pt (assert (plan.scene->plan s {:field? false}))
+              df (. (emit-lua.compile pf.tape) :distance)
+              dt (. (emit-lua.compile pt.tape) :distance)
+              pts (points 200)]
+          (assert.are.equal 18 pf.field.count)
+          (assert.is_nil pt.field)
+          (assert.is_true (field.member? (. s.objects 1)))
+          (assert.is_false (field.member? (first-object "{:kind :translate :children [{:kind :union :children [{:kind :torus}]}]}")))
+          (assert.is_false (field.member? (first-object "{:kind :rotate :children [{:kind :torus :mirror 0.5}]}")))
+          (for [i 1 3]
+            ;; (the field numbers its members in scene order, as the tape does here)
+            (assert.are.equal (. pf.objects i) (. pt.objects i))
+            (each [_ [x y z] (ipairs pts)]
+              (let [a ((. df i) x y z) b ((. dt i) x y z)]
+                (assert.is_true (< (math.abs (- a b)) 1e-9)
+                                (string.format "object %d at %g %g %g: field %.12g, tree %.12g" i x y z a b))))))))
+
     (it "are met where a fine search along the ray first finds the surface"
       (fn []
         ;; The oracle: the member's distance sampled every thousandth of its bounding

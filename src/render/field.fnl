@@ -288,9 +288,9 @@ texture."
                         [x0 x1 y0 y1 z0 z1]))]
           (tset shapes i [cx cy cz ax ay az r])
           (if o.tree
-              (let [{: desc : args : rows} (lower.field-marched o)]
-                (tset marched i {:kind (. kind-number o.kind) : desc : args : rows})
-                (tset colors i (or o.tree.color [1 1 1])))
+              (let [{: desc : args : rows : color} (lower.field-marched o)]
+                (tset marched i {:kind (. kind-number desc.kind) : desc : args : rows})
+                (tset colors i color))
               (tset colors i o.color))
           (tset ranges i (cover reach))
           (tset walk-ranges i (cover walk-reach))))

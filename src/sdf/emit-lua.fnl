@@ -243,7 +243,7 @@
                          (fn [x y z] (round-box (- x cx) (- y cy) (- z cz) hx hy hz r)))]
         (case what
           :distance distance
-          :material (let [[cr cg cb] (if marched (or m.tree.color [1 1 1]) m.color)]
+          :material (let [[cr cg cb] (if marched marched.color m.color)]
                       (if modern?
                           (fn [x y z] (values (distance x y z) cr cg cb 0 0.5 0 0 0))
                           (fn [x y z] (values (distance x y z) cr cg cb 1))))

@@ -682,52 +682,84 @@ tape's :fold? in `lower`)."
 ;; objects texture (shaders/pipeline/field.glsl's fieldMarched).
 (local max-marched-args 8)
 
-(fn marched-leaf [o]
-  ;; The primitive leaf a marched field member is (see field-marched), or nil.
-  (let [leaf o.tree
-        desc (and leaf (primitives.lookup leaf.kind))]
+(local marched-keys {:kind true :path true :path-list true :index true :pos true
+                     :rotate true :color true})
+
+(fn marched-chain [node]
+  ;; `node` as a marched field member sees it (see field-marched): down its chain of
+  ;; placements (translations and rotations, written as operations of one child or
+  ;; as :pos and :rotate) to one primitive: that leaf, the rows m of the rotation
+  ;; and the origin c (world) with the leaf's point m (p - c), and the innermost
+  ;; colour; nil when anything else is on the way (a scale, a material, another
+  ;; operation).
+  (var (m c color leaf) (values [1 0 0 0 1 0 0 0 1] [0 0 0] nil nil))
+  (var at node)
+  (var ok? true)
+  (fn translate! [[ox oy oz]]
+    ;; p - o in the current frame: c moves by m's transpose times o.
+    (let [[a b c3 d e f g h k] m
+          [cx cy cz] c]
+      (set c [(+ cx (* a ox) (* d oy) (* g oz)) (+ cy (* b ox) (* e oy) (* h oz))
+              (+ cz (* c3 ox) (* f oy) (* k oz))])))
+  (fn rotate! [r]
+    ;; Its rows times the current frame's.
+    (set m (fcollect [i 0 8]
+             (let [row (math.floor (/ i 3)) col (% i 3)]
+               (+ (* (. r (+ (* 3 row) 1)) (. m (+ col 1)))
+                  (* (. r (+ (* 3 row) 2)) (. m (+ col 4)))
+                  (* (. r (+ (* 3 row) 3)) (. m (+ col 7))))))))
+  (while (and ok? (not leaf))
+    (let [op (and (. {:translate true :rotate true} at.kind) (operations.lookup at.kind))
+          desc (and (not op) (primitives.lookup at.kind))
+          own (collect [_ p (ipairs (or (?. op :params) (?. desc :params) []))] p.name true)]
+      (each [k (pairs at)]
+        (when (not (or (. marched-keys k) (. own k) (and op (= k :children))))
+          (set ok? false)))
+      (when at.color (set color at.color))
+      ;; The shorthands as wrap-shorthand makes them: translate(rotate(node)).
+      (when at.pos (translate! at.pos))
+      (when at.rotate (rotate! (rotate-desc.pack {:angles at.rotate :angle 0})))
+      (if (not ok?) nil
+          (and op (= 1 (length at.children)))
+          (do (if (= at.kind :translate) (translate! at.offset) (rotate! (rotate-desc.pack at)))
+              (set at (. at.children 1)))
+          desc (set leaf at)
+          (set ok? false))))
+  (when (and ok? leaf)
+    (values leaf m c color)))
+
+(fn field-marched [o]
+  "Scene object `o` as a marched field member, or nil when it is not one: one
+primitive placed by translations and rotations alone (:pos, :rotate, or those
+operations of one child), coloured by :color alone (its material the default, as a
+flat sphere's), bounded, of Lipschitz factor 1 and at most max-marched-args
+numbers. Returns {:desc :args (its packed numbers) :rows (the rotation into its
+frame, 9 numbers, rows first) :centre (its origin, world) :color :radius (its
+bounding sphere's, about its origin)}."
+  (let [(leaf rows centre color) (when o.tree (marched-chain o.tree))
+        desc (when leaf (primitives.lookup leaf.kind))]
     (when (and desc (not desc.half-space?) desc.bounds
                (not (and desc.variant (desc.variant leaf)))
                (= 1 (or desc.lipschitz 1)))
-      (var plain? true)
-      (each [k (pairs leaf)]
-        (when (not (or (= k :kind) (= k :path) (= k :path-list) (= k :pos) (= k :rotate)
-                       (= k :color) (= k :index)
-                       (accumulate [param? false _ p (ipairs desc.params)]
-                         (or param? (= p.name k)))))
-          (set plain? false)))
-      (when (and plain? (desc.bounds leaf)
-                 (<= (length (desc.pack leaf)) max-marched-args))
-        leaf))))
-
-(fn field-marched [o]
-  "Scene object `o` as a marched field member, or nil when it is not one: a primitive
-leaf (no tree around it) placed by :pos and :rotate, coloured by :color alone (its
-material the default, as a flat sphere's), bounded, of Lipschitz factor 1 and at
-most max-marched-args numbers. Returns {:desc :args (its packed numbers) :rows (the
-rotation into its frame, 9 numbers, rows first) :radius (its bounding sphere's,
-about its origin)}."
-  (let [leaf (marched-leaf o)]
-    (when leaf
-      (let [desc (primitives.lookup leaf.kind)
-            [hx hy hz] (desc.bounds leaf)]
-        {: desc :args (desc.pack leaf)
-         :rows (if leaf.rotate
-                   (rotate-desc.pack {:angles leaf.rotate :angle 0})
-                   [1 0 0 0 1 0 0 0 1])
-         :radius (math.sqrt (+ (* hx hx) (* hy hy) (* hz hz)))}))))
+      (let [bounds (desc.bounds leaf)
+            args (desc.pack leaf)]
+        (when (and bounds (<= (length args) max-marched-args))
+          (let [[hx hy hz] bounds]
+            {: desc : args : rows : centre :color (or color [1 1 1])
+             :radius (math.sqrt (+ (* hx hx) (* hy hy) (* hz hz)))}))))))
 
 (fn field-shape [o]
   "Field member `o` as the field's round box about its centre: cx cy cz (world), half
 extents hx hy hz, radius r. The article's flat sphere or box is that primitive
 exactly; a marched member (field-marched) is its bounding sphere."
-  (let [[x y z] (or o.pos (?. o :tree :pos) [0 0 0])]
-    (if (= o.kind :sphere)
-        (values x y z 0 0 0 o.radius)
-        o.tree
-        (values x y z 0 0 0 (. (field-marched o) :radius))
-        (let [[sx sy sz] o.size]
-          (values x y z (* 0.5 sx) (* 0.5 sy) (* 0.5 sz) 0)))))
+  (if o.tree
+      (let [{:centre [x y z] : radius} (field-marched o)]
+        (values x y z 0 0 0 radius))
+      (let [[x y z] o.pos]
+        (if (= o.kind :sphere)
+            (values x y z 0 0 0 o.radius)
+            (let [[sx sy sz] o.size]
+              (values x y z (* 0.5 sx) (* 0.5 sy) (* 0.5 sz) 0))))))
 
 (fn field-kinds [members]
   "Which kinds the field members `members` hold: {:spheres? :boxes? :marched (the
@@ -737,9 +769,10 @@ place there)}. Only their code is compiled in."
         seen {}]
     (each [_ o (ipairs members)]
       (if o.tree
-          (when (not (. seen o.kind))
-            (tset seen o.kind true)
-            (table.insert kinds.marched o.kind))
+          (let [kind (. (field-marched o) :desc :kind)]
+            (when (not (. seen kind))
+              (tset seen kind true)
+              (table.insert kinds.marched kind)))
           (tset kinds (if (= o.kind :sphere) :spheres? :boxes?) true)))
     kinds))
 
