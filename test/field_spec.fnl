@@ -547,6 +547,34 @@
                 (assert.is_true (< (math.abs (- a b)) 1e-9)
                                 (string.format "object %d at %g %g %g: field %.12g, tree %.12g" i x y z a b))))))))
 
+    (it "carry their rotation as a quaternion that turns a vector as its rows do"
+      (fn []
+        ;; field-primitives.glsl's fieldTurn (v + 2 q x (q x v + w v)) with
+        ;; field.quaternion's q, against the rows, for rotations that reach each of
+        ;; its four branches (the trace, then the largest diagonal term).
+        (let [rows (. (require :src.sdf.operations) :lookup)
+              rotate (. (rows :rotate) :pack)
+              cross (fn [ax ay az bx by bz]
+                      (values (- (* ay bz) (* az by)) (- (* az bx) (* ax bz)) (- (* ax by) (* ay bx))))
+              turn (fn [qx qy qz qw x y z]
+                     (let [(cx cy cz) (cross qx qy qz x y z)
+                           (ex ey ez) (cross qx qy qz (+ cx (* qw x)) (+ cy (* qw y)) (+ cz (* qw z)))]
+                       (values (+ x (* 2 ex)) (+ y (* 2 ey)) (+ z (* 2 ez)))))]
+          (each [_ o (ipairs [{:angles [10 40 70] :angle 0} {:angles [180 0 0] :angle 0}
+                              {:angles [0 180 0] :angle 0} {:angles [0 0 180] :angle 0}
+                              {:angles [170 10 175] :angle 0} {:axis [0.6 0 0.8] :angle 179}
+                              {:axis [0 1 0] :angle -91} {:angles [0 0 0] :angle 0}])]
+            (let [[a b c d e f g h k] (rotate o)
+                  (qx qy qz qw) (field.quaternion [a b c d e f g h k])]
+              (assert.is_true (< (math.abs (- 1 (+ (* qx qx) (* qy qy) (* qz qz) (* qw qw)))) 1e-12))
+              (each [_ [x y z] (ipairs [[1 0 0] [0 1 0] [0 0 1] [0.3 -2 1.7]])]
+                (let [(tx ty tz) (turn qx qy qz qw x y z)]
+                  (assert.is_true (< (math.max (math.abs (- tx (+ (* a x) (* b y) (* c z))))
+                                               (math.abs (- ty (+ (* d x) (* e y) (* f z))))
+                                               (math.abs (- tz (+ (* g x) (* h y) (* k z)))))
+                                     1e-12)
+                                  (.. "rotation " (table.concat (or o.angles o.axis) " "))))))))))
+
     (it "are met where a fine search along the ray first finds the surface"
       (fn []
         ;; The oracle: the member's distance sampled every thousandth of its bounding

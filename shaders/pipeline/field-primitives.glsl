@@ -1,31 +1,32 @@
 // Marched field members (src/render/field.fnl's marched-entry is this on the CPU):
 // any primitive placed by :pos and :rotate. Its record holds its bounding sphere and
 // its kind's number negated; its texels of uFieldObjects (kFieldObjectTexels of them)
-// from the fourth on, the rows of its rotation (into its frame) and its packed
-// numbers (u, v).
+// from the fourth on, its rotation into its frame (a unit quaternion) and its packed
+// numbers (u, and v when some kind has more than four: kFieldArgTexels).
 
 // The distance of marched kind `kind` at l (in its frame), its numbers u and v.
 float fieldKindDistance(int kind, vec3 l, vec4 u, vec4 v) {
     // @slot kinds
 }
 
-// Member `object`'s frame (the rows of its rotation) and numbers.
-void fieldMarchedFrame(int object, out vec3 r0, out vec3 r1, out vec3 r2, out vec4 u, out vec4 v) {
+// Member `object`'s rotation into its frame (a unit quaternion) and its numbers.
+void fieldMarchedFrame(int object, out vec4 turn, out vec4 u, out vec4 v) {
     int at = kFieldObjectTexels * object + 3;
-    r0 = fieldRead(uFieldObjects, uFieldRows.z, at).xyz;
-    r1 = fieldRead(uFieldObjects, uFieldRows.z, at + 1).xyz;
-    r2 = fieldRead(uFieldObjects, uFieldRows.z, at + 2).xyz;
-    u = fieldRead(uFieldObjects, uFieldRows.z, at + 3);
-    v = fieldRead(uFieldObjects, uFieldRows.z, at + 4);
+    turn = fieldRead(uFieldObjects, uFieldRows.z, at);
+    u = fieldRead(uFieldObjects, uFieldRows.z, at + 1);
+    v = kFieldArgTexels > 1 ? fieldRead(uFieldObjects, uFieldRows.z, at + 2) : vec4(0.0);
+}
+
+// x turned by the unit quaternion q.
+vec3 fieldTurn(vec4 q, vec3 x) {
+    return x + 2.0 * cross(q.xyz, cross(q.xyz, x) + q.w * x);
 }
 
 // Marched member `object` (of kind `kind`, its origin a.xyz) at the field-local q.
 float fieldMarchedDistance(vec3 q, vec4 a, int kind, int object) {
-    vec3 r0, r1, r2;
-    vec4 u, v;
-    fieldMarchedFrame(object, r0, r1, r2, u, v);
-    vec3 x = q - a.xyz;
-    return fieldKindDistance(kind, vec3(dot(r0, x), dot(r1, x), dot(r2, x)), u, v);
+    vec4 turn, u, v;
+    fieldMarchedFrame(object, turn, u, v);
+    return fieldKindDistance(kind, fieldTurn(turn, q - a.xyz), u, v);
 }
 
 // Where the ray q0 + rd t (field-local, rd a unit vector; t0 the distance it has
@@ -45,11 +46,10 @@ float fieldMarchedEntry(vec3 q0, vec3 rd, vec4 a, int kind, int object, float t0
     if (disc < 0.0 || tOut < 0.0) {
         return uDrawDist;
     }
-    vec3 r0, r1, r2;
-    vec4 u, v;
-    fieldMarchedFrame(object, r0, r1, r2, u, v);
-    vec3 lo = vec3(dot(r0, oc), dot(r1, oc), dot(r2, oc));
-    vec3 ld = vec3(dot(r0, rd), dot(r1, rd), dot(r2, rd));
+    vec4 turn, u, v;
+    fieldMarchedFrame(object, turn, u, v);
+    vec3 lo = fieldTurn(turn, oc);
+    vec3 ld = fieldTurn(turn, rd);
     float t = max(-b - s, 0.0);
     float limit = 10000000000.0;
     for (int i = 0; i < kFieldMarchTurns; i++) {

@@ -460,8 +460,10 @@ only when the plan has it."
      (.. "const int kFieldObjectTexels = " (field.object-texels plan.field)
          ";  // texels per object in uFieldObjects")
      (if marched?
-         (.. "const int kFieldMarchTurns = " field.marched-turns
-             ";  // steps a ray may take in a marched member")
+         [(.. "const int kFieldMarchTurns = " field.marched-turns
+              ";  // steps a ray may take in a marched member")
+          (.. "const int kFieldArgTexels = " (field.arg-texels plan.field)
+              ";  // texels of a marched member's numbers")]
          [])
      (fill "shaders/pipeline/field.glsl"
            {:marched (if marched?
