@@ -318,6 +318,40 @@
                   (assert.is_true (passes? st {:over 2 :max 40})
                                   (describe-failures "field of marched members" st {:over 2 :max 40})))))
 
+            (it "draws every bounded primitive as a field's marched member as the reference does"
+              (fn []
+                ;; Four rotated copies of each primitive a field can hold (its defaults,
+                ;; in rows over a floor): one kind code each, each kind's arguments read
+                ;; from its packed numbers (codegen's marched-args). Measured: max
+                ;; 1.3/255, 0 over; with each number read from the next one's place 331
+                ;; over.
+                (let [primitives (require :src.sdf.primitives)
+                      field (require :src.render.field)
+                      kinds (icollect [_ d (ipairs primitives.all)]
+                              (let [o {:kind d.kind :tree (collect [_ p (ipairs d.params)] p.name p.default)}]
+                                (set o.tree.kind d.kind)
+                                (when (field.member? o) d.kind)))
+                      objects (icollect [i kind (ipairs kinds)]
+                                (table.concat
+                                 (fcollect [j 1 4]
+                                   (string.format "{:kind :%s :pos [%d %d %g] :rotate [%d %d %d] :color [%.2f %.2f %.2f]}"
+                                                  kind (- (* 3 (% i 9)) 12) (- (* 3 (math.floor (/ i 9))) (* 9 (- j 2)))
+                                                  1.2 (* 23 (+ i j)) (* 37 j) (* 11 i)
+                                                  (/ (% i 5) 5) (/ (% j 3) 3) 0.6))
+                                 " "))]
+                  (with-open [f (assert (io.open "test/out/field-every-kind.fnl" :wb))]
+                    (f:write (.. "{:camera {:pos [0 -30 14] :yaw 90 :pitch 25 :fov 60}
+ :light {:pos [-20 -30 40]}
+ :render {:shadows true :reflections 1}
+ :objects [{:kind :plane :height 0 :color [0.6 0.6 0.6]} " (table.concat objects " ") "]}")))
+                  (let [prepared (prepare "test/out/field-every-kind.fnl" {:view :shaded})
+                        st (compare-image prepared (gpu-render ctx prepared))]
+                    (assert.are.same kinds prepared.plan.field.kinds.marched)
+                    (assert.is_true (>= (length kinds) 26))
+                    (print (report-line "every primitive marched" st))
+                    (assert.is_true (passes? st {:over 2 :max 40})
+                                    (describe-failures "every primitive marched" st {:over 2 :max 40}))))))
+
             (it "walks a field of spheres as the reference does, and catches a walk that skips lists"
               (fn []
                 ;; march.glsl's step-spheres: 2000 spheres of radius 0.2 to 0.7, so that
