@@ -11,6 +11,7 @@
 (local reference (require :src.verify.reference))
 (local compare (require :src.verify.compare))
 (local field (require :src.render.field))
+(local {: marched-mix} (require :test.support.scenes))
 
 (fn scattered [n ?extra ?render ?spheres-only?]
   ;; A scene of n spheres and boxes (alternating; only spheres when asked)
@@ -452,29 +453,9 @@
           (assert.is_true (>= same 396) (.. same " of 400 pixels show the same object"))
           (assert.is_true (>= close 380) (.. close " of 400 pixels within 2/255")))))))
 
-(fn scattered-mixed [n ?render]
-  ;; n spheres, rotated tori and capsules (a third each) scattered as `scattered`'s:
-  ;; the tori and capsules are placed, turned and coloured alone, so a field holds
-  ;; them as marched members.
-  (assert (scene.load-string
-           (.. "(var seed 5)
-(fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))
-(local objects [{:kind :plane :height 0 :color [0.6 0.6 0.6]}])
-(for [i 1 " n "]
-  (let [x (+ -20 (* 40 (rnd))) y (+ -20 (* 40 (rnd))) z (+ 0.8 (* 10 (rnd)))
-        r (+ 0.3 (* 0.5 (rnd)))
-        color [(rnd) (rnd) (rnd)]
-        k (% i 3)]
-    (table.insert objects (if (= k 0) {:kind :sphere :pos [x y z] :radius r : color}
-                              (= k 1) {:kind :torus :radius r :thickness (* 0.3 r) :pos [x y z]
-                                       :rotate [(* 90 (rnd)) (* 90 (rnd)) 0] : color}
-                              {:kind :capsule :a [(- r) 0 0] :b [r 0 (* 0.5 r)] :radius (* 0.4 r)
-                               :pos [x y z] : color}))))
-{:camera {:pos [0 -35 12] :yaw 90 :pitch 15 :fov 60}
- :light {:pos [-20 -30 40]}
- :render " (or ?render "{:shadows true :reflections 1 :relaxation 1}") "
- :objects objects}")
-           "t.fnl")))
+(fn scattered-mixed [n]
+  ;; n spheres, rotated tori and capsules, the tori and capsules marched members.
+  (assert (scene.load-string (marched-mix n) "t.fnl")))
 
 (fn first-object [text]
   (. (assert (scene.load-string (.. "{:objects [" text "]}") "t.fnl")) :objects 1))

@@ -90,6 +90,7 @@
 
 (local headless (require :src.backend.headless))
 (local codegen (require :src.render.codegen))
+(local {: marched-mix} (require :test.support.scenes))
 (local {: scene-files : prepare : gpu-render : compare-image : passes?
         : describe-failures : report-line} (require :test.support.gpu-check))
 
@@ -293,23 +294,7 @@
                 ;; (seed 1); with each member met unrotated (its rows ignored) 110 over, max
                 ;; 186.2.
                 (with-open [f (assert (io.open "test/out/field-marched.fnl" :wb))]
-                  (f:write "(var seed 5)
-(fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))
-(local objects [{:kind :plane :height 0 :color [0.6 0.6 0.6]}])
-(for [i 1 300]
-  (let [x (+ -20 (* 40 (rnd))) y (+ -20 (* 40 (rnd))) z (+ 0.8 (* 10 (rnd)))
-        r (+ 0.3 (* 0.5 (rnd)))
-        color [(rnd) (rnd) (rnd)]
-        k (% i 3)]
-    (table.insert objects (if (= k 0) {:kind :sphere :pos [x y z] :radius r : color}
-                              (= k 1) {:kind :torus :radius r :thickness (* 0.3 r) :pos [x y z]
-                                       :rotate [(* 90 (rnd)) (* 90 (rnd)) 0] : color}
-                              {:kind :capsule :a [(- r) 0 0] :b [r 0 (* 0.5 r)] :radius (* 0.4 r)
-                               :pos [x y z] : color}))))
-{:camera {:pos [0 -35 12] :yaw 90 :pitch 15 :fov 60}
- :light {:pos [-20 -30 40]}
- :render {:shadows true :reflections 1}
- :objects objects}"))
+                  (f:write (marched-mix 300 "{:shadows true :reflections 1}")))
                 (let [prepared (prepare "test/out/field-marched.fnl" {:view :shaded})
                       st (compare-image prepared (gpu-render ctx prepared))]
                   (assert.are.same [:torus :capsule] prepared.plan.field.kinds.marched)
