@@ -10,8 +10,8 @@
 ;; The article's flat spheres and boxes are each a rounded box: centre c, half extents
 ;; h, radius r. A sphere is h = 0 (distance |p - c| - r, exact); a box is r = 0
 ;; (exact). One formula, no branch between them, and met along a ray in closed form.
-;; Any other primitive placed by :pos and :rotate (lower.fnl's field-marched) is a
-;; marched member: its bounding sphere stands in for its box in the grid, and a ray
+;; Any other bounded primitive placed by translations and rotations alone
+;; (lower.fnl's field-marched) is a marched member: its bounding sphere stands in for its box in the grid, and a ray
 ;; that enters that sphere sphere-traces the primitive's own distance in its frame
 ;; (marched-entry; fieldMarchedEntry in the shader), at most marched-turns steps.
 ;;
@@ -21,6 +21,7 @@
 
 (local large-radius (. (require :src.sdf.large-sphere) :radius))
 (local lower (require :src.sdf.lower))
+(local primitives (require :src.sdf.primitives))
 
 (local sqrt math.sqrt)
 (local floor math.floor)
@@ -107,9 +108,9 @@ there are fewer than min-objects of them."
   "Texels of packed numbers per object (1 or 2) in the objects texture of a field
 with marched members: as many as the kind with the most numbers needs."
   (accumulate [n 1 _ kind (ipairs field.kinds.marched)]
-    (let [desc ((. (require :src.sdf.primitives) :lookup) kind)
-          sizes {:float 1 :vec2 2 :vec3 3 :vec4 4}
-          numbers (accumulate [sum 0 _ a (ipairs desc.args)] (+ sum (. sizes a.type)))]
+    (let [desc (primitives.lookup kind)
+          numbers (accumulate [sum 0 _ a (ipairs desc.args)]
+                    (+ sum (. primitives.glsl-types a.type)))]
       (max n (math.ceil (/ numbers 4))))))
 
 (fn object-texels [field]

@@ -50,8 +50,8 @@
 ;;     through a uniform grid in float textures that the plan builds
 ;;     (src/render/field.fnl). The article's flat spheres and boxes are each the
 ;;     round-box primitive (a sphere of no extent, a box of no radius), met along a
-;;     ray in closed form; any other primitive placed by :pos and :rotate and
-;;     coloured by :color alone is marched: its bounding sphere met in closed form,
+;;     ray in closed form; any other bounded primitive placed by translations and
+;;     rotations and coloured by :color alone is marched: its bounding sphere met in closed form,
 ;;     then its own distance sphere-traced in its frame (field-marched). It is the
 ;;     first object, so its members are numbered first.
 ;;
@@ -679,7 +679,7 @@ tape's :fold? in `lower`)."
 (local rotate-desc (operations.lookup :rotate))
 
 ;; A marched field member's packed numbers, at most: two texels of the field's
-;; objects texture (shaders/pipeline/field.glsl's fieldMarched).
+;; objects texture (shaders/pipeline/field-primitives.glsl's fieldMarchedFrame).
 (local max-marched-args 8)
 
 (local marched-keys {:kind true :path true :path-list true :index true :pos true
