@@ -189,10 +189,11 @@ wait_still 30
 say "structural: one more object and :hue 0.3"
 grab_start structural
 sleep 1
-# The cone goes last in :objects: the file's last line ends the objects' vector.
-sed -e "s/(param :hue 0\.1 /(param :hue 0.3 /" \
-    -e '$ s/\]}$/\n  {:kind :capped-cone :height 2 :radius1 0.9 :radius2 0.3 :pos [3.5 -4 1] :color c :mirror 0}]}/' \
-    "$SCENES/hue.fnl" | write_scene "$WORK/hue.fnl"
+# The cone goes first in the :objects vector (a scene may end that vector with a
+# call whose values it spreads, test/states/field's members).
+sed -e "s/(param :hue 0\.1 /(param :hue 0.3 /" "$SCENES/hue.fnl" \
+  | perl -0pe 's/:objects(\s*)\[/:objects$1\[{:kind :capped-cone :height 2 :radius1 0.9 :radius2 0.3 :pos [3.5 -4 1] :color c :mirror 0}\n  /' \
+  | write_scene "$WORK/hue.fnl"
 grep -q capped-cone "$WORK/hue.fnl" || die "the structural edit did not apply to $SCENES/hue.fnl"
 sleep 10
 grab_stop
