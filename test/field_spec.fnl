@@ -652,7 +652,8 @@
       (fn []
         ;; The reference's march through the field against the same scene with no
         ;; field (every object sphere-traced at every step). Measured at 160x90 on
-        ;; 300 pixels: the same object under 299.
+        ;; 300 pixels: the same object under all 300 (at least 296 allowed: a ray
+        ;; grazing a surface within the hit threshold may meet it at another step).
         (let [(pf a b) (against-brute-force (scattered-mixed 300) 300)
               same (accumulate [n 0 i ra (ipairs a)] (if (= ra.object (. b i :object)) (+ n 1) n))]
           (assert.are.equal 300 pf.field.count)

@@ -290,9 +290,9 @@
                 ;; The lean walk (march.glsl's step-cells) through spheres, rotated tori
                 ;; and capsules: each torus and capsule sphere-traced alone in its frame
                 ;; (field-primitives.glsl's fieldMarchedEntry, field.fnl's
-                ;; marched-entry), normals by differences. Measured: max 0.5/255, 0 over
-                ;; (seed 1); with each member met unrotated (its rows ignored) 110 over, max
-                ;; 186.2.
+                ;; marched-entry), normals by differences. Measured: max 0.7/255, 0 over
+                ;; (seed 1); with each member met unrotated (its quaternion ignored) 109
+                ;; over, max 186.2.
                 (with-open [f (assert (io.open "test/out/field-marched.fnl" :wb))]
                   (f:write (marched-mix 300 "{:shadows true :reflections 1}")))
                 (let [prepared (prepare "test/out/field-marched.fnl" {:view :shaded})
