@@ -1,7 +1,7 @@
 ;; A city of ten thousand objects to fly through (issue 12): 100 x 100 blocks of
 ;; towers, each a box of its own height and colour, and a dome on one block in seven.
 ;; So many spheres and boxes form a field: float textures and a grid, so a ray tests
-;; only the towers along its way (see README, Many objects). Scene files have no
+;; only the towers along its way (see docs/how-it-works.md, Many objects). Scene files have no
 ;; random numbers: the city comes from its own hash.
 (fn hash [i k]
   ;; A repeatable number in [0, 1) for block i and salt k.

@@ -7,7 +7,7 @@
  :camera {:pos [-2 -5.5 2.2] :yaw 35 :pitch 3 :fov 65}
  :light {:pos [-20 -30 40]}
  :environment [0.98 0.85 0.65]
- ;; The modern look (see README, Lighting); m in the player shows the classic model.
+ ;; The modern look (see docs/scenes.md, Lighting); m in the player shows the classic model.
  :lighting {:lights [{:kind :sun :direction [-0.45 -0.6 0.55] :color [1 0.82 0.6]
                       :intensity 3.2 :softness 0.04}]
             :sky-zenith [0.35 0.5 0.8] :sky-horizon [0.98 0.85 0.65]

@@ -1,6 +1,6 @@
 ;; Distance functions written in Fennel, the article's way, drawn on the GPU: each
 ;; :custom object's (fn [x y z ...] ...) is translated to GLSL when the scene loads
-;; (see README, Custom nodes). Its parameters after x y z come from :params, as
+;; (see docs/scenes.md, Custom nodes). Its parameters after x y z come from :params, as
 ;; uniforms: editing a value there, or dragging the shell's slider (F2), compiles
 ;; nothing.
 (local {: sqrt : abs : min : max : sin : cos} math)

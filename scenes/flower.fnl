@@ -5,7 +5,7 @@
  :camera {:pos [0 -6.5 5.5] :yaw 90 :pitch 32 :fov 50}
  :light {:pos [-8 -12 20]}
  :environment [0.7 0.85 0.7]
- ;; The modern look (see README, Lighting); m in the player shows the classic model.
+ ;; The modern look (see docs/scenes.md, Lighting); m in the player shows the classic model.
  :lighting {:sky-zenith [0.35 0.55 0.8] :sky-horizon [0.75 0.88 0.75]
             :ambient 0.5 :ao 0.9 :ao-radius 0.3 :exposure 1.1}
  :render {:reflections 1 :draw-distance 200}

@@ -13,7 +13,7 @@
  :camera {:pos [6.5 -7 5] :yaw 133 :pitch 28 :fov 55}
  :light {:pos [10 -14 22]}
  :environment [0.78 0.82 0.88]
- ;; The modern look (see README, Lighting); m in the player shows the classic model.
+ ;; The modern look (see docs/scenes.md, Lighting); m in the player shows the classic model.
  :lighting {:lights [{:kind :sun :direction [0.4 -0.55 0.75] :intensity 3 :softness 0.03}
                      {:kind :point :pos [-2 -4 3] :color [1 0.8 0.6] :intensity 1.5 :range 4}]
             :sky-zenith [0.45 0.55 0.7] :sky-horizon [0.8 0.82 0.86]

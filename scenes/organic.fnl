@@ -14,7 +14,7 @@
  :camera {:pos [5.5 -6 3.2] :yaw 131 :pitch 12 :fov 50}
  :light {:pos [12 -16 25]}
  :environment [0.62 0.75 0.92]
- ;; The modern look (see README, Lighting); m in the player shows the classic model.
+ ;; The modern look (see docs/scenes.md, Lighting); m in the player shows the classic model.
  :lighting {:sky-zenith [0.3 0.5 0.85] :sky-horizon [0.75 0.82 0.92]
             :ambient 0.5 :ao 0.9 :ao-radius 0.4 :exposure 1.1}
  :render {:reflections 1 :draw-distance 200 :shadows (param :shadows true)}

@@ -12,7 +12,7 @@
  :camera {:pos [0.3 -10 3.4] :yaw 90 :pitch 6 :fov 64}
  :light {:pos [-6 -14 16]}
  :environment [0.85 0.82 0.78]
- ;; The modern look (see README, Lighting); m in the player shows the classic model.
+ ;; The modern look (see docs/scenes.md, Lighting); m in the player shows the classic model.
  :lighting {:lights [{:kind :sun :direction [-0.35 -0.75 0.55] :intensity 3 :softness 0.05}]
             :sky-zenith [0.4 0.5 0.7] :sky-horizon [0.85 0.82 0.78]
             :ambient 0.5 :ao 0.9 :ao-radius 0.4 :exposure 1.1}

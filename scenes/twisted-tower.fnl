@@ -5,7 +5,7 @@
  :camera {:pos [18 -21 8] :yaw 130 :pitch 0 :fov 55}
  :light {:pos [25 -20 40]}
  :environment [0.55 0.62 0.75]
- ;; The modern look (see README, Lighting); m in the player shows the classic model.
+ ;; The modern look (see docs/scenes.md, Lighting); m in the player shows the classic model.
  :lighting {:lights [{:kind :sun :direction [-0.6 -0.45 0.65] :color [1 0.9 0.75]
                       :intensity 3 :softness 0.03}]
             :sky-zenith [0.25 0.4 0.75] :sky-horizon [0.7 0.75 0.85]

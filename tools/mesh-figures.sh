@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's mesh export figures (issue 31): for each scene, resolution and field,
+# The mesh export figures of docs/mesh.md (issue 31): for each scene, resolution and field,
 # `love . --mesh` timed by /usr/bin/time, then tools/mesh-check.fnl for the topology
 # and the farthest vertex from the surface (CPU evaluator, in cells).
 #   bash tools/mesh-figures.sh [SCENE...]   (default: organic machined-part)

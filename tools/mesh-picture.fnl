@@ -1,7 +1,7 @@
 ;; A picture of a mesh file written by `love . --mesh` (issue 31), under plain LuaJIT:
 ;;   luajit tools/fnl.lua tools/mesh-picture.fnl FILE.ply|.obj|.stl OUT.png [WxH] [YAW PITCH]
 ;; flat-shaded triangles in the file's vertex colours (grey for STL), their edges
-;; faint (src/mesh/raster.fnl). The README's picture of an exported mesh is made so.
+;; faint (src/mesh/raster.fnl). docs/mesh.md's pictures of exported meshes are made so.
 
 (local formats (require :src.mesh.formats))
 (local raster (require :src.mesh.raster))

@@ -1,4 +1,4 @@
-;; The README's mesh volume figures (issue 31), under plain LuaJIT:
+;; The mesh volume figures of docs/mesh.md (issue 31), under plain LuaJIT:
 ;;   luajit tools/fnl.lua tools/mesh-volumes.fnl [N...]   (default 32 128)
 ;; a sphere, a rotated box and a torus meshed on the CPU at N cells: the volume's
 ;; error against the exact one, and the time.

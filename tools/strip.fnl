@@ -1,4 +1,4 @@
-;; Join PNG frames of the same size side by side into one strip (for the README):
+;; Join PNG frames of the same size side by side into one strip (for the docs):
 ;;   luajit tools/fnl.lua tools/strip.fnl OUT.png IN1.png IN2.png ...
 (local png (require :src.util.png))
 (local out-path (. arg 1))

@@ -1,4 +1,4 @@
-;; A picture of a triangle mesh (issue 31), for the README and for looking at an
+;; A picture of a triangle mesh (issue 31), for docs/mesh.md and for looking at an
 ;; exported file without another program: a software rasteriser with a depth buffer,
 ;; each triangle flat-shaded in its vertices' mean colour (grey without colours) by
 ;; a light over the viewer's shoulder, its edges drawn faintly so the triangles show.

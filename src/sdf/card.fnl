@@ -1,4 +1,4 @@
-;; The scene language's reference card (`love . --kinds`, and the README's table):
+;; The scene language's reference card (`love . --kinds`, and the table in docs/scenes.md):
 ;; every primitive and operation, one per line, with its parameters and its class.
 
 (local primitives (require :src.sdf.primitives))
@@ -34,12 +34,12 @@
       (let [d (operations.lookup name)]
         (table.insert out (.. "  :" d.kind "  " (children-text d) "  "
                               d.class-doc "  " (params-text d)))))
-    (table.insert out "custom: {:kind :custom :distance (fn [x y z ...] ...) :bounds [hx hy hz] :params {...} :lipschitz k (optional)}, a distance function in Fennel (README, Custom nodes)")
+    (table.insert out "custom: {:kind :custom :distance (fn [x y z ...] ...) :bounds [hx hy hz] :params {...} :lipschitz k (optional)}, a distance function in Fennel (docs/scenes.md, Custom nodes)")
     (table.insert out "every node also takes :pos [x y z], :rotate [x y z] degrees, :scale s, :color [r g b], :mirror 0..1")
     out))
 
 (fn markdown []
-  "The card as Markdown table rows, for the README."
+  "The card as Markdown table rows, for docs/scenes.md."
   (let [out ["| kind | class | parameters (defaults) | what it is |" "|---|---|---|---|"]]
     (each [_ d (ipairs primitives.all)]
       (table.insert out (.. "| `:" d.kind "` | " (primitive-class d) " | " (params-text d) " | " d.doc " |")))

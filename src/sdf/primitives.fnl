@@ -5,7 +5,7 @@
 ;;
 ;; A descriptor is a table:
 ;;   :kind        the name scene files use (keyword)
-;;   :doc         one line for `--kinds` and the README
+;;   :doc         one line for `--kinds` and docs/scenes.md
 ;;   :params      [{:name :type :default ...}] checked by the scene loader (types in
 ;;                src/scene/load.fnl: :positive :number :vec3 :size3 :direction
 ;;                :degrees (with :min :max) :fraction :length0 :count)
