@@ -2,6 +2,12 @@
 ;; runs one command-line mode (render, print-shader, bench) and exits.
 
 (local cli (require :src.app.cli))
+(local runtime-dir (require :src.util.runtime-dir))
+
+;; conf.lua loads this file before LÖVE starts its window (SDL's video): a headless
+;; run gets a private XDG_RUNTIME_DIR until then, so that Wayland's library does not
+;; print "error: XDG_RUNTIME_DIR is invalid or not set" (src/util/runtime-dir.fnl).
+(local runtime-path (runtime-dir.ensure!))
 
 (fn fail! [message]
   (io.stderr:write (.. "error: " message "\n"))
@@ -23,26 +29,9 @@
   {:protect [o.scene] :label (.. "--out " o.out)})
 
 (fn render [o]
-  (let [frame (require :src.backend.frame)
-        gpu (require :src.backend.gpu)
-        camera (require :src.render.camera)
-        output (require :src.util.output)
-        ;; A refused --out is refused before the scene is even read.
-        (checked cerr) (output.check o.out (out-options o))
-        (scene err) (if checked (frame.load-scene o.scene) (values nil cerr))]
-    (if (not scene) (fail! err)
-        ;; One frame of values that never change: the trees' values as constants.
-        (let [(plan perr) (frame.plan-for scene {:view o.view :fold? true})
-              [w h] (or o.size [512 448])]
-          (if (not plan) (fail! perr)
-              (let [canvas (love.graphics.newCanvas w h)
-                    (ok? rerr) (frame.render-to-canvas! (gpu.new-cache) canvas scene plan
-                                                        (camera.from-scene scene))]
-                (if (not ok?) (fail! rerr)
-                    (case (frame.write-png canvas o.out (out-options o))
-                      true (do (print (.. "wrote " o.out " (" w "x" h ")"))
-                               (love.event.quit 0))
-                      (_ werr) (fail! werr)))))))))
+  (case ((. (require :src.app.render) :run) o)
+    true (love.event.quit 0)
+    (_ err) (fail! err)))
 
 (fn quit-asked? []
   "Whether a quit event (a signal, the window closed) is waiting in LÖVE's queue."
@@ -117,6 +106,10 @@
   (io.write cli.usage "\n")
   (love.event.quit 0))
 
+(fn help-dev []
+  (io.write cli.dev-usage "\n")
+  (love.event.quit 0))
+
 (fn kinds []
   (each [_ l (ipairs ((. (require :src.sdf.card) :lines)))] (io.write l "\n"))
   (love.event.quit 0))
@@ -153,7 +146,8 @@
     (play-mod.start! o)))
 
 (local modes {:print-shader print-shader :render render :bench bench
-              :probe probe :tree tree :kinds kinds :help help :export-shader export-shader
+              :probe probe :tree tree :kinds kinds :help help :help-dev help-dev
+              :export-shader export-shader
               :record record :mesh mesh :edit-latency edit-latency
               :bench-report bench-report :soak soak :input-check input-check :play play})
 
@@ -164,6 +158,8 @@
   (os.exit 1))
 
 (fn love.load [args]
+  ;; SDL's video has started (or never will): the stand-in folder goes.
+  (runtime-dir.release! runtime-path)
   (case (cli.parse (or args []))
     o (let [run (. modes o.mode)]
         ;; Command-line modes must never stop on LÖVE's error screen: a script waits on

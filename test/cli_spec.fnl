@@ -147,12 +147,37 @@
         (assert.are.same [1 1] (. (cli.parse ["--size" "1x1"]) :size))
         (assert.are.same [16384 16384] (. (cli.parse ["--size" "16384x16384"]) :size))))
 
-    (it "has a usage text naming every mode and view"
+    (it "has a usage text naming every user's mode and view, and the developers' apart"
       (fn []
-        (each [_ s (ipairs ["--render" "--out" "--print-shader" "--bench" "--bench-report"
-                            "--size" "--frames" "--view" "--target" "--shot"
+        (each [_ s (ipairs ["--render" "--record" "--out" "--print-shader" "--bench" "--probe"
+                            "--tree" "--kinds" "--export-shader" "--mesh" "--sync-compile"
+                            "--size" "--frames" "--view" "--target" "--shot" "--quality"
+                            "--samples" "draft" "still" "final" "--help-dev"
                             "shaded, normals, glow, heat"])]
-          (assert.truthy (cli.usage:find s 1 true) s))))))
+          (assert.truthy (cli.usage:find s 1 true) s))
+        ;; The internal modes (tests, benchmarks, the player's helpers) are not the
+        ;; user's: --help-dev lists them.
+        (each [_ s (ipairs ["--bench-report" "--soak" "--input-check" "--edit-latency"
+                            "--warm-shader" "--warm-server" "--scene-worker"])]
+          (assert.falsy (cli.usage:find s 1 true) s)
+          (assert.truthy (cli.dev-usage:find s 1 true) s))))
+
+    (it "parses --help-dev"
+      (fn []
+        (assert.are.equal :help-dev (. (cli.parse ["--help-dev"]) :mode))))
+
+    (it "parses --quality and --samples for --render and --record, absent unless given"
+      (fn []
+        (assert.are.same {:mode :render :scene "a.fnl" :out "a.png" :quality "final" :samples 8
+                          :frames 5 :cycles 300}
+                         (cli.parse ["--render" "a.fnl" "--out" "a.png" "--quality" "final"
+                                     "--samples" "8"]))
+        (assert.are.same {:mode :record :scene "a.fnl" :out "d" :samples 1 :frames 5 :cycles 300}
+                         (cli.parse ["--record" "a.fnl" "--out" "d" "--samples" "1"]))
+        (assert.are.equal "draft" (. (cli.parse ["--render" "a.fnl" "--out" "a.png" "--quality" "draft"
+                                                 "--samples" "1"])
+                                     :quality))
+        (assert.is_nil (. (cli.parse ["--render" "a.fnl" "--out" "a.png"]) :samples))))))
 
 (describe "cli: errors"
   (fn []
@@ -230,6 +255,23 @@
       (fn []
         (assert.are.equal "unexpected argument b.fnl" (parse-error ["a.fnl" "b.fnl"]))
         (assert.are.equal "unexpected argument b.fnl" (parse-error ["--bench" "a.fnl" "b.fnl"]))))
+
+    (it "rejects bad --quality and --samples, and either outside --render and --record"
+      (fn []
+        (assert.are.equal "--quality must be one of draft, still, final, got best"
+                          (parse-error ["--render" "a.fnl" "--out" "a.png" "--quality" "best"]))
+        (each [_ n (ipairs ["0" "2.5" "x"])]
+          (assert.are.equal (.. "--samples must be a whole number >= 1, got " n)
+                            (parse-error ["--render" "a.fnl" "--out" "a.png" "--samples" n])))
+        (assert.are.equal "--samples must be at most 16, got 17"
+                          (parse-error ["--render" "a.fnl" "--out" "a.png" "--samples" "17"]))
+        (assert.are.equal "--quality draft is one ray a pixel: --samples above 1 goes with still or final"
+                          (parse-error ["--render" "a.fnl" "--out" "a.png" "--quality" "draft" "--samples" "4"]))
+        (assert.are.equal "--samples only goes with --render or --record"
+                          (parse-error ["--bench" "a.fnl" "--samples" "4"]))
+        (assert.are.equal "--quality only goes with --render or --record"
+                          (parse-error ["a.fnl" "--quality" "final"]))
+        (assert.are.equal "--quality needs a value" (parse-error ["--render" "a.fnl" "--quality"]))))
 
     (it "reports the first error only"
       (fn []

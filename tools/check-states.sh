@@ -48,7 +48,7 @@ if [ "${1:-}" = "--calibrate" ]; then
   for v in 0.0 0.1 0.3 0.6 0.9 1.0; do
     sed "s/(param :hue 0\.1 /(param :hue $v /" "$SCENES/hue.fnl" > "$dir/hue-$v.fnl"
     (cd "$REPO" && SDL_VIDEODRIVER=offscreen love . --render "$dir/hue-$v.fnl" \
-       --out "$dir/hue-$v.png" --size 1280x720 >/dev/null) || die "render of :hue $v failed"
+       --out "$dir/hue-$v.png" --size 1280x720 --samples 1 >/dev/null) || die "render of :hue $v failed"
     convert "$dir/hue-$v.png" -filter Triangle -resize 160x90 -resize 1280x720\! "$dir/hue-$v-coarse.png"
   done
   cd "$REPO" && exec luajit tools/fnl.lua tools/check-states.fnl --calibrate "$dir"/hue-*.png

@@ -6,34 +6,54 @@
 
 (local default-scene "scenes/seed.fnl")
 
+;; --quality's names (see src/app/quality.fnl).
+(local qualities {:draft true :still true :final true})
+
 (local usage
   "usage: love . [SCENE] [--target-fps N]      play SCENE (default scenes/seed.fnl), moving at N fps (30)
        love . [SCENE] --sync-compile         play, compiling a changed scene's shader in the player
                                              (default: a helper process compiles it first)
        love . [SCENE] --shot FILE.png [--frames N]   play N frames, save the window, quit
-       love . --render SCENE --out FILE.png [--size WxH] [--view VIEW]
-       love . --print-shader SCENE [--view VIEW] [--target love|core]
-       love . --bench SCENE [--size WxH] [--frames N]
-       love . --bench-report [--frames N]    the benchmark behind `make bench`
-       love . --soak [--cycles N]            hot-reload soak test (edits a temp scene)
-       love . --input-check                  the player driven by scripted keys and mouse
-       love . --probe SCENE [--gpu]          distance and material at points `x y z` read from stdin
-       love . --tree SCENE                   the lowered scene tree, each node's class and bounds
-       love . --kinds                        every primitive and operation, with parameters
-       love . --export-shader SCENE --out FILE.glsl   a Shadertoy shader with the values baked in
+       love . --render SCENE --out FILE.png [--size WxH] [--view VIEW] [--quality Q] [--samples N]
+                                             the picture as the player's anti-aliased still
        love . --record SCENE --out DIR --frames N [--fps F] [--size WxH] [--turntable]
+                      [--quality Q] [--samples N]   frames DIR/frame-0001.png ..., each a still
+       love . --export-shader SCENE --out FILE.glsl   a Shadertoy shader with the values baked in
        love . --mesh SCENE --out FILE.stl|.ply|.obj [--resolution N] [--region x0,y0,z0,x1,y1,z1] [--gpu]
                                              a mesh of the scene's finite objects (N cells along
                                              the longest side, 128), or of all of them cut by a box
+       love . --print-shader SCENE [--view VIEW] [--target love|core]
+       love . --bench SCENE [--size WxH] [--frames N]   median ms per frame
+       love . --probe SCENE [--gpu]          distance and material at points `x y z` read from stdin
+       love . --tree SCENE                   the lowered scene tree, each node's class and bounds
+       love . --kinds                        every primitive and operation, with parameters
+       love . --help                         this text (--help-dev: the developers' modes)
+VIEW is one of shaded, normals, glow, heat.
+Q (--render, --record) is one of
+  draft   one ray a pixel (what the player shows while the scene moves; the goldens')
+  still   the player's anti-aliased still, the default: one ray, and N x N rays (4) only
+          where the pixel holds an edge or a second ray disagrees
+  final   N x N rays (4) in every pixel: slowest, catches what the edge tests miss
+--samples N (1 to 16): N x N rays at most a pixel; --samples 1 is draft, the one-ray picture.
+Only the shaded view has the still's edge tests: other views are drafts unless Q or N says.")
+
+(local dev-usage
+  "developers' modes (tests, benchmarks and the player's own helpers):
+       love . --bench-report [--frames N]    the benchmark behind `make bench`
+       love . --soak [SCENE] [--cycles N]    hot-reload soak test (edits a temp scene)
+       love . --input-check                  the player driven by scripted keys and mouse
        love . --edit-latency SCENE [--sync-compile]   the player's delay in showing an edit
        love . --warm-shader FILE.glsl        compile a shader and draw it once (the player's helper;
                                              conf.lua runs it before anything else)
-       love . --help                         this text
-VIEW is one of shaded, normals, glow, heat.")
+       love . --warm-server DIR PID          the player's compile helper, serving DIR until PID ends
+       love . --scene-worker                 the process that runs scene files (conf.lua starts it
+                                             with the file system only)
+       love . --help-dev                     this text")
 
 (local value-flags {:--out :out :--size :size :--frames :frames :--view :view
                     :--target :target :--shot :shot :--cycles :cycles :--fps :fps
-                    :--target-fps :target-fps :--resolution :resolution :--region :region})
+                    :--target-fps :target-fps :--resolution :resolution :--region :region
+                    :--samples :samples :--quality :quality})
 (local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench
                    :--probe :probe :--tree :tree :--export-shader :export-shader
                    :--record :record :--edit-latency :edit-latency :--mesh :mesh})
@@ -98,14 +118,23 @@ VIEW is one of shaded, normals, glow, heat.")
       (values nil (.. "--view must be one of " (table.concat plan.views ", ") ", got " o.view))
       (and o.target (not= o.target "love") (not= o.target "core"))
       (values nil (.. "--target must be love or core, got " o.target))
+      (and (or o.samples o.quality) (not= o.mode :render) (not= o.mode :record))
+      (values nil (.. (if o.samples "--samples" "--quality") " only goes with --render or --record"))
+      (and o.quality (not (. qualities o.quality)))
+      (values nil (.. "--quality must be one of draft, still, final, got " o.quality))
+      (and o.samples (> o.samples 16))
+      (values nil (.. "--samples must be at most 16, got " o.samples))
+      (and (= o.quality "draft") o.samples (> o.samples 1))
+      (values nil "--quality draft is one ray a pixel: --samples above 1 goes with still or final")
       o))
 
 (fn parse [args]
   "Parse the game's arguments (after LÖVE's own). Returns an options table
 {:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:input-check|:probe|:tree|:kinds|:help
- |:export-shader|:record|:edit-latency|:mesh
+ |:help-dev|:export-shader|:record|:edit-latency|:mesh
  :scene :out :size [w h] :frames n :view v :target t :gpu? (probe or mesh on the GPU)
- :resolution n :region {:lo :hi} (--mesh)} or nil and a message (the usage text follows it)."
+ :resolution n :region {:lo :hi} (--mesh) :quality \"draft\"|\"still\"|\"final\" :samples n
+ (--render, --record; absent when not given)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]
     (var i 1)
     (var err nil)
@@ -124,6 +153,8 @@ VIEW is one of shaded, normals, glow, heat.")
             (= a "--sync-compile") (set o.sync-compile? true)
             (or (= a "--help") (= a "-h"))
             (set o.mode :help)
+            (= a "--help-dev")
+            (set o.mode :help-dev)
             (or (= a "--bench-report") (= a "--soak") (= a "--kinds") (= a "--input-check"))
             (if (not= o.mode :play) (set err (.. a ": only one mode at a time"))
                 (set o.mode (a:sub 3)))
@@ -140,7 +171,7 @@ VIEW is one of shaded, normals, glow, heat.")
       (let [size (parse-size o.size)]
         (if size (set o.size size)
             (set err (.. "--size must look like 1920x1080, got " o.size)))))
-    (each [_ field (ipairs [:frames :cycles :fps :target-fps])]
+    (each [_ field (ipairs [:frames :cycles :fps :target-fps :samples])]
       (when (and (not err) (= (type (. o field)) :string))
         (let [n (tonumber (. o field))]
           (if (and n (>= n 1) (< n math.huge) (= n (math.floor n))) (tset o field n)
@@ -156,4 +187,4 @@ VIEW is one of shaded, normals, glow, heat.")
     (when (not o.scene) (set o.scene default-scene))
     (if err (values nil err) (check-options o))))
 
-{: parse : usage : default-scene : same-path?}
+{: parse : usage : dev-usage : default-scene : same-path?}

@@ -7,6 +7,7 @@
 (local scene-mod (require :src.scene.load))
 (local worker (require :src.scene.worker))
 (local adaptive (require :src.app.adaptive))
+(local quality (require :src.app.quality))
 (local {: median} (require :src.verify.compare))
 (local gpu (require :src.backend.gpu))
 (local plan-mod (require :src.render.plan))
@@ -114,12 +115,14 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
 ;; (shaders/pipeline/adaptive.glsl: still-samples x still-samples rays where the
 ;; centre ray finds an edge or a second ray disagrees): the same state, anti-aliased,
 ;; without the dotted edges and sparkles of one ray per pixel.
-(local still-samples 4)
+;; `love . --render` and --record draw the same still by default (src/app/quality.fnl).
+(local still-samples quality.still-samples)
 
 (fn plan-with [scene reflections ?fold? ?still?]
-  (frame.plan-for scene {:view state.view :reflections reflections
-                         :model (when state.classic? :classic) :fold? ?fold?
-                         :samples (when ?still? still-samples) :adaptive? ?still?}))
+  (let [still (when ?still? (quality.still-options))]
+    (frame.plan-for scene {:view state.view :reflections reflections
+                           :model (when state.classic? :classic) :fold? ?fold?
+                           :samples (?. still :samples) :adaptive? (?. still :adaptive?)})))
 
 (fn warm-source [scene plan]
   ;; What the compile helper gets: the shader's text, after a line for each texture
@@ -677,7 +680,7 @@ builds it). While its state stays, a frame only shows it again."
                                            (canvas:getHeight) state.scale
                                            (case (?. state.refine :still)
                                              {:progress p} (if (progress.complete? p)
-                                                               ", anti-aliased (adaptive 4 x 4)" "")
+                                                               (.. ", anti-aliased (" (quality.label still-samples true) ")") "")
                                              _ ""))))
     (when state.scene
       (table.insert lines (.. "scene: " (text.printable state.scene.name 80) "  view: " state.view

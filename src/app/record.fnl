@@ -1,13 +1,17 @@
-;; `love . --record SCENE --out DIR --frames N [--fps F] [--size WxH] [--turntable]`:
-;; frames at t = i / F written as DIR/frame-0001.png ..., deterministically (the same
-;; command gives the same files), with progress on stderr. --turntable orbits the
-;; camera once around the scene's centre over the recording.
+;; `love . --record SCENE --out DIR --frames N [--fps F] [--size WxH] [--turntable]
+;; [--quality Q] [--samples N]`: frames at t = i / F written as DIR/frame-0001.png ...,
+;; deterministically (the same command gives the same files), with progress on
+;; stderr. Each frame is the player's anti-aliased still unless --quality or
+;; --samples says otherwise (src/app/quality.fnl), drawn in bands as --render does.
+;; --turntable orbits the camera once around the scene's centre over the recording.
 
 (local status (require :src.util.status))
 (local frame (require :src.backend.frame))
 (local gpu (require :src.backend.gpu))
 (local camera (require :src.render.camera))
 (local output (require :src.util.output))
+(local quality (require :src.app.quality))
+(local render (require :src.app.render))
 
 (fn scene-centre [scene]
   "The middle of the box around the objects' placements (planes and unplaced trees
@@ -32,10 +36,12 @@ excepted), or a point 10 units in front of the camera when there is none."
     scene
     ;; Values that never change are constants in the code; functions of time keep
     ;; theirs as uniforms (one shader for every frame).
-    (case (frame.plan-for scene {:fold? (not ((. (require :src.scene.load) :animated?) scene))})
+    (case (frame.plan-for scene (quality.plan-options
+                                  o scene {:fold? (not ((. (require :src.scene.load) :animated?) scene))}))
       (nil err) (values nil err)
       plan
-      (let [[w h] (or o.size [640 360])
+      (let [rays (quality.resolve o scene)
+            [w h] (or o.size [640 360])
             fps (or o.fps 30)
             cache (gpu.new-cache)
             canvas (love.graphics.newCanvas w h)
@@ -51,20 +57,21 @@ excepted), or a point 10 units in front of the camera when there is none."
           (let [t (/ i fps)
                 (animated-ok? aerr) (if (scene-mod.animated? scene) (worker.animate scene t) true)
                 (plan perr) (if (not animated-ok?) (values nil aerr)
-                                (scene-mod.animated? scene) (frame.plan-for scene)
+                                (scene-mod.animated? scene)
+                                (frame.plan-for scene (quality.plan-options o scene))
                                 plan)
                 cam (if o.turntable? (camera.orbit cam0 centre (/ (* 360 i) o.frames))
                         (camera.from-scene scene))
                 path (string.format "%s/frame-%04d.png" o.out (+ i 1))]
-            (case (if plan (frame.render-to-canvas! cache canvas scene plan cam) (values nil perr))
+            (case (if plan (render.draw! cache canvas scene plan cam) (values nil perr))
               (nil e) (set err e)
               _ (case (frame.write-png canvas path {:protect [o.scene]})
                   (nil e) (set err e)))
             (status.update! (string.format "frame %d/%d (t = %.3f s)" (+ i 1) o.frames (/ i fps)))))
         (status.done!)
         (if err (values nil err)
-            (do (print (string.format "wrote %d frames of %dx%d to %s/frame-0001.png ..."
-                                      o.frames w h o.out))
+            (do (print (string.format "wrote %d frames of %dx%d (%s) to %s/frame-0001.png ..."
+                                      o.frames w h rays.label o.out))
                 true))))))
 
 {: run}

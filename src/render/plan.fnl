@@ -198,8 +198,8 @@ nil and a message when a texture would not fit."
   :bounds?        false: march every object everywhere, planes too (see
                   src/render/bounds.fnl; the benchmark's before of that lever)
   :samples        supersampling, N x N rays per pixel (default the scene's)
-  :adaptive?      true: with :samples above 1, adaptive (default the scene's :adaptive;
-                  the player's anti-aliased still)
+  :adaptive?      true: with :samples above 1, adaptive (the player's anti-aliased
+                  still); false: every pixel N x N; nil: the scene's :adaptive
   :model          :classic draws a scene that has :lighting with the article's model
                   (the player's m key)
   :field-cells    grid cells per field object (default src/render/field.fnl's)
@@ -259,7 +259,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :samples (or options.samples scene.render.samples 1)
               ;; Extra samples only at edges: the shaded view's (it has the normals).
               :adaptive? (and (> (or options.samples scene.render.samples 1) 1) shaded?
-                              (or (= true options.adaptive?) (= true scene.render.adaptive)))
+                              (if (= nil options.adaptive?) (= true scene.render.adaptive)
+                                  (= true options.adaptive?)))
               :edge-tests edge-tests
               ;; Only the shaded and normals views compute normals.
               :normals (when (or shaded? (= view :normals)) scene.render.normals)

@@ -46,7 +46,9 @@ scenes/, like \"seed\" or \"stress/planet\"), sorted."
 (fn render! [name out]
   "Render scenes/NAME.fnl with the real app into `out`. True, or nil and its output."
   ;; LuaJIT's popen close does not give the exit status, so the shell prints it last.
-  (let [cmd (string.format "SDL_VIDEODRIVER=offscreen timeout 120 love . --render %s --out %s --size %dx%d 2>&1; echo \"exit:$?\""
+  ;; --samples 1: the goldens are the one-ray picture (--render's default is the
+  ;; player's anti-aliased still).
+  (let [cmd (string.format "SDL_VIDEODRIVER=offscreen timeout 120 love . --render %s --out %s --size %dx%d --samples 1 2>&1; echo \"exit:$?\""
                            (shell-quote (.. "scenes/" name ".fnl")) (shell-quote out)
                            (. size 1) (. size 2))
         text (with-open [p (io.popen cmd)] (p:read :*a))]

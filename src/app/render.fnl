@@ -1,0 +1,112 @@
+;; `love . --render SCENE --out FILE.png [--size WxH] [--view VIEW] [--quality Q]
+;; [--samples N]`: one finished picture, by default the player's anti-aliased still
+;; (src/app/quality.fnl), drawn in bands from the top as the player draws its still:
+;; no single draw runs for seconds (a GPU's watchdog), and a long render shows its
+;; progress on stderr. --record draws its frames the same way.
+
+(local status (require :src.util.status))
+(local frame (require :src.backend.frame))
+(local gpu (require :src.backend.gpu))
+(local camera (require :src.render.camera))
+(local output (require :src.util.output))
+(local progress (require :src.app.progress))
+(local quality (require :src.app.quality))
+
+;; Seconds a band may take (its rows are sized by the time a row took before), and
+;; the bands a picture starts with before any is timed.
+(local band-seconds 0.25)
+(local first-bands 32)
+;; Progress is shown once a render has taken this long, at most twice a second.
+(local quiet-seconds 1)
+(local report-every 0.5)
+
+(fn wait-for! [canvas]
+  ;; Reading one pixel back waits for the renderer to finish what it was given.
+  (let [data (canvas:newImageData 1 1 0 0 1 1)] (data:release)))
+
+(fn prepare! [cache scene plan cam]
+  "Compile `plan`'s shader and draw it once into a 1x1 canvas: the driver builds the
+code it runs at its first draw, which is not the picture's time. True, or nil and
+a message."
+  (let [canvas (love.graphics.newCanvas 1 1)
+        (ok? err) (frame.render-to-canvas! cache canvas scene plan cam)]
+    (when ok? (wait-for! canvas))
+    (canvas:release)
+    (if ok? true (values nil err))))
+
+(fn draw! [cache canvas scene plan cam ?on-band]
+  "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas` in bands from the
+top, each about band-seconds. `(?on-band covered seconds)` runs after each band:
+the share drawn (0 to 1) and the seconds since the first. The seconds it took, or
+nil and a message."
+  (let [h (canvas:getHeight)
+        p (progress.new h (* first-bands band-seconds) band-seconds)
+        start (love.timer.getTime)]
+    (var err nil)
+    (while (and (not err) (not (progress.complete? p)))
+      (let [(y0 y1) (progress.rows p)
+            t0 (love.timer.getTime)]
+        (case (frame.render-to-canvas! cache canvas scene plan cam [y0 y1])
+          (nil e) (set err e)
+          _ (do (wait-for! canvas)
+                (progress.drawn! p y0 y1 (- (love.timer.getTime) t0))
+                (when ?on-band
+                  (?on-band (progress.covered p) (- (love.timer.getTime) start)))))))
+    (if err (values nil err) (- (love.timer.getTime) start))))
+
+(fn reporter [what]
+  "An ?on-band for draw! that shows `what`'s progress on stderr once it has taken
+quiet-seconds, at most twice a second, and whether it showed any (call it with no
+arguments)."
+  (var last nil)
+  (var shown? false)
+  (fn [covered seconds]
+    (if (= covered nil)
+        shown?
+        (when (and (>= seconds quiet-seconds) (< covered 1)
+                   (or (= last nil) (>= (- seconds last) report-every)))
+          (set last seconds)
+          (set shown? true)
+          (let [left (* seconds (/ (- 1 covered) (math.max covered 1e-9)))]
+            (status.update! (string.format "%s: %d%%, %.1f s, %s left" what
+                                           (math.floor (* 100 covered)) seconds
+                                           (if (< left 1) "under 1 s"
+                                               (string.format "about %.0f s" left)))))))))
+
+(fn out-options [o]
+  ;; The command line's output: named as --out, never the scene file.
+  {:protect [o.scene] :label (.. "--out " o.out)})
+
+(fn run [o]
+  "Render o.scene into o.out (a PNG) at o.size (512x448) with o.view, o.quality and
+o.samples (see quality.resolve). Prints what it wrote; true, or nil and a message."
+  ;; A refused --out is refused before the scene is even read.
+  (case (output.check o.out (out-options o))
+    (nil err) (values nil err)
+    _
+    (case (frame.load-scene o.scene)
+      (nil err) (values nil err)
+      scene
+      ;; One frame of values that never change: the trees' values as constants.
+      (let [rays (quality.resolve o scene)]
+        (case (frame.plan-for scene (quality.plan-options o scene {:view o.view :fold? true}))
+          (nil err) (values nil err)
+          plan
+          (let [[w h] (or o.size [512 448])
+                cache (gpu.new-cache)
+                cam (camera.from-scene scene)
+                canvas (love.graphics.newCanvas w h)
+                report (reporter (string.format "render %dx%d (%s)" w h rays.label))]
+            (case (prepare! cache scene plan cam)
+              (nil err) (values nil err)
+              _ (case (draw! cache canvas scene plan cam report)
+                  (nil err) (do (when (report) (status.done!)) (values nil err))
+                  seconds
+                  (do (when (report) (status.done!))
+                      (case (frame.write-png canvas o.out (out-options o))
+                        true (do (print (string.format "wrote %s (%dx%d, %s, %.2f s)" o.out w h
+                                                       rays.label seconds))
+                                 true)
+                        (_ werr) (values nil werr)))))))))))
+
+{: run : draw! : prepare! : reporter : band-seconds}
