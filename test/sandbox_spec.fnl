@@ -151,15 +151,44 @@
           (let [inner (nested-case-try (- depth 1))]
             (.. "(case-try 1 a 2 b 3 c 4 (catch 0 " inner " 9 " inner "))"))))
 
+    (fn counting-hooks [f]
+      "Call `f` with every hook the sandbox sets counted: the number of calls, then
+`f`'s first value. The count is the sandbox's own measure of work (a call every
+`compile-hook-every` instructions), the same on any machine, where a time is not.
+The counter calls the hook in tail position, so the hook still finds the function
+it interrupted at level 2 of the stack."
+      (let [real debug.sethook
+            count [0]]
+        (set debug.sethook (fn [hook mask every]
+                             (if hook
+                                 (real (fn [event line]
+                                         (tset count 1 (+ (. count 1) 1))
+                                         (hook event line))
+                                       mask every)
+                                 (real))))
+        (let [(ok? value) (pcall f)]
+          (set debug.sethook real)
+          (when (not ok?) (error value 0))
+          (values (. count 1) value))))
+
     (it "stops a compile that copies without end (nested case-try, 1.3 GB unbounded)"
       (fn []
-        (let [start (os.clock)
-              (_ err) (scene.load-string (.. "{:objects [] :x " (nested-case-try 6) "}") "t.fnl")]
+        (let [(hooks err) (counting-hooks
+                           #(select 2 (scene.load-string (.. "{:objects [] :x " (nested-case-try 6) "}")
+                                                         "t.fnl")))
+              limit (/ sandbox.limits.compile-steps sandbox.limits.compile-hook-every)]
           (assert.are.equal (.. "t.fnl: compiling went past its limits (100 million steps or"
                                 " 128 MB) and was stopped (macros that copy their arguments,"
                                 " nested too deep?)")
                             err)
-          (assert.is_true (< (- (os.clock) start) 6) (.. (- (os.clock) start) " s"))
+          ;; Stopped at the step limit, not long after: the hook that finds the limit
+          ;; passed raises, and later ones only raise again on the way out of the
+          ;; compiler's own pcalls (1 hook past the limit here). 100 hooks (100,000
+          ;; instructions, 0.1% of the limit) leave room for those; a stop that kept
+          ;; compiling would be far past. The memory limit alone would stop it after
+          ;; about three times the steps, so the steps are what stopped it. (This was
+          ;; a CPU time under 6 s, which a busy machine could fail.)
+          (assert.is_true (< limit hooks (+ limit 100)) (.. hooks " hooks, the limit " limit))
           (when jit (assert.is_true (jit.status) "the JIT is on again"))
           ;; Stopped inside a macro's expansion: the compiler's macro scope is back, or
           ;; the next module compiled would see the scene's locals (type0 for type).
@@ -187,17 +216,45 @@
           (assert.are.equal 42 (fennel.eval "(let [t {:x 40}] (+ t.x (math.floor 2.5)))"
                                             {:env _G :allowedGlobals false})))))
 
+    (it "stops a compile past its CPU backstop, which counts what the steps do not see"
+      (fn []
+        ;; The backstop is 15 s of CPU, ten times what the step limit takes here; a
+        ;; budget of 0 s trips it at its first look (after 256 hooks, 256,000
+        ;; instructions, which this compile passes), so the check is exercised
+        ;; without waiting 15 s or racing the step limit.
+        (let [backstop sandbox.limits.compile-cpu-seconds]
+          (set sandbox.limits.compile-cpu-seconds 0)
+          (let [(ok? s err) (pcall scene.load-string (.. "{:objects [] :x " (nested-case-try 6) "}")
+                                   "t.fnl")]
+            (set sandbox.limits.compile-cpu-seconds backstop)
+            (assert.is_true ok? (tostring s))
+            (assert.are.equal "t.fnl: compiling took more than 0 s and was stopped" err))
+          (assert.are.equal (global-scope) (. (require :fennel.compiler) :scopes :macro))
+          ;; Code, not plain data: the next compile works.
+          (assert (scene.load-string "(local r 2) {:objects [{:kind :sphere :radius r}]}" "t.fnl")))))
+
     (it "loads a 512 KB file of spheres written out, well within the compile limits"
       (fn []
         (let [lines (fcollect [i 1 6000]
                       (string.format "{:kind :sphere :radius %.3f :pos [%.3f %.3f %.3f] :color [0.5 0.25 0.75]}"
                                      (+ 0.5 (% i 7)) (* i 0.37) (% (* i 1.7) 50) (% (* i 3.1) 40)))
               source (.. "{:objects [\n" (table.concat lines "\n") "]}")
-              start (os.clock)
-              s (assert (scene.load-string source "big.fnl"))]
+              s (assert (scene.load-string source "big.fnl"))
+              {:compile-steps steps :compile-memory-mb memory} sandbox.limits]
           (assert.is_true (> (length source) (* 480 1024)) (tostring (length source)))
           (assert.are.equal 6000 (length s.objects))
-          (assert.is_true (< (- (os.clock) start) 3) (.. (- (os.clock) start) " s")))))))
+          ;; Plain data loads without the compiler; a file of code this size goes
+          ;; through it. "Well within": it compiles under half of each compile limit
+          ;; (39 million steps and 43 MB at the peak, of 100 million and 128 MB). A
+          ;; step and memory budget, the same on any machine (this was a CPU time
+          ;; under 3 s, which a busy machine could pass or fail either way).
+          (set sandbox.limits.compile-steps (/ steps 2))
+          (set sandbox.limits.compile-memory-mb (/ memory 2))
+          (let [(ok? code err) (pcall sandbox.compile source "big.fnl" [])]
+            (set sandbox.limits.compile-steps steps)
+            (set sandbox.limits.compile-memory-mb memory)
+            (assert.is_true ok? (tostring code))
+            (assert.are.equal :string (type code) (and err (sandbox.error-message err)))))))))
 
 (describe "sandbox: the file before it is parsed"
   (fn []
