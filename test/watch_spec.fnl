@@ -71,6 +71,45 @@
           (assert.are.same [] (run w [[10 (info "same" 5)] [10.5 (info "same" 5)]]))
           (assert.are.same [[11.5 :changed]] (run w [[11 (info "same" 11)] [11.5 (info "same" 11)]])))))
 
+    (it "lets a failed read stand only when the file stayed the same through it and 0.15 s before"
+      (fn []
+        ;; The same text, size and time before and after, written long enough ago.
+        (assert.is_true (watch.failure-stands? (info "{:obj" 10) (info "{:obj" 10) 10.2))
+        ;; Written 50 ms ago: maybe the first half of a write.
+        (assert.is_false (watch.failure-stands? (info "{:obj" 10) (info "{:obj" 10) 10.05))
+        ;; Written during the read.
+        (assert.is_false (watch.failure-stands? (info "{:obj" 10) (info "{:objects []}" 10.3) 10.5))
+        (assert.is_false (watch.failure-stands? (info "" 10) (info "{:objects []}" 10) 10.5))
+        ;; Missing both times stands; appearing or going meanwhile does not.
+        (assert.is_true (watch.failure-stands? nil nil 10))
+        (assert.is_false (watch.failure-stands? nil (info "{:obj" 10) 10.5))
+        (assert.is_false (watch.failure-stands? (info "{:obj" 10) nil 10.5))
+        ;; The same reason it cannot be read, both times, stands.
+        (assert.is_true (watch.failure-stands? {:problem "it is a directory"} {:problem "it is a directory"} 10))
+        ;; Whole-second times: the second after the stamp must be over too.
+        (assert.is_false (watch.failure-stands? (info "{:obj" 10 true) (info "{:obj" 10 true) 10.9))
+        (assert.is_true (watch.failure-stands? (info "{:obj" 10 true) (info "{:obj" 10 true) 11.2))))
+
+    (it "after retry!, loads again once the file stayed the same for 0.15 s, even unchanged"
+      (fn []
+        ;; A scene written in two halves 50 ms apart; a load read the first half at
+        ;; 10.02 (it failed, and did not stand): the file is loaded again at the first
+        ;; poll 0.15 s after the second half (10.21), never before, and once.
+        (let [first-half (info "{:objects [" 10)
+              whole (info "{:objects []}" 10.05)
+              w (watch.new (info "old" 0))]
+          (watch.loaded! w first-half)
+          (assert.is_false (watch.failure-stands? first-half first-half 10.02))
+          (watch.retry! w)
+          (assert.are.same [[10.21 :changed]]
+                           (run w [[10.03 first-half] [10.1 whole] [10.15 whole] [10.21 whole]
+                                   [10.3 whole] [10.6 whole]]))
+          ;; A retry of a file that did not change after the failed read: loaded
+          ;; again all the same, once it is 0.15 s old.
+          (watch.loaded! w whole)
+          (watch.retry! w)
+          (assert.are.same [[10.25 :changed]] (run w [[10.15 whole] [10.25 whole] [10.5 whole]])))))
+
     (it "starts afresh after loaded!"
       (fn []
         (let [w (watch.new (info "a" 0))]

@@ -161,13 +161,17 @@ first picture of the scene can be sized to come at once."
         (adaptive.rendered! state.adaptive plan.key (* w h) (- (love.timer.getTime) start)))
       (canvas:release))))
 
-(fn load-unprotected! [path fresh? ?since]
+(fn load-unprotected! [path fresh? ?since ?now]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
 file, not an edit) resets the camera and the player's settings; an edit keeps them,
 unless the file's own camera or settings changed and the player left them alone.
-On any failure the last good scene keeps running and the error is shown. A shader
-that a helper process is compiling leaves the load pending (state.pending); update
-loads the file again once the helper is done, `?since` the time of the first try."
+On any failure the last good scene keeps running and the error is shown, unless the
+read may have caught the file mid-write (watch.failure-stands?, judged at `?now`,
+the wall clock): then nothing is said and the watcher loads it again once it has
+stayed the same for a moment (watch.retry!). A shader that a helper process is
+compiling leaves the load pending (state.pending); update loads the file again once
+the helper is done, `?since` the time of the first try."
+  (set state.retry-fresh? nil)
   (let [start (or ?since (love.timer.getTime))
         _ (set state.opening {: path : start})
         info (file-info path)
@@ -179,7 +183,13 @@ loads the file again once the helper is done, `?since` the time of the first try
     (when (or fresh? (not state.watch))
       (set state.watch (watch.new info)))
     (watch.loaded! state.watch info)
-    (if (not scene)
+    (if (and (not scene)
+             (not (watch.failure-stands? info (file-info path) (or ?now (filestat.now)))))
+        ;; Caught mid-write, perhaps: no error yet; the watcher loads it again.
+        (do (watch.retry! state.watch)
+            (set state.retry-fresh? fresh?)
+            (when fresh? (set state.path path)))
+        (not scene)
         (do (set state.error err)
             (when fresh? (set state.path path))
             (when (not state.quiet?) (io.stderr:write (.. err "\n"))))
@@ -238,14 +248,14 @@ loads the file again once the helper is done, `?since` the time of the first try
                                                    ?since "shader compiled by a helper process"
                                                    "shader compiled"))))))))))
 
-(fn load! [path fresh? ?since]
+(fn load! [path fresh? ?since ?now]
   "Load the scene at `path` (see load-unprotected!); a failure inside the loader
 itself is shown like a broken file, and the last good scene keeps running."
   ;; A newer load replaces the one waiting for its helper, and values asked for the
   ;; scene before it.
   (set state.pending nil)
   (set state.time-pending nil)
-  (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh? ?since)]
+  (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh? ?since ?now)]
     (when (not ok?)
       (set state.error (.. path ": the scene could not be loaded (an internal error): "
                            (tostring err))))))
@@ -320,7 +330,8 @@ moves it forward instead of waiting)."
       (set state.poll-at (+ clock 0.1))
       (let [info (file-info state.path)]
         (case (watch.poll! state.watch info (or ?now (filestat.now)))
-          :changed (load! state.path false)
+          ;; A retry of a new file that was caught mid-write is still a new file.
+          :changed (load! state.path (= true state.retry-fresh?) nil ?now)
           ;; A file missing from the start was never there to be deleted: the load
           ;; error on screen says so already.
           :deleted (when state.watch.loaded
@@ -1006,6 +1017,13 @@ reached the screen."
   (set state.opening {:path options.scene :start (love.timer.getTime)})
   (show-opening! "reading the file" true)
   (load! options.scene true)
+  ;; A screenshot of a file caught mid-write waits (2 s at most) for its retry.
+  (let [deadline (+ (love.timer.getTime) 2)]
+    (while (and options.shot (not state.scene) (?. state.watch :retry?)
+                (< (love.timer.getTime) deadline))
+      (love.timer.sleep 0.02)
+      (set state.poll-at 0)
+      (poll-file!)))
   ;; Not when quitting: LÖVE exiting a few ms after the helper's thread started
   ;; crashed (exit 139, 2 runs of 2 in tools/check-stuck-worker.sh).
   (when (and state.warm (not state.quitting?)) (warm.prepare! state.warm))

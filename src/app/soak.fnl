@@ -140,6 +140,43 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
                 (and (= state.reloads reloads) (= state.error nil)))
         (write! path recoloured)
         (play.poll-file! (+ (filestat.now) 0.3)))
+      ;; A load that catches the file mid-write (one finishing after a compile, F5
+      ;; pressed as the editor saves): another process writes the file in two halves
+      ;; 50 ms apart, the player loads it as soon as the first half is there, then
+      ;; polls on the real clock. No error at any time, and the whole file in the end.
+      (let [cut (math.floor (/ (length original) 2))
+            first-half (original:sub 1 cut)
+            [h1 h2] [(.. path ".half1") (.. path ".half2")]
+            errors []
+            note-error! #(when (and state.error (not= state.error (. errors (length errors))))
+                           (table.insert errors state.error))]
+        (write! h1 first-half)
+        (write! h2 (original:sub (+ cut 1)))
+        (os.execute (string.format "(cat '%s' > '%s'; sleep 0.05; cat '%s' >> '%s') >/dev/null 2>&1 &"
+                                   h1 path h2 path))
+        (let [deadline (+ (filestat.monotonic) 2)]
+          (while (and (not= (frame.read-text path) first-half) (< (filestat.monotonic) deadline))
+            (love.timer.sleep 0.001)))
+        (let [caught? (= (frame.read-text path) first-half)]
+          (play.load! path false)
+          (note-error!)
+          (let [deadline (+ (filestat.monotonic) 0.8)]
+            (while (< (filestat.monotonic) deadline)
+              (love.timer.sleep 0.01)
+              (set state.poll-at 0)
+              (play.poll-file!)
+              (note-error!)))
+          (let [image (do (case (play.current-plan)
+                            plan (frame.render-to-canvas! state.cache canvas state.scene plan state.cam))
+                          (canvas-bytes canvas))]
+            (report "a file written in two halves 50 ms apart, loaded between them, shows no error and loads whole"
+                    (and (= 0 (length errors)) (= state.error nil) (= image image0)))
+            (print (.. "  the first load read " (if caught? "the first half only" "the whole file (the second half came first)")
+                       (if (> (length errors) 0) (.. "; it showed: " (. errors 1)) ""))))
+          (os.remove h1)
+          (os.remove h2)
+          (write! path recoloured)
+          (play.poll-file! (+ (filestat.now) 0.3))))
       ;; The file replaced by a directory: said so (not 'deleted'), the scene stays.
       (os.remove path)
       (os.execute (.. "mkdir '" path "'"))

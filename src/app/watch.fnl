@@ -4,9 +4,16 @@
 ;; that far in the past), so editors that save by truncating and writing, or by
 ;; writing a temp file and renaming it over, never show their half-written moment,
 ;; however rarely the player gets to look.
+;;
+;; A load may still read the file in the middle of a write (a load that does not come
+;; from the watcher, such as one finishing after a compile, or a writer that pauses
+;; longer than the settle time): a read that does not load is reported only when the
+;; file stayed the same through it and for retry-seconds before it (failure-stands?);
+;; else the watcher loads it again once it has stayed the same that long (retry!).
 
 (local settle-seconds 0.2)     ; not written for this long: load it
 (local missing-seconds 1.0)    ; gone or unreadable this long: say so (a rename is quicker)
+(local retry-seconds 0.15)     ; a failed read counts once the file stayed the same this long
 
 (fn signature [info]
   (and info (not info.problem)
@@ -16,12 +23,32 @@
   "A watcher whose last loaded version of the file is `info` ({:mtime :size :content},
 `:coarse? true` when the time has whole seconds only; nil when the file is missing)."
   {:loaded (signature info) :seen (signature info) :missing-since nil
-   :reported-missing? false :problem nil})
+   :reported-missing? false :problem nil :retry? false})
 
-(fn settled? [info now]
-  "True when the file was last written at least settle-seconds before `now`. With
-whole-second times the write may have happened up to a second after the stamp."
-  (>= (- now info.mtime (if info.coarse? 1 0)) settle-seconds))
+(fn settled? [info now ?seconds]
+  "True when the file was last written at least `?seconds` (settle-seconds) before
+`now`. With whole-second times the write may have happened up to a second after the
+stamp."
+  (>= (- now info.mtime (if info.coarse? 1 0)) (or ?seconds settle-seconds)))
+
+(fn failure-stands? [before after now]
+  "A load of the file failed: true when that is the file's own failure, to report
+now; false when the read may have caught a write (retry! then). `before` and `after`
+are the file's info ({:mtime :size :content}, nil when missing) just before and just
+after the read, `now` the time after it. It stands when the file was the same
+before and after (its time, size and text, or missing both times) and had not been
+written for retry-seconds."
+  (if (and (= nil before) (= nil after)) true          ; missing both times
+      (or (= nil before) (= nil after)) false            ; came or went meanwhile
+      (or before.problem after.problem) (= before.problem after.problem)
+      (and (= (signature before) (signature after))
+           (settled? after now retry-seconds))))
+
+(fn retry! [w]
+  "The last load read the file mid-write (see failure-stands?): poll! says :changed
+once the file has stayed the same for retry-seconds, even when its text is the one
+loaded."
+  (set w.retry? true))
 
 (fn poll! [w info now]
   "Feed the file's current `info` at time `now` (seconds, the clock of its mtime):
@@ -42,8 +69,10 @@ the time, so a write during the read shows in the time."
         (set w.reported-missing? false)
         (set w.problem nil)
         (set w.seen sig)
-        (if (and (not= sig w.loaded) (settled? info now))
-            (do (set w.loaded sig) :changed)
+        (if (and w.retry? (settled? info now retry-seconds))
+            (do (set w.retry? false) (set w.loaded sig) :changed)
+            (and (not= sig w.loaded) (settled? info now))
+            (do (set w.retry? false) (set w.loaded sig) :changed)
             :idle))))
 
 (fn loaded! [w info]
@@ -51,6 +80,8 @@ the time, so a write during the read shows in the time."
   (set w.loaded (signature info))
   (set w.seen w.loaded)
   (set w.missing-since nil)
-  (set w.reported-missing? false))
+  (set w.reported-missing? false)
+  (set w.retry? false))
 
-{: new : poll! : loaded! : settle-seconds : missing-seconds}
+{: new : poll! : loaded! : failure-stands? : retry! : settle-seconds : missing-seconds
+ : retry-seconds}
