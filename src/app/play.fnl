@@ -8,6 +8,7 @@
 (local worker (require :src.scene.worker))
 (local adaptive (require :src.app.adaptive))
 (local quality (require :src.app.quality))
+(local hud (require :src.app.hud))
 (local {: median} (require :src.verify.compare))
 (local gpu (require :src.backend.gpu))
 (local plan-mod (require :src.render.plan))
@@ -705,9 +706,7 @@ builds it). While its state stays, a frame only shows it again."
                                       "  values: uniforms")
                                   "")))
       (table.insert lines (string.format "reflections: %d  fov: %.1f" state.reflections cam.fov))
-      (table.insert lines (string.format "pos: %.2f %.2f %.2f  yaw %.1f  pitch %.1f"
-                                         (. cam.pos 1) (. cam.pos 2) (. cam.pos 3)
-                                         cam.yaw cam.pitch)))
+      (table.insert lines (hud.camera-line cam)))
     (when (and (?. state.scene :params) (not state.panel.open?))
       (table.insert lines (string.format "F2: %d parameter%s" (length state.scene.params)
                                          (if (= 1 (length state.scene.params)) "" "s"))))
