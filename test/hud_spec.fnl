@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The HUD's camera line (src/app/hud.fnl): its pitch reads as the keys say.
 (local hud (require :src.app.hud))
 (local camera (require :src.render.camera))

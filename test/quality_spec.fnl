@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The rays a pixel of a finished picture (src/app/quality.fnl): --render and --record
 ;; draw the player's still unless --quality or --samples says otherwise.
 (local quality (require :src.app.quality))

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Progress lines (src/util/status.fnl): rewritten in place and cleared on a terminal,
 ;; plain lines in a log.
 (local status (require :src.util.status))
