@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for src/app/cli.fnl: every mode, the defaults, and the error for each bad argument.
 (local cli (require :src.app.cli))
 
