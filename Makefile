@@ -4,13 +4,19 @@
 SCENE ?= scenes/seed.fnl
 HEADLESS = SDL_VIDEODRIVER=offscreen
 
-.PHONY: deps run test check bench golden report report-quick dist clean check-states
+.PHONY: deps build run test check bench golden report report-quick dist clean check-states
 
 deps:
 	@bash tools/install-deps.sh
 
+# The app's Fennel compiled to Lua once (build/lua/, see src/boot.lua): LÖVE starts
+# without compiling it, and so does each scene worker. A stale or missing file is
+# compiled at start as before, so `love .` works without this too, only slower.
+build: deps
+	@luajit tools/build-lua.lua --quiet
+
 # Without a display the window would open nowhere and the player run unseen forever.
-run: deps
+run: build
 	@if [ -z "$$DISPLAY$$WAYLAND_DISPLAY$$SDL_VIDEODRIVER" ]; then \
 	  echo "make run: no display (DISPLAY and WAYLAND_DISPLAY are unset): run it in a desktop session, or under xvfb-run to try it headless" >&2; \
 	  exit 1; fi
@@ -19,14 +25,15 @@ run: deps
 # The suite also makes a quick accuracy report, whose plots need gnuplot.
 test:
 	@bash tools/install-deps.sh gnuplot-nox zip xvfb xdotool x11-apps bc
+	@luajit tools/build-lua.lua --quiet
 	@$(HEADLESS) bash tools/run-tests.sh
 
 # The fast loop while developing: the specs that need no window or GPU, a sample of the
 # corpus through the app and 2000 fuzz cases (see README, Tests). `make test` is the suite.
-check: deps
+check: build
 	@$(HEADLESS) bash tools/run-tests.sh --check
 
-bench: deps
+bench: build
 	$(HEADLESS) love . --bench-report --frames $(or $(FRAMES),5)
 
 # Accuracy against run time for every scene (report/report.md and plots); gnuplot
@@ -49,9 +56,9 @@ golden: deps
 	$(HEADLESS) luajit tools/fnl.lua tools/golden.fnl
 
 # dist/fennel-raymarcher.love: plays with `love dist/fennel-raymarcher.love` anywhere LÖVE is.
-dist: deps
+dist: build
 	@bash tools/install-deps.sh zip
 	@bash tools/dist.sh
 
 clean:
-	rm -rf out test/out dist
+	rm -rf out test/out dist build

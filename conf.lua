@@ -1,20 +1,36 @@
 -- LÖVE configuration. It also puts Fennel on the module path and loads main.fnl, so
 -- no main.lua is needed: `love .` works right after `make run` has installed Fennel.
+-- (love.filesystem.read of a missing file gives nil, so no build/ is needed either.)
 package.path = package.path .. ";lib/?.lua;/usr/share/lua/5.4/?.lua;/usr/share/lua/5.3/?.lua"
-local ok, fennel = pcall(require, "fennel")
-if not ok then
-  error("Fennel is not installed (looked for fennel.lua in lib/ and /usr/share/lua/5.4/).\n"
-        .. "Run `make run` once: it installs what is missing.")
+local boot = require("src.boot")
+
+-- Fennel's compiler is loaded only when a module must be compiled here (no build, or
+-- its source edited since) or a scene file is read: a start from a build needs none.
+local fennel
+local function compiler()
+  if not fennel then
+    local ok, f = pcall(require, "fennel")
+    if not ok then
+      error("Fennel is not installed (looked for fennel.lua in lib/ and /usr/share/lua/5.4/).\n"
+            .. "Run `make run` once: it installs what is missing.")
+    end
+    fennel = f
+  end
+  return fennel
 end
 
 -- Modules are read through love.filesystem, so `love path/to/game` works from any
--- directory. Line numbers in errors are the Fennel source's.
+-- directory. A module runs from its compiled Lua in build/lua/ (made by `make`, see
+-- src/boot.lua) when that was compiled from the source as it is now; otherwise it is
+-- compiled here. Either way line numbers in errors are the Fennel source's.
 table.insert(package.loaders, 2, function(name)
   local path = name:gsub("%.", "/") .. ".fnl"
   if love.filesystem.getInfo(path, "file") then
     return function(...)
-      local lua = fennel.compileString(love.filesystem.read(path),
-                                       {filename = path, correlate = true})
+      local source = love.filesystem.read(path)
+      local lua = boot.fresh(love.filesystem.read(boot["compiled-path"](path)), source)
+                  or compiler().compileString(source, {filename = path,
+                                                      correlate = boot.options.correlate})
       return assert(loadstring(lua, "@" .. path))(...)
     end
   end
@@ -43,7 +59,7 @@ function love.conf(t)
   t.modules.physics = false
   t.modules.video = false
   if has_arg("--print-shader") or has_arg("--kinds") or has_arg("--tree")
-     or has_arg("--help") or has_arg("-h") or has_arg("--export-shader")
+     or has_arg("--help") or has_arg("--help-dev") or has_arg("-h") or has_arg("--export-shader")
      or (has_arg("--probe") and not has_arg("--gpu")) or has_arg("--scene-worker") then
     t.window = nil
     t.modules.window = false

@@ -17,6 +17,9 @@ fi
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
 cp -r main.fnl conf.lua src shaders scenes "$stage"/
+# The compiled Lua (make dist builds it first): the archive starts without compiling.
+luajit tools/build-lua.lua --quiet
+mkdir -p "$stage/build" && cp -r build/lua "$stage/build/"
 # At the archive's root, where LÖVE's own module searcher finds it.
 cp "$fennel_lua" "$stage/fennel.lua"
 mkdir -p dist
