@@ -23,14 +23,17 @@ end
 -- directory. A module runs from its compiled Lua in build/lua/ (made by `make`, see
 -- src/boot.lua) when that was compiled from the source as it is now; otherwise it is
 -- compiled here. Either way line numbers in errors are the Fennel source's.
-table.insert(package.loaders, 2, function(name)
+local function read(path)
+  if love.filesystem.getInfo(path, "file") then return (love.filesystem.read(path)) end
+end
+table.insert(package.loaders, 2, boot.searcher(read))
+table.insert(package.loaders, 3, function(name)
   local path = name:gsub("%.", "/") .. ".fnl"
-  if love.filesystem.getInfo(path, "file") then
+  local source = read(path)
+  if source then
     return function(...)
-      local source = love.filesystem.read(path)
-      local lua = boot.fresh(love.filesystem.read(boot["compiled-path"](path)), source)
-                  or compiler().compileString(source, {filename = path,
-                                                      correlate = boot.options.correlate})
+      local lua = compiler().compileString(source, {filename = path,
+                                                    correlate = boot.options.correlate})
       return assert(loadstring(lua, "@" .. path))(...)
     end
   end

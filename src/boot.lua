@@ -59,5 +59,29 @@ local function fresh(compiled, source, version)
   return nil
 end
 
-return {digest = digest, ["compiled-path"] = compiled_path, key = key,
+--- A package searcher that runs a module's compiled Lua when it is fresh, and leaves
+--- the module to the next searcher (Fennel's) otherwise. `read` gives a file's text
+--- by its path relative to the game, or nil.
+local function searcher(read)
+  return function(name)
+    local path = name:gsub("%.", "/") .. ".fnl"
+    local source = read(path)
+    local lua = source and fresh(read(compiled_path(path)), source)
+    if lua then
+      return function(...) return assert(loadstring(lua, "@" .. path))(...) end
+    end
+  end
+end
+
+--- `read` for plain LuaJIT (tools/fnl.lua, the tests): files relative to the
+--- working directory.
+local function read_file(path)
+  local f = io.open(path, "rb")
+  if not f then return nil end
+  local text = f:read("*a")
+  f:close()
+  return text
+end
+
+return {digest = digest, searcher = searcher, ["read-file"] = read_file, ["compiled-path"] = compiled_path, key = key,
         compile = compile, fresh = fresh, options = options}

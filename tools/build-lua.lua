@@ -11,13 +11,7 @@ local boot = require("src.boot")
 
 local quiet = arg[1] == "--quiet"
 
-local function read(path)
-  local f = io.open(path, "rb")
-  if not f then return nil end
-  local text = f:read("*a")
-  f:close()
-  return text
-end
+local read = boot["read-file"]
 
 local function lines(command)
   local p = assert(io.popen(command))

@@ -3,7 +3,10 @@
 package.path = "./?.lua;" .. package.path .. ";/usr/share/lua/5.4/?.lua"
 local fennel = require("fennel")
 fennel.path = "./?.fnl;" .. fennel.path
--- Explicit options: see test/helper.lua.
+-- Explicit options: see test/helper.lua. A module `make` compiled runs from build/lua/
+-- while its source is unchanged (src/boot.lua): a scene worker starts without compiling.
+local boot = require("src.boot")
+table.insert(package.loaders, boot.searcher(boot["read-file"]))
 table.insert(package.loaders, fennel.makeSearcher({allowedGlobals = false, env = false, correlate = true}))
 local script = table.remove(arg, 1)
 if not script then
