@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The player's frame-time model (src/app/adaptive.fnl): the picture drawn while the
 ;; state changes is sized from measured renders to meet the target frame time, with
 ;; the time no scale changes (the window, the HUD) taken off first.

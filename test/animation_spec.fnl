@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Functions of time in scene files: evaluated at t = 0 when the scene loads, and at
 ;; any t by load.animate, each call in the sandbox with its own small step budget,
 ;; every value checked as at load; only values that reach uniforms may move.

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The article's CPU program as `make bench` runs it (test/bench/article.fnl): its scene
 ;; is the seed's. Its distance estimator agrees with our CPU evaluator of
 ;; scenes/seed.fnl at points outside every object (the article's box distance is zero

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The GLSL forms of mirrors and rotations that only move the axes about
 ;; (src/sdf/operations.fnl: mirror-axes, rotate-permutation): a mirror across a plane
 ;; of the axes as one abs, a quarter-turn rotation as three products. The GPU runs

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Bounds (src/render/bounds.fnl): bounding spheres of finite objects, which plans get
 ;; them, the ray's span inside them, and that the reference marcher gives the same
 ;; image with them as without (the GPU follows the same rules: gpu_vs_cpu_spec).

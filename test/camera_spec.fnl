@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for src/render/camera.fnl: the article's forward vector and basis, primary rays,
 ;; movement and the clamps on pitch, yaw and field of view.
 (local camera (require :src.render.camera))

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for src/render/codegen.fnl and shaders/*.glsl: determinism, only the code a plan needs,
 ;; the views and targets, literals, and glslangValidator on everything generated.
 (local scene (require :src.scene.load))

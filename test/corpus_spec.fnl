@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The corpus of broken scene files in test/corpus/: each file's first line is
 ;;   ;; expect: test/corpus/NAME.fnl:LINE: field: reason
 ;; the exact message the loader gives (load-file, then plan.scene->plan when the file

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Scene files of plain data (src/scene/data.fnl): read without the compiler, the same
 ;; values as Fennel's, hostile text refused or sent to the compiler, large files within
 ;; their limits; and the step budget of scenes made by loops (src/scene/sandbox.fnl).

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Fields (src/render/field.fnl): many spheres and boxes in textures, found through a
 ;; grid. The grid's lists, its distance queries and the reference's march through it
 ;; are checked against brute force over every object (the oracle).

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Seeded fuzzing of the scene loader: the valid scenes in scenes/ are mutated as text
 ;; (characters and tokens deleted, inserted, duplicated and swapped, numbers replaced by
 ;; NaN, infinities and huge values, keywords swapped between scenes, brackets dropped,

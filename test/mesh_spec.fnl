@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Mesh export (issue 31) under plain LuaJIT: the dual contouring mesher
 ;; (src/mesh/contour.fnl) on the CPU evaluator, the checks (src/mesh/check.fnl), the
 ;; scene selection (src/mesh/scene.fnl) and the file formats (src/mesh/formats.fnl).

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Every operation, through the whole path a scene takes (loader, lowering to the tape,
 ;; the Lua emitter), against an oracle written out here from the maths and the
 ;; hand-written distances of test/oracles.fnl; then the properties its class promises:

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Parameters (src/scene/params.fnl) and the panel's pure part (src/app/panel.fnl):
 ;; (param :name value {:min :max}) at load, overrides from the panel, and the write-back
 ;; that changes only those literals, on files with comments and odd layout.

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for src/render/plan.fnl: kinds and counts, features, views, the structure key and the
 ;; uniform budget.
 (local scene (require :src.scene.load))

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for src/util/png.fnl: round trips, every filter type, RGB input and rejection of bad files.
 (local ffi (require :ffi))
 (local bit (require :bit))

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Every primitive descriptor (src/sdf/primitives/*.fnl), with its default parameters,
 ;; against properties that need no second formula:
 ;; - exact ones: at random points outside, |gradient| = 1 and p - d * gradient lands

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; src/verify/probe.fnl's reader of `--probe` input: an endless stream is read in
 ;; chunks and handed out in batches in constant memory, and a long line is refused
 ;; before it is read whole. Pure: no LÖVE (test/probe_spec.fnl runs the app on both).

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Progressive refinement's schedule (src/app/progress.fnl): a picture drawn in bands
 ;; from the top, each as tall as fits the budget at the measured time a row, render
 ;; times fed in (no clock, no GPU).

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for src/verify/reference.fnl (the CPU reference marcher) and src/verify/compare.fnl.
 (local scene (require :src.scene.load))
 (local plan (require :src.render.plan))

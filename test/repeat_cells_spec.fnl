@@ -1,3 +1,4 @@
+;; tier: fast
 ;; How few cells a repetition evaluates its child in (src/sdf/lower.fnl, Repetitions):
 ;; one cell for a centred child even along the repeated axes, the same distances as
 ;; every cell; a costly child clear of its cell's walls in its own cell only, its

@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for src/scene/load.fnl: the seed scene's values, defaults, and the exact
 ;; "file:line: field: reason" messages for bad input.
 (local scene (require :src.scene.load))

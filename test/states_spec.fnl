@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for src/verify/states.fnl, the classifier of tools/check-states.sh: synthetic
 ;; pictures of one state (lit, shadowed, partly undrawn, upscaled) pass; pictures whose
 ;; bands come from two states are flagged; X window dumps decode.

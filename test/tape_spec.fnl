@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Lowering scene trees to the tape, and what the emitters make of it: only what a
 ;; scene uses reaches the shader, the output is deterministic, the structure key
 ;; tells value edits from structural ones, classes and Lipschitz factors per node.

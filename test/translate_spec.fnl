@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The translator from a numeric subset of Fennel to GLSL and Lua
 ;; (src/sdf/translate.fnl), and custom nodes in the loader (src/sdf/custom.fnl): the
 ;; Lua it writes computes what Fennel computes, the GLSL validates and holds nothing

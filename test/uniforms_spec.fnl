@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for src/render/uniforms.fnl: names and order, camera-relative values in double
 ;; precision, feature uniforms and value counts.
 (local ffi (require :ffi))

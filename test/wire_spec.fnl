@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The wire format between the scene worker and the player (src/util/wire.fnl): exact
 ;; round trips of plain data (doubles bit for bit), deterministic bytes, the encoder's
 ;; refusals naming the path, and a strict decoder that answers every malformed input

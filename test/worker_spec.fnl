@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The scene worker (src/scene/worker.fnl, src/scene/worker-main.fnl): scene files and
 ;; their functions of time evaluated in a child process that gives up what it does
 ;; not need (src/util/confine.fnl) and is killed past its deadlines. Pure: the worker
