@@ -1,3 +1,4 @@
+;; tier: fast
 ;; The file watcher's rules, with a fake file and clock: a version is loaded once the
 ;; file has not been written for the settle time, judged by its modification time.
 (local watch (require :src.app.watch))
