@@ -79,11 +79,9 @@ whether it was compiled now, or nil and a message."
 ;; tables live as long as their plan, so a texture is uploaded once, not every frame.
 ;; A value edit makes a new plan whose textures differ from the last ones only where
 ;; the edit reached: the last image of that uniform is kept, and only the texels that
-;; changed are uploaded into it (field.changed-spans). `texture-uploads` counts whole
-;; textures and texels uploaded.
+;; changed are uploaded into it (field.changed-spans).
 (local images (setmetatable {} {:__mode :k}))
 (local last-images {})
-(local texture-uploads {:textures 0 :texels 0})
 
 (fn fill-floats! [data vs offset count]
   ;; `count` floats of `vs` from `offset` (0-based; missing ones 0) into `data`.
@@ -97,7 +95,6 @@ whether it was compiled now, or nil and a message."
     (let [image (love.graphics.newImage data)]
       (image:setFilter :nearest :nearest)
       (data:release)
-      (set texture-uploads.textures (+ texture-uploads.textures 1))
       image)))
 
 (fn float-image [name tex]
@@ -114,8 +111,7 @@ sizes match; else a new one."
                                   data (love.image.newImageData n 1 :rgba32f)]
                               (fill-floats! data tex.data (* 4 (+ first (* row tex.width))) (* 4 n))
                               (last.image:replacePixels data nil nil first row)
-                              (data:release)
-                              (set texture-uploads.texels (+ texture-uploads.texels n))))
+                              (data:release)))
                           ;; The old table no longer describes the image.
                           (tset images last.texture nil)
                           last.image)
@@ -142,5 +138,4 @@ dropped."
   "Wait until the GPU has finished drawing into `canvas` (reads back one pixel)."
   (: (canvas:newImageData 1 1 0 0 1 1) :release))
 
-{: new-cache : cached? : shader-for : compile-source : compile-plan : send! : draw! : finish!
- : texture-uploads}
+{: new-cache : cached? : shader-for : compile-source : compile-plan : send! : draw! : finish!}
