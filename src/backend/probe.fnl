@@ -54,11 +54,4 @@ once for every batch."
             (a:release) (b:release) (image:release) (canvas:release)
             out)))))
 
-(fn gpu-values [scene plan points]
-  "For each point: {:distance :color [r g b] :mirror} from the generated GLSL (`plan`
-made with :probe? true), or nil and a message."
-  (case (gpu-evaluator scene plan)
-    evaluate (evaluate points)
-    (nil err) (values nil err)))
-
-{: gpu-evaluator : gpu-values}
+{: gpu-evaluator}
