@@ -25,7 +25,8 @@
               {: lo : hi})))))
 
 (fn parse-resolution [s]
-  "The resolution in `s` (a whole number of cells, 8 to 1024), or nil and a message."
+  "The resolution in `s` (a whole number of cells, 8 to 512: min-resolution to
+max-resolution), or nil and a message."
   (let [n (tonumber s)]
     (if (and n (= n (math.floor n)) (>= n min-resolution) (<= n max-resolution)) n
         (values nil (string.format "--resolution must be a whole number from %d to %d, got %s"
