@@ -21,24 +21,13 @@
 ;; processes use. The filter is a deny list: the worker needs only memory, its socket
 ;; and the clock, and a deny list cannot break LuaJIT's or libc's own calls.
 
-(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
-
-(local cdefs
-  ["typedef struct { unsigned long cur, max; } rm_rlimit_t;"
-   "int setrlimit(int resource, const rm_rlimit_t *rlim);"
-   "int getrlimit(int resource, rm_rlimit_t *rlim);"
-   "typedef struct { long sec, usec; } rm_timeval_t;"
-   "typedef struct { rm_timeval_t utime, stime; long rest[14]; } rm_rusage_t;"
-   "int getrusage(int who, rm_rusage_t *usage);"
-   "int prctl(int option, unsigned long a2, unsigned long a3, unsigned long a4, unsigned long a5);"
-   "typedef struct { unsigned short code; unsigned char jt, jf; unsigned int k; } rm_sock_filter_t;"
-   "typedef struct { unsigned short len; rm_sock_filter_t *filter; } rm_sock_fprog_t;"
-   "char *strerror(int errnum);"])
+(local libc (require :src.util.libc))
+(local ffi libc.ffi)
 
 (local native
   (when (and ffi (= ffi.os :Linux))
-    (each [_ decl (ipairs cdefs)] (pcall ffi.cdef decl))
-    (when (pcall #(and ffi.C.setrlimit ffi.C.getrusage ffi.C.prctl)) ffi.C)))
+    (libc.declare [:rm_rlimit_t :setrlimit :getrlimit :rm_rusage_t :getrusage :prctl
+                   :rm_sock_filter_t :rm_sock_fprog_t :strerror])))
 
 (local rlimit {:cpu 0 :fsize 1 :core 4 :nofile 7 :as 9})
 
@@ -55,16 +44,13 @@
 (local prlimit64-x64 302)      ; allowed on this process only (glibc's setrlimit uses it)
 (local audit-arch-x64 0xc000003e)
 
-(fn errno-text []
-  (ffi.string (native.strerror (ffi.errno))))
-
 (fn set-limit! [name cur ?max]
   (let [r (ffi.new "rm_rlimit_t")]
     (native.getrlimit (. rlimit name) r)
     (set r.cur cur)
     (when ?max (set r.max ?max))
     (if (= 0 (native.setrlimit (. rlimit name) r)) true
-        (values nil (.. "RLIMIT_" (name:upper) ": " (errno-text))))))
+        (values nil (.. "RLIMIT_" (name:upper) ": " (libc.error-text))))))
 
 (fn cpu-used []
   "Seconds of CPU this process has used (user and system)."
@@ -124,7 +110,7 @@ after which the kernel ends it. True, or nil and a message."
       (set (. fprog 0 :filter) prog)
       ;; PR_SET_SECCOMP, SECCOMP_MODE_FILTER
       (if (= 0 (native.prctl 22 2 (ffi.cast "unsigned long" (ffi.cast "void *" fprog)) 0 0)) true
-          (values nil (.. "seccomp: " (errno-text)))))))
+          (values nil (.. "seccomp: " (libc.error-text)))))))
 
 (fn confine! [options]
   "Give up what the worker does not need (see the top of this file). `options`:
@@ -144,7 +130,7 @@ what could not be, with why."
           (try "no core files" (set-limit! :core 0 0))
           (try "no new files" (set-limit! :nofile 0 0))
           ;; PR_SET_NO_NEW_PRIVS
-          (try "no new privileges" (= 0 (native.prctl 38 1 0 0 0)) (errno-text))
+          (try "no new privileges" (= 0 (native.prctl 38 1 0 0 0)) (libc.error-text))
           (if (= ffi.arch :x64)
               (try "seccomp filter" (install-filter!))
               (table.insert missing (.. "seccomp filter: written for x86-64, not " ffi.arch)))))

@@ -1,33 +1,17 @@
 ;; The state of one file for the watcher and the output writer: its kind, size,
 ;; modification time with sub-second precision, device, inode and permission bits, and
 ;; the wall clock in the same units. Through LuaJIT's FFI on
-;; Linux (x86-64 and arm64 layouts of struct stat); elsewhere through lua-filesystem,
-;; whose times are whole seconds (marked :coarse?).
+;; Linux (x86-64 and arm64: src/util/libc.fnl has both layouts of struct stat);
+;; elsewhere through lua-filesystem, whose times are whole seconds (marked :coarse?).
 
-(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
+(local libc (require :src.util.libc))
+(local ffi libc.ffi)
 (local lfs (let [(ok? m) (pcall require :lfs)] (when ok? m)))
 
-(local layouts
-  {:x64 "typedef struct { unsigned long dev, ino, nlink; unsigned int mode, uid, gid;
-           int pad0; unsigned long rdev; long size, blksize, blocks;
-           long atime, atime_ns, mtime, mtime_ns, ctime, ctime_ns; long unused[3]; }
-         rm_stat_t;"
-   :arm64 "typedef struct { unsigned long dev, ino; unsigned int mode, nlink, uid, gid;
-             unsigned long rdev, pad1; long size; int blksize, pad2; long blocks;
-             long atime, atime_ns, mtime, mtime_ns, ctime, ctime_ns; unsigned int unused[2]; }
-           rm_stat_t;"})
-
 (local native
-  (when (and ffi (= ffi.os :Linux) (. layouts ffi.arch))
-    (let [(ok? err) (pcall ffi.cdef (.. (. layouts ffi.arch)
-                                        " typedef struct { long sec, nsec; } rm_timespec_t;
-                                          int stat(const char *path, rm_stat_t *buf);
-                                          int lstat(const char *path, rm_stat_t *buf);
-                                          int access(const char *path, int mode);
-                                          int clock_gettime(int clock, rm_timespec_t *ts);"))]
-      ;; stat is a real symbol from glibc 2.33 on; older ones only have __xstat.
-      (when (and ok? (pcall #(. ffi.C :stat)) (pcall #(. ffi.C :lstat)))
-        {:buf (ffi.new "rm_stat_t") :ts (ffi.new "rm_timespec_t")}))))
+  (when (and ffi (= ffi.os :Linux)
+             (libc.declare [:rm_stat_t :rm_timespec_t :stat :lstat :access :clock_gettime]))
+    {:buf (ffi.new "rm_stat_t") :ts (ffi.new "rm_timespec_t")}))
 
 ;; The file-type bits of st_mode, by name (the same on every POSIX system).
 (local kinds {0x8000 :file 0x4000 :directory 0x1000 :fifo 0xC000 :socket

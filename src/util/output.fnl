@@ -10,28 +10,13 @@
 
 (local filestat (require :src.util.filestat))
 
-(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
-
-(local cdefs
-  ["int open(const char *path, int flags, int mode);"
-   "long write(int fd, const void *buf, unsigned long n);"
-   "int close(int fd);"
-   "int fsync(int fd);"
-   "int fchmod(int fd, unsigned int mode);"
-   "int rename(const char *from, const char *to);"
-   "int unlink(const char *path);"
-   "int mkdir(const char *path, unsigned int mode);"
-   "char *realpath(const char *path, char *resolved);"
-   "void free(void *p);"
-   "int getpid(void);"
-   "char *strerror(int errnum);"])
+(local libc (require :src.util.libc))
+(local ffi libc.ffi)
 
 (local native
   (when (and ffi (= ffi.os :Linux) filestat.precise?)
-    ;; Another module may already have declared the same function.
-    (each [_ decl (ipairs cdefs)] (pcall ffi.cdef decl))
-    (when (pcall #(and ffi.C.open ffi.C.realpath ffi.C.rename ffi.C.fchmod ffi.C.getpid))
-      ffi.C)))
+    (libc.declare [:open :write :close :fsync :fchmod :rename :unlink :mkdir :realpath
+                   :free :getpid :strerror])))
 
 ;; open(2) flags on Linux (the same on x86-64 and arm64): O_WRONLY | O_CREAT |
 ;; O_EXCL | O_CLOEXEC. O_CREAT | O_EXCL fails on any existing name, a link included.
@@ -44,9 +29,6 @@
 (local type-names {:directory "a directory" :fifo "a FIFO" :socket "a socket"
                    :char-device "a character device" :block-device "a block device"
                    :other "a special file"})
-
-(fn errno-text []
-  (ffi.string (native.strerror (ffi.errno))))
 
 (fn split [path]
   "The folder and the name of `path`: \"a/b.png\" -> \"a\" \"b.png\"; \"b.png\" -> \".\"."
@@ -116,7 +98,7 @@ or nil), or nil and '<label>: reason'."
     (while (and (not err) (< at (length bytes)))
       (let [n (tonumber (native.write fd (+ buf at) (- (length bytes) at)))]
         (if (>= n 0) (set at (+ at n))
-            (not= (ffi.errno) eintr) (set err (errno-text)))))
+            (not= (ffi.errno) eintr) (set err (libc.error-text)))))
     (if err (values nil err) true)))
 
 (fn write-native [tmp bytes perm]
@@ -124,12 +106,12 @@ or nil), or nil and '<label>: reason'."
   ;; and why.
   (let [fd (native.open tmp exclusive-flags (or perm 0x1A4))]
     (if (< fd 0)
-        (if (= (ffi.errno) eexist) :exists (values nil (errno-text)))
+        (if (= (ffi.errno) eexist) :exists (values nil (libc.error-text)))
         (let [(ok? err) (write-fd fd bytes)
               ;; The replaced file's permission bits, not the umask's.
               _ (when (and ok? perm) (native.fchmod fd perm))
               synced? (and ok? (= 0 (native.fsync fd)))
-              serr (when (and ok? (not synced?)) (errno-text))]
+              serr (when (and ok? (not synced?)) (libc.error-text))]
           (native.close fd)
           (if (not ok?) (do (native.unlink tmp) (values nil err))
               (not synced?) (do (native.unlink tmp) (values nil serr))
@@ -163,7 +145,7 @@ beside the target and renamed over it. Returns true, or nil and '<label>: reason
                 :exists nil
                 true (if (if native (= 0 (native.rename tmp target)) (os.rename tmp target))
                          (set result true)
-                         (let [e (if native (errno-text) "rename failed")]
+                         (let [e (if native (libc.error-text) "rename failed")]
                            (os.remove tmp)
                            (set err e)))
                 (nil e) (set err e))))
@@ -191,7 +173,7 @@ nil and '<label>: reason'."
                 (when (if native (not= 0 (native.mkdir at 0x1ED))
                           lfs (not (lfs.mkdir at))
                           (not (os.execute (.. "mkdir '" (at:gsub "'" "'\\''") "'"))))
-                  (set err (if native (errno-text) "cannot make the folder")))))
+                  (set err (if native (libc.error-text) "cannot make the folder")))))
             (let [final (filestat.stat dir)]
               (if (and final (= final.type :directory)) true
                   (values nil (.. label ": cannot make the folder: " (or err "not a folder")))))))))

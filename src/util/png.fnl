@@ -1,25 +1,17 @@
 ;; PNG encode/decode (8-bit RGBA and RGB, non-interlaced) in LuaJIT FFI over zlib, for screenshots and test images.
 (local ffi (require :ffi))
+(local libc (require :src.util.libc))
 (local bit (require :bit))
 
 (local signature "\137PNG\r\n\026\n")
-
-(local zlib-cdefs
-       ["unsigned long compressBound(unsigned long sourceLen);"
-        "int compress2(uint8_t *dest, unsigned long *destLen, const uint8_t *source, unsigned long sourceLen, int level);"
-        "int uncompress(uint8_t *dest, unsigned long *destLen, const uint8_t *source, unsigned long sourceLen);"
-        "unsigned long crc32(unsigned long crc, const uint8_t *buf, unsigned int len);"])
 
 (var zlib nil)
 
 (fn z []
   "The zlib library, loaded and declared on first use."
   (when (= nil zlib)
-    (each [_ decl (ipairs zlib-cdefs)]
-      ;; Another module may already have declared the same function.
-      (pcall ffi.cdef decl))
-    (let [(ok lib) (pcall ffi.load :z)]
-      (set zlib (if ok lib (ffi.load :libz.so.1)))))
+    (set zlib (assert (libc.library [:z :libz.so.1]
+                                    [:compressBound :compress2 :uncompress :crc32]))))
   zlib)
 
 (fn crc [s]

@@ -9,34 +9,15 @@
 
 (local filestat (require :src.util.filestat))
 
-(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
-
-(local cdefs
-  ["int socketpair(int domain, int type, int protocol, int sv[2]);"
-   "int posix_spawn_file_actions_init(void *fa);"
-   "int posix_spawn_file_actions_destroy(void *fa);"
-   "int posix_spawn_file_actions_adddup2(void *fa, int fd, int newfd);"
-   "int posix_spawnp(int *pid, const char *file, const void *fa, const void *attr,
-                     char *const argv[], char *const envp[]);"
-   "long send(int fd, const void *buf, unsigned long n, int flags);"
-   "long recv(int fd, void *buf, unsigned long n, int flags);"
-   "int close(int fd);"
-   "int kill(int pid, int sig);"
-   "int waitpid(int pid, int *status, int options);"
-   "typedef struct { int fd; short events; short revents; } rm_pollfd_t;"
-   "int poll(rm_pollfd_t *fds, unsigned long n, int timeout);"
-   "extern char **environ;"
-   "char *strerror(int errnum);"
-   "long readlink(const char *path, char *buf, unsigned long size);"
-   "long sysconf(int name);"])
+(local libc (require :src.util.libc))
+(local ffi libc.ffi)
 
 (local native
   (when (and ffi (= ffi.os :Linux))
-    ;; Another module may already have declared the same function.
-    (each [_ decl (ipairs cdefs)] (pcall ffi.cdef decl))
-    (when (pcall #(and ffi.C.socketpair ffi.C.posix_spawnp ffi.C.posix_spawn_file_actions_adddup2
-                       ffi.C.poll ffi.C.send ffi.C.recv ffi.C.waitpid ffi.C.kill ffi.C.environ))
-      ffi.C)))
+    (libc.declare [:socketpair :posix_spawn_file_actions_init
+                   :posix_spawn_file_actions_destroy :posix_spawn_file_actions_adddup2
+                   :posix_spawnp :send :recv :close :kill :waitpid :rm_pollfd_t :poll
+                   :environ :strerror :readlink :sysconf])))
 
 ;; Linux constants (the same on x86-64 and arm64).
 (local af-unix 1)
@@ -58,9 +39,6 @@
   "Whether child processes can be started here (Linux, LuaJIT's FFI)."
   (not= nil native))
 
-(fn errno-text []
-  (ffi.string (native.strerror (ffi.errno))))
-
 (fn self-exe []
   "The path of the program this process runs (/proc/self/exe), or nil."
   (when native
@@ -76,7 +54,7 @@ Returns a child {:pid :fd}, or nil and a message."
       (values nil "child processes need LuaJIT's FFI on Linux")
       (let [sv (ffi.new "int[2]")]
         (if (not= 0 (native.socketpair af-unix (+ sock-stream sock-cloexec) 0 sv))
-            (values nil (.. "cannot make a socket pair: " (errno-text)))
+            (values nil (.. "cannot make a socket pair: " (libc.error-text)))
             (let [fa (ffi.new "uint8_t[256]")   ; posix_spawn_file_actions_t is 80 bytes
                   pid (ffi.new "int[1]")
                   args (icollect [_ a (ipairs argv)] (tostring a))
@@ -96,7 +74,7 @@ Returns a child {:pid :fd}, or nil and a message."
                     {:pid (. pid 0) :fd (. sv 0) :parts [] :have 0 :keep keep}
                     (do (native.close (. sv 0))
                         (values nil (.. "cannot start " (. args 1) ": "
-                                        (ffi.string (native.strerror rc))))))))))))
+                                        (libc.error-text rc)))))))))))
 
 (fn wait-for [child events deadline]
   ;; Poll the child's socket for `events` until `deadline` (monotonic seconds): true

@@ -8,18 +8,12 @@
 ;; and child processes see the environment they were given.
 ;; Through LuaJIT's FFI (POSIX); elsewhere it does nothing.
 
-(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
+(local libc (require :src.util.libc))
+(local ffi libc.ffi)
 
 (local native
   (when (and ffi (not= ffi.os :Windows))
-    ;; One declaration at a time: another module may have declared one of them.
-    (each [_ d (ipairs ["char *mkdtemp(char *template);"
-                        "int setenv(const char *name, const char *value, int overwrite);"
-                        "int unsetenv(const char *name);"
-                        "int rmdir(const char *path);"])]
-      (pcall ffi.cdef d))
-    (let [(ok?) (pcall #(and ffi.C.mkdtemp ffi.C.setenv ffi.C.unsetenv ffi.C.rmdir))]
-      (when ok? ffi.C))))
+    (libc.declare [:mkdtemp :setenv :unsetenv :rmdir])))
 
 (local variable "XDG_RUNTIME_DIR")
 

@@ -4,12 +4,9 @@
 ;; (stderr not a terminal) one plain line an update, so that updates never run
 ;; together and no control character reaches the file.
 
-(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
+(local libc (require :src.util.libc))
 
-(local isatty
-  (when ffi
-    (pcall ffi.cdef "int isatty(int fd);")
-    (let [(ok? f) (pcall #(. ffi.C :isatty))] (when ok? f))))
+(local isatty (case (libc.declare [:isatty]) c c.isatty))
 
 (local terminal? (not (not (and isatty (= 1 (isatty 2))))))
 
