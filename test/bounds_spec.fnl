@@ -6,7 +6,7 @@
 (local scene (require :src.scene.load))
 (local plan (require :src.render.plan))
 (local camera (require :src.render.camera))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local bounds (require :src.render.bounds))
 
 (fn load [source] (assert (scene.load-string source "t.fnl")))

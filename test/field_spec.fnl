@@ -9,7 +9,7 @@
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
 (local export (require :src.render.export))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local compare (require :src.verify.compare))
 (local field (require :src.render.field))
 (local {: marched-mix} (require :test.support.scenes))

@@ -48,7 +48,7 @@
 (local scene (require :src.scene.load))
 (local plan (require :src.render.plan))
 (local camera (require :src.render.camera))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local {: gpu-render} (require :test.support.gpu-check))
 
 (local size [640 360])

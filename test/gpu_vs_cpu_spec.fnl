@@ -1,5 +1,5 @@
 ;; Every scene in scenes/, rendered by the generated GLSL through OSMesa, against the CPU
-;; reference marcher (src/verify/reference.fnl) on sampled pixels: a jittered grid plus pixels
+;; reference marcher (src/reference.fnl) on sampled pixels: a jittered grid plus pixels
 ;; beside silhouettes, shadow edges and reflected edges.
 
 ;; A pixel passes when its largest channel difference is at most 2/255 (piglit's probe

@@ -9,7 +9,7 @@
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
 (local camera (require :src.render.camera))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local headless (require :src.backend.headless))
 (local G (require :test.support.gpu-check))
 

@@ -5,7 +5,7 @@
 (local scene (require :src.scene.load))
 (local plan (require :src.render.plan))
 (local codegen (require :src.render.codegen))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local camera (require :src.render.camera))
 (local headless (require :src.backend.headless))
 (local {: prepare : gpu-render : compare-image : passes? : describe-failures : report-line}

@@ -1,9 +1,9 @@
 ;; tier: fast
-;; Specs for src/verify/reference.fnl (the CPU reference marcher) and src/verify/compare.fnl.
+;; Specs for src/reference.fnl (the CPU reference marcher) and src/verify/compare.fnl.
 (local scene (require :src.scene.load))
 (local plan (require :src.render.plan))
 (local camera (require :src.render.camera))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local compare (require :src.verify.compare))
 
 (fn load [source]

@@ -2,7 +2,7 @@
 ;; front, the pieces the sweep is built from, and a quick end-to-end run.
 
 (local report (require :src.verify.report))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local png (require :src.util.png))
 (local headless (require :src.backend.headless))
 

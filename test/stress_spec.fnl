@@ -104,7 +104,7 @@
 (local camera (require :src.render.camera))
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local compare (require :src.verify.compare))
 (local {: heat->fraction} (require :src.verify.report))
 (local {: scene-files : tolerance} (require :test.support.gpu-check))

@@ -5,7 +5,7 @@
 ;; region when one is given. Pure: runs under plain LuaJIT.
 
 (local plan-mod (require :src.render.plan))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local lower (require :src.sdf.lower))
 
 (local options (require :src.mesh.options))
@@ -103,7 +103,7 @@ the grid reaches two cells beyond the cut on every side, so its boundary is outs
      :dims (fcollect [i 1 3] (+ 4 (math.ceil (- (/ (- (. cut.hi i) (. cut.lo i)) h) 1e-9))))}))
 
 (fn cpu-field [scene]
-  "The CPU evaluator (src/verify/reference.fnl, double precision) of `scene` as a
+  "The CPU evaluator (src/reference.fnl, double precision) of `scene` as a
 field for contour.mesh, with :colors (fn [flat n]) -> r g b ... per point (the
 material's colour there) and :distance (fn [x y z]) -> d; or nil and a message."
   (case (plan-mod.scene->plan scene {:view :glow :probe? true})

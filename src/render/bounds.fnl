@@ -3,7 +3,7 @@
 ;; form. A ray then marches only the finite objects, only over the span where it is
 ;; inside some object's bound, and stops at the nearest plane. Pure: runs under plain
 ;; LuaJIT; the GLSL (shaders/pipeline/march.glsl, bounded) and the CPU reference
-;; (src/verify/reference.fnl) follow the same rules.
+;; (src/reference.fnl) follow the same rules.
 
 ;; From this radius on a sphere loses float32 precision near its surface.
 (local large-radius (. (require :src.sdf.large-sphere) :radius))

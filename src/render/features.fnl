@@ -3,7 +3,7 @@
 ;; their settings into the :lighting section, the plan keeps those that are on (and
 ;; so the key), codegen includes their chunks and fills the modern view's slots with
 ;; their lines, the uniforms send theirs, and the CPU reference
-;; (src/verify/lighting.fnl) adds their terms at the same places.
+;; (src/reference/lighting.fnl) adds their terms at the same places.
 ;;
 ;; A descriptor:
 ;;   :name      keyword; :doc one line

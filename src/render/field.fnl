@@ -3,7 +3,7 @@
 ;; in order (a 3D DDA) and sphere-traces only the objects listed in the cell it is in,
 ;; so an empty cell costs one lookup and a full one a few objects, whatever the scene's
 ;; size. Pure: runs under plain LuaJIT. The shader (shaders/pipeline/field.glsl and
-;; march.glsl's field walks) and the CPU reference (src/verify/reference.fnl) walk
+;; march.glsl's field walks) and the CPU reference (src/reference.fnl) walk
 ;; the same grid with the same arithmetic; brute force over every object is the
 ;; tests' oracle.
 ;;

@@ -14,7 +14,7 @@
 ;; anchor camera-relative and evaluates the members at p - anchor.
 ;;
 ;; Pure: runs under plain LuaJIT. The GLSL (shaders/pipeline/grid.glsl and
-;; emit-glsl's grid loop) and the CPU reference (src/verify/reference.fnl, through
+;; emit-glsl's grid loop) and the CPU reference (src/reference.fnl, through
 ;; `query`) read the same cells with the same arithmetic; brute force over every member
 ;; is the tests' oracle.
 

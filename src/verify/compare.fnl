@@ -2,7 +2,7 @@
 ;; differences, their statistics, and the choice of pixels worth comparing (a jittered
 ;; grid plus pixels at silhouettes, shadow edges and reflected edges). Pure Lua data.
 
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 
 (local abs math.abs)
 (local floor math.floor)

@@ -4,7 +4,7 @@
 ;; so anyone can compare the two. Input is read in fixed-size chunks and answered in
 ;; batches, so an endless stream runs in constant memory. Pure: runs under plain LuaJIT.
 
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 
 ;; A point is three numbers: a line longer than this is refused before it is read whole.
 (local max-line 4096)

@@ -22,7 +22,7 @@
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
 (local headless (require :src.backend.headless))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local compare (require :src.verify.compare))
 (local filestat (require :src.util.filestat))
 

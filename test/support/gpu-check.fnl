@@ -7,7 +7,7 @@
 (local camera (require :src.render.camera))
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
-(local reference (require :src.verify.reference))
+(local reference (require :src.reference))
 (local compare (require :src.verify.compare))
 
 ;; A pixel passes when its largest channel difference is at most 2/255 (piglit's probe
