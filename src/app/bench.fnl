@@ -13,7 +13,7 @@
 ;; figure); `make bench` now runs test/bench/article.fnl in the same run instead.
 (local article-ms-256x224 2900)
 
-(local median (. (require :src.verify.compare) :median))
+(local {: median} (require :src.util.stats))
 
 (fn time-frame! [variant]
   "Draw one frame of `variant` into its canvas and wait for the GPU; milliseconds."
@@ -121,7 +121,7 @@ settings, counted by the CPU reference at 192x108: a table of :primary, :shadow 
         plan (assert (frame.plan-for scene {}))
         (w h) (values 192 108)
         counts {:primary 0 :shadow 0 :mirror 0 :normal 0 :color 0}]
-    ((. (require :src.verify.reference) :render-pixels)
+    ((. (require :src.reference) :render-pixels)
      scene plan (camera.from-scene scene) w h
      (fcollect [i 0 (- (* w h) 1)] [(% i w) (math.floor (/ i w))]) counts)
     (let [per (collect [k n (pairs counts)] k (/ n (* w h)))]

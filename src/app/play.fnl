@@ -9,7 +9,7 @@
 (local adaptive (require :src.app.adaptive))
 (local quality (require :src.app.quality))
 (local hud (require :src.app.hud))
-(local {: median} (require :src.verify.compare))
+(local {: median} (require :src.util.stats))
 (local gpu (require :src.backend.gpu))
 (local plan-mod (require :src.render.plan))
 (local watch (require :src.app.watch))

@@ -9,7 +9,7 @@
 (local frame (require :src.backend.frame))
 (local filestat (require :src.util.filestat))
 (local camera (require :src.render.camera))
-(local {: median} (require :src.verify.compare))
+(local {: median} (require :src.util.stats))
 (local {: temp-scene-path : write!} (require :src.app.scripted))
 
 (local structures 12)   ; distinct sphere counts, more than the shader cache holds

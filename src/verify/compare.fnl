@@ -135,13 +135,4 @@ The result is deterministic and has at least n*n pixels."
           (set added (+ added 1)))))
     out))
 
-(fn median [xs]
-  "Median of the numbers `xs` (nil when empty); `xs` is not modified."
-  (let [s (icollect [_ x (ipairs xs)] x)
-        n (length s)]
-    (table.sort s)
-    (if (= n 0) nil
-        (= (% n 2) 1) (. s (/ (+ n 1) 2))
-        (/ (+ (. s (/ n 2)) (. s (+ (/ n 2) 1))) 2))))
-
-{: pixel-diff : fuzzy-equal? : stats : sample-pixels : signature : median}
+{: pixel-diff : fuzzy-equal? : stats : sample-pixels : signature}

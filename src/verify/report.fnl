@@ -235,7 +235,7 @@ time or error is nil are left out. Keys default to :ms and :error."
 the whole program: src/util/filestat.fnl's)."
   (* 1000 (filestat.monotonic)))
 
-(local median compare.median)
+(local {: median} (require :src.util.stats))
 
 (fn iqr [xs]
   "Interquartile range of the numbers `xs` (nearest-rank quartiles): the timing noise."
