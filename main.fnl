@@ -43,10 +43,10 @@
   quit?)
 
 (fn probe [o]
-  ;; Read and answered a batch at a time (src/verify/probe.fnl): an endless stream
+  ;; Read and answered a batch at a time (src/app/probe.fnl): an endless stream
   ;; runs in constant memory, and each batch's lines are out before the next is read.
   (let [frame (require :src.backend.frame)
-        probe-mod (require :src.verify.probe)
+        probe-mod (require :src.app.probe)
         (scene err) (frame.load-scene o.scene)
         (plan perr) (if scene (frame.plan-for scene {:view :glow :probe? true})
                         (values nil err))

@@ -7,7 +7,7 @@
 (local article (require :test.bench.article))
 (local load (require :src.scene.load))
 (local plan-mod (require :src.render.plan))
-(local probe (require :src.verify.probe))
+(local probe (require :src.app.probe))
 
 (describe "the article's program in the benchmark"
   (fn []

@@ -1,8 +1,8 @@
 ;; tier: fast
-;; src/verify/probe.fnl's reader of `--probe` input: an endless stream is read in
+;; src/app/probe.fnl's reader of `--probe` input: an endless stream is read in
 ;; chunks and handed out in batches in constant memory, and a long line is refused
 ;; before it is read whole. Pure: no LÖVE (test/probe_spec.fnl runs the app on both).
-(local probe (require :src.verify.probe))
+(local probe (require :src.app.probe))
 
 (fn endless-file [line]
   "A file that gives `line` over and over, never an end; counts the bytes read."

@@ -4,7 +4,7 @@
 ;; units of its centre, where it is the nearest object.
 
 (local primitives (require :src.sdf.primitives))
-(local probe (require :src.verify.probe))
+(local probe (require :src.app.probe))
 (local load (require :src.scene.load))
 (local plan-mod (require :src.render.plan))
 (local {: lcg} (require :test.support.fields))
