@@ -1,7 +1,7 @@
 ;; `love . --mesh SCENE --out FILE.stl|FILE.ply|FILE.obj [--resolution N] [--region
-;; x0,y0,z0,x1,y1,z1] [--gpu]` (issue 31): the scene's objects as a closed mesh file,
-;; sampled by the CPU evaluator or, with --gpu, by the generated GLSL. Progress on
-;; stderr; one line on stdout saying what was written and what was left out or cut.
+;; x0,y0,z0,x1,y1,z1] [--gpu]`: the scene's objects as a closed mesh file, sampled by
+;; the CPU evaluator or, with --gpu, by the generated GLSL. Progress on stderr; one line
+;; on stdout saying what was written and what was left out or cut.
 
 (local frame (require :src.backend.frame))
 (local output (require :src.util.output))

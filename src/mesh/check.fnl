@@ -1,7 +1,7 @@
-;; Checks of a triangle mesh (issue 31): closed and 2-manifold with one orientation,
-;; its enclosed volume, and how far its vertices are from a distance field's surface.
-;; A mesh is {:positions [x y z ...] :triangles [a b c ...]} (1-based vertex indices).
-;; Pure: runs under plain LuaJIT.
+;; Checks of a triangle mesh (what a printer or modeller needs): closed and 2-manifold
+;; with one orientation, its enclosed volume, and how far its vertices are from a
+;; distance field's surface. A mesh is {:positions [x y z ...] :triangles [a b c ...]}
+;; (1-based vertex indices). Pure: runs under plain LuaJIT.
 
 (local sqrt math.sqrt)
 

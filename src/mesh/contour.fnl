@@ -1,4 +1,4 @@
-;; Dual contouring of a signed distance field into a closed triangle mesh (issue 31).
+;; Dual contouring of a signed distance field into a closed triangle mesh (--mesh).
 ;; The field is sampled at the corners of a grid of cubic cells, only in blocks its
 ;; own values cannot prove far from the surface (an octree of blocks, skipped where
 ;; |d| at a block's centre exceeds its half-diagonal), so the work follows the surface

@@ -1,7 +1,7 @@
-;; `--mesh`: a scene's objects to a mesh file (issue 31). Picks what to mesh
-;; (src/mesh/scene.fnl), contours it (src/mesh/contour.fnl) with a field from the
-;; CPU evaluator or the GPU (src/mesh/gpu.fnl, given by the caller), colours the
-;; vertices with the scene's materials and writes STL, PLY or OBJ
+;; `--mesh`: a scene's objects to a mesh file, for printing or another modelling
+;; program. Picks what to mesh (src/mesh/scene.fnl), contours it (src/mesh/contour.fnl)
+;; with a field from the CPU evaluator or the GPU (src/mesh/gpu.fnl, given by the
+;; caller), colours the vertices with the scene's materials and writes STL, PLY or OBJ
 ;; (src/mesh/formats.fnl) through the one output writer. Progress on stderr with an
 ;; estimate of the time left. Pure: runs under plain LuaJIT with the CPU field.
 

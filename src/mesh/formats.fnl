@@ -1,9 +1,10 @@
-;; Mesh files (issue 31): binary STL (triangles only), binary little-endian PLY and
-;; Wavefront OBJ (both with a colour per vertex: PLY as red green blue bytes, OBJ as
-;; the common `v x y z r g b` extension that MeshLab, Blender and trimesh read), and
-;; readers for the same, so that a written file can be checked by parsing it back.
-;; A mesh is {:positions [x y z ...] :triangles [a b c ...] (1-based) :colors [r g b
-;; ...] (0-1 per vertex, optional)}. Pure: plain LuaJIT (its FFI packs the floats).
+;; Mesh files, for printing a scene or taking it into another modelling program: binary
+;; STL (triangles only), binary little-endian PLY and Wavefront OBJ (both with a colour
+;; per vertex: PLY as red green blue bytes, OBJ as the common `v x y z r g b` extension
+;; that MeshLab, Blender and trimesh read), and readers for the same, so that a written
+;; file can be checked by parsing it back. A mesh is {:positions [x y z ...] :triangles
+;; [a b c ...] (1-based) :colors [r g b ...] (0-1 per vertex, optional)}. Pure: plain
+;; LuaJIT (its FFI packs the floats).
 
 (local ffi (require :ffi))
 

@@ -1,5 +1,6 @@
-;; The command-line values of `--mesh` (issue 31), checked before anything opens:
-;; the resolution and the region. Pure: no requires.
+;; The command-line values of `--mesh`, checked before anything opens (a bad value fails
+;; at once, not after the scene has loaded): the resolution and the region. Pure: no
+;; requires.
 
 (local min-resolution 8)
 ;; 1.5 GB at 512 (machined-part, 632k triangles): the mesher keeps Lua tables per

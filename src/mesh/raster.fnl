@@ -1,8 +1,8 @@
-;; A picture of a triangle mesh (issue 31), for docs/mesh.md and for looking at an
-;; exported file without another program: a software rasteriser with a depth buffer,
-;; each triangle flat-shaded in its vertices' mean colour (grey without colours) by
-;; a light over the viewer's shoulder, its edges drawn faintly so the triangles show.
-;; Pure: plain LuaJIT (FFI buffers).
+;; A picture of a triangle mesh, for docs/mesh.md and for looking at an exported file
+;; without another program: a software rasteriser with a depth buffer, each triangle
+;; flat-shaded in its vertices' mean colour (grey without colours) by a light over the
+;; viewer's shoulder, its edges drawn faintly so the triangles show. Pure: plain LuaJIT
+;; (FFI buffers).
 
 (local ffi (require :ffi))
 

@@ -1,8 +1,8 @@
-;; What `--mesh` meshes of a scene (issue 31): its finite objects within their
-;; bounds, or, with a region given, everything cut by that box; the grid over it; and
-;; the CPU evaluator as a field for src/mesh/contour.fnl. Infinite nodes (ground
-;; planes, endless repetitions) have no bounds: left out by default, cut by the
-;; region when one is given. Pure: runs under plain LuaJIT.
+;; What `--mesh` meshes of a scene: its finite objects within their bounds, or, with a
+;; region given, everything cut by that box; the grid over it; and the CPU evaluator as
+;; a field for src/mesh/contour.fnl. Infinite nodes (ground planes, endless repetitions)
+;; have no bounds: left out by default, cut by the region when one is given. Pure: runs
+;; under plain LuaJIT.
 
 (local plan-mod (require :src.render.plan))
 (local reference (require :src.reference))

@@ -1,9 +1,10 @@
-;; Bounds the marcher tests a ray against before it marches (issue 11): a bounding
-;; sphere for every finite object, and the half-spaces (ground planes) met in closed
-;; form. A ray then marches only the finite objects, only over the span where it is
-;; inside some object's bound, and stops at the nearest plane. Pure: runs under plain
-;; LuaJIT; the GLSL (shaders/pipeline/march.glsl, bounded) and the CPU reference
-;; (src/reference.fnl) follow the same rules.
+;; Bounds the marcher tests a ray against before it marches, so that it marches only the
+;; objects it may hit, where it may hit them: a bounding sphere for every finite object,
+;; and the half-spaces (ground planes) met in closed form. A ray then marches only the
+;; finite objects, only over the span where it is inside some object's bound, and stops
+;; at the nearest plane. Pure: runs under plain LuaJIT; the GLSL
+;; (shaders/pipeline/march.glsl, bounded) and the CPU reference (src/reference.fnl)
+;; follow the same rules.
 
 ;; From this radius on a sphere loses float32 precision near its surface.
 (local large-radius (. (require :src.sdf.large-sphere) :radius))

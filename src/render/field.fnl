@@ -1,11 +1,12 @@
 ;; Fields: the many small objects of a large scene, kept in float textures and found
-;; through a uniform grid built here on the CPU (issue 12). A ray walks the grid's cells
-;; in order (a 3D DDA) and sphere-traces only the objects listed in the cell it is in,
-;; so an empty cell costs one lookup and a full one a few objects, whatever the scene's
-;; size. Pure: runs under plain LuaJIT. The shader (shaders/pipeline/field.glsl and
-;; march.glsl's field walks) and the CPU reference (src/reference.fnl) walk
-;; the same grid with the same arithmetic; brute force over every object is the
-;; tests' oracle.
+;; through a uniform grid built here on the CPU so that a frame's cost stops growing
+;; with the object count (uniform arrays marched every object every step). A ray walks
+;; the grid's cells in order (a 3D DDA) and sphere-traces only the objects listed in the
+;; cell it is in, so an empty cell costs one lookup and a full one a few objects,
+;; whatever the scene's size. Pure: runs under plain LuaJIT. The shader
+;; (shaders/pipeline/field.glsl and march.glsl's field walks) and the CPU reference
+;; (src/reference.fnl) walk the same grid with the same arithmetic; brute force over
+;; every object is the tests' oracle.
 ;;
 ;; The article's flat spheres and boxes are each a rounded box: centre c, half extents
 ;; h, radius r. A sphere is h = 0 (distance |p - c| - r, exact); a box is r = 0

@@ -70,9 +70,10 @@ scene never changes another's defaults."
             ;; or the sky.
             :out-of-steps {:type :out-of-steps :default :background}}})
 
-;; The modern lighting model (issue 10), chosen by a :lighting section; a scene without
-;; one keeps the article's classic model. Colours are sRGB as picked; the shader works
-;; in linear light. Each feature is compiled in only when it is on (see plan.fnl).
+;; The modern lighting model (soft shadows, sky light, features), chosen by a :lighting
+;; section; a scene without one keeps the article's classic model. Colours are sRGB as
+;; picked; the shader works in linear light. Each feature is compiled in only when it
+;; is on (see plan.fnl).
 (local lighting-spec
   {:model {:type :model :default :modern}
    :sky-zenith {:type :color :default [0.3 0.5 0.85]}

@@ -45,7 +45,7 @@
    ;; steps must trip first on a slow or busy machine too: the 100 million take
    ;; 1.3 s of CPU here in this process and 1.6 s in the worker, and at 5 s a
    ;; compile stopped by its steps on a busy 2-core CI machine said "took more than
-   ;; 5 s" instead (issue 41). 15 s: ten times the steps' time, about the margin
+   ;; 5 s" instead. 15 s: ten times the steps' time, about the margin
    ;; the run's backstop has (5 s for 20 million steps, 0.4 s), and under the
    ;; worker's 20 s of CPU a load, so the message still names the compile.
    :compile-cpu-seconds 15

@@ -1,13 +1,14 @@
-;; Grids over instance groups (issue 29): culling for any node kind. An instance group
-;; (src/sdf/lower.fnl: many objects of one structure, a loop over their rows) of at
-;; least `min-members` finite members gets a uniform grid over their boxes; a cell
-;; lists the members whose box, grown by the grid's reach, meets it. The group's code
-;; then runs for the members listed in the cell of the point it is evaluated at, and
-;; the rest are stood in for by one lower bound: the point's distance to its cell's
-;; walls plus the reach, or plus the cell's clearance where that is more (the empty
-;; cells around it: see `clearances`). So the group's value is exact within the reach
-;; of the point's cell and a lower bound beyond it, never more than the true distance:
-;; a step never passes a surface. Any primitive, any tree, rotated or not, is a member.
+;; Grids over instance groups: culling for any node kind, trees included (a field's
+;; members are lone primitives). An instance group (src/sdf/lower.fnl: many objects of
+;; one structure, a loop over their rows) of at least `min-members` finite members gets
+;; a uniform grid over their boxes; a cell lists the members whose box, grown by the
+;; grid's reach, meets it. The group's code then runs for the members listed in the cell
+;; of the point it is evaluated at, and the rest are stood in for by one lower bound:
+;; the point's distance to its cell's walls plus the reach, or plus the cell's clearance
+;; where that is more (the empty cells around it: see `clearances`). So the group's
+;; value is exact within the reach of the point's cell and a lower bound beyond it,
+;; never more than the true distance: a step never passes a surface. Any primitive, any
+;; tree, rotated or not, is a member.
 ;;
 ;; The group's rows (its bank) go into a float texture, in coordinates relative to one
 ;; fixed anchor, so nothing is uploaded when the camera moves: the shader is sent the

@@ -1,5 +1,6 @@
-;; Rim light: a surface seen edge-on takes the sky's light, as a back light outlines
-;; a figure. Issue 28's example of a feature added in one file and its chunk.
+;; Rim light: a surface seen edge-on takes the sky's light, as a back light outlines a
+;; figure. It shows that a feature takes one file and its chunk, nothing else
+;; (docs/how-it-works.md, Lighting features).
 {:name :rim
  :doc "Rim light: surfaces seen edge-on glow with the sky's light along their normal."
  :settings {:rim {:type :fraction :default 0}             ; strength (0: off)
