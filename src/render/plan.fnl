@@ -189,14 +189,12 @@ nil and a message when a texture would not fit."
 (fn scene->plan [scene ?options]
   "Lower `scene` into a plan. Options:
   :view           :shaded (default), :normals, :glow or :heat
-  :uber?          compile every kind and feature in, switched by uniforms (benchmark)
+  :uber?          compile every kind and feature in, switched by uniforms
   :reflections    override the scene's reflection count (the player's k/l keys)
   :uniform-limit  uniform vectors the driver allows (default 4096, llvmpipe's)
   :probe?         for the probe shader: colours and mirror amounts, no lighting
   :load-once?     false: read uniforms where they are used instead of once per pixel
-                  (the benchmark's before-and-after of that lever)
-  :bounds?        false: march every object everywhere, planes too (see
-                  src/render/bounds.fnl; the benchmark's before of that lever)
+                  (renderer-options picks it by the renderer)
   :samples        supersampling, N x N rays per pixel (default the scene's)
   :adaptive?      true: with :samples above 1, adaptive (the player's anti-aliased
                   still); false: every pixel N x N; nil: the scene's :adaptive
@@ -206,15 +204,20 @@ nil and a message when a texture would not fit."
   :fold?          true: the scene trees' values (but camera-relative positions) as
                   constants in the code, and in the key (--render, --export-shader,
                   --record of a scene without functions of time)
-  :far-field?     false: no far field and no object guards in scene trees (the
-                  benchmark's before; see src/sdf/lower.fnl)
+The rest each switch one speed-up off (the default has it on): the tests' oracles
+and `make bench`'s before (test/bench/report.fnl).
+  :bounds?        false: march every object everywhere, planes too (see
+                  src/render/bounds.fnl)
+  :far-field?     false: no far field and no object guards in scene trees (see
+                  src/sdf/lower.fnl)
   :shadow-bounds? false: soft shadow rays march the whole scene all the way, not
-                  only inside the bounding spheres (the benchmark's before)
+                  only inside the bounding spheres
   :hard-march?    true: soft shadows keep the hard march even when no light has
-                  softness 0 (the benchmark's before)
+                  softness 0
   :field?         false: no field (src/render/field.fnl) however many spheres and
-                  boxes the scene has; they go into uniform arrays (the oracle's and
-                  the benchmark's before)
+                  boxes the scene has; they go into uniform arrays
+  :grids?         false: no grids over instance groups or blends (src/sdf/grid.fnl):
+                  each loops over all its members, its rows in uniform arrays
 Returns the plan, or nil and a message when the scene does not fit the budget."
   (let [options (or ?options {})
         view (or options.view :shaded)
