@@ -1,9 +1,9 @@
-;; The modern lighting model (issue 10) on the CPU, in double precision: the
-;; reference for shaders/views/modern.glsl and shaders/shading/modern/, written from
-;; the same description (the scene's :lighting section, lowered by plan.fnl and packed
-;; by uniforms.fnl), never from the GLSL text. Uses a reference tracer's parts for
-;; the distance field, its marches and its normals; shadows in
-;; src/reference/shadows.fnl.
+;; The modern lighting model (sky, sun and point lights, materials) on the CPU, in
+;; double precision: the reference for shaders/views/modern.glsl and
+;; shaders/shading/modern/, written from the same description (the scene's :lighting
+;; section, lowered by plan.fnl and packed by uniforms.fnl), never from the GLSL text.
+;; Uses a reference tracer's parts for the distance field, its marches and its
+;; normals; shadows in src/reference/shadows.fnl.
 
 (local uniforms (require :src.render.uniforms))
 (local feature-set (require :src.render.features))
