@@ -121,10 +121,13 @@
       (_ err) (fail! err))))
 
 (fn bench-report [o]
-  (let [bench-mod (require :src.app.bench)]
-    (case (bench-mod.report o)
-      true (love.event.quit 0)
-      (_ err) (fail! err))))
+  ;; The benchmark lives with the tests (test/bench/): a checkout has it, the .love
+  ;; archive of `make dist` does not.
+  (if (not (love.filesystem.getInfo "test/bench/report.fnl"))
+      (fail! "--bench-report needs test/bench/ (a checkout of the project, not the .love archive)")
+      (case ((. (require :test.bench.report) :report) o)
+        true (love.event.quit 0)
+        (_ err) (fail! err))))
 
 (fn soak [o]
   (let [soak-mod (require :src.app.soak)]

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The scaling table of issue 29 in ONE interleaved LÖVE run: frame times of the
-# benchmark's scaling scene (src/app/bench.fnl's scaling-scene: n spheres in a
+# benchmark's scaling scene (test/bench/report.fnl's scaling-scene: n spheres in a
 # 40 x 40 x 10 region over a floor, hard shadows, one mirror bounce) at 640x360 for
 # several counts, drawn by this checkout's code and by another's (BASE, e.g. main's
 # worktree), frame after frame in turn, and each count's time over the 10 spheres'

@@ -1,4 +1,4 @@
-;; The benchmark's scaling scene (src/app/bench.fnl's scaling-scene: n spheres in a
+;; The benchmark's scaling scene (test/bench/report.fnl's scaling-scene: n spheres in a
 ;; 40 x 40 x 10 region over a floor, radius 1.2 sqrt(10 / n), hard shadows, one mirror
 ;; bounce) as tools/ab-dump.fnl writes a scene, for tools/ab-run. The spheres are made
 ;; here in Lua with the scene file's generator, not by the scene sandbox, so that any
