@@ -1,3 +1,4 @@
+;; tier: fast
 ;; Specs for the compiled start (src/boot.lua, tools/build-lua.lua, conf.lua's loader):
 ;; the build writes what the loader takes, the loader takes it only while the source is
 ;; the one compiled, and errors still name the Fennel line.

@@ -172,9 +172,9 @@
     (it "gives up writing, reading and starting programs, memory past its limit and CPU past its allowance"
       (fn []
         (os.execute "rm -rf test/out/confined && mkdir -p test/out/confined && touch test/out/confined/existing")
-        (let [lines (sh-lines "luajit tools/fnl.lua test/fixtures/worker/confined.fnl test/out/confined write read rename remove mkdir execute memory small-memory raise-memory cpu; echo \"exit $?\"")]
+        (let [lines (sh-lines "luajit tools/fnl.lua test/fixtures/worker/confined.fnl test/out/confined write read rename remove mkdir execute memory small-memory raise-memory touch chmod2 xattr signal peek tiocsti tcgets shm cpu < /dev/null; echo \"exit $?\"")]
           (assert.are.same
-           ["applied address space 512 MB, CPU 1 s a request, no core files, no new files, no new privileges, seccomp filter"
+           ["applied address space 512 MB, CPU 1 s a request, no core files, no new files, no terminal, no new privileges, seccomp filter"
             "missing "
             "write refused: test/out/confined/written: Operation not permitted"
             "read refused: /etc/hostname: Operation not permitted"
@@ -185,17 +185,41 @@
             "memory refused: not enough memory"
             "small-memory ok"
             "raise-memory refused: nil"
+            ;; What a deny list let through: the allow list refuses them.
+            "touch refused: Operation not permitted"
+            "chmod2 refused: Operation not permitted"
+            "xattr refused: Operation not permitted"
+            "signal refused: Operation not permitted"
+            "peek refused: Operation not permitted"
+            "tiocsti refused: Operation not permitted"
+            "tcgets ok"
+            "shm refused: Operation not permitted"
             ;; 128 + SIGXCPU (24): the kernel ended it in its endless loop.
             "exit 152"]
            lines)
           (assert.are.same ["existing"] (sh-lines "ls test/out/confined")))))
+
+    (it "passes its standard error on escaped, each line once and 20 a request, and never blocks on it"
+      (fn []
+        ;; 200,000 lines before it is ready: with its standard error this process's
+        ;; (a pipe nobody drains) it would block; here the load goes through.
+        (let [out (sh-lines "luajit tools/fnl.lua test/fixtures/worker/drive.fnl chatty scenes/organic.fnl 2>test/out/chatty-err.txt")
+              err (with-open [f (io.open "test/out/chatty-err.txt" :rb)] (f:read "*a"))
+              lines (icollect [l (err:gmatch "[^\n]+")] l)]
+          (assert.are.same ["loaded 4 objects"] out)
+          (assert.are.equal 21 (length lines) err)
+          (assert.are.equal "scene worker: the same warning" (. lines 1))
+          (assert.are.equal "scene worker: line 1 \\x1b[31mred\\x1b[0m\\x07 \\x1b]0;title\\x07" (. lines 2))
+          (assert.is_nil (err:find "[\27\7]") "a control character got through")
+          (assert.are.equal "scene worker: 199980 more lines of its standard error not shown (repeats, or past the first 20)"
+                            (. lines 21)))))
 
     (it "says what it gave up"
       (fn []
         (assert (worker.load-file "scenes/organic.fnl"))
         (let [info (worker.info)]
           (assert.are.same [] info.missing)
-          (assert.are.equal 6 (length info.applied)))))
+          (assert.are.equal 7 (length info.applied)))))
 
     (it "times: a value edit's round trip and a loop of 100,000 objects (printed, not judged)"
       (fn []

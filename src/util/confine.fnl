@@ -10,37 +10,55 @@
 ;; - files: none can be opened or created (RLIMIT_NOFILE 0). Not RLIMIT_FSIZE: it
 ;;   also holds for the standard error the worker shares with the app, and a Fennel
 ;;   warning written there, when it is a file, would end the worker (SIGXFSZ);
-;; - no new privileges (PR_SET_NO_NEW_PRIVS), then a seccomp filter (x86-64) that
-;;   answers EPERM to every call that opens, creates, renames, removes or changes a
-;;   file, starts a program or a process, makes a socket, signals another process or
-;;   changes another's limits.
+;; - a session of its own (setsid): no controlling terminal, so no terminal signals
+;;   reach it and no ioctl can push input into the user's terminal;
+;; - no new privileges (PR_SET_NO_NEW_PRIVS), then a seccomp filter (x86-64) that is an
+;;   allow list: the calls LuaJIT, libc and the worker's protocol make once it serves
+;;   (`allowed-x64` below, each with why), and EPERM for every other call. So a call
+;;   nobody thought of (changing a file's times or attributes, signalling a process
+;;   through rt_sigqueueinfo, reading another's memory, SysV shared memory, a socket)
+;;   is refused too, where a deny list lets through whatever it does not name.
 ;;
 ;; Landlock would say "no writes below /" more directly, but it needs kernel 5.13 and
 ;; an LSM list that names it (this machine's kernel offers no /sys/kernel/security);
 ;; seccomp has been in every Linux kernel since 3.5 and is what browsers' renderer
-;; processes use. The filter is a deny list: the worker needs only memory, its socket
-;; and the clock, and a deny list cannot break LuaJIT's or libc's own calls.
+;; processes use. The list was drawn from strace of a worker serving loads and frames
+;; of functions of time, under LÖVE and under LuaJIT.
 
 (local libc (require :src.util.libc))
 (local ffi libc.ffi)
 
 (local native
   (when (and ffi (= ffi.os :Linux))
-    (libc.declare [:rm_rlimit_t :setrlimit :getrlimit :rm_rusage_t :getrusage :prctl
+    (libc.declare [:rm_rlimit_t :setrlimit :getrlimit :rm_rusage_t :getrusage :prctl :setsid
                    :rm_sock_filter_t :rm_sock_fprog_t :strerror])))
 
 (local rlimit {:cpu 0 :fsize 1 :core 4 :nofile 7 :as 9})
 
-;; x86-64 system calls the filter refuses (numbers from asm/unistd_64.h).
-(local denied-x64
-  {:open 2 :openat 257 :openat2 437 :creat 85 :rename 82 :renameat 264 :renameat2 316
-   :unlink 87 :unlinkat 263 :mkdir 83 :mkdirat 258 :rmdir 84 :link 86 :linkat 265
-   :symlink 88 :symlinkat 266 :chmod 90 :fchmod 91 :fchmodat 268 :chown 92 :fchown 93
-   :lchown 94 :fchownat 260 :truncate 76 :ftruncate 77 :mknod 133 :mknodat 259
-   :execve 59 :execveat 322 :fork 57 :vfork 58 :clone 56 :clone3 435 :socket 41
-   :connect 42 :bind 49 :listen 50 :accept 43 :accept4 288 :ptrace 101 :kill 62
-   :tkill 200 :tgkill 234 :process_vm_writev 311 :setpriority 141 :mount 165
-   :io_uring_setup 425 :memfd_create 319 :name_to_handle_at 303 :open_by_handle_at 304})
+;; x86-64 system calls the filter allows (numbers from asm/unistd_64.h), and why.
+(local allowed-x64
+  {;; The protocol: frames on stdin and stdout (a socket), warnings on stderr; stdio
+   ;; looks at a stream before its first use (fstat, lseek).
+   :read 0 :write 1 :readv 19 :writev 20 :close 3 :fstat 5 :newfstatat 262 :lseek 8
+   ;; Memory: LuaJIT's allocator and its JIT's machine code (mprotect to and from
+   ;; PROT_EXEC), libc's malloc.
+   :mmap 9 :munmap 11 :mremap 25 :mprotect 10 :brk 12 :madvise 28
+   ;; Signals of its own (LuaJIT's and libc's handlers; SIGXCPU ends it).
+   :rt_sigaction 13 :rt_sigprocmask 14 :rt_sigreturn 15 :sigaltstack 131
+   :restart_syscall 219
+   ;; Time: the deadlines and the clock a scene reads (the vDSO makes most of these
+   ;; without a call), and CPU used so far (confine's limit-cpu! before each request).
+   :clock_gettime 228 :clock_getres 229 :gettimeofday 96 :time 201 :getrusage 98
+   :nanosleep 35 :clock_nanosleep 230
+   ;; Its own identity, locks and randomness (libc).
+   :getpid 39 :gettid 186 :futex 202 :sched_yield 24 :getrandom 318
+   ;; Its own limits: getrlimit, and prlimit64 on this process only (checked below).
+   :getrlimit 97
+   :exit 60 :exit_group 231})
+(local ioctl-x64 16)           ; allowed for the two requests below only
+(local ioctl-allowed
+  ;; TCGETS (isatty) and TIOCGWINSZ: what stdio asks of a stream; never TIOCSTI.
+  [0x5401 0x5413])
 (local prlimit64-x64 302)      ; allowed on this process only (glibc's setrlimit uses it)
 (local audit-arch-x64 0xc000003e)
 
@@ -71,30 +89,41 @@ after which the kernel ends it. True, or nil and a message."
 (local ret {:allow 0x7fff0000 :kill 0x80000000 :eperm (+ 0x00050000 1)})
 
 (fn filter-program []
-  ;; [code jt jf k] rows: check the architecture, refuse the x32 ABI, then each denied
-  ;; call, and prlimit64 on any other process.
-  (let [numbers (doto (icollect [_ n (pairs denied-x64)] n) table.sort)
+  ;; [code jt jf k] rows: check the architecture, refuse the x32 ABI, allow each listed
+  ;; call, ioctl for the listed requests and prlimit64 on this process, and answer
+  ;; EPERM to everything else.
+  (let [numbers (doto (icollect [_ n (pairs allowed-x64)] n) table.sort)
         rows []
-        add #(table.insert rows [$1 $2 $3 $4])]
+        add #(table.insert rows [$1 $2 $3 $4])
+        ;; After the tests of the listed calls: the ioctl block (its test, then
+        ;; `ioctl-rows`: the load, one test a request, its EPERM row), the prlimit64
+        ;; block (5 rows), then the allow row and the EPERM row.
+        ioctl-rows (+ 2 (length ioctl-allowed))
+        tail (+ 1 ioctl-rows 5)]
     (add bpf.ld-abs 0 0 4)                     ; arch
     (add bpf.jeq 1 0 audit-arch-x64)
     (add bpf.ret 0 0 ret.kill)
     (add bpf.ld-abs 0 0 0)                     ; syscall number
     (add bpf.jge 0 1 0x40000000)
     (add bpf.ret 0 0 ret.kill)
-    ;; Each test jumps to the EPERM return at the end when it matches.
+    ;; Each listed call jumps to the allow row.
     (let [count (length numbers)]
       (each [i n (ipairs numbers)]
-        ;; rows after this one before the deny row: the rest of the tests, the
-        ;; prlimit64 block (5 rows) and the allow row.
-        (add bpf.jeq (+ (- count i) 5 1) 0 n)))
-    (add bpf.jeq 0 4 prlimit64-x64)
-    (add bpf.ld-abs 0 0 16)                    ; args[0], low half: the pid
+        (add bpf.jeq (+ (- count i) tail) 0 n)))
+    ;; ioctl: its request (args[1], low half; the high half of an int is unused).
+    (add bpf.jeq 0 ioctl-rows ioctl-x64)
+    (add bpf.ld-abs 0 0 24)
+    (each [i request (ipairs ioctl-allowed)]
+      ;; Rows left to the allow row: the other requests' tests, the jump to EPERM
+      ;; and the prlimit64 block.
+      (add bpf.jeq (+ (- (length ioctl-allowed) i) 1 5) 0 request))
+    (add bpf.ret 0 0 ret.eperm)
+    ;; prlimit64 with pid 0 (this process): both halves of args[0] zero.
+    (add bpf.jeq 0 5 prlimit64-x64)
+    (add bpf.ld-abs 0 0 16)
     (add bpf.jeq 0 3 0)
-    (add bpf.ld-abs 0 0 20)                    ; high half
+    (add bpf.ld-abs 0 0 20)
     (add bpf.jeq 0 1 0)
-    ;; Not a prlimit64 on another process (the jumps above land on the deny row when
-    ;; the pid is not 0; a prlimit64 on this process falls through to allow).
     (add bpf.ret 0 0 ret.allow)
     (add bpf.ret 0 0 ret.eperm)
     rows))
@@ -129,6 +158,8 @@ what could not be, with why."
           (try (.. "CPU " options.cpu-seconds " s a request") (limit-cpu! options.cpu-seconds))
           (try "no core files" (set-limit! :core 0 0))
           (try "no new files" (set-limit! :nofile 0 0))
+          ;; Fails only for a process group's leader, which a spawned worker is not.
+          (try "no terminal" (<= 0 (native.setsid)) (libc.error-text))
           ;; PR_SET_NO_NEW_PRIVS
           (try "no new privileges" (= 0 (native.prctl 38 1 0 0 0)) (libc.error-text))
           (if (= ffi.arch :x64)

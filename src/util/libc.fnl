@@ -60,6 +60,7 @@
    :getrlimit ["int getrlimit(int resource, rm_rlimit_t *rlim);" :rm_rlimit_t]
    :getrusage ["int getrusage(int who, rm_rusage_t *usage);" :rm_rusage_t]
    :prctl ["int prctl(int option, unsigned long a2, unsigned long a3, unsigned long a4, unsigned long a5);"]
+   :setsid ["int setsid(void);"]
    ;; Files.
    :open ["int open(const char *path, int flags, int mode);"]
    :write ["long write(int fd, const void *buf, unsigned long n);"]
