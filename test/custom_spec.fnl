@@ -155,3 +155,32 @@
           (let [(code out) (run "love . --render scenes/custom.fnl --out test/out/custom.png --size 160x90")]
             (assert.are.equal 0 code out)
             (assert.truthy (out:find "wrote test/out/custom.png" 1 true) out)))))))
+
+(describe "custom: the main process's check of a worker's Lua text"
+  (fn []
+    (local custom (require :src.sdf.custom))
+    (fn lua-text [lines] (table.concat lines "\n"))
+
+    (it "takes the translator's own text"
+      (fn []
+        (assert.is_true
+         (custom.check-lua
+          (lua-text ["local function sdCustom1Fn1(v1, v2) return math.sqrt(v1 * v1 + v2 * v2) end"
+                "return function(v1, v2, v3) local v4 = 0 for v5 = 1, 4 do v4 = v4 + sdCustom1Fn1(v1, v5) end return v4 - 1 end"])))))
+
+    (it "refuses a helper defined again under its name, which its body would call: an endless tail call"
+      (fn []
+        (assert.is_false
+         (not (not (custom.check-lua
+                    (lua-text ["local function sdCustom1Fn1(v1) return v1 end"
+                          "local function sdCustom1Fn1(v1) return sdCustom1Fn1(v1) end"
+                          "return function(v1, v2, v3) return sdCustom1Fn1(v1) end"])))))))
+
+    (it "refuses a function as a value: a helper passed to itself, math's function in a variable"
+      (fn []
+        (each [_ text (ipairs [(lua-text ["local function sdCustom1Fn1(v1) return v1(v1) end"
+                                     "return function(v1, v2, v3) return sdCustom1Fn1(sdCustom1Fn1) end"])
+                               (lua-text ["return function(v1, v2, v3) local v4 = math.sqrt return v4(v1) end"])
+                               (lua-text ["local function sdCustom1Fn1(v1) return v1 end"
+                                     "return function(v1, v2, v3) local v4 = sdCustom1Fn1 return v4(v1) end"])])]
+          (assert.is_false (not (not (custom.check-lua text))) text))))))

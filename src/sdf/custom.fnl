@@ -249,11 +249,17 @@ translator never writes."
 (fn check-lua [text]
   "True when `text` is Lua of the translator's kind: generated names, math's
 functions, for loops of constant bounds within translate's limits, calls of helpers
-defined before (no recursion)."
+defined before (no recursion).
+No value is ever a function but where it is called: a helper's name is defined once
+and otherwise only called, math's functions only called, and a variable never
+called. So the helpers' calls go from each to ones defined before it, and with every
+loop bounded, the text ends: a helper redefined under its own name (which its body
+would then call), or one passed to itself as a value, is refused."
   (case (tokens text)
     nil false
     toks
     (let [stack []          ; open blocks: {:kind :turns :name}
+          defined {}        ; helpers whose definition has begun
           closed {}         ; helpers whose definition has ended
           max-turns translate.limits.cost]
       (var ok? true)
@@ -264,7 +270,7 @@ defined before (no recursion)."
       (while (and ok? (<= i (length toks)))
         (let [t (. toks i)]
           (if (= t "math")
-              (do (set ok? (and (= (at 1) ".") (. lua-math (at 2)) true))
+              (do (set ok? (and (= (at 1) ".") (. lua-math (at 2)) (= (at 3) "(") true))
                   (set i (+ i 3)))
               (= t ".") (set ok? false)
               (= t "function")
@@ -290,11 +296,17 @@ defined before (no recursion)."
                 (set ok? (not= nil b))
                 (set i (+ i 1)))
               (= t "do") (set ok? false)
-              (or (. lua-words t) (number? t) (t:match "^v%d+$") (not (t:match "^[%a_]")))
+              (t:match "^v%d+$")
+              ;; A variable holds a number: never called.
+              (do (set ok? (not= (at 1) "("))
+                  (set i (+ i 1)))
+              (or (. lua-words t) (number? t) (not (t:match "^[%a_]")))
               (set i (+ i 1))
               (t:match "^sdCustom%d*Fn%d+$")
-              ;; A helper's name: its definition, or a call of one defined before.
-              (do (set ok? (or (= (. toks (- i 1)) "function") (. closed t) false))
+              ;; A helper's name: its one definition, or a call of one defined before.
+              (do (set ok? (if (= (. toks (- i 1)) "function")
+                               (when (not (. defined t)) (tset defined t true) true)
+                               (and (. closed t) (= (at 1) "(") true)))
                   (set i (+ i 1)))
               (set ok? false))))
       (and ok? (= 0 (length stack))))))
