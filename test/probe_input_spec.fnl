@@ -49,3 +49,21 @@
             (assert.is_nil points)
             (assert.are.equal "stdin:3: line longer than 4096 bytes; a point is three numbers `x y z`" msg))
           (assert.is_true (< f.bytes (* 1024 1024)) (.. f.bytes " bytes read")))))))
+
+(describe "probe input: numbers that are not finite"
+  (fn []
+    (it "nan, inf and 1e309 are refused naming the line, after the good lines before them"
+      (fn []
+        (each [_ bad (ipairs ["nan 0 0" "0 inf 0" "0 0 -inf" "1e309 0 0" "0 0 0x"])]
+          (let [text (.. "1 2 3\n" bad "\n4 5 6\n")
+                f {:pos 1 :read (fn [self n]
+                                  (when (<= self.pos (length text))
+                                    (let [s (text:sub self.pos (+ self.pos n -1))]
+                                      (set self.pos (+ self.pos n))
+                                      s)))}
+                next-batch (probe.point-reader f "stdin")]
+            (assert.are.same [[1 2 3]] (next-batch) bad)
+            (let [(points err) (next-batch)]
+              (assert.is_nil points)
+              (assert.are.equal (.. "stdin:2: expected three finite numbers `x y z`, got \"" bad "\"")
+                                err))))))))

@@ -13,8 +13,9 @@
 (local batch-size 16384)
 
 (fn parse-number [s]
+  ;; nil (never false, which icollect would keep) unless `s` is a finite number.
   (let [v (tonumber s)]
-    (and v (= v v) (not= v math.huge) (not= v (- math.huge)) v)))
+    (when (and v (= v v) (not= v math.huge) (not= v (- math.huge))) v)))
 
 (fn parse-line [line name line-no]
   "The point [x y z] on `line`, false for a blank or comment line, or nil and a
