@@ -33,15 +33,6 @@
     true (love.event.quit 0)
     (_ err) (fail! err)))
 
-(fn quit-asked? []
-  "Whether a quit event (a signal, the window closed) is waiting in LÖVE's queue."
-  (var quit? false)
-  (when love.event
-    (love.event.pump)
-    (each [name (love.event.poll)]
-      (when (= name :quit) (set quit? true))))
-  quit?)
-
 (fn probe [o]
   ;; Read and answered a batch at a time (src/app/probe.fnl): an endless stream
   ;; runs in constant memory, and each batch's lines are out before the next is read.
@@ -59,7 +50,7 @@
           (while (not done?)
             ;; SIGINT and SIGTERM reach LÖVE as a quit event: with input always
             ;; arriving, the loop would never see it otherwise.
-            (when (quit-asked?) (set done? true))
+            (when ((. (require :src.app.stop) :asked?)) (set done? true))
             (let [(points rerr) (if done? (values nil "--probe: stopped (SIGINT or SIGTERM)") (next-batch))
                   (vals verr) (if points (evaluate points) (values nil rerr))]
               (if vals

@@ -6,6 +6,7 @@
 (local frame (require :src.backend.frame))
 (local output (require :src.util.output))
 (local export (require :src.mesh.export))
+(local stop (require :src.app.stop))
 
 (fn summary [path result]
   "The line printed after a mesh is written."
@@ -24,7 +25,8 @@
           (nil err) (values nil err)
           scene
           (case (export.build scene {:resolution o.resolution :region o.region
-                                     :clock love.timer.getTime
+                                     :clock love.timer.getTime :stop? stop.asked?
+                                     :stop-message (.. stop.message "; nothing written")
                                      :field (when o.gpu? (. (require :src.mesh.gpu) :gpu-field))})
             (nil err) (values nil (.. o.scene ": " err))
             result (case (export.write! result.mesh o.out {:name o.scene

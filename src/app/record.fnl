@@ -6,6 +6,7 @@
 ;; --turntable orbits the camera once around the scene's centre over the recording.
 
 (local status (require :src.util.status))
+(local stop (require :src.app.stop))
 (local frame (require :src.backend.frame))
 (local gpu (require :src.backend.gpu))
 (local camera (require :src.render.camera))
@@ -63,13 +64,19 @@ excepted), or a point 10 units in front of the camera when there is none."
                 cam (if o.turntable? (camera.orbit cam0 centre (/ (* 360 i) o.frames))
                         (camera.from-scene scene))
                 path (string.format "%s/frame-%04d.png" o.out (+ i 1))]
-            (case (if plan (render.draw! cache canvas scene plan cam) (values nil perr))
+            (case (if (stop.asked?) (values nil stop.message)
+                      plan (render.draw! cache canvas scene plan cam #(when (stop.asked?) :stop))
+                      (values nil perr))
               (nil e) (set err e)
               _ (case (frame.write-png canvas path {:protect [o.scene]})
                   (nil e) (set err e)))
             (status.update! (string.format "frame %d/%d (t = %.3f s)" (+ i 1) o.frames (/ i fps)))))
         (status.done!)
-        (if err (values nil err)
+        (if (= err stop.message)
+            ;; The frames written are whole files: kept, and said.
+            (values nil (string.format "--record: %s; the frames written before are kept (%s/frame-0001.png ...)"
+                                       err o.out))
+            err (values nil err)
             (do (print (string.format "wrote %d frames of %dx%d (%s) to %s/frame-0001.png ..."
                                       o.frames w h rays.label o.out))
                 true))))))

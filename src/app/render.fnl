@@ -5,6 +5,7 @@
 ;; progress on stderr. --record draws its frames the same way.
 
 (local status (require :src.util.status))
+(local stop (require :src.app.stop))
 (local frame (require :src.backend.frame))
 (local gpu (require :src.backend.gpu))
 (local camera (require :src.render.camera))
@@ -37,8 +38,8 @@ a message."
 (fn draw! [cache canvas scene plan cam ?on-band]
   "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas` in bands from the
 top, each about band-seconds. `(?on-band covered seconds)` runs after each band:
-the share drawn (0 to 1) and the seconds since the first. The seconds it took, or
-nil and a message."
+the share drawn (0 to 1) and the seconds since the first; when it returns :stop the
+drawing stops there. The seconds it took, or nil and a message."
   (let [h (canvas:getHeight)
         p (progress.new h (* first-bands band-seconds) band-seconds)
         start (love.timer.getTime)]
@@ -50,19 +51,22 @@ nil and a message."
           (nil e) (set err e)
           _ (do (wait-for! canvas)
                 (progress.drawn! p y0 y1 (- (love.timer.getTime) t0))
-                (when ?on-band
-                  (?on-band (progress.covered p) (- (love.timer.getTime) start)))))))
+                (when (and ?on-band
+                           (= :stop (?on-band (progress.covered p) (- (love.timer.getTime) start))))
+                  (set err stop.message))))))
     (if err (values nil err) (- (love.timer.getTime) start))))
 
 (fn reporter [what]
   "An ?on-band for draw! that shows `what`'s progress on stderr once it has taken
 quiet-seconds, at most twice a second, and whether it showed any (call it with no
-arguments)."
+arguments); it stops the drawing on SIGINT or SIGTERM (src/app/stop.fnl)."
   (var last nil)
   (var shown? false)
   (fn [covered seconds]
     (if (= covered nil)
         shown?
+        (stop.asked?)
+        :stop
         (when (and (>= seconds quiet-seconds) (< covered 1)
                    (or (= last nil) (>= (- seconds last) report-every)))
           (set last seconds)
@@ -100,7 +104,10 @@ o.samples (see quality.resolve). Prints what it wrote; true, or nil and a messag
             (case (prepare! cache scene plan cam)
               (nil err) (values nil err)
               _ (case (draw! cache canvas scene plan cam report)
-                  (nil err) (do (when (report) (status.done!)) (values nil err))
+                  (nil err) (do (when (report) (status.done!))
+                                (values nil (if (= err stop.message)
+                                                (.. "--render: " err "; nothing written")
+                                                err)))
                   seconds
                   (do (when (report) (status.done!))
                       (case (frame.write-png canvas o.out (out-options o))

@@ -66,11 +66,15 @@ left at the rate so far."
     (set m.colors colors)
     m))
 
+;; What progress raises when asked to stop (see build).
+(local stopped {:stopped true})
+
 (fn build [scene ?options]
   "Mesh `scene`. Options: :resolution (cells along the region's longest side,
 default 128), :region {:lo :hi} (default the finite objects' box), :field (fn
 [scene] -> a field as contour.mesh takes, with :colors; default the CPU evaluator),
-:clock (seconds, for progress; default os.clock), :quiet? (no progress).
+:clock (seconds, for progress; default os.clock), :quiet? (no progress), :stop? (a
+function, true when the work is to stop: build then returns nil and :stop-message).
 Returns {:mesh {:positions :triangles :colors} :message (what was left out or cut)
 :grid :stats :seconds}, or nil and a message."
   (let [options (or ?options {})
@@ -86,16 +90,28 @@ Returns {:mesh {:positions :triangles :colors} :message (what was left out or cu
         (let [grid (doto (mesh-scene.grid-for selection resolution)
                      (tset :after-work colour-work))
               start (clock)
-              progress (reporter clock options.quiet?)
-              m (contour.mesh field grid progress)]
-          (if (= 0 (length m.triangles))
+              report (reporter clock options.quiet?)
+              ;; Asked to stop (options.stop?, looked at with each batch of points):
+              ;; the work is left at once, by an error this function catches.
+              progress (fn [...]
+                         (when (and options.stop? (options.stop?)) (error stopped))
+                         (report ...))
+              (ok? m) (pcall contour.mesh field grid progress)
+              (coloured? cerr) (if (and ok? (< 0 (length m.triangles)))
+                                   (pcall colour! m field progress m.stats)
+                                   true)]
+          (if (or (= m stopped) (= cerr stopped))
+              (do (when (not options.quiet?) (status.done!))
+                  (values nil options.stop-message))
+              (not ok?) (error m 0)
+              (not coloured?) (error cerr 0)
+              (= 0 (length m.triangles))
               (do (when (not options.quiet?) (status.done!))
                   (values nil (.. "no surface to mesh: " selection.message
                                   (if options.region
                                       " (is the region clear of every object?)"
                                       " (every object thinner than a cell? raise --resolution)"))))
-              (do (colour! m field progress m.stats)
-                  (when (not options.quiet?) (status.done!))
+              (do (when (not options.quiet?) (status.done!))
                   {:mesh m :message selection.message : grid :stats m.stats
                    :seconds (- (clock) start)})))))))
 
