@@ -96,6 +96,22 @@
         len (rng max-len)]
     (values s (math.min n (+ s len -1)))))
 
+(fn replace-number [src rng]
+  (let [ts (tokens-where src number-token?)]
+    (if (= (length ts) 0) src
+        (let [t (pick rng ts)] (replace-span src t.s t.e (pick rng odd-numbers))))))
+
+(fn swap-keyword [src rng others]
+  (let [ts (tokens-where src keyword-token?)
+        pool (tokens-where (pick rng others) keyword-token?)]
+    (if (= (length ts) 0) src
+        (let [t (pick rng ts)
+              new (if (or (= (rng 2) 1) (= (length pool) 0)) (pick rng extra-keywords)
+                      (. (pick rng pool) :text))]
+          (replace-span src t.s t.e new)))))
+
+;; Mutations of either list below (see gentle-mutations).
+
 (local mutations
   [;; characters
    (fn delete-char [src rng]
@@ -130,22 +146,10 @@
              (if (= x y) src
                  (.. (src:sub 1 (- x.s 1)) y.text (src:sub (+ x.e 1) (- y.s 1)) x.text
                      (src:sub (+ y.e 1))))))))
-   (fn replace-number [src rng]
-     (let [ts (tokens-where src number-token?)]
-       (if (= (length ts) 0) src
-           (let [t (pick rng ts)] (replace-span src t.s t.e (pick rng odd-numbers))))))
-   (fn replace-number-again [src rng]
-     (let [ts (tokens-where src number-token?)]
-       (if (= (length ts) 0) src
-           (let [t (pick rng ts)] (replace-span src t.s t.e (pick rng odd-numbers))))))
-   (fn swap-keyword [src rng others]
-     (let [ts (tokens-where src keyword-token?)
-           pool (tokens-where (pick rng others) keyword-token?)]
-       (if (= (length ts) 0) src
-           (let [t (pick rng ts)
-                 new (if (or (= (rng 2) 1) (= (length pool) 0)) (pick rng extra-keywords)
-                         (. (pick rng pool) :text))]
-             (replace-span src t.s t.e new)))))
+   ;; a number replaced twice as often as each other mutation
+   replace-number
+   replace-number
+   swap-keyword
    (fn drop-closing [src rng]
      (let [ts (tokens-where src closing-token?)]
        (if (= (length ts) 0) src (let [t (pick rng ts)] (replace-span src t.s t.e "")))))
@@ -166,18 +170,8 @@
 
 (local gentle-mutations
   ;; Keep the brackets balanced, so the mutant usually parses and reaches validation.
-  [(fn replace-number [src rng]
-     (let [ts (tokens-where src number-token?)]
-       (if (= (length ts) 0) src
-           (let [t (pick rng ts)] (replace-span src t.s t.e (pick rng odd-numbers))))))
-   (fn swap-keyword [src rng others]
-     (let [ts (tokens-where src keyword-token?)
-           pool (tokens-where (pick rng others) keyword-token?)]
-       (if (= (length ts) 0) src
-           (let [t (pick rng ts)
-                 new (if (or (= (rng 2) 1) (= (length pool) 0)) (pick rng extra-keywords)
-                         (. (pick rng pool) :text))]
-             (replace-span src t.s t.e new)))))
+  [replace-number
+   swap-keyword
    (fn delete-atom [src rng]
      (let [ts (tokens-where src atom-token?)]
        (if (= (length ts) 0) src (let [t (pick rng ts)] (replace-span src t.s t.e "")))))
