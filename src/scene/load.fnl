@@ -573,7 +573,9 @@ into `out`: :custom (the texts), :params, :lipschitz (the factor used)."
         (when (not= (type k) :string)
           (fail ctx ppath (.. "unexpected entry " (describe-value k) "; parameters are named, like {:radius 1}"))))
       (set out.params (collect [_ k (ipairs names)] k (check ctx (sub-path ppath k) (. given k) :number))))
-    (case (custom.capture o.distance ctx.forms ctx.file)
+    ;; ctx.capture and ctx.measure: the main process's check of a scene worker's answer
+    ;; (src/scene/answer.fnl) gives the worker's texts and measure, checked, instead.
+    (case ((or ctx.capture custom.capture) o.distance ctx.forms ctx.file)
       (nil msg line) (fail ctx dpath msg line)
       t (let [line (. (debug.getinfo o.distance :S) :linedefined)
               declared (collect [_ n (ipairs t.params)] n true)]
@@ -603,7 +605,7 @@ into `out`: :custom (the texts), :params, :lipschitz (the factor used)."
             (case (let [mkey (.. glsl "\n" (table.concat (icollect [_ v (ipairs args)] (string.format "%.17g" v)) " ")
                                  "\n" (table.concat (icollect [_ v (ipairs out.bounds)] (string.format "%.17g" v)) " "))]
                     (when (not (. ctx.measures mkey))
-                      (tset ctx.measures mkey [(custom.measure desc.cpu out.bounds args t.cost)]))
+                      (tset ctx.measures mkey [((or ctx.measure custom.measure) desc.cpu out.bounds args t.cost)]))
                     ((or table.unpack _G.unpack) (. ctx.measures mkey) 1 3))
               (nil why at) (fail ctx dpath (string.format "%s at [%.3g %.3g %.3g] (sampled over its bounds grown by half: it must give a number everywhere there)"
                                                           why (. at 1) (. at 2) (. at 3)) line)
@@ -922,5 +924,5 @@ the app can read through love.filesystem."
   sandbox.limits)
 
 {: load-string : load-data : load-file : read-capped : animate : animated? : limits-of-files : defaults : limits : default-environment
- : safe-message : target-of : time-text
+ : safe-message : target-of : time-text : validated
  : hit-tests : normal-methods}

@@ -18,6 +18,7 @@
 (local wire (require :src.util.wire))
 (local filestat (require :src.util.filestat))
 (local scene-mod (require :src.scene.load))
+(local answer-check (require :src.scene.answer))
 
 ;; Seconds of the worker's CPU before it is killed. A start compiles the loader (0.3 s
 ;; under LÖVE here); a load of 1,000,000 spheres made by a loop takes about 4 s (the
@@ -172,20 +173,24 @@ nil when none is running."
             _ true))
     _ true))
 
-(fn from-worker [value]
-  ;; The scene as the app uses it: :animated lists the paths of the values the
-  ;; worker keeps functions for.
-  (let [scene value.scene]
-    (when (and (= (type value.animated) :table) (> (length value.animated) 0))
-      (set scene.animated (icollect [_ p (ipairs value.animated)] {:path p})))
-    scene))
-
 (fn valid-answer? [value]
+  ;; {:ok false :message M} or {:ok true ...}: the scene itself is src/scene/answer.fnl's
+  ;; to check.
   (and (= (type value) :table)
        (or (and (= value.ok false) (= (type value.message) :string))
-           (and (= value.ok true) (= (type value.scene) :table)
-                (= (type value.scene.objects) :table)
-                (or (= nil value.animated) (= (type value.animated) :table))))))
+           (= value.ok true))))
+
+(fn worker-message [message]
+  ;; A message the worker sends: text from a process that runs scene code, shown
+  ;; escaped and shortened like any loader message.
+  (scene-mod.safe-message message))
+
+(fn refuse! [w message]
+  ;; An answer that is not what the loader gives: the worker is not to be trusted
+  ;; again. The message, the worker gone.
+  (process.kill! w.child)
+  (when (= state.worker w) (set state.worker nil))
+  message)
 
 (fn in-process [source file ?options]
   (when (not state.said-fallback?)
@@ -207,11 +212,13 @@ nil when none is running."
                       (nil why) (values nil (failure w why file "loading the scene" deadlines.load))
                       value (if (not (valid-answer? value))
                                 (values nil (failure w "the answer is not a scene" file "" 0))
-                                (= value.ok false) (values nil value.message)
-                                (let [scene (from-worker value)]
-                                  (set w.scene scene)
-                                  (tset requests scene request)
-                                  scene)))))))))
+                                (= value.ok false) (values nil (worker-message value.message))
+                                ;; Checked as the loader checks a file, and rebuilt by it.
+                                (case (answer-check.check-scene value file source)
+                                  (nil msg) (values nil (refuse! w msg))
+                                  scene (do (set w.scene scene)
+                                            (tset requests scene request)
+                                            scene))))))))))
 
 (fn load-source [source file ?options]
   "Evaluate scene `source` (named `file` in messages) in the worker and validate it,
@@ -254,18 +261,22 @@ it in the worker (see load-source)."
                   _ (case (answer w (budget w deadlines.load))
                       (nil why) (values nil (failure w why scene.file "loading the scene again" deadlines.load))
                       {:ok true} (do (set w.scene scene) w)
-                      {: message} (values nil message)
+                      (where {: message} (= (type message) :string)) (values nil (worker-message message))
                       _ (values nil (failure w "the answer is not a scene" scene.file "" 0)))))))))
 
-(fn apply-values! [scene value]
-  (if (not (and (= value.ok true) (= (type value.values) :table)
-                (= (length value.values) (length scene.animated))))
-      (values nil (if (= (type value.message) :string) value.message
-                      (.. scene.file ": the scene worker's values do not match the scene")))
-      (do (each [i a (ipairs scene.animated)]
-            (let [(target key) (scene-mod.target-of scene a.path)]
-              (tset target key (. value.values i))))
-          true)))
+(fn apply-values! [w scene value]
+  ;; The worker's values checked (src/scene/answer.fnl) and set: true, or nil and a
+  ;; message (the worker killed when its answer is refused).
+  (if (and (= value.ok false) (= (type value.message) :string))
+      (values nil (worker-message value.message))
+      (case (if (= value.ok true) (answer-check.check-values scene value.values)
+                (values nil (scene-mod.safe-message
+                             (.. scene.file ": the scene worker's answer was refused: not values"))))
+        (nil msg) (values nil (refuse! w msg))
+        checked (do (each [i a (ipairs scene.animated)]
+                      (let [(target key) (scene-mod.target-of scene a.path)]
+                        (tset target key (. checked i))))
+                    true))))
 
 (fn request-animate! [scene t]
   "Ask the worker for the values of `scene`'s functions of time at `t` seconds without
@@ -299,7 +310,7 @@ its CPU)."
                         (values nil (failure w why scene.file (.. "the functions of time (t = " (scene-mod.time-text f.t) ")") deadlines.animate)))
           value (do (set w.in-flight nil)
                     (if (not= f.scene scene) (values nil "the values are for another scene")
-                        (apply-values! scene value)))))))
+                        (apply-values! w scene value)))))))
 
 (fn animate [scene t]
   "Set `scene`'s functions of time to their values at `t` (waiting for the worker, at
