@@ -1,18 +1,9 @@
 ;; The real app, run headless (SDL_VIDEODRIVER=offscreen) through its command line.
 (local png (require :src.util.png))
+(local {: sh : root : hang-seconds &as app} (require :test.support.app))
 
-;; A run that takes longer than this is stuck, not slow: the limit only catches a hang.
-;; These runs take seconds alone; two cores shared with other work made 3 s runs take
-;; over 30 s (issue 41), and a verdict must not depend on that.
-(local hang-seconds 300)
-
-(fn run [args]
-  "Run `love . ARGS` headless; returns exit code and combined output."
-  (let [text (with-open [p (io.popen (.. "SDL_VIDEODRIVER=offscreen timeout " hang-seconds " love . " args
-                                         " 2>&1; echo \"exit:$?\""))]
-               (p:read :*a))
-        code (tonumber (text:match "exit:(%d+)%s*$"))]
-    (values code (text:gsub "exit:%d+%s*$" ""))))
+;; `love . ARGS` headless: exit code and combined output.
+(local run app.love)
 
 (fn write-file [path text]
   (with-open [f (assert (io.open path :wb))] (f:write text)))
@@ -83,11 +74,9 @@
 
     (it "prints the generated shader from another working directory"
       (fn []
-        (let [root (: (io.popen "pwd") :read :*l)
-              text (with-open [p (io.popen (.. "cd /tmp && SDL_VIDEODRIVER=offscreen timeout " hang-seconds " love "
-                                               root " --print-shader " root "/scenes/seed.fnl 2>&1; echo \"exit:$?\""))]
-                     (p:read :*a))]
-          (assert.truthy (text:find "exit:0" 1 true) text)
+        (let [(code text) (sh (.. "cd /tmp && SDL_VIDEODRIVER=offscreen timeout " hang-seconds " love "
+                                  root " --print-shader " root "/scenes/seed.fnl"))]
+          (assert.are.equal 0 code text)
           (assert.truthy (text:find "float raymarch(" 1 true) text))))
 
     (it "lists every primitive and operation with --kinds"
@@ -131,18 +120,13 @@
 
     (it "make run says there is no display and exits non-zero without one"
       (fn []
-        (let [text (with-open [p (io.popen (.. "env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER timeout " hang-seconds " make -s run 2>&1; echo \"exit:$?\""))]
-                     (p:read :*a))]
+        (let [(code text) (sh (.. "env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER timeout " hang-seconds " make -s run"))]
           (assert.truthy (text:find "make run: no display" 1 true) text)
-          (assert.falsy (text:match "exit:0%s*$") text))))
+          (assert.are_not.equal 0 code text))))
 
     (it "packs a .love that plays bundled and outside scenes from another directory"
       (fn []
-        (let [root (: (io.popen "pwd") :read :*l)
-              sh (fn [cmd]
-                   (let [text (with-open [p (io.popen (.. cmd " 2>&1; echo \"exit:$?\""))] (p:read :*a))]
-                     (values (tonumber (text:match "exit:(%d+)%s*$")) text)))
-              (code out) (sh "bash tools/dist.sh")]
+        (let [(code out) (sh "bash tools/dist.sh")]
           (assert.are.equal 0 code out)
           (each [_ scene (ipairs ["scenes/organic.fnl" (.. root "/scenes/flower.fnl")])]
             (os.remove "/tmp/raymarcher-dist-test.png")

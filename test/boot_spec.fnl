@@ -5,15 +5,13 @@
 (local boot (require :src.boot))
 (local fennel (require :fennel))
 
-(local root (: (io.popen "pwd") :read "*l"))
+(local app (require :test.support.app))
+(local root app.root)
 
 (fn sh [command]
   "Runs `command`; its stdout and stderr together, and its exit code."
-  (let [p (io.popen (.. command " 2>&1; echo \"rc=$?\""))
-        out (p:read "*a")]
-    (p:close)
-    (let [(text rc) (out:match "^(.-)rc=(%d+)%s*$")]
-      (values text (tonumber rc)))))
+  (let [(rc text) (app.sh command)]
+    (values text rc)))
 
 (fn write! [path text]
   (with-open [f (assert (io.open path "wb"))] (f:write text)))

@@ -19,25 +19,8 @@
 (fn strip-comments [text]
   (text:gsub "//[^\n]*" ""))
 
-(fn shell [command]
-  "Output and exit status of a shell command."
-  (let [p (assert (io.popen (.. command " 2>&1; echo \"EXIT:$?\"")))
-        out (p:read :*a)]
-    (p:close)
-    (let [(body code) (out:match "^(.-)EXIT:(%d+)%s*$")]
-      (values body (tonumber code)))))
-
-(fn validate [text]
-  "Run glslangValidator on fragment shader `text`; returns the exit status and output."
-  (let [base (os.tmpname)
-        path (.. base ".frag")
-        f (assert (io.open path :wb))]
-    (f:write text)
-    (f:close)
-    (let [(out code) (shell (.. "glslangValidator " path))]
-      (os.remove path)
-      (os.remove base)
-      (values code out))))
+;; glslangValidator on fragment shader text: its exit status and output.
+(local {: validate} (require :test.support.glslang))
 
 (fn scene-files []
   (let [p (assert (io.popen "ls scenes/*.fnl"))

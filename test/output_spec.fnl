@@ -28,18 +28,9 @@
   (with-open [p (io.popen (.. "ls -A " dir))]
     (icollect [l (p:lines)] l)))
 
-;; A run that takes longer than this is stuck, not slow: the limit only catches a hang
-;; (these runs take about a second alone; on two cores shared with other work 3 s runs
-;; took over 30 s, issue 41).
-(local hang-seconds 300)
-
-(fn run [args]
-  "Run `love . ARGS` headless with a deadline; exit code and combined output."
-  (let [text (with-open [p (io.popen (.. "SDL_VIDEODRIVER=offscreen timeout " hang-seconds " love . " args
-                                         " 2>&1; echo \"exit:$?\""))]
-               (p:read :*a))
-        code (tonumber (text:match "exit:(%d+)%s*$"))]
-    (values code (pick-values 1 (text:gsub "exit:%d+%s*$" "")))))
+;; `love . ARGS` headless with a deadline (test/support/app.fnl): exit code and
+;; combined output.
+(local run (. (require :test.support.app) :love))
 
 (local scene-text
   "{:name \"out\" :objects [{:kind :sphere :radius (param :r 1 {:min 0.5 :max 1.23456789})}]}\n")

@@ -4,13 +4,10 @@
 (local png (require :src.util.png))
 (local runtime-dir (require :src.util.runtime-dir))
 
-(fn sh [cmd]
-  "Run `cmd` in a shell; its exit code and combined output."
-  (let [text (with-open [p (io.popen (.. cmd " 2>&1; echo \"exit:$?\""))] (p:read :*a))]
-    (values (tonumber (text:match "exit:(%d+)%s*$")) (text:gsub "exit:%d+%s*$" ""))))
+(local {: sh : root &as app} (require :test.support.app))
 
 (fn run [args]
-  (sh (.. "SDL_VIDEODRIVER=offscreen timeout 120 love . " args)))
+  (app.love args {:timeout 120}))
 
 (fn read [path] (with-open [f (assert (io.open path :rb))] (f:read :*a)))
 
@@ -36,8 +33,7 @@
     (it "prints no window-system 'error:' line without XDG_RUNTIME_DIR or a display, and leaves no folder"
       (fn []
         (os.execute "rm -rf test/out/runtime-tmp && mkdir -p test/out/runtime-tmp")
-        (let [root (: (io.popen "pwd") :read :*l)
-              (code out) (sh (.. "env -u XDG_RUNTIME_DIR -u SDL_VIDEODRIVER -u DISPLAY -u WAYLAND_DISPLAY"
+        (let [(code out) (sh (.. "env -u XDG_RUNTIME_DIR -u SDL_VIDEODRIVER -u DISPLAY -u WAYLAND_DISPLAY"
                                  " TMPDIR=" root "/test/out/runtime-tmp timeout 120 love . --render"
                                  " scenes/flat.fnl --out test/out/render-xdg.png --size 32x24 --samples 1"))]
           (assert.are.equal 0 code out)
