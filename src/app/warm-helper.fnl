@@ -6,7 +6,8 @@
 ;;
 ;;   love GAME --warm-shader FILE.glsl   one shader; exits 0, or 1 with the message
 ;;   love GAME --warm-server DIR PID     the player's helper: jobs from DIR (job-N.glsl,
-;;                                       answered by job-N.done) until PID is gone
+;;                                       answered by job-N.done) until PID is gone or
+;;                                       DIR/quit appears
 
 (local quad (require :src.backend.quad))
 (local {: job-path : write-whole! : remove-jobs!} (require :src.app.warm))
@@ -58,6 +59,49 @@ before the shader: [[name w h] ...]."
       (shader:release)
       true)))
 
+(fn task-stat [pid tid]
+  ;; A thread's state letter and CPU ticks so far (utime + stime), from its stat line
+  ;; (the fields after its name, which may hold spaces and parentheses).
+  (case (io.open (.. "/proc/" pid "/task/" tid "/stat") :rb)
+    f (let [line (or (f:read "*l") "")
+            _ (f:close)
+            rest (line:match ".*%) (.*)$")
+            fields (icollect [w (string.gmatch (or rest "") "%S+")] w)]
+        (when (. fields 13)
+          (values (. fields 1) (+ (tonumber (. fields 12)) (tonumber (. fields 13))))))))
+
+(fn cache-writers [pid]
+  "The threads of process `pid` that write Mesa's on-disk shader cache (named disk$N)."
+  (case (io.popen (.. "grep -l 'disk[$]' /proc/" pid "/task/*/comm 2>/dev/null"))
+    p (let [out (p:read :*a)]
+        (p:close)
+        (icollect [tid (out:gmatch "/task/(%d+)/comm")] tid))))
+
+(fn writers-idle? [pid tids before]
+  "True when every cache writer in `tids` sleeps and has used no CPU since `before`
+(tid -> ticks, updated): Mesa's writer sleeps only with its queue empty."
+  (accumulate [idle? true _ tid (ipairs tids)]
+    (let [(st ticks) (task-stat pid tid)
+          same? (= ticks (. before tid))]
+      (tset before tid ticks)
+      (and idle? (or (= st nil) (and (= st "S") same?))))))
+
+(fn wait-for-cache-writes! [pid]
+  "Return once Mesa has written what this process compiled to its on-disk cache. Mesa
+writes in a thread of its own at the lowest priority (SCHED_BATCH, nice 19): on a
+busy machine the last entry of a shader (its llvmpipe code, put at the first draw)
+landed 0.1-0.5 s after the helper answered, and a player that compiled meanwhile
+missed it and compiled the shader again, freezing its window. Waits until each
+writer thread has slept, its CPU time unchanged, over three looks 5 ms apart; a
+driver without such threads (NVIDIA) returns at once. 30 s at most (a hang guard)."
+  (let [tids (or (cache-writers pid) [])
+        before {}
+        stop (+ (love.timer.getTime) 30)]
+    (var calm 0)
+    (while (and (> (length tids) 0) (< calm 3) (< (love.timer.getTime) stop))
+      (set calm (if (writers-idle? pid tids before) (+ calm 1) 0))
+      (love.timer.sleep 0.005))))
+
 (fn alive? [pid]
   (case (io.open (.. "/proc/" pid "/stat") :rb)
     f (do (f:close) true)
@@ -66,19 +110,25 @@ before the shader: [[name w h] ...]."
 (fn serve! [dir pid]
   "Take jobs from `dir` in order until process `pid` is gone, then remove `dir`. Its
 own process id is in `dir`/pid."
-  (case (io.popen "echo $PPID")
-    p (let [own (p:read "*l")] (p:close) (write-whole! (.. dir "/pid") own)))
+  (local own (case (io.popen "echo $PPID")
+               p (let [own (p:read "*l")] (p:close) own)))
+  (write-whole! (.. dir "/pid") own)
   (var n 1)
-  (while (alive? pid)
+  ;; The player asks it to quit (quit) before it has taken a job; once it has, it is
+  ;; killed instead (warm.stop-server!).
+  (while (and (alive? pid) (not (read-file (.. dir "/quit"))))
     (let [job (job-path dir n :glsl)]
       (case (read-file job)
         source (do (os.remove job)
-                   (write-whole! (job-path dir n :done) (if (warm-source! source) "ok" "failed"))
+                   (let [ok? (warm-source! source)]
+                     (when own (wait-for-cache-writes! own))
+                     (write-whole! (job-path dir n :done) (if ok? "ok" "failed")))
                    (set n (+ n 1)))
         _ (love.timer.sleep 0.02))))
   ;; What the player left behind: answers it never read, a job it never saw taken.
   (remove-jobs! dir (math.max 1 (- n 1)) (+ n 1))
   (os.remove (.. dir "/pid"))
+  (os.remove (.. dir "/quit"))
   (os.remove dir)
   (love.event.quit 0))
 
@@ -95,7 +145,9 @@ own process id is in `dir`/pid."
     (if (and dir pid) (serve! dir pid)
         (not source) (fail! (.. (tostring path) ": cannot read the shader"))
         (case (warm-source! source)
-          true (love.event.quit 0)
+          true (do (case (io.popen "echo $PPID")
+                     p (let [own (p:read "*l")] (p:close) (wait-for-cache-writes! own)))
+                   (love.event.quit 0))
           (_ err) (fail! (.. path ": " err))))))
 
 (fn install! []
@@ -106,4 +158,5 @@ own process id is in `dir`/pid."
          (os.exit 1)))
   (set love.load run!))
 
-{: install! : run! : arg-after : textures : shader-text}
+{: install! : run! : arg-after : textures : shader-text : cache-writers : writers-idle?
+ : wait-for-cache-writes!}
