@@ -8,6 +8,7 @@
 (local load (require :src.scene.load))
 (local plan-mod (require :src.render.plan))
 (local {: lcg} (require :test.support.fields))
+(local app (require :test.support.app))
 
 (local spacing 12)
 (local points-per-node 2000)
@@ -71,11 +72,8 @@
   (with-open [f (assert (io.open path :wb))] (f:write text)))
 
 (fn run-probe [scene-path points-path gpu?]
-  (let [text (with-open [p (io.popen (.. "SDL_VIDEODRIVER=offscreen timeout 300 love . --probe "
-                                         scene-path (if gpu? " --gpu" "") " < " points-path
-                                         " 2>&1; echo \"exit:$?\""))]
-               (p:read :*a))]
-    (values (tonumber (text:match "exit:(%d+)%s*$")) (text:gsub "exit:%d+%s*$" ""))))
+  (app.love (.. "--probe " scene-path (if gpu? " --gpu" "") " < " points-path)
+            {:timeout 300}))
 
 (fn parse-lines [text]
   (icollect [line (text:gmatch "[^\n]+")]
@@ -154,13 +152,11 @@
 KB (nil without /usr/bin/time) and seconds."
   (let [time? (os.execute "test -x /usr/bin/time")
         t0 (os.time)
-        out (with-open [p (io.popen (.. producer " | SDL_VIDEODRIVER=offscreen timeout 120 "
-                                        (if time? "/usr/bin/time -f %M -o test/out/probe-peak " "")
-                                        "love . --probe " scene-path
-                                        " 2>test/out/probe-err; echo \"exit:$?\""))]
-              (p:read :*a))
-        err (with-open [f (io.open "test/out/probe-err")] (f:read :*a))]
-    (values (tonumber (out:match "exit:(%d+)%s*$")) (out:gsub "exit:%d+%s*$" "") err
+        (code out err) (app.sh (.. producer " | SDL_VIDEODRIVER=offscreen timeout 120 "
+                                   (if time? "/usr/bin/time -f %M -o test/out/probe-peak " "")
+                                   "love . --probe " scene-path)
+                               {:stderr true})]
+    (values code out err
             (when time? (peak-kb "test/out/probe-peak")) (- (os.time) t0))))
 
 (describe "probe input through the app"
