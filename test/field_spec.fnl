@@ -52,6 +52,15 @@
   (fn rnd [] (set seed (% (+ (* seed 16807) 0) 2147483647)) (/ seed 2147483647))
   (fcollect [_ 1 n] [(+ -24 (* 48 (rnd))) (+ -24 (* 48 (rnd))) (+ -2 (* 14 (rnd)))]))
 
+(fn ray-toward [[ox oy oz] [tx ty tz] draw]
+  ;; The ray from a point (raised to at least 0.01 above the floor) toward another:
+  ;; its origin, its unit direction, and where it meets the floor (else `draw`).
+  (let [oz (math.max oz 0.01)
+        (a b c) (values (- tx ox) (- ty oy) (- tz oz))
+        len (math.sqrt (+ (* a a) (* b b) (* c c)))
+        (dx dy dz) (values (/ a len) (/ b len) (/ c len))]
+    (values ox oy oz dx dy dz (if (< dz 0) (/ (- oz) dz) draw))))
+
 (fn walks-as-brute-force [s]
   ;; Rays from around and inside the region in many directions: the walk (the
   ;; reference's march, as the shader's) against the closed-form entry into every
@@ -62,14 +71,9 @@
         origins (points 300)
         targets (points 300 11)]
     (var hits 0)
-    (each [i [ox oy oz] (ipairs origins)]
+    (each [i origin (ipairs origins)]
       ;; Toward another point of the region: most rays cross it.
-      (let [oz (math.max oz 0.01)
-            [tx ty tz] (. targets i)
-            (a b c) (values (- tx ox) (- ty oy) (- tz oz))
-            len (math.sqrt (+ (* a a) (* b b) (* c c)))
-            (dx dy dz) (values (/ a len) (/ b len) (/ c len))
-            plane (if (< dz 0) (/ (- oz) dz) draw)
+      (let [(ox oy oz dx dy dz plane) (ray-toward origin (. targets i) draw)
             expected (math.min (field.brute-entry p.field ox oy oz dx dy dz draw) plane draw)
             t (T.march ox oy oz dx dy dz)]
         (when (< expected plane) (set hits (+ hits 1)))
@@ -398,13 +402,8 @@
             (let [fd (assert (field.build members {:cells-per-object per-object}))]
               (assert.is_true fd.walk?)
               (var hits 0)
-              (each [i [ox oy oz] (ipairs origins)]
-                (let [oz (math.max oz 0.01)
-                      [tx ty tz] (. targets i)
-                      (a b c) (values (- tx ox) (- ty oy) (- tz oz))
-                      len (math.sqrt (+ (* a a) (* b b) (* c c)))
-                      (dx dy dz) (values (/ a len) (/ b len) (/ c len))
-                      plane (if (< dz 0) (/ (- oz) dz) draw)
+              (each [i origin (ipairs origins)]
+                (let [(ox oy oz dx dy dz plane) (ray-toward origin (. targets i) draw)
                       t-past (math.min plane draw)
                       expected (math.min (field.brute-entry fd ox oy oz dx dy dz draw) t-past)
                       t (field.walk fd ox oy oz dx dy dz t-past 1e9)]

@@ -13,6 +13,13 @@
 (fn global-scope []
   (let [s (fennel.scope)] (or s.parent s)))
 
+(fn form-names []
+  ;; Every special form's name (sorted), then every macro's, as the compiler has them.
+  (let [g (global-scope)
+        names (doto (icollect [k (pairs g.specials)] k) table.sort)]
+    (each [k (pairs g.macros)] (table.insert names k))
+    names))
+
 (describe "sandbox: the compiler's shared state"
   (fn []
     (it "is untouched by hostile scenes: a fresh module compiled afterwards behaves"
@@ -60,9 +67,7 @@
 
     (it "is not reachable: every special form and macro outside the allowlist is refused"
       (fn []
-        (let [g (global-scope)
-              names (doto (icollect [k (pairs g.specials)] k) table.sort)]
-          (each [k (pairs g.macros)] (table.insert names k))
+        (let [names (form-names)]
           (var refused 0)
           (each [_ name (ipairs names)]
             (let [(s err) (scene.load-string (.. "{(" name " x) 1 :objects []}") "t.fnl")]
@@ -79,9 +84,7 @@
   (fn []
     (it "refuses every form off the allowlist that a macro builds, named with its line"
       (fn []
-        (let [g (global-scope)
-              names (doto (icollect [k (pairs g.specials)] k) table.sort)]
-          (each [k (pairs g.macros)] (table.insert names k))
+        (let [names (form-names)]
           (var refused 0)
           (each [_ name (ipairs names)]
             ;; -> makes (name :x): the first word of every form written is ->.
