@@ -66,12 +66,44 @@
         side (if (> side-offset 0) 1 (< side-offset 0) -1 0)
         half (if (> y 0) 1 (< y 0) -1 0.5)]
     (+ (* side (math.abs z)) (* 0.1 half) (if (> x 0) 1 (< z 0) -1 0) (if (> z 0) 1 (< z 0) -1 0))))"
-           :params []}})
+           :params []}
+   ;; GLSL's functions Lua's math lacks (math.clamp ...), math.huge, and helpers
+   ;; defined inside helpers, which must be written out before their callers.
+   :library {:source "(fn [x y z low-edge]
+  (fn outer-helper [a]
+    (fn inner-helper [b] (* b 2))
+    (+ (inner-helper a) 1))
+  (var nearest math.huge)
+  (for [k 0 2] (set nearest (math.min nearest (- (math.abs (- z k)) 0.3))))
+  (+ nearest
+     (* 0.01 (math.clamp (* 2 x) low-edge 0.5)) (* 0.01 (math.mix x (* y y) (math.fract (+ x y))))
+     (* 0.01 (math.fract (* 3 x))) (* 0.01 (math.sign (- y 0.25))) (* 0.01 (math.step low-edge x))
+     (* 0.01 (math.smoothstep -0.5 (+ 1 low-edge) (- y x))) (* 0.01 (math.round (* 2.5 y)))
+     (* 0.01 (math.mod (- x z) 0.7)) (* 0.01 (math.mod x (- 1.5))) (* 0.01 (outer-helper y))
+     (math.clamp 2 0 1) (* 1e-32 math.huge)))"
+             :params [-0.3]}})
 
-(local shape-names ["sphere" "rounded-box" "gyroid-ball" "piecewise" "loop-and-values" "signs"])
+(local shape-names ["sphere" "rounded-box" "gyroid-ball" "piecewise" "loop-and-values" "signs"
+                    "library"])
+
+;; GLSL's functions as the reference computes them, from their GLSL definitions
+;; (round as floor(x + 0.5), the translator's choice at .5), and math.huge as the
+;; translator writes it (GLSL has no infinity).
+(local glsl-library
+  {:clamp (fn [x lo hi] (math.min (math.max x lo) hi))
+   :mix (fn [a b t] (+ (* a (- 1 t)) (* b t)))
+   :fract (fn [x] (- x (math.floor x)))
+   :sign (fn [x] (if (> x 0) 1 (< x 0) -1 0))
+   :step (fn [edge x] (if (< x edge) 0 1))
+   :smoothstep (fn [e0 e1 x]
+                 (let [t (math.min (math.max (/ (- x e0) (- e1 e0)) 0) 1)]
+                   (* t t (- 3 (* 2 t)))))
+   :round (fn [x] (math.floor (+ x 0.5)))
+   :mod (fn [x y] (- x (* y (math.floor (/ x y)))))
+   :huge 1e30})
 
 ;; Names of the scene's text that may appear in no output.
-(local scene-names ["radius" "ball" "half" "corner" "my" "positive" "gyroid" "frequency"
+(local scene-names ["radius" "ball" "half" "corner" "my" "positive" "gyroid" "frequency" "low" "edge" "outer" "inner"
                     "flat" "folded" "nearest" "step" "angle" "fa" "fb" "fc"])
 
 ;; What a GLSL identifier of the output may be: a generated name or GLSL's own.
@@ -104,6 +136,7 @@ math.atan ignores a second argument; Lua 5.3's takes it as atan(y, x), and so do
 translation (GLSL's atan(y, x)): the reference gets 5.3's."
   (let [m (collect [k v (pairs math)] k v)]
     (set m.atan (fn [y ?x] (if ?x ((or math.atan2 math.atan) y ?x) (math.atan y))))
+    (each [k v (pairs glsl-library)] (tset m k v))
     (fennel.eval source {:env {:math m} :correlate true})))
 
 (describe "translate"
@@ -126,6 +159,12 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
               (each [_ word (ipairs scene-names)]
                 (assert.falsy (a.glsl:find word 1 true) (.. "the GLSL holds `" word "`"))
                 (assert.falsy (a.lua:find word 1 true) (.. "the Lua holds `" word "`"))))))
+
+        (it (.. name ": the main process's checks take both texts")
+          (fn []
+            (let [t (assert (translate.translate (parse shape.source)))]
+              (assert.is_true (custom.check-lua t.lua) t.lua)
+              (assert.is_true (custom.check-glsl t.glsl t.glsl-name) t.glsl))))
 
         (it (.. name ": the GLSL validates")
           (fn []
@@ -181,9 +220,19 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
                         ["(fn [x y z] [x y])" 1 "a [...] table is not supported in a distance function (for several numbers use (values a b c)"]
                         ["(fn [x y z] (fn again [a] (again a)) (again x))" 1 "`again` calls itself: recursion is not supported"]
                         ["(fn me [x y z] (me x y z))" 1 "`me` calls itself"]
-                        ["(fn [x y z] (print x))" 1 "`print` is not defined in the distance function"]
+                        ["(fn [x y z] (print x))" 1 "`print` is not a function a distance function may call (it may call math.sqrt abs"]
                         ["(fn [x y z] (- x some-global))" 1 "`some-global` is not defined in the distance function"]
                         ["(fn [x y z] (math.random))" 1 "`math.random` is not one of the math functions"]
+                        ["(fn [x y z] (math.fmod x 1))" 1 "`math.fmod` is not one of the math functions a distance function may use; for a remainder write (% a b) or (math.mod a b), floored as GLSL's mod (math.fmod truncates toward zero) (it may use math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max, GLSL's clamp mix fract sign step smoothstep round mod, and math.pi huge)"]
+                        ["(fn [x y z] (math.clmap x 0 1))" 1 "`math.clmap` is not one of the math functions a distance function may use; did you mean math.clamp? (it may use "]
+                        ["(fn [x y z] (math.frac x))" 1 "GLSL's fract is (math.fract x)"]
+                        ["(fn [x y z] (math.lerp x y 0.5))" 1 "GLSL's mix is (math.mix a b t)"]
+                        ["(fn [x y z] (math.smothstep 0 1 x))" 1 "did you mean math.smoothstep?"]
+                        ["(fn [x y z] (math.huge))" 1 "`math.huge` is a value, not a function a distance function can call"]
+                        ["(fn [x y z] (math.clamp x 0))" 1 "math.clamp takes 3 arguments (math.clamp x lo hi), got 2"]
+                        ["(fn [x y z] (math.fract x y))" 1 "math.fract takes 1 argument (math.fract x), got 2"]
+                        ["(fn [x y z] (math.mod 1 0))" 1 "the number nan is not finite"]
+                        ["(fn [x y z] (+ x (math.step 0 x)) (math.mix))" 1 "math.mix takes 3 arguments (math.mix a b t), got 0"]
                         ["(fn [x y z] (var a 1) (fn bump [] (set a 2) 1) (bump))" 1 "closures over mutable state are not supported"]
                         ["(fn [x y z] (let [f (fn [a] (+ a x))] (f 1)))" 1 "a helper function uses `x` of the function around it; pass it as an argument"]
                         ["(fn [x y z] (for [i 1 65] 1) x)" 1 "a for loop may turn at most 64 times, this one turns 65 times"]
@@ -303,6 +352,48 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
               f (translate.compile-lua c.lua)]
           (assert.truthy (c.glsl:find "float sdCustom1Fn0(float" 1 true) c.glsl)
           (assert.are.equal 1 (f 0 0 2.5 1)))))
+
+    (it "finds hyphenated names of the file (Fennel's Lua name of sd-box is sd_box), and the last of two locals of one name"
+      (fn []
+        (let [s (assert (load.load-string "(local half-size 1)
+(local r 1)
+(local r 2)
+(fn sd-box [x y z s] (- (math.max (math.abs x) (math.abs y) (math.abs z)) s))
+{:objects [{:kind :custom :bounds [2 2 2] :distance (fn [x y z] (- (sd-box x y z half-size) r))}]}" "t.fnl"))
+              c (. s.objects 1 :tree :custom)]
+          (assert.are.equal -1 ((translate.compile-lua c.lua) 2 0 0 1)))))
+
+    (it "writes a function of the file that calls another before its caller (both texts pass the main process's checks)"
+      (fn []
+        (let [s (assert (load.load-string "(fn len3 [x y z] (math.sqrt (+ (* x x) (* y y) (* z z))))
+(fn sph [x y z r] (- (len3 x y z) r))
+{:objects [{:kind :custom :bounds [1 1 1] :distance (fn [x y z] (sph x y z 1))}]}" "t.fnl"))
+              c (. s.objects 1 :tree :custom)]
+          (assert.is_true (< (assert (c.glsl:find "float sdCustom1Fn1(" 1 true)) (assert (c.glsl:find "float sdCustom1Fn0(" 1 true))) c.glsl)
+          (assert.are.equal 1 ((translate.compile-lua c.lua) 0 0 2 1))
+          (assert.is_true (custom.check-lua c.lua) c.lua)
+          (assert.is_true (custom.check-glsl c.glsl c.glsl-name) c.glsl))))
+
+    (it "takes GLSL's functions destructured from math, and math.huge from outside the function"
+      (fn []
+        (let [s (assert (load.load-string "(local {: clamp : smoothstep : huge} math)
+(local {: mod} math)
+{:objects [{:kind :custom :bounds [1 1 1]
+  :distance (fn [x y z] (math.min huge (+ (- (math.abs z) 0.5) (* 0.01 (+ (clamp x 0 1) (smoothstep 0 1 y) (mod x 0.3))))))}]}" "t.fnl"))
+              f (translate.compile-lua (. s.objects 1 :tree :custom :lua))]
+          ;; mod is GLSL's (floored), not LuaJIT's math.mod (fmod, truncated).
+          (assert.are.near (+ 0.5 (* 0.01 (+ 0 0.5 0.05))) (f -0.25 0.5 1 1) 1e-12))))
+
+    (it "says why a function of the file cannot be read, and what to call instead"
+      (fn []
+        (let [(ok? msg) (load.load-string "(local fract #(- $ (math.floor $)))
+{:objects [{:kind :custom :bounds [1 1 1] :distance (fn [x y z] (- (fract x) 1))}]}" "t.fnl")]
+          (assert.is_nil ok?)
+          (assert.are.equal "t.fnl:2: objects[1].distance: `fract` is a function the translator cannot read: it has no (fn ...) form in the scene file (a #(...) has none); write it (fn fract [a b] ...); or call math.fract, GLSL's fract" msg))
+        (let [(ok? msg) (load.load-string "(local {: fmod} math)
+{:objects [{:kind :custom :bounds [1 1 1] :distance (fn [x y z] (- (fmod x 1) 1))}]}" "t.fnl")]
+          (assert.is_nil ok?)
+          (assert.truthy (msg:find "`fmod` is math.fmod, which a distance function cannot use; for a remainder write (% a b)" 1 true) msg))))
 
     (it "translates a function made by another one, each closure with its own numbers"
       (fn []

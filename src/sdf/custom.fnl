@@ -65,10 +65,11 @@
 
 (fn find-form [f forms file]
   "The parsed (fn ...) form among `forms` (a file's top-level forms) that closure `f`
-was compiled from; or nil and why."
+was compiled from; or nil, why, and the reason's kind (:elsewhere, :no-form or
+:shared-line)."
   (let [info (debug.getinfo f :Su)]
     (if (not= info.source (.. "@" file))
-        (values nil "must be written in the scene file itself as (fn [x y z] ...)")
+        (values nil "must be written in the scene file itself as (fn [x y z] ...)" :elsewhere)
         (let [found (fn-forms-at forms info.linedefined)
               same-arity (icollect [_ form (ipairs found)]
                            (when (or (= nil info.nparams) (= info.nparams (param-count form))) form))
@@ -82,30 +83,74 @@ was compiled from; or nil and why."
                          (when (not (. seen form)) (tset seen form true) form)))]
           (case (length unique)
             1 (. unique 1)
-            0 (values nil "must be written (fn [x y z] ...) in the scene file (a #(...) has no form to translate)")
+            0 (values nil "must be written (fn [x y z] ...) in the scene file (a #(...) has no form to translate)" :no-form)
             _ (values nil (.. "line " info.linedefined " holds several functions with "
-                              (or info.nparams "as many") " parameters; put the distance function on a line of its own")))))))
+                              (or info.nparams "as many") " parameters; put the distance function on a line of its own")
+                      :shared-line))))))
+
+;; Why a function of the file the distance function calls cannot be translated, by
+;; find-form's kind of reason (its own words speak of the distance function).
+(fn unreadable [kind name]
+  (case kind
+    :elsewhere "it is not written in the scene file"
+    :no-form (.. "it has no (fn ...) form in the scene file (a #(...) has none); write it (fn "
+                 name " [a b] ...)")
+    _ "its line holds another function with as many parameters; put it on a line of its own"))
+
+(fn lua-name [name]
+  "The Lua name Fennel gives a local named `name` (fennel.mangle is a global's
+name): a Lua keyword or a leading digit gets _ before it; - becomes _, any other
+character not a letter, digit or _ becomes _XX, its hex code: sd-box is sd_box. A
+local that would reuse a name in scope gets a number after it (a second (local r
+...) is r0)."
+  (let [raw (if (or (name:match "^%d")
+                    (. {:and true :break true :do true :else true :elseif true :end true
+                        :false true :for true :function true :goto true :if true :in true
+                        :local true :nil true :not true :or true :repeat true :return true
+                        :then true :true true :until true :while true}
+                       name))
+                (.. "_" name)
+                name)
+        (mangled) (: (raw:gsub "-" "_") :gsub "[^%w_]" #(string.format "_%02x" ($:byte)))]
+    mangled))
+
+(fn upvalue-of [f name]
+  "The value of `f`'s upvalue for the scene's name `name` (found? and the value): the
+one named as Fennel mangles `name`, else the only one named so with a number after
+it (Fennel's name for a local that shadows another of the same name)."
+  (let [base (lua-name name)
+        exact []
+        numbered []]
+    (var i 1)
+    (while (debug.getupvalue f i)
+      (let [(upname value) (debug.getupvalue f i)]
+        (if (= upname base) (table.insert exact [value])
+            (and (= (upname:sub 1 (length base)) base) (: (upname:sub (+ 1 (length base))) :match "^%d+$"))
+            (table.insert numbered [value])))
+      (set i (+ i 1)))
+    (if (= 1 (length exact)) (values true (. exact 1 1))
+        (and (= 0 (length exact)) (= 1 (length numbered))) (values true (. numbered 1 1))
+        false)))
 
 (fn resolver [f forms file]
   "A resolver for translate: names the closure `f` reaches outside itself (its
 upvalues), as numbers, math functions and functions of the file (`forms`, `file`)."
   (let [math-names (collect [k v (pairs math)] (when (= (type v) :function) (values v k)))]
+    ;; LuaJIT's math.mod is an alias of fmod: call the function by its own name.
+    (when math.fmod (tset math-names math.fmod :fmod))
     (fn [name]
-      (let [mangled (fennel.mangle name)]
-        (var found nil)
-        (var i 1)
-        (while (and (= found nil) (debug.getupvalue f i))
-          (let [(upname value) (debug.getupvalue f i)]
-            (when (= upname mangled)
-              (set found (case (type value)
-                           :number {:number value}
-                           :function (if (. math-names value) {:math (. math-names value)}
-                                         (case (find-form value forms file)
-                                           form {:helper form :resolve (resolver value forms file)}
-                                           _ {:other "a function not written in the scene file"}))
-                           t {:other (.. "a " t)}))))
-          (set i (+ i 1)))
-        found))))
+      (let [(found? value) (upvalue-of f name)]
+        (when found?
+          (case (type value)
+            :number {:number value}
+            :nil {:nil true}
+            ;; The name as written when it is math's own (local {: mod} math).
+            :function (if (and (= (. math name) value) (. math-names value)) {:math name}
+                          (. math-names value) {:math (. math-names value)}
+                          (case (find-form value forms file)
+                            form {:helper form :resolve (resolver value forms file)}
+                            (_ _ kind) {:unreadable (unreadable kind name)}))
+            t {:other (.. "a " t)}))))))
 
 ;;; Hashing, for the shader's structure key
 
@@ -207,7 +252,7 @@ are `forms`): {:glsl :lua :glsl-name :params :cost}, or nil, a message and a lin
 (local glsl-words
   (collect [_ w (ipairs ["float" "vec2" "vec3" "vec4" "int" "bool" "return" "if" "else" "for"
                          "p" "sqrt" "abs" "floor" "ceil" "sin" "cos" "tan" "asin" "acos" "atan"
-                         "exp" "log" "pow" "min" "max" "mod" "length"])]
+                         "exp" "log" "pow" "min" "max" "mod" "length" "sign"])]
     w true))
 (local swizzles {:x true :y true :z true :w true})
 

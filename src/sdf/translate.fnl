@@ -12,9 +12,12 @@
 ;;   numeric for with constant whole-number bounds (at most 64 turns); + - * / %
 ;;   (floored, GLSL's mod) and ^ with a whole constant exponent from 0 to 8;
 ;;   < > <= >= = not= and and, or, not over comparisons; math.sqrt abs floor ceil sin
-;;   cos tan asin acos atan (1 or 2 arguments: atan(y, x)) exp log pow min max and
-;;   math.pi. A name from outside the function is looked up by `?resolve`: a number
-;;   (inlined), a math function (as math.x) or a function of the file (a helper).
+;;   cos tan asin acos atan (1 or 2 arguments: atan(y, x)) exp log pow min max;
+;;   GLSL's clamp mix fract sign step smoothstep round mod as math.clamp ... (see
+;;   `library`); math.pi and math.huge (1e30 in both texts). A name from outside the
+;;   function is looked up by `?resolve`: a number (inlined), a math function (as
+;;   math.x), nil under a name of `library` ((local {: clamp} math)) or a function of
+;;   the file (a helper).
 ;; Anything else is refused with the line and the construct. The output holds only
 ;; generated names (p, v0 v1 ..., i0 ... for loop counters, a0 ... for vector
 ;; arguments, sdCustom and its helpers sdCustomFn0 ...) and floats with a decimal
@@ -54,9 +57,61 @@
    :min {:glsl "min"}
    :max {:glsl "max"}})
 
-(local math-constants {:pi math.pi})
+;; GLSL's own functions that Lua's math lacks, called as math.NAME (or a name
+;; destructured from math: (local {: clamp} math), which holds nil when the file
+;; runs, as the distance function is never called there). Each is written out the
+;; same way in both languages (see library-call), so the CPU and the GPU agree where
+;; GLSL leaves the builtin loose: round is floor(x + 0.5) (GLSL's round may go either
+;; way at .5), clamp is min(max(x, lo), hi) (GLSL's is undefined for lo > hi), mod
+;; is % (GLSL's mod, floored; not Lua 5.1's math.mod, an alias of fmod). :args names
+;; the arguments for messages; :eval folds constant arguments.
+(local library
+  {:clamp {:args "x lo hi" :eval #(math.min (math.max $1 $2) $3)}
+   :mix {:args "a b t" :eval #(+ (* $1 (- 1 $3)) (* $2 $3))}
+   :fract {:args "x" :eval #(- $1 (math.floor $1))}
+   :sign {:args "x" :eval #(if (> $1 0) 1 (< $1 0) -1 0)}
+   :step {:args "edge x" :eval #(if (< $2 $1) 0 1)}
+   :smoothstep {:args "edge0 edge1 x"
+                :eval #(let [t (math.min (math.max (/ (- $3 $1) (- $2 $1)) 0) 1)]
+                         (* t t (- 3 (* 2 t))))}
+   :round {:args "x" :eval #(math.floor (+ $1 0.5))}
+   :mod {:args "x y" :eval #(- $1 (* $2 (math.floor (/ $1 $2))))}})
 
-(local math-list "math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max pi")
+(each [name spec (pairs library)]
+  (let [(_ spaces) (spec.args:gsub " " "")]
+    (tset math-functions name {:library true :counts {(+ spaces 1) true} :args spec.args})))
+
+;; GLSL has no portable infinity (1.0 / 0.0 is undefined): math.huge is this large
+;; number in both texts. Far beyond any scene and any draw distance, and its square
+;; is still a float32 (1e60 is not: 1e30 leaves room for arithmetic).
+(local huge 1e30)
+
+(local math-constants {:pi math.pi :huge huge})
+
+(local math-names
+  ["sqrt" "abs" "floor" "ceil" "sin" "cos" "tan" "asin" "acos" "atan" "exp" "log" "pow" "min"
+   "max" "clamp" "mix" "fract" "sign" "step" "smoothstep" "round" "mod"])
+
+(local math-call-list
+  "math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max and GLSL's clamp mix fract sign step smoothstep round mod as math.clamp ...")
+
+(local math-list
+  "math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max, GLSL's clamp mix fract sign step smoothstep round mod, and math.pi huge")
+
+;; Names authors reach for that go by another name here: the hint to give instead of
+;; a guess at the spelling.
+(local aliases
+  {:fmod "for a remainder write (% a b) or (math.mod a b), floored as GLSL's mod (math.fmod truncates toward zero)"
+   :lerp "GLSL's mix is (math.mix a b t)"
+   :frac "GLSL's fract is (math.fract x)"
+   :saturate "write (math.clamp x 0 1)"
+   :atan2 "write (math.atan y x), GLSL's atan(y, x)"
+   :sgn "write (math.sign x)"
+   :length "write (math.sqrt (+ (* x x) (* y y) (* z z))), which becomes GLSL's length()"
+   :trunc "write (if (< x 0) (math.ceil x) (math.floor x))"
+   :modf "write (math.fract x) and (math.floor x)"
+   :huge "math.huge is a value, not a function"
+   :pi "math.pi is a value, not a function"})
 
 ;; Forms a reader may expect to work, with a hint at what to write instead.
 (local refused-forms
@@ -85,6 +140,51 @@
 (fn not-supported [st node what ?hint]
   (refuse st node (.. what " is not supported in a distance function ("
                       (if ?hint (.. ?hint "; ") "") "supported: " supported ")")))
+
+;;; Suggestions, for a name the function may not use
+
+(fn edit-distance [a b]
+  "The optimal string alignment distance of `a` and `b`: insertions, deletions,
+substitutions and swaps of neighbours, one each (clmap is one from clamp)."
+  (let [d []]
+    (for [i 0 (length a)] (tset d i {0 i}))
+    (for [j 0 (length b)] (tset (. d 0) j j))
+    (for [i 1 (length a)]
+      (for [j 1 (length b)]
+        (let [cost (if (= (a:sub i i) (b:sub j j)) 0 1)
+              best (math.min (+ (. d (- i 1) j) 1) (+ (. d i (- j 1)) 1)
+                             (+ (. d (- i 1) (- j 1)) cost))]
+          (tset (. d i) j
+                (if (and (> i 1) (> j 1) (= (a:sub i i) (b:sub (- j 1) (- j 1)))
+                         (= (a:sub (- i 1) (- i 1)) (b:sub j j)))
+                    (math.min best (+ (. d (- i 2) (- j 2)) 1))
+                    best)))))
+    (. d (length a) (length b))))
+
+(fn closest [name candidates]
+  "The candidate nearest `name` when it is near enough to be a slip of the pen (at
+most 2 edits, and fewer than half its letters), else nil; the first of a tie."
+  (var best nil)
+  (var best-d math.huge)
+  (each [_ c (ipairs candidates)]
+    (let [d (edit-distance name c)]
+      (when (and (< d best-d) (<= d 2) (< d (/ (length name) 2)))
+        (set best c)
+        (set best-d d))))
+  best)
+
+(fn suggestion [name ?helpers]
+  "A hint for `name` (math.x or x) that is no function here: its alias's hint, or
+'did you mean ...?' among math's functions and `?helpers` (names), or \"\"."
+  (let [short (or (name:match "^math%.(.+)$") name)
+        math-guess (closest short math-names)
+        helper-guess (and ?helpers (closest name ?helpers))]
+    (if (. aliases short) (.. "; " (. aliases short))
+        (and helper-guess (or (not math-guess) (<= (edit-distance name helper-guess)
+                                                   (edit-distance short math-guess))))
+        (.. "; did you mean `" helper-guess "`?")
+        math-guess (.. "; did you mean math." math-guess "?")
+        "")))
 
 ;;; Numbers and names
 
@@ -293,6 +393,57 @@
                       (. term 2))))]
       (when (= (length names) (- (length form) 1)) names))))
 
+(fn repeatable [st node p]
+  "`p` itself when its text may be written twice (a constant or a name), else a new
+local holding it: an argument a library function reads twice is computed once."
+  (if (or p.const (and (p.g:match "^[%w_]+[.xyzw]*$") (p.l:match "^[%w_]+$"))) p
+      (declare! st node p)))
+
+(fn sign-part [st node p]
+  ;; GLSL's sign(); in Lua the same three cases (a number is never false in Lua).
+  (let [x (repeatable st node p)]
+    {:g (.. "sign(" x.g ")") :l (.. "(" x.l " > 0 and 1 or (" x.l " < 0 and -1 or 0))")
+     :t :float}))
+
+(fn library-call [st node fname args]
+  ;; GLSL's functions of `library`, written out alike in both languages; constant
+  ;; arguments fold.
+  (let [costs {:clamp 2 :mix 3 :fract 1 :sign 2 :step 1 :smoothstep 7 :round 1 :mod 2}
+        g1 (glsl-number 1)]
+    (cost! st node (. costs fname))
+    (if (accumulate [all? true _ a (ipairs args)] (and all? (not= nil a.const)))
+        [(constant st node ((. library fname :eval) ((or table.unpack _G.unpack) (icollect [_ a (ipairs args)] a.const))))]
+        (case fname
+          :clamp (let [[x lo hi] args]
+                   [{:g (.. "min(max(" x.g ", " lo.g "), " hi.g ")")
+                     :l (.. "math.min(math.max(" x.l ", " lo.l "), " hi.l ")") :t :float}])
+          ;; GLSL's definition, a (1 - t) + b t: exactly a at t = 0 and b at t = 1.
+          :mix (let [[a b t*] args
+                     t (repeatable st node t*)]
+                 [{:g (.. "((" a.g " * (" g1 " - " t.g ")) + (" b.g " * " t.g "))")
+                   :l (.. "((" a.l " * (1 - " t.l ")) + (" b.l " * " t.l "))") :t :float}])
+          :fract (let [x (repeatable st node (. args 1))]
+                   [{:g (.. "(" x.g " - floor(" x.g "))") :l (.. "(" x.l " - math.floor(" x.l "))")
+                     :t :float}])
+          :sign [(sign-part st node (. args 1))]
+          ;; 0 below the edge, 1 from it on, as GLSL's step.
+          :step (let [[edge x] args]
+                  [{:g (.. "((" x.g " < " edge.g ") ? 0.0 : " g1 ")")
+                    :l (.. "(" x.l " < " edge.l " and 0 or 1)") :t :float}])
+          ;; GLSL's definition: t = clamp((x - e0) / (e1 - e0), 0, 1), t t (3 - 2 t).
+          :smoothstep (let [[e0 e1 x] args
+                            t (declare! st node
+                                        {:g (.. "min(max(((" x.g " - " e0.g ") / (" e1.g " - " e0.g ")), 0.0), " g1 ")")
+                                         :l (.. "math.min(math.max(((" x.l " - " e0.l ") / (" e1.l " - " e0.l ")), 0), 1)")
+                                         :t :float})]
+                        [{:g (.. "((" t.g " * " t.g ") * (3.0 - (2.0 * " t.g ")))")
+                          :l (.. "((" t.l " * " t.l ") * (3 - (2 * " t.l ")))") :t :float}])
+          :round (let [[x] args]
+                   [{:g (.. "floor(" x.g " + 0.5)") :l (.. "math.floor(" x.l " + 0.5)") :t :float}])
+          ;; As %: GLSL's mod, and Lua's % (a - floor(a / b) b in both).
+          :mod (let [[x y] args]
+                 [{:g (.. "mod(" x.g ", " y.g ")") :l (.. "(" x.l " % " y.l ")") :t :float}])))))
+
 (fn math-call [st node fname]
   (let [spec (. math-functions fname)
         args (icollect [_ a (ipairs (args-of node))] (number-arg st a))
@@ -300,11 +451,15 @@
     (when (if spec.counts (not (. spec.counts n)) (= n 0))
       (refuse st node (.. "math." fname " takes "
                           (if (= fname :atan) "1 or 2 arguments (atan y x)"
+                              spec.library (let [(_ k) (spec.args:gsub " " "")]
+                                             (.. (+ k 1) " argument" (if (> k 0) "s" "")
+                                                 " (math." fname " " spec.args ")"))
                               (not spec.counts) "one or more arguments"
                               (. spec.counts 2) "2 arguments" "1 argument")
                           ", got " n)))
-    (cost! st node (math.max 1 (- n 1)))
-    (if (or (= fname :min) (= fname :max))
+    (when (not spec.library) (cost! st node (math.max 1 (- n 1))))
+    (if spec.library (library-call st node fname args)
+        (or (= fname :min) (= fname :max))
         [(accumulate [acc nil _ p (ipairs args)]
            (if acc {:g (.. fname "(" acc.g ", " p.g ")") :l (.. "math." fname "(" acc.l ", " p.l ")")
                     :t :float}
@@ -429,8 +584,7 @@
   (case (sign-operand node)
     x (let [p (number-arg st x)]
         (cost! st node 2)
-        [{:g (.. "sign(" p.g ")")
-          :l (.. "(" p.l " > 0 and 1 or (" p.l " < 0 and -1 or 0))") :t :float}])
+        [(sign-part st node p)])
     _ (if-chain st node)))
 
 (fn when-form [st node]
@@ -561,20 +715,52 @@ else gets a local."
             (tset st.external form helper)
             helper))))
 
-(fn resolve-free [st node name]
+(fn scope-helpers [st]
+  "The names of the helpers in reach, for a guess at a misspelt one."
+  (let [out []]
+    (var sc st.scope)
+    (while sc
+      (each [name b (pairs sc.names)]
+        (when (= b.kind :helper) (table.insert out name)))
+      (set sc sc.parent))
+    (table.sort out)
+    out))
+
+(fn finite [n]
+  ;; math.huge from outside the function (a (local {: huge} math)) is the huge of
+  ;; math.huge itself; any other infinity or a nan is refused by `constant`.
+  (if (= n math.huge) huge (= n (- math.huge)) (- huge) n))
+
+(fn resolve-free [st node name ?call]
+  "The binding of `name`, which is not bound in the function: math's (math.x), or
+what the scene's resolver says of a name from outside the function. `?call`: the
+name is called, and a refusal lists what may be called."
   (let [field (name:match "^math%.([%w_]+)$")]
     (if (and field (. math-constants field)) {:kind :value :part (constant st node (. math-constants field))}
         (and field (. math-functions field)) {:kind :math :name field}
-        field (refuse st node (.. "`" name "` is not one of the math functions a distance function may use ("
-                                  math-list ")"))
+        field (refuse st node (.. "`" name "` is not one of the math functions a distance function may use"
+                                  (suggestion name) " (it may use " math-list ")"))
         (case (and st.resolve (st.resolve name))
-          {:number n} {:kind :value :part (constant st node n)}
+          {:number n} {:kind :value :part (constant st node (finite n))}
           {:math f} (if (. math-functions f) {:kind :math :name f}
-                        (refuse st node (.. "`" name "` is math." f ", which a distance function cannot use (it may use "
-                                            math-list ")")))
+                        (refuse st node (.. "`" name "` is math." f ", which a distance function cannot use"
+                                            (suggestion f) " (it may use " math-list ")")))
+          ;; (local {: clamp} math): Lua's math has no clamp, so the name holds nil
+          ;; when the file runs; the translation has GLSL's.
+          {:nil true} (if (?. math-functions name :library) {:kind :math :name name}
+                          (refuse st node (.. "`" name "` is nil from outside the function; a name from outside it may hold a number, a math function or a function of the file"
+                                              (suggestion name (scope-helpers st)))))
+          {:unreadable why} (refuse st node (.. "`" name "` is a function the translator cannot read: " why
+                                                (if (?. math-functions name :library)
+                                                    (.. "; or call math." name ", GLSL's " name)
+                                                    (suggestion name))))
           {:helper form :resolve resolve} (external-helper st node name form resolve)
           {:other what} (refuse st node (.. "`" name "` is " what " from outside the function; a distance function may use numbers and math functions from outside it"))
-          _ (refuse st node (.. "`" name "` is not defined in the distance function (it may use its arguments, its own locals and helpers, math.*, and numbers or math functions named outside it)"))))))
+          _ (if ?call
+                (refuse st node (.. "`" name "` is not a function a distance function may call"
+                                    (suggestion name (scope-helpers st))
+                                    " (it may call " math-call-list ", and helper functions: (fn name [a b] ...) in the function or the file)"))
+                (refuse st node (.. "`" name "` is not defined in the distance function (it may use its arguments, its own locals and helpers, math.*, and numbers or math functions named outside it)")))))))
 
 (fn symbol [st node]
   (let [name (tostring node)]
@@ -628,7 +814,7 @@ else gets a local."
           "fn" (refuse st node "a helper function must be bound to a name: (fn name [a b] ...) in a body, or (let [name (fn [a b] ...)] ...)")
           _ (let [reason (. refused-forms name)]
               (if reason (not-supported st node (.. "`" (if (= name "hashfn") "#(...)" name) "`") reason)
-                  (let [b (or (lookup st.scope name) (resolve-free st head name))]
+                  (let [b (or (lookup st.scope name) (resolve-free st head name true))]
                     (case b.kind
                       :helper (helper-call st node b)
                       :math (math-call st node b.name)
@@ -730,6 +916,12 @@ parts."
                     :item {:g (.. (vec-type nret) " " name "(" gargs ") {")
                            :l (.. "local function " name "(" (table.concat args ", ") ")")
                            : block :g-close "}" :l-close "end"}})
+             ;; Written out in the order they end: a helper's body may call helpers
+             ;; begun after it (one of the file, translated when first called, or
+             ;; one defined in its body), and GLSL and Lua both need a function
+             ;; defined before the line that calls it. No helper calls itself, so
+             ;; each one's callees have ended before it does.
+             (table.insert st.finished (. st.helpers slot))
              (set st.fn saved.fn)
              (set st.scope saved.scope)
              (set st.weight saved.weight)
@@ -767,11 +959,12 @@ order), then, with :scale? (default true), a factor the distance is multiplied b
 On failure: nil, the reason and its line. Options: :name (the GLSL function's name,
 default sdCustom), :resolve (fn [name]) -> {:number n}, {:math f}, {:helper FORM
 :resolve RESOLVE} (a function of the file: its form and the resolver of its own outside
-names), {:other what} or nil, for names from outside the function, :scale? false for
+names), {:nil true} (the name holds nil), {:unreadable why} (a function whose form
+cannot be found), {:other what} or nil, for names from outside the function, :scale? false for
 no factor, :arg-types [:vec3 :float ...] to take the arguments after x y z in GLSL as
 those vectors (a0, a1, ...; the Lua function still takes them one by one)."
   (let [options (or ?options {})
-        st {:counter 0 :fn-count 0 :helpers [] :out [] :weight 1 :cost 0 :external {}
+        st {:counter 0 :fn-count 0 :helpers [] :finished [] :out [] :weight 1 :cost 0 :external {}
             :scope (new-scope nil) :line (line-of form) :resolve options.resolve
             :name (or options.name "sdCustom")}
         (ok? result)
@@ -811,7 +1004,7 @@ those vectors (a0, a1, ...; the Lua function still takes them one by one)."
                (table.insert main {:g (.. "return " (if scale (.. "(" d.g ") * " scale) d.g) ";")
                                    :l (.. "return " (if scale (.. "(" d.l ") * " scale) d.l))})
                (let [glsl [] lua-lines []]
-                 (each [_ h (ipairs st.helpers)]
+                 (each [_ h (ipairs st.finished)]
                    (flatten [h.item] :g 0 glsl)
                    (flatten [h.item] :l 0 lua-lines))
                  (flatten [{:g (.. "float " name "(vec3 p" gargs gscale ") {") :block main :g-close "}"}]
