@@ -156,6 +156,95 @@
             (assert.are.equal 0 code out)
             (assert.truthy (out:find "wrote test/out/custom.png" 1 true) out)))))))
 
+;; GLSL's functions that Lua's math lacks (math.clamp ...): the translator writes each
+;; out in both languages, and here the GPU's float32 evaluation meets the CPU's on a
+;; sweep of values. The sweep runs inside the function, over a loop counter, from a
+;; :params value: the distance stays |z| - 1 (exact, Lipschitz 1, never divided)
+;; plus a small weighted sum of the function's values, so a value the GPU computes
+;; differently moves the distance by at least 1e-4, five times the budget. Each
+;; function is swept twice: from -4 in steps of 0.25, hitting the edges exactly
+;; (integers, halves for round, 0 for sign, the step's edge, mod's multiples), and
+;; from -3.99, off them by 0.01 at least (float32 rounding of the start is 1e-7).
+(local library-calls
+  {:clamp "(math.clamp v -1.5 2.25)"
+   :mix "(math.mix 1.5 -2 v)"
+   :fract "(math.fract v)"
+   :fract-scaled "(math.fract (* v 0.7))"
+   :sign "(math.sign v)"
+   :step "(math.step 0.5 v)"
+   :smoothstep "(math.smoothstep -1 2 v)"
+   :round "(math.round v)"
+   :mod "(math.mod v 0.75)"
+   :mod-negative "(math.mod v -1.25)"
+   :huge "(math.min v math.huge (* 1e-29 math.huge))"})
+
+(local library-names ["clamp" "mix" "fract" "fract-scaled" "sign" "step" "smoothstep" "round"
+                      "mod" "mod-negative" "huge"])
+(local library-starts [-4 -3.99])
+(local library-points 16)
+
+(fn library-scene []
+  "A scene of one custom node per function and start, on a grid: its text, the
+grid's side and each node's label."
+  (let [labels []
+        placed []
+        count (* (length library-names) (length library-starts))
+        side (math.ceil (math.sqrt count))]
+    (each [_ name (ipairs library-names)]
+      (each [_ start (ipairs library-starts)]
+        (let [k (length placed)]
+          (table.insert labels (.. name " from " start))
+          (table.insert placed
+                        (.. "{:kind :translate :offset [" (* spacing (% k side)) " "
+                            (* spacing (math.floor (/ k side))) " 0] :children [{:kind :custom :bounds [1 1 1.5] :params {:a " start "}\n"
+                            "  :distance (fn [x y z a]\n"
+                            "              (var acc 0)\n"
+                            "              (for [i 0 31] (let [v (+ a (* i 0.25))] (set acc (+ acc (* (+ i 1) " (. library-calls name) ")))))\n"
+                            "              (+ (- (math.abs z) 1) (* 1e-4 acc)))}]}")))))
+    (values (.. "{:render {:draw-distance 1000}\n :objects [\n" (table.concat placed "\n") "]}\n")
+            side labels)))
+
+(describe "custom nodes: GLSL's functions on the GPU and the CPU"
+  (fn []
+    (os.execute "mkdir -p test/out")
+    (it (.. "agree on a sweep of values, each function's (" library-points " points a node, 32 values a point)")
+      (fn []
+        (let [(text side labels) (library-scene)
+              scene-path "test/out/custom-library.fnl"
+              points-path "test/out/custom-library-points.txt"
+              rand (lcg 31)
+              lines []]
+          (write-file scene-path text)
+          (for [k 0 (- (length labels) 1)]
+            (let [cx (* spacing (% k side)) cy (* spacing (math.floor (/ k side)))]
+              (for [_ 1 library-points]
+                (table.insert lines (string.format "%.6f %.6f %.6f"
+                                                   (+ cx (* 0.9 (- (* 2 (rand)) 1)))
+                                                   (+ cy (* 0.9 (- (* 2 (rand)) 1)))
+                                                   (* 1.4 (- (* 2 (rand)) 1)))))))
+          (write-file points-path (.. (table.concat lines "\n") "\n"))
+          (let [(code cpu-out) (run (.. "love . --probe " scene-path " < " points-path))
+                (gcode gpu-out) (run (.. "love . --probe " scene-path " --gpu < " points-path))
+                cpu (parse-lines cpu-out)
+                gpu (parse-lines gpu-out)
+                worst {}]
+            (assert.are.equal 0 code cpu-out)
+            (assert.are.equal 0 gcode gpu-out)
+            (assert.are.equal (length lines) (length cpu))
+            (assert.are.equal (length cpu) (length gpu))
+            (each [i c (ipairs cpu)]
+              (let [label (. labels (+ 1 (math.floor (/ (- i 1) library-points))))
+                    err (/ (math.abs (- (. c 1) (. gpu i 1))) (+ 1 (math.abs (. c 1))))]
+                (when (> err (or (. worst label) 0)) (tset worst label err))))
+            (let [bad (icollect [_ label (ipairs labels)]
+                        (when (>= (or (. worst label) 0) 2e-5)
+                          (string.format "%s: %.3g" label (. worst label))))]
+              (print (.. "\nGLSL's functions, worst relative distance error per node: "
+                         (table.concat (icollect [_ label (ipairs labels)]
+                                         (string.format "%s %.2g" label (or (. worst label) 0)))
+                                       ", ")))
+              (assert.are.same [] bad))))))))
+
 (describe "custom: the main process's check of a worker's Lua text"
   (fn []
     (local custom (require :src.sdf.custom))
@@ -167,6 +256,23 @@
          (custom.check-lua
           (lua-text ["local function sdCustom1Fn1(v1, v2) return math.sqrt(v1 * v1 + v2 * v2) end"
                 "return function(v1, v2, v3) local v4 = 0 for v5 = 1, 4 do v4 = v4 + sdCustom1Fn1(v1, v5) end return v4 - 1 end"])))))
+
+    (it "takes what the translator writes for GLSL's functions and math.huge: calls of math's functions and inline expressions, no new function"
+      (fn []
+        (let [fennel (require :fennel)
+              translate (require :src.sdf.translate)
+              source "(fn [x y z a]
+  (var d math.huge)
+  (set d (math.min d (math.clamp x a 1) (math.mix x y (* z z)) (math.fract (+ x y)) (math.sign (- y 1))
+                   (math.step a x) (math.smoothstep -1 a (* 2 z)) (math.round (* 3 x)) (math.mod x a)))
+  d)"
+              (_ form) ((fennel.parser (fennel.string-stream source) "t.fnl"))
+              t (assert (translate.translate form))]
+          (assert.is_true (custom.check-lua t.lua) t.lua)
+          (assert.is_true (custom.check-glsl t.glsl t.glsl-name) t.glsl)
+          ;; The value check of the text is the same as before: no math function
+          ;; other than those it calls by name.
+          (assert.falsy (t.lua:find "math%.[%a]+[^%a(]") t.lua))))
 
     (it "refuses a helper defined again under its name, which its body would call: an endless tail call"
       (fn []
