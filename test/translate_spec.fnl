@@ -418,6 +418,16 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
           (assert.is_true (< 6.85 g.custom.measured 6.93) (tostring g.custom.measured))
           (assert.are.near (* 1.1 g.custom.measured) g.lipschitz 1e-9))))
 
+    (it "measures GLSL's functions as the shader computes them (smoothstep's slope)"
+      (fn []
+        (let [smooth (assert (load.load-string "{:objects [{:kind :custom :bounds [1 1 1]
+ :distance (fn [x y z] (- (math.abs z) (math.smoothstep -1 1 x)))}]}" "t.fnl"))
+              node (. smooth.objects 1 :tree)]
+          ;; smoothstep(-1, 1, x) rises fastest at x = 0, by 1.5 / 2: with |z|'s 1,
+          ;; a gradient of length sqrt(1 + 0.75^2) = 1.25, divided with the margin.
+          (assert.is_true (< 1.24 node.custom.measured 1.2501) (tostring node.custom.measured))
+          (assert.are.near (* 1.1 node.custom.measured) node.lipschitz 1e-9))))
+
     (it "takes a declared :lipschitz at least the measured one, and refuses a smaller one"
       (fn []
         (let [ok (assert (load.load-string "{:objects [{:kind :custom :bounds [1 1 1] :lipschitz 3
