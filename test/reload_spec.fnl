@@ -5,12 +5,13 @@
 ;; good edit clears it, a file that another process writes in two halves 50 ms apart
 ;; and a load reads between them shows no error and loads whole. Over 1000 edits Lua
 ;; memory and live shaders stay flat.
+(local app (require :test.support.app))
+
 (describe "hot reload in the app"
   (fn []
     (it "survives 1000 value, structural and broken edits with flat memory and shaders"
       (fn []
-        (let [out (with-open [p (io.popen "SDL_VIDEODRIVER=offscreen timeout 300 love . --soak --cycles 1000 2>&1; echo \"exit:$?\"")]
-                    (p:read :*a))]
+        (let [(code out) (app.love "--soak --cycles 1000" {:timeout 300})]
           (print)
           (each [line (out:gmatch "[^\n]+")]
             (when (line:match "^[a-zA-Z ]+[:(]") (print line)))
@@ -18,7 +19,7 @@
           (assert.truthy (out:find "soak checks: 0 failed" 1 true) out)
           (let [(_ checks) (out:gsub "reload check, scenes/seed.fnl: [^\n]*: ok" "")]
             (assert.are.equal 7 checks out))
-          (assert.truthy (out:match "exit:0%s*$") out)
+          (assert.are.equal 0 code out)
           (let [(warm final) (out:match "Lua memory after cycle %d+: (%d+) KB, at the end: (%d+) KB")]
             (assert.truthy warm out)
             ;; Flat: within 10% of the warmed-up figure (the GC's own slack).
@@ -32,8 +33,6 @@
     (each [_ name (ipairs [:gallery :organic :colonnade])]
       (it (.. "passes its reload checks on scenes/" name ".fnl")
         (fn []
-          (let [out (with-open [p (io.popen (.. "SDL_VIDEODRIVER=offscreen timeout 300 love . --soak scenes/"
-                                                name ".fnl --cycles 6 2>&1; echo \"exit:$?\""))]
-                      (p:read :*a))]
+          (let [(code out) (app.love (.. "--soak scenes/" name ".fnl --cycles 6") {:timeout 300})]
             (assert.truthy (out:find "soak checks: 0 failed" 1 true) out)
-            (assert.truthy (out:match "exit:0%s*$") out)))))))
+            (assert.are.equal 0 code out)))))))
