@@ -68,8 +68,32 @@
               (code out err) (run (.. "--mesh scenes/seed.fnl --out " path
                                       " --resolution 24 --region -10,-10,-1,10,10,6"))]
           (assert.are.equal 0 code err)
-          (assert.truthy (out:find "cut by the region: objects[3] (box), objects[5] (sphere), objects[6] (plane)" 1 true) out)
+          ;; objects[5]'s box only touches the region's face y = -10: nothing of it is inside.
+          (assert.truthy (out:find "cut by the region: objects[3] (box), objects[6] (plane); left out, outside the region: objects[5] (sphere)" 1 true) out)
           (assert.is_true (. (check.topology (read-mesh path)) :manifold?)))))
+
+    (it "meshes a box under a region of 1e30 as under its own bounds (the region clipped)"
+      (fn []
+        ;; The grid was the region's: 12 triangles in a cell of 1.6e28 at 128, and at
+        ;; 512 a table overflow after 4.2 GB.
+        (let [scene-file "test/out/mesh-finite.fnl"
+              own-path "test/out/mesh-own.stl"
+              huge-path "test/out/mesh-huge-region.stl"
+              _ (with-open [f (io.open scene-file :w)]
+                  (f:write "{:objects [{:kind :box :size [4 4 4] :pos [0 0 2]}\n"
+                           "           {:kind :sphere :radius 1.5 :pos [-4 -2 1.5]}]}\n"))
+              (c1 out1 err1) (run (.. "--mesh " scene-file " --out " own-path " --resolution 24"))
+              (c2 out2 err2) (run (.. "--mesh " scene-file " --out " huge-path " --resolution 24"
+                                      " --region -1e30,-1e30,-1e30,1e30,1e30,1e30"))]
+          (assert.are.equal 0 c1 err1)
+          (assert.are.equal 0 c2 err2)
+          (assert.truthy (out2:find "every object lies within the region; the grid spans -5.5,-3.5,0,2,2,4, the region clipped to the objects' box" 1 true) out2)
+          (let [count (fn [out] (tonumber (out:match ": (%d+) triangles")))
+                grid (fn [out] (out:match "%(%d+x%d+x%d+ grid%)"))]
+            (assert.are.equal (count out1) (count out2))
+            (assert.are.equal (grid out1) (grid out2))
+            (assert.are.same (. (read-mesh own-path) :positions)
+                             (. (read-mesh huge-path) :positions))))))
 
     (it "refuses bad arguments and scenes with a clear message"
       (fn []
@@ -81,6 +105,18 @@
                          "error: --resolution must be a whole number from 8 to 512, got 2000"]
                         ["--mesh scenes/seed.fnl --out x.stl --region 1,2,3"
                          "error: --region must be six numbers x0,y0,z0,x1,y1,z1, got 1,2,3"]
+                        ["--mesh scenes/seed.fnl --out x.stl --resolution 1e999"
+                         "error: --resolution must be a whole number from 8 to 512, got 1e999"]
+                        ["--mesh scenes/seed.fnl --out x.stl --region 0,0,0,1,1,nan"
+                         "error: --region must be six numbers x0,y0,z0,x1,y1,z1, got 0,0,0,1,1,nan"]
+                        ["--mesh scenes/seed.fnl --out x.stl --region 0,0,0,1,1,1e400"
+                         "error: --region must be six numbers x0,y0,z0,x1,y1,z1, got 0,0,0,1,1,1e400"]
+                        ["--mesh scenes/seed.fnl --out x.stl --region 0,0,0,1,0,1"
+                         "error: --region: y1 must be greater than y0, got 0,0,0,1,0,1"]
+                        ["--mesh scenes/seed.fnl --out x.stl --region 0,0,3,1,1,-3"
+                         "error: --region: z1 must be greater than z0, got 0,0,3,1,1,-3"]
+                        ["--mesh scenes/seed.fnl --out test/out/x.stl --region 1e29,1e29,1e29,1e30,1e30,1e30"
+                         "(is the region clear of every object?)"]
                         ["--render scenes/seed.fnl --out x.png --resolution 64"
                          "error: --resolution only goes with --mesh"]
                         ["--mesh scenes/seed.fnl --out /nonexistent-folder/x.stl"
