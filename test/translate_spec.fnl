@@ -81,10 +81,20 @@
      (* 0.01 (math.smoothstep -0.5 (+ 1 low-edge) (- y x))) (* 0.01 (math.round (* 2.5 y)))
      (* 0.01 (math.mod (- x z) 0.7)) (* 0.01 (math.mod x (- 1.5))) (* 0.01 (outer-helper y))
      (math.clamp 2 0 1) (* 1e-32 math.huge)))"
-             :params [-0.3]}})
+             :params [-0.3]}
+   ;; Several values in var and set: a swap reads both before it writes.
+   :several-vars {:source "(fn [x y z]
+  (fn sum-and-difference [a b] (values (+ a b) (- a b)))
+  (var (total rest) (sum-and-difference x y))
+  (set (total rest) (values rest total))
+  (set (total rest) (sum-and-difference total 1))
+  (var (r s) (values 1 2))
+  (set (r s) (values s (+ r z)))
+  (+ total (* 2 rest) (* 3 r) (* 5 s)))"
+                  :params []}})
 
 (local shape-names ["sphere" "rounded-box" "gyroid-ball" "piecewise" "loop-and-values" "signs"
-                    "library"])
+                    "library" "several-vars"])
 
 ;; GLSL's functions as the reference computes them, from their GLSL definitions
 ;; (round as floor(x + 0.5), the translator's choice at .5), and math.huge as the
@@ -103,7 +113,7 @@
    :huge 1e30})
 
 ;; Names of the scene's text that may appear in no output.
-(local scene-names ["radius" "ball" "half" "corner" "my" "positive" "gyroid" "frequency" "low" "edge" "outer" "inner"
+(local scene-names ["radius" "ball" "half" "corner" "my" "positive" "gyroid" "frequency" "low" "edge" "outer" "inner" "total" "rest" "sum"
                     "flat" "folded" "nearest" "step" "angle" "fa" "fb" "fc"])
 
 ;; What a GLSL identifier of the output may be: a generated name or GLSL's own.
@@ -249,6 +259,8 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
                         ["(fn [x y z] (^ x 0.5))" 1 "(^ a n) needs a whole constant n from 0 to 8"]
                         ["(fn [x y z] (let [[a b] x] a))" 1 "expected a name here, got a [...] table pattern"]
                         ["(fn [x y z] (let [(a b) (values x)] a))" 1 "binds 2 names to 1 values"]
+                        ["(fn [x y z] (var (a b) (values x y z)) a)" 1 "binds 2 names to 3 values"]
+                        ["(fn [x y z] (var a 1) (set (a x) (values 1 2)) a)" 1 "set needs a var declared in the function (var x ...)"]
                         ["(fn [x y z] (/ 1 0))" 1 "the number inf is not finite"]
                         ["(fn [x y z] (math.atan x y z))" 1 "math.atan takes 1 or 2 arguments (atan y x), got 3"]
                         ["(fn [x y z] (length x))" 1 "`length` is not supported"]

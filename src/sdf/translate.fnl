@@ -5,7 +5,7 @@
 ;;
 ;; The subset (what a distance needs, and what both languages mean the same way):
 ;;   numbers; the function's arguments; let (names and (a b c) for several values),
-;;   local, var and set (of a var of the same function); if (any number of branches,
+;;   local, var and set (of a var of the same function; (a b) for several values); if (any number of branches,
 ;;   with an else; (if (> x 0) 1 (< x 0) -1 0) of a name x is GLSL's sign(x)), when,
 ;;   do, -> and ->>; values (at most 4); helper functions (fn in a let or a
 ;;   body, not recursive, using only their own arguments, numbers and other helpers);
@@ -636,32 +636,63 @@ else gets a local."
         (set st.scope saved)
         parts))))
 
+(fn numbers-of [st node value n]
+  "The `n` numbers `value` gives (a values form, a helper's results), for names bound
+or set together."
+  (let [parts (check-parts st value (expr st value))]
+    (when (not= n (length parts))
+      (refuse st node (.. "binds " n " names to " (length parts) " values")))
+    (each [_ p (ipairs parts)]
+      (when (not= p.t :float) (refuse st node "several values must all be numbers")))
+    parts))
+
 (fn local-form [st node sc mutable?]
   (let [[_ pattern value] node]
     (when (not= 3 (length node))
       (refuse st node (.. "(" (if mutable? "var" "local") " name value) takes a name and a value")))
     (if mutable?
-        (let [name (check-name! st pattern)
-              p (number-arg st value)
-              v (declare! st node (doto (collect [k x (pairs p)] (when (not= k :const) (values k x)))))]
-          (bind! sc name {:kind :var :fn st.fn :part v}))
+        ;; (var d 1) or (var (a b) (values 1 2)): each a new local, never a constant.
+        (let [names (if (fennel.list? pattern) (icollect [_ n (ipairs pattern)] (check-name! st n))
+                        [(check-name! st pattern)])
+              parts (if (fennel.list? pattern) (numbers-of st node value (length names))
+                        [(number-arg st value)])]
+          (each [i name (ipairs names)]
+            (let [p (. parts i)
+                  v (declare! st node (collect [k x (pairs p)] (when (not= k :const) (values k x))))]
+              (when (not= name "_") (bind! sc name {:kind :var :fn st.fn :part v})))))
         (bind-pattern! st sc pattern value))
     []))
 
-(fn set-form [st node]
-  (let [[_ target value] node
-        name (check-name! st target)
-        b (lookup st.scope name)]
-    (when (not= 3 (length node)) (refuse st node "(set name value) takes a name and a value"))
+(fn set-target [st name]
+  (let [b (lookup st.scope name)]
     (when (or (not b) (not= b.kind :var))
-      (refuse st node (.. "set needs a var declared in the function (var " name " ...); `"
-                          name "` is not one")))
+      (refuse st nil (.. "set needs a var declared in the function (var " name " ...); `"
+                         name "` is not one")))
     (when (not= b.fn st.fn)
-      (refuse st node (.. "a helper function sets `" name "` of the function around it: closures over mutable state are not supported")))
-    (let [p (number-arg st value)]
-      (cost! st node 1)
-      (emit! st (.. b.part.g " = " p.g ";") (.. b.part.l " = " p.l))
-      [])))
+      (refuse st nil (.. "a helper function sets `" name "` of the function around it: closures over mutable state are not supported")))
+    b))
+
+(fn set-form [st node]
+  (let [[_ target value] node]
+    (when (not= 3 (length node)) (refuse st node "(set name value) takes a name and a value"))
+    (if (fennel.list? target)
+        ;; (set (a b) (values b a)): every value is read before any var changes, as
+        ;; in Lua's a, b = b, a; GLSL assigns one by one, so each value that is not
+        ;; a constant goes through a new local first.
+        (let [names (icollect [_ n (ipairs target)] (check-name! st n))
+              bs (icollect [_ name (ipairs names)] (set-target st name))
+              parts (numbers-of st node value (length names))
+              held (icollect [_ p (ipairs parts)] (if p.const p (declare! st node p)))]
+          (cost! st node (length names))
+          (each [i b (ipairs bs)]
+            (let [p (. held i)]
+              (emit! st (.. b.part.g " = " p.g ";") (.. b.part.l " = " p.l))))
+          [])
+        (let [b (set-target st (check-name! st target))
+              p (number-arg st value)]
+          (cost! st node 1)
+          (emit! st (.. b.part.g " = " p.g ";") (.. b.part.l " = " p.l))
+          []))))
 
 (fn for-form [st node]
   (let [spec (. node 2)]
