@@ -290,3 +290,24 @@ grid's side and each node's label."
                                (lua-text ["local function sdCustom1Fn1(v1) return v1 end"
                                      "return function(v1, v2, v3) local v4 = sdCustom1Fn1 return v4(v1) end"])])]
           (assert.is_false (not (not (custom.check-lua text))) text))))))
+
+(describe "custom: a translation the check refuses"
+  (fn []
+    (it "is said as the check's reason and a translator bug, never as 'table: 0x...'"
+      (fn []
+        (let [custom (require :src.sdf.custom)
+              load (require :src.scene.load)
+              real custom.descriptor
+              source "{:objects [{:kind :custom :distance (fn [x y z] (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1)) :bounds [1 1 1]}]}"]
+          ;; What the check raises when it refuses a text (see custom.descriptor).
+          (set custom.descriptor
+               (fn [node]
+                 (error {:lower-error (.. (tostring node.path) ": a custom node: its Lua is not the translator's (refused)")
+                         :reason "a custom node: its Lua is not the translator's (refused)"
+                         : node})))
+          (let [(ok? scene err) (pcall load.load-string source "t.fnl")]
+            (set custom.descriptor real)
+            (assert.is_true ok? (tostring scene))
+            (assert.is_nil scene)
+            (assert.is_nil (err:find "table: 0x" 1 true) err)
+            (assert.truthy (err:find "t.fnl:1: objects[1].distance: its translation was refused by the check of the translator's texts (a custom node: its Lua is not the translator's (refused)): a bug in the translator; please report it with this file" 1 true) err)))))))

@@ -596,7 +596,15 @@ into `out`: :custom (the texts), :params, :lipschitz (the factor used)."
                 glsl (t.glsl:gsub "sdCustom" (.. "sdCustom" index))
                 data {:glsl glsl :lua t.lua :glsl-name (.. "sdCustom" index) :key (custom.digest glsl)
                       :params t.params :cost t.cost}
-                desc (custom.descriptor {:kind :custom :custom data})
+                ;; The check of the texts (the app's, here too) refuses what the
+                ;; translator should never write: said as such, not as a table.
+                desc (case (pcall custom.descriptor {:kind :custom :custom data})
+                       (true d) d
+                       (_ e) (fail ctx dpath
+                                   (.. "its translation was refused by the check of the translator's texts ("
+                                       (if (and (= (type e) :table) e.reason) e.reason (tostring e))
+                                       "): a bug in the translator; please report it with this file")
+                                   line))
                 args (icollect [_ n (ipairs t.params)] (. out.params n))]
             (table.insert args 1)
             ;; Nodes made by a loop often share the function and its values: measured
