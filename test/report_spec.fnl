@@ -5,6 +5,7 @@
 (local reference (require :src.reference))
 (local png (require :src.util.png))
 (local headless (require :src.backend.headless))
+(local {: sh} (require :test.support.app))
 
 (fn row [name ms err ?gpu]
   {:name name :ms ms :error err :gpu-error ?gpu})
@@ -121,10 +122,7 @@
     f (let [t (f:read :*a)] (f:close) t)))
 
 (fn gnuplot? []
-  (let [p (io.popen "command -v gnuplot 2>/dev/null")
-        out (p:read :*a)]
-    (p:close)
-    (not= out "")))
+  (= 0 (sh "command -v gnuplot")))
 
 (describe "the quick report"
   (fn []
@@ -136,17 +134,15 @@
                 run! (fn []
                        (when (= nil state.output)
                          (os.execute (.. "rm -rf " dir))
-                         (let [p (io.popen (.. "luajit tools/fnl.lua tools/report.fnl --quick --out "
-                                               dir " 2>&1; echo \"exit=$?\""))
-                               out (p:read :*a)]
-                           (p:close)
+                         (let [(code out) (sh (.. "luajit tools/fnl.lua tools/report.fnl --quick --out " dir))]
+                           (set state.code code)
                            (set state.output out)
                            (set state.markdown (read-all (.. dir "/report.md")))))
                        state)]
             (it "runs and writes a table of numbers per scene"
               (fn []
-                (let [{: output : markdown} (run!)]
-                  (assert.is_truthy (output:find "exit=0" 1 true) output)
+                (let [{: code : output : markdown} (run!)]
+                  (assert.are.equal 0 code output)
                   (assert.is_truthy markdown (.. "no report.md; output:\n" output))
                   (let [scenes (icollect [name (markdown:gmatch "\n## ([%w%-_]+) %(")] name)]
                     (assert.is_true (>= (length scenes) 1) markdown)
