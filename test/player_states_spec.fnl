@@ -5,11 +5,7 @@
 ;; in a function of time: the player pauses with a message and quits on escape.
 ;; `make test` installs Xvfb, xdotool, xwd and bc.
 
-(fn run [command]
-  (let [p (io.popen (.. command " 2>&1; echo \"exit:$?\""))
-        text (p:read :*a)]
-    (p:close)
-    (values (tonumber (text:match "exit:(%d+)%s*$")) (text:gsub "exit:%d+%s*$" ""))))
+(local run (. (require :test.support.app) :sh))
 
 (fn found? [tool]
   (= 0 (run (.. "command -v " tool))))

@@ -22,6 +22,9 @@
 # out/check-states), GRAB_S (0.15), KEEP=1 keeps the window dumps (3.7 MB each),
 # SCENES (test/states: the folder holding hue.fnl;
 # test/states/light has versions light enough for every frame to be drawn whole).
+# The scene played is test/states/hue-colours.fnl (the :hue parameter, its colours,
+# the view: the same for every folder) followed by SCENES/hue.fnl (the objects), one
+# file: a scene file cannot load another.
 # Exit 0: no frame mixes states; 1: some frame does; 2: the check could not run
 # (no window, a scenario whose state never changed, a missing tool).
 set -euo pipefail
@@ -34,6 +37,10 @@ GRAB_S=${GRAB_S:-0.15}
 SCENES_ARG=${SCENES:-$REPO/test/states}
 SCENES=$(cd "$SCENES_ARG" 2>/dev/null && pwd) || die "no scene folder $SCENES_ARG"
 [ -f "$SCENES/hue.fnl" ] || die "$SCENES has no hue.fnl"
+HEAD_FILE=$REPO/test/states/hue-colours.fnl
+[ -f "$HEAD_FILE" ] || die "no $HEAD_FILE"
+# The scene's text: the shared head, then the folder's objects.
+scene_text() { cat "$HEAD_FILE" "$SCENES/hue.fnl"; }
 TITLE="Fennel raymarcher"
 
 for tool in love luajit xvfb-run xdotool xwd bc; do
@@ -46,7 +53,7 @@ if [ "${1:-}" = "--calibrate" ]; then
   command -v convert >/dev/null || die "convert (ImageMagick) is needed for --calibrate"
   dir="$OUT/calibrate"; rm -rf "$dir"; mkdir -p "$dir"
   for v in 0.0 0.1 0.3 0.6 0.9 1.0; do
-    sed "s/(param :hue 0\.1 /(param :hue $v /" "$SCENES/hue.fnl" > "$dir/hue-$v.fnl"
+    scene_text | sed "s/(param :hue 0\.1 /(param :hue $v /" > "$dir/hue-$v.fnl"
     (cd "$REPO" && SDL_VIDEODRIVER=offscreen love . --render "$dir/hue-$v.fnl" \
        --out "$dir/hue-$v.png" --size 1280x720 --samples 1 >/dev/null) || die "render of :hue $v failed"
     convert "$dir/hue-$v.png" -filter Triangle -resize 160x90 -resize 1280x720\! "$dir/hue-$v-coarse.png"
@@ -68,11 +75,12 @@ fi
 WORK="$OUT/frames"
 # Only what this script writes is removed: OUT may be a folder with other things in it.
 rm -rf "$WORK"; rm -f "$OUT"/*-worst.png; mkdir -p "$WORK"
-cp "$SCENES/hue.fnl" "$WORK/hue.fnl"
+scene_text > "$WORK/hue.fnl"
 # The animated scene: a triangle wave of time in place of the :hue parameter.
-sed 's/^(local hue (param :hue .*$/(local hue (fn [t] (let [p (% (\/ t 8) 1)] (+ 0.1 (* 0.8 (if (< p 0.5) (* 2 p) (- 2 (* 2 p))))))))/' \
-  "$SCENES/hue.fnl" > "$WORK/hue-animated.fnl"
-grep -q '^(local hue (fn' "$WORK/hue-animated.fnl" || die "$SCENES/hue.fnl has no (local hue (param :hue ...)) line"
+scene_text \
+  | sed 's/^(local hue (param :hue .*$/(local hue (fn [t] (let [p (% (\/ t 8) 1)] (+ 0.1 (* 0.8 (if (< p 0.5) (* 2 p) (- 2 (* 2 p))))))))/' \
+  > "$WORK/hue-animated.fnl"
+grep -q '^(local hue (fn' "$WORK/hue-animated.fnl" || die "$HEAD_FILE has no (local hue (param :hue ...)) line"
 LOVE_PID=""
 GRAB_PID=""
 cleanup() {
@@ -181,7 +189,7 @@ wait_still 30
 say "value-edit: the file's :hue 0.1 -> 0.6"
 grab_start value-edit
 sleep 1
-sed "s/(param :hue 0\.1 /(param :hue 0.6 /" "$SCENES/hue.fnl" | write_scene "$WORK/hue.fnl"
+scene_text | sed "s/(param :hue 0\.1 /(param :hue 0.6 /" | write_scene "$WORK/hue.fnl"
 sleep 6
 grab_stop
 wait_still 30
@@ -191,7 +199,7 @@ grab_start structural
 sleep 1
 # The cone goes first in the :objects vector (a scene may end that vector with a
 # call whose values it spreads, test/states/field's members).
-sed -e "s/(param :hue 0\.1 /(param :hue 0.3 /" "$SCENES/hue.fnl" \
+scene_text | sed -e "s/(param :hue 0\.1 /(param :hue 0.3 /" \
   | perl -0pe 's/:objects(\s*)\[/:objects$1\[{:kind :capped-cone :height 2 :radius1 0.9 :radius2 0.3 :pos [3.5 -4 1] :color c :mirror 0}\n  /' \
   | write_scene "$WORK/hue.fnl"
 grep -q capped-cone "$WORK/hue.fnl" || die "the structural edit did not apply to $SCENES/hue.fnl"
