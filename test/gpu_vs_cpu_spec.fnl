@@ -124,7 +124,21 @@
                                           (.. file ": only " st.count " pixels sampled"))
                           (assert.is_true (passes? st budget)
                                           (describe-failures (.. "scene " label) st budget
-                                                             measured?))))]
+                                                             measured?))))
+                ;; The GPU picture `st` (compared), reported as `label`, must pass `budget`.
+                passes-as-reference (fn [label st budget]
+                                      (print (report-line label st))
+                                      (assert.is_true (passes? st budget)
+                                                      (describe-failures label st budget)))
+                ;; The GPU picture of `prepared` drawn by `shader` with `pattern` put in
+                ;; once by `replacement` (a fault the CPU reference lacks), reported as
+                ;; `label`, must fail `budget`.
+                fails-broken (fn [prepared budget label shader pattern replacement]
+                               (let [(source n) (shader:gsub pattern replacement)
+                                     _ (assert.are.equal 1 n)
+                                     st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
+                                 (print (report-line label st))
+                                 (assert.is_false (passes? st budget))))]
             (it "finds the scenes"
               (fn []
                 (let [files {}]
@@ -146,21 +160,13 @@
                   ;; normals from the one-sided differences, which reach inside. (The
                   ;; box's GLSL is the translator's, from its :fennel text: the
                   ;; interior term is min(max(max(qx, qy), qz), 0.0) in its names.)
-                  (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
-                                      "%+ (min%(max%(max%(v%d+, v%d+%), v%d+%), 0%.0%))"
-                                      "+ -%1")
-                        _ (assert.are.equal 1 n)
-                        st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
-                    (print (report-line "seed, broken -min" st))
-                    (assert.is_false (passes? st budget)))
+                  (fails-broken prepared budget "seed, broken -min" (codegen.shader prepared.plan :core)
+                                "%+ (min%(max%(max%(v%d+, v%d+%), v%d+%), 0%.0%))"
+                                "+ -%1")
                   ;; A sign flipped in the translation every object is placed by:
                   ;; opTranslate(p, c) gives p + c, and each object moves to -c.
-                  (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
-                                      "return p %- t;" "return p + t;")
-                        _ (assert.are.equal 1 n)
-                        st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
-                    (print (report-line "seed, broken p+c" st))
-                    (assert.is_false (passes? st budget))))))
+                  (fails-broken prepared budget "seed, broken p+c" (codegen.shader prepared.plan :core)
+                                "return p %- t;" "return p + t;"))))
 
             (it "fails a scene of exact normals when the shader's box or sphere gradient is broken"
               (fn []
@@ -178,11 +184,8 @@
                                   ["box faces" "vec3 g = max%(e, 0%.0%) %* s;" "vec3 g = max(e, 0.0);"]
                                   ;; A sphere's normal from the wrong point.
                                   ["sphere" "return len > 0%.0 %? p / len" "return len > 0.0 ? -p / len"]])]
-                    (let [(source n) (shader:gsub pattern replacement)
-                          _ (assert.are.equal 1 n)
-                          st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
-                      (print (report-line (.. "flat, broken " label " gradient") st))
-                      (assert.is_false (passes? st budget)))))))
+                    (fails-broken prepared budget (.. "flat, broken " label " gradient")
+                                  shader pattern replacement)))))
 
             (it "fails the seed scene when a uniform array is sent in the wrong order"
               (fn []
@@ -221,11 +224,7 @@
                                   ["the plane met 10% too far"
                                    "t = min%(t, %-s / v%);"
                                    "t = min(t, 1.1 * -s / v);"]])]
-                    (let [(source n) (shader:gsub pattern replacement)
-                          _ (assert.are.equal 1 n)
-                          st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
-                      (print (report-line (.. "gallery, " label) st))
-                      (assert.is_false (passes? st budget)))))))
+                    (fails-broken prepared budget (.. "gallery, " label) shader pattern replacement)))))
 
             (it "ends shadow rays at the light in a bounded scene, and catches a shader that does not"
               (fn []
@@ -281,9 +280,7 @@
                       st (compare-image prepared (gpu-render ctx prepared))]
                   (assert.truthy prepared.plan.field)
                   (assert.are.equal 1 prepared.plan.bounds.count)
-                  (print (report-line "field beside a torus" st))
-                  (assert.is_true (passes? st {:over 2 :max 40})
-                                  (describe-failures "field beside a torus" st {:over 2 :max 40})))))
+                  (passes-as-reference "field beside a torus" st {:over 2 :max 40}))))
 
             (it "walks a field of marched members (tori, capsules) as the reference does"
               (fn []
@@ -299,9 +296,7 @@
                       st (compare-image prepared (gpu-render ctx prepared))]
                   (assert.are.same [:torus :capsule] prepared.plan.field.kinds.marched)
                   (assert.are.equal 0 prepared.plan.bounds.count)
-                  (print (report-line "field of marched members" st))
-                  (assert.is_true (passes? st {:over 2 :max 40})
-                                  (describe-failures "field of marched members" st {:over 2 :max 40})))))
+                  (passes-as-reference "field of marched members" st {:over 2 :max 40}))))
 
             (it "draws every bounded primitive as a field's marched member as the reference does"
               (fn []
@@ -333,9 +328,7 @@
                         st (compare-image prepared (gpu-render ctx prepared))]
                     (assert.are.same kinds prepared.plan.field.kinds.marched)
                     (assert.is_true (>= (length kinds) 26))
-                    (print (report-line "every primitive marched" st))
-                    (assert.is_true (passes? st {:over 2 :max 40})
-                                    (describe-failures "every primitive marched" st {:over 2 :max 40}))))))
+                    (passes-as-reference "every primitive marched" st {:over 2 :max 40})))))
 
             (it "walks a field of spheres as the reference does, and catches a walk that skips lists"
               (fn []
@@ -358,32 +351,22 @@
                       budget {:over 2 :max 40}
                       st (compare-image prepared (gpu-render ctx prepared))]
                   (assert.is_true prepared.plan.field.walk?)
-                  (print (report-line "field of spheres" st))
-                  (assert.is_true (passes? st budget) (describe-failures "field of spheres" st budget))
-                  (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
-                                      "bool starts = !inList && texel%.w < 0%.0;"
-                                      "bool starts = false;")
-                        _ (assert.are.equal 1 n)
-                        broken (compare-image prepared (gpu-render ctx prepared {:source #source}))]
-                    (print (report-line "field of spheres, lists never started" broken))
-                    (assert.is_false (passes? broken budget)))
+                  (passes-as-reference "field of spheres" st budget)
+                  (fails-broken prepared budget "field of spheres, lists never started"
+                                (codegen.shader prepared.plan :core)
+                                "bool starts = !inList && texel%.w < 0%.0;"
+                                "bool starts = false;")
                   ;; A walk that leaves every list after the sphere about its
                   ;; spheres misses them.
-                  (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
-                                      "bool past = bound && entry > min%(tNext%.x, min%(tNext%.y, tNext%.z%)%);"
-                                      "bool past = bound;")
-                        _ (assert.are.equal 1 n)
-                        broken (compare-image prepared (gpu-render ctx prepared {:source #source}))]
-                    (print (report-line "field of spheres, lists left at their bound" broken))
-                    (assert.is_false (passes? broken budget)))
+                  (fails-broken prepared budget "field of spheres, lists left at their bound"
+                                (codegen.shader prepared.plan :core)
+                                "bool past = bound && entry > min%(tNext%.x, min%(tNext%.y, tNext%.z%)%);"
+                                "bool past = bound;")
                   ;; A walk that jumps one cell past an empty cell's clearance passes
                   ;; over cells that list spheres.
-                  (let [(source n) (: (codegen.shader prepared.plan :core) :gsub
-                                      "%? max%(k %- 1%.0, 0%.0%) :" "? k :")
-                        _ (assert.are.equal 1 n)
-                        broken (compare-image prepared (gpu-render ctx prepared {:source #source}))]
-                    (print (report-line "field of spheres, jumps a cell too far" broken))
-                    (assert.is_false (passes? broken budget))))))
+                  (fails-broken prepared budget "field of spheres, jumps a cell too far"
+                                (codegen.shader prepared.plan :core)
+                                "%? max%(k %- 1%.0, 0%.0%) :" "? k :"))))
 
             (it "renders 100,000 spheres as the reference does"
               (fn []
@@ -393,9 +376,7 @@
                 (let [prepared (prepare "test/fixtures/spheres-100000.fnl" {:view :shaded :size [160 90]})
                       st (compare-image prepared (gpu-render ctx prepared))]
                   (assert.are.equal 100000 prepared.plan.field.count)
-                  (print (report-line "100,000 spheres" st))
-                  (assert.is_true (passes? st {:over 2 :max 40})
-                                  (describe-failures "100,000 spheres" st {:over 2 :max 40})))))
+                  (passes-as-reference "100,000 spheres" st {:over 2 :max 40}))))
 
             (it "walks a field's grid as the reference does, and catches a walk that skips cells"
               (fn []
@@ -403,12 +384,9 @@
                 ;; A walk that never moves on along x keeps testing the cell it entered
                 ;; and misses the towers beyond it.
                 (let [prepared (prepared-for "scenes/city.fnl" :shaded)
-                      budget (budget-for "city" :shaded)
-                      (source n) (: (codegen.shader prepared.plan :core) :gsub
-                                    "index %+= int%(dot%(fieldNextWall%(tNext, tDelta%), stride%)%);"
-                                    "index += int(dot(fieldNextWall(tNext, tDelta) * vec3(0.0, 1.0, 1.0), stride));")]
+                      budget (budget-for "city" :shaded)]
                   (assert.truthy prepared.plan.field)
-                  (assert.are.equal 1 n)
-                  (let [st (compare-image prepared (gpu-render ctx prepared {:source #source}))]
-                    (print (report-line "city, walk without x steps" st))
-                    (assert.is_false (passes? st budget)))))))))))
+                  (fails-broken prepared budget "city, walk without x steps"
+                                (codegen.shader prepared.plan :core)
+                                "index %+= int%(dot%(fieldNextWall%(tNext, tDelta%), stride%)%);"
+                                "index += int(dot(fieldNextWall(tNext, tDelta) * vec3(0.0, 1.0, 1.0), stride));")))))))))
