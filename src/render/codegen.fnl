@@ -130,8 +130,8 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
 ))
     lines))
 
-(fn distance-terms [plan]
-  (emit-glsl.distance-terms plan.tape))
+(fn distance-terms [cx plan]
+  (emit-glsl.distance-terms cx plan.tape))
 
 (fn soft-bounded? [plan]
   ;; See plan.lighting.soft-bounded? in src/render/plan.fnl.
@@ -187,14 +187,14 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
    "    return vec2(enter, min(exit, uDrawDist));"
    "}"])
 
-(fn bounded-lines [plan]
+(fn bounded-lines [cx plan]
   "mapFinite, planesHit and boundsSpan: what the bounded march reads (see
 src/render/bounds.fnl)."
   (let [n plan.bounds.count]
     ["// The finite objects only: the half-spaces are met in closed form by planesHit."
      "float mapFinite(vec3 p) {"
      "    float d = uDrawDist;"
-     (doto [] (flatten-into "    " (emit-glsl.distance-terms plan.tape marched?)))
+     (doto [] (flatten-into "    " (emit-glsl.distance-terms cx plan.tape marched?)))
      "    return d;"
      "}"
      ""
@@ -203,7 +203,7 @@ src/render/bounds.fnl)."
      "float planesHit(vec3 ro, vec3 rd) {"
      "    float t = uDrawDist;"
      (if (accumulate [any? false _ o (ipairs plan.tape.objects)] (or any? o.half-space?))
-         ["    vec3 p = ro;" (doto [] (flatten-into "    " (emit-glsl.plane-terms plan.tape)))]
+         ["    vec3 p = ro;" (doto [] (flatten-into "    " (emit-glsl.plane-terms cx plan.tape)))]
          [])
      "    return t;"
      "}"
@@ -211,26 +211,26 @@ src/render/bounds.fnl)."
      (span-lines n false)
      (if (soft-bounded? plan) ["" (span-lines n true)] [])]))
 
-(fn color-terms [plan]
+(fn color-terms [cx plan]
   [(if (modern-materials? plan) "gMirror = 0.0; gMaterial = vec4(0.5, 0.0, 0.0, 0.0);"
        plan.mirrors? "gMirror = 1.0;"
        [])
    (if (object-normals? plan) "gObject = -1;" [])
-   (emit-glsl.color-terms plan.tape plan.mirrors? (when (object-normals? plan) 0))])
+   (emit-glsl.color-terms cx plan.tape plan.mirrors? (when (object-normals? plan) 0))])
 
-(fn others-terms [plan]
+(fn others-terms [cx plan]
   ;; mapOthers' terms: map's, each but gObject's.
-  (emit-glsl.others-terms plan.tape 0))
+  (emit-glsl.others-terms cx plan.tape 0))
 
-(fn gradient-terms [plan action]
+(fn gradient-terms [cx plan action]
   ;; Each object's exact normal in closed form, when gObject is its number (a field
   ;; member's, a leaf's its primitive's gradient); `action` is "n = "
   ;; (normal-exact.glsl) or "return " (the exact slot of normal-crease.glsl).
-  (emit-glsl.gradient-terms plan.tape 0 action))
+  (emit-glsl.gradient-terms cx plan.tape 0 action))
 
-(fn object-terms [plan]
+(fn object-terms [cx plan]
   ;; mapObject's cases: each tape object (a field's member) by number.
-  (emit-glsl.object-terms plan.tape 0))
+  (emit-glsl.object-terms cx plan.tape 0))
 
 ;;; Features
 
@@ -271,7 +271,7 @@ comment lines before the first part are the chunk's own documentation)."
     (assert lines (.. path ": no part " name))
     (fill-lines path lines slots)))
 
-(fn along-lines [plan]
+(fn along-lines [cx plan]
   "With grids, the distance a march takes, along its ray rd (mapAlong, or with bounds
 mapFiniteAlong): map's or mapFinite's terms, each grid bounding its unlisted members
 along the ray (see gridCellAlong in shaders/pipeline/grid.glsl)."
@@ -281,7 +281,7 @@ along the ray (see gridCellAlong in shaders/pipeline/grid.glsl)."
          "// members bounded along the ray rd too."
          (.. "float " (if bounded? "mapFiniteAlong" "mapAlong") "(vec3 p, vec3 rd) {")
          "    float d = uDrawDist;"
-         (doto [] (flatten-into "    " (emit-glsl.distance-terms plan.tape (when bounded? marched?)
+         (doto [] (flatten-into "    " (emit-glsl.distance-terms cx plan.tape (when bounded? marched?)
                                                               true)))
          "    return d;"
          "}"])
@@ -485,7 +485,7 @@ only when the plan has it."
                        [(.. "vec4 b = " record-b ";")
                         (.. "t = min(t, " march ");")])})]))
 
-(fn body-lines [plan]
+(fn body-lines [cx plan]
   (let [view plan.view
         normals? (or (= view :shaded) (= view :normals))
         ;; The normals view reads mapColor's gObject when normals are the object's.
@@ -522,18 +522,18 @@ only when the plan has it."
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
     (when plan.field
       (table.insert sections (field-lines plan)))
-    (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms plan)}))
+    (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms cx plan)}))
     ;; mapColor only where the view has a use for colours.
     (when colors?
-      (table.insert sections (fill "shaders/pipeline/map-color.glsl" {:color-terms (color-terms plan)})))
+      (table.insert sections (fill "shaders/pipeline/map-color.glsl" {:color-terms (color-terms cx plan)})))
     (when (and (object-normals? plan) (not plan.exact-normals?))
       (table.insert sections (fill "shaders/pipeline/map-object.glsl"
-                                   {:object-terms (object-terms plan)
-                                    :others-terms (others-terms plan)})))
+                                   {:object-terms (object-terms cx plan)
+                                    :others-terms (others-terms cx plan)})))
     (when plan.bounds
-      (table.insert sections (bounded-lines plan)))
+      (table.insert sections (bounded-lines cx plan)))
     (when plan.grids
-      (table.insert sections (along-lines plan)))
+      (table.insert sections (along-lines cx plan)))
     ;; Only the glow and heat views read the step count; elsewhere it is not kept.
     (let [count-step (if (or plan.glow? (= view :glow) (= view :heat))
                          ["steps = i + 1;"] [])]
@@ -549,13 +549,13 @@ only when the plan has it."
                                                           {:normal "calcNormal" :map "map"})))}))
       (when (and (object-normals? plan) plan.exact-normals?)
         (table.insert sections (fill "shaders/pipeline/normal-exact.glsl"
-                                     {:gradients (gradient-terms plan "n = ")})))
+                                     {:gradients (gradient-terms cx plan "n = ")})))
       (when (and (object-normals? plan) (not plan.exact-normals?))
         ;; The grouped and field objects have their exact gradient; the trees' take
         ;; differences.
         (table.insert sections
                       (fill "shaders/pipeline/normal-crease.glsl"
-                            {:exact (gradient-terms plan "return ")}))))
+                            {:exact (gradient-terms cx plan "return ")}))))
     (when (and (= view :shaded) (not plan.lighting))
       (table.insert sections
                     (fill "shaders/shading/light.glsl"
@@ -677,26 +677,22 @@ only when the plan has it."
                     ");"))))))
 
 ;; How a declaration is written: as itself, unless the caller says otherwise (the
-;; Shadertoy export writes constants). Declared before text-of, which reads it.
-(var declaration-text (fn [d] d.text))
+(fn default-declaration [d] d.text)
 
-(fn text-of [line]
-  (if (= (type line) :table) (declaration-text line.declare) line))
-
-(fn load-once [declarations code ?varyings?]
+(fn load-once [declarations code rows-read declaration-text ?varyings?]
   "The shader's body: `declarations` (items from emit-glsl.declare or a chunk's
-uniform lines, in order) first, then the lines `code`, each uniform read through a
+uniform lines, in order, each written by `declaration-text`) first, then the lines
+`code`, each uniform read through a
 global copy that loadUniforms(), called first by every entry point, fills. The copy
 gName of uName is declared after it and `#define uName gName` renames every read of
 the code that follows, the preprocessor's doing: no generated line is rewritten.
 Not copied: samplers, the resolution, arrays that code indexes by a variable (their
-:loop?). Of the tape's rows only those the code reads (emit-glsl.reads). With
+:loop?). Of the tape's rows only those the code reads (`rows-read`). With
 `?varyings?` (LÖVE's entry) as many copies as fit in flat varyings come from a
 vertex stage of their own: returns the lines and the vertex stage's."
   (let [out []
         copied []
-        reads []
-        rows-read (emit-glsl.reads)]
+        reads []]
     (var opaque? false)
     (each [_ {:declare d} (ipairs declarations)]
       (table.insert out (declaration-text d))
@@ -754,23 +750,26 @@ vertex stage of their own: returns the lines and the vertex stage's."
                 (table.insert vertex "}")
                 {:vertex vertex :count (length vertex-lines)})))))
 
-(fn generate [plan target]
+(fn generate [plan target declaration-text]
   (let [body []
         out []
-        sections []]
+        sections []
+        ;; The emitters' context for this shader: which tape rows its code reads.
+        cx (emit-glsl.new-context)
+        text-of (fn [line] (if (= (type line) :table) (declaration-text line.declare) line))]
     (flatten-into out "" target.header)
     (when (> (length target.header) 0) (table.insert out ""))
     (table.insert out (.. "// Generated by src/render/codegen.fnl for: " plan.key))
     (table.insert out "")
-    (emit-glsl.reset-reads!)
-    (each [_ s (ipairs (body-lines plan))] (table.insert sections s))
+    (each [_ s (ipairs (body-lines cx plan))] (table.insert sections s))
     (each [i s (ipairs sections)]
       (when (> i 1) (table.insert body ""))
       (flatten-into body "" s))
     ;; Every uniform is declared first, where the chunks and the plan declared them.
     (let [declarations (icollect [_ l (ipairs body)] (when (= (type l) :table) l))
           code (icollect [_ l (ipairs body)] (when (= (type l) :string) l))
-          (lines vertex) (if plan.load-once? (load-once declarations code target.varyings?)
+          (lines vertex) (if plan.load-once? (load-once declarations code (emit-glsl.reads cx)
+                                                        declaration-text target.varyings?)
                              (doto (icollect [_ d (ipairs declarations)] (declaration-text d.declare))
                                (table.insert "")
                                (flatten-into "" code)
@@ -802,9 +801,7 @@ declaration (d: {:type :name :count :trailer :text}; the Shadertoy export writes
 constants). Returns the text, or nil and a message when a chunk cannot be read."
   (let [target (. targets (or ?target :love))
         _ (assert target (.. "unknown target " (tostring ?target)))
-        _ (set declaration-text (or ?declaration (fn [d] d.text)))
-        (ok? result) (pcall generate plan target)]
-    (set declaration-text (fn [d] d.text))
+        (ok? result) (pcall generate plan target (or ?declaration default-declaration))]
     (if ok? result
         (and (= (type result) :table) (= result.marker chunk-error)) (values nil result.message)
         (error result 0))))

@@ -18,51 +18,67 @@ with a decimal point or an exponent."
           ")")))
 
 
-;; Where the arguments being emitted live: nil for the tape's own rows (uTape), or an
-;; instance group's bank (see lower.fnl's :instances), whose rows are read at
-;; base + row + stride * i in the group's loop.
-(var group nil)
+;; Material registers: vec4 (colour, mirror amount), or in the modern model mat2x4
+;; (that, then roughness and emission): see :material-size in src/sdf/lower.fnl.
+(local material-types {4 {:type "vec4" :zero "vec4(0.0)" :mix "mix"}
+                       8 {:type "mat2x4" :zero "mat2x4(0.0)" :mix "mixMaterial"}})
 
-;; While distance-terms emits a march's distance (`along?`): grids bound their
-;; unlisted members along the ray rd, not only around the point (grid.glsl's
-;; gridCellAlong).
-(var along? false)
+;; An emission's context, `cx`, passed to every function below (none keeps state of
+;; its own, so emission is reentrant):
+;;   :rows-read  the tape's rows the code emitted reads (row -> true): only those are
+;;               copied once per pixel (see load-once in src/render/codegen.fnl); one
+;;               table shared by every context derived from the first
+;;   :group      where the arguments being emitted live: nil for the tape's own rows
+;;               (uTape), or an instance group's bank, whose rows are read at
+;;               base + row + stride * i in the group's loop
+;;   :along?     while a march's distance is emitted: grids bound their unlisted
+;;               members along the ray rd, not only around the point (grid.glsl's
+;;               gridCellAlong)
+;;   :mt         the material registers' type (material-types)
 
-;; The tape's rows the code emitted since `reset-reads!` reads (row -> true): only
-;; those are copied once per pixel (see load-once in src/render/codegen.fnl).
-(var rows-read {})
+(fn new-context []
+  "A context for emitting one shader's code (see above): give it to each of the
+*-terms functions of that shader, then `reads` says which tape rows they read."
+  {:rows-read {} :along? false :mt (. material-types 4)})
 
-(fn reset-reads! [] (set rows-read {}))
+(fn derived [cx key value]
+  ;; `cx` with `key` set to `value` (nil too); the same rows-read.
+  (doto (collect [k v (pairs cx)] k v) (tset key value)))
 
-(fn reads [] rows-read)
+(fn reads [cx]
+  "The tape's rows the code emitted with context `cx` (or one derived from it) reads:
+row -> true."
+  cx.rows-read)
 
-(fn row-expr [row]
-  (if group
-      (let [at (+ group.base row)
-            index (.. (or group.index "i") " * " group.stride (if (= at 0) "" (.. " + " at)))]
-        ;; In a loop over a grid cell's list, a member's first row sits at its slot;
-        ;; a bank in a texture (src/sdf/grid.fnl) is read through bankRow.
-        (if (and group.slot (= row 0)) (.. "gridFirst(" group.slot ")")
-            group.texture? (.. "bankRow(" index ")")
-            (.. "uInstances[" index "]")))
-      (do (tset rows-read row true)
-          (.. "uTape[" row "]"))))
+(fn row-expr [cx row]
+  (let [group cx.group]
+    (if group
+        (let [at (+ group.base row)
+              index (.. (or group.index "i") " * " group.stride (if (= at 0) "" (.. " + " at)))]
+          ;; In a loop over a grid cell's list, a member's first row sits at its slot;
+          ;; a bank in a texture (src/sdf/grid.fnl) is read through bankRow.
+          (if (and group.slot (= row 0)) (.. "gridFirst(" group.slot ")")
+              group.texture? (.. "bankRow(" index ")")
+              (.. "uInstances[" index "]")))
+        (do (tset cx.rows-read row true)
+            (.. "uTape[" row "]")))))
 
-(fn arg-expr [ref]
+(fn arg-expr [cx ref]
   (if ref.literal (literal ref.literal)
       (let [s (fcollect [i 1 ref.size] (. swizzles (+ ref.offset i)))]
-        (.. (row-expr ref.row) "." (table.concat s)))))
+        (.. (row-expr cx ref.row) "." (table.concat s)))))
 
-(fn args-list [args]
-  (icollect [_ a (ipairs args)] (arg-expr a)))
+(fn args-list [cx args]
+  (icollect [_ a (ipairs args)] (arg-expr cx a)))
 
-(fn reg [name]
+(fn reg [cx name]
   ;; p0 is map()'s own point; a group whose bank is in a texture reads its rows
   ;; about the bank's anchor, so its members are evaluated at pg = p - uBankOrigin.
-  (if (= name "p0") (or (?. group :p0) (if (?. group :texture?) "pg" "p")) name))
+  (let [group cx.group]
+    (if (= name "p0") (or (?. group :p0) (if (?. group :texture?) "pg" "p")) name)))
 
-(fn call [fname first args ?last]
-  (let [parts [first (unpack (args-list args))]]
+(fn call [cx fname first args ?last]
+  (let [parts [first (unpack (args-list cx args))]]
     (when ?last (table.insert parts ?last))
     (.. fname "(" (table.concat parts ", ") ")")))
 
@@ -71,24 +87,18 @@ with a decimal point or an exponent."
 
 (var emit-code nil)
 
-;; Material registers: vec4 (colour, mirror amount), or in the modern model mat2x4
-;; (that, then roughness and emission): see :material-size in src/sdf/lower.fnl.
-(local material-types {4 {:type "vec4" :zero "vec4(0.0)" :mix "mix"}
-                       8 {:type "mat2x4" :zero "mat2x4(0.0)" :mix "mixMaterial"}})
-
-(var mt (. material-types 4))
-
-(fn emit-cells [out ins materials?]
+(fn emit-cells [cx out ins materials?]
   ;; The child in each cell, the nearest kept.
   (let [c (.. "c" (ins.dout:sub 2))
-      body []]
+        mt cx.mt
+        body []]
     (table.insert out (.. "float " ins.dout " = 10000000000.0;"))
     (when materials? (table.insert out (.. mt.type " " ins.mout " = " mt.zero ";")))
     (table.insert out (.. "for (int " c " = 0; " c " < " ins.count "; " c "++) {"))
     ;; The cell index is the last argument.
     (table.insert body (.. "vec3 " ins.cell-p " = "
-                           (call ins.desc.glsl-name (reg ins.pin) ins.args c) ";"))
-    (emit-code body ins.body materials?)
+                           (call cx ins.desc.glsl-name (reg cx ins.pin) ins.args c) ";"))
+    (emit-code cx body ins.body materials?)
     (if materials?
         (table.insert body (.. "if (" ins.body-d " < " ins.dout ") { " ins.dout " = "
                                ins.body-d "; " ins.mout " = " ins.body-m "; }"))
@@ -96,7 +106,7 @@ with a decimal point or an exponent."
     (each [_ l (ipairs body)] (table.insert out (.. "    " l)))
     (table.insert out "}")))
 
-(fn emit-near-cells [out ins materials?]
+(fn emit-near-cells [cx out ins materials?]
   ;; The child in the point's own cell (0), each neighbour's copy by its box (see
   ;; :near? in src/sdf/lower.fnl); a neighbour clamped onto the own cell (past the
   ;; end of a limited repetition) counts no box.
@@ -105,16 +115,16 @@ with a decimal point or an exponent."
         body []
         near []]
     (table.insert out (.. "float " ins.dout ";"))
-    (when materials? (table.insert out (.. mt.type " " ins.mout ";")))
+    (when materials? (table.insert out (.. cx.mt.type " " ins.mout ";")))
     (table.insert out "{")
     (table.insert body (.. "vec3 " ins.cell-p " = "
-                           (call ins.desc.glsl-name (reg ins.pin) ins.args "0") ";"))
-    (emit-code body ins.body materials?)
+                           (call cx ins.desc.glsl-name (reg cx ins.pin) ins.args "0") ";"))
+    (emit-code cx body ins.body materials?)
     (table.insert body (.. ins.dout " = " ins.body-d ";"))
     (when materials? (table.insert body (.. ins.mout " = " ins.body-m ";")))
     (table.insert body (.. "for (int " c " = 1; " c " < " ins.count "; " c "++) {"))
-    (table.insert near (.. "vec3 " p " = " (call ins.desc.glsl-name (reg ins.pin) ins.args c) ";"))
-    (emit-code near code false)
+    (table.insert near (.. "vec3 " p " = " (call cx ins.desc.glsl-name (reg cx ins.pin) ins.args c) ";"))
+    (emit-code cx near code false)
     (table.insert near (.. ins.dout " = min(" ins.dout ", " p " == " ins.cell-p
                            " ? 10000000000.0 : " bout ");"))
     (each [_ l (ipairs near)] (table.insert body (.. "    " l)))
@@ -122,78 +132,81 @@ with a decimal point or an exponent."
     (each [_ l (ipairs body)] (table.insert out (.. "    " l)))
     (table.insert out "}")))
 
-(fn emit-instr [out ins materials?]
+(fn emit-blend [cx out ins materials?]
+  ;; A loop over the members' rows in the instance bank (see :blend in lower.fnl),
+  ;; or over those the point's grid cell lists, the others bounded.
+  (let [n (ins.dout:sub 2)
+        j (.. "j" n)
+        mt cx.mt
+        args (args-list cx ins.args)
+        fold (fn [da db] (table.concat [da db (unpack args)] ", "))
+        {: code :d bd :m bm} ins.members
+        member-cx (derived cx :group {:base ins.base :stride ins.stride :index j
+                                      :texture? ins.texture? :p0 (reg cx "p0")
+                                      :slot (when ins.grid (.. "s" n " + k" n))})
+        body (emit-code member-cx [] code materials?)
+        add (fn [indent line] (table.insert out (.. (string.rep "    " indent) line)))
+        inner (if ins.grid 2 1)]
+    (add 0 (.. "float " ins.dout " = uDrawDist;"))
+    (when materials? (add 0 (.. mt.type " " ins.mout " = " mt.zero ";")))
+    (if ins.grid
+        ;; The children the point's cell lists, the others' bound (grid.glsl).
+        (do (add 0 "{")
+            (add 1 (.. "int s" n ";"))
+            (add 1 (.. "int c" n ";"))
+            (add 1 (.. "float b" n " = "
+                       (if (and cx.along? ins.along?)
+                           (.. "gridCellAlong(" ins.grid ", " (reg cx ins.pin) ", rd, s" n ", c" n ");")
+                           (.. "gridCell(" ins.grid ", " (reg cx ins.pin) ", s" n ", c" n ");"))))
+            (add 1 (.. "for (int k" n " = 0; k" n " < c" n "; k" n "++) {"))
+            (add 2 (.. "int " j " = gridMember(s" n " + k" n ");")))
+        (add 0 (.. "for (int " j " = 0; " j " < " ins.count "; " j "++) {")))
+    (each [_ l (ipairs body)] (add inner l))
+    (when materials?
+      (add inner (.. ins.mout " = " mt.mix "(" bm ", " ins.mout ", "
+                     (weight-name ins.desc) "(" (fold ins.dout bd) "));")))
+    (add inner (.. ins.dout " = " ins.desc.glsl-name "(" (fold ins.dout bd) ");"))
+    (add (- inner 1) "}")
+    (when ins.grid
+      (add 1 (.. ins.dout " = min(" ins.dout ", b" n ");"))
+      (add 0 "}"))))
+
+(fn emit-instr [cx out ins materials?]
   (case ins.op
     :prim (table.insert out (.. "float " ins.dout " = "
-                                (call ins.desc.glsl-name (reg ins.pin) ins.args) ";"))
+                                (call cx ins.desc.glsl-name (reg cx ins.pin) ins.args) ";"))
     :material (when materials?
                 (let [lit ins.literal
                       row (fn [k] (if lit (literal (fcollect [i 1 4] (. lit (+ (* 4 k) i))))
-                                      (row-expr (+ ins.row k))))]
-                  (table.insert out (if (= mt.type "vec4")
+                                      (row-expr cx (+ ins.row k))))]
+                  (table.insert out (if (= cx.mt.type "vec4")
                                         (.. "vec4 " ins.mout " = " (row 0) ";")
                                         (.. "mat2x4 " ins.mout " = mat2x4(" (row 0) ", " (row 1)
                                             ");")))))
     :point (table.insert out (.. "vec3 " ins.pout " = "
-                                 (call ins.desc.glsl-name (reg ins.pin) ins.args) ";"))
+                                 (call cx ins.desc.glsl-name (reg cx ins.pin) ins.args) ";"))
     :post (table.insert out (.. "float " ins.dout " = "
-                                (call ins.desc.glsl-name (.. ins.din ", " (reg ins.pin)) ins.args) ";"))
+                                (call cx ins.desc.glsl-name (.. ins.din ", " (reg cx ins.pin)) ins.args) ";"))
     :distance (table.insert out (.. "float " ins.dout " = "
-                                    (call ins.desc.glsl-name
-                                          (.. ins.din ", " (reg ins.pin)) ins.args) ";"))
+                                    (call cx ins.desc.glsl-name
+                                          (.. ins.din ", " (reg cx ins.pin)) ins.args) ";"))
     :far (table.insert out (.. "float " ins.dout " = max(" ins.din ", " ins.bin ");"))
     :divide (table.insert out (string.format "float %s = %s * %.9g;  // Lipschitz %.6g"
                                              ins.dout ins.din (/ 1 ins.k) ins.k))
     :combine (do
                (table.insert out (.. "float " ins.dout " = "
-                                     (call ins.desc.glsl-name (.. ins.da ", " ins.db) ins.args) ";"))
+                                     (call cx ins.desc.glsl-name (.. ins.da ", " ins.db) ins.args) ";"))
                (when materials?
-                 (table.insert out (.. mt.type " " ins.mout " = " mt.mix "(" ins.mb ", " ins.ma ", "
-                                       (call (weight-name ins.desc) (.. ins.da ", " ins.db) ins.args)
+                 (table.insert out (.. cx.mt.type " " ins.mout " = " cx.mt.mix "(" ins.mb ", " ins.ma ", "
+                                       (call cx (weight-name ins.desc) (.. ins.da ", " ins.db) ins.args)
                                        ");"))))
-    :cells (if ins.near? (emit-near-cells out ins materials?) (emit-cells out ins materials?))
-    :blend (let [n (ins.dout:sub 2)
-                 j (.. "j" n)
-                 args (args-list ins.args)
-                 fold (fn [da db] (table.concat [da db (unpack args)] ", "))
-                 {: code :d bd :m bm} ins.members
-                 outer group
-                 body (do (set group {:base ins.base :stride ins.stride :index j
-                                      :texture? ins.texture? :p0 (reg "p0")
-                                      :slot (when ins.grid (.. "s" n " + k" n))})
-                          (let [(ok? lines) (pcall emit-code [] code materials?)]
-                            (set group outer)
-                            (if ok? lines (error lines 0))))
-                 add (fn [indent line] (table.insert out (.. (string.rep "    " indent) line)))
-                 inner (if ins.grid 2 1)]
-             (add 0 (.. "float " ins.dout " = uDrawDist;"))
-             (when materials? (add 0 (.. mt.type " " ins.mout " = " mt.zero ";")))
-             (if ins.grid
-                 ;; The children the point's cell lists, the others' bound (grid.glsl).
-                 (do (add 0 "{")
-                     (add 1 (.. "int s" n ";"))
-                     (add 1 (.. "int c" n ";"))
-                     (add 1 (.. "float b" n " = "
-                                (if (and along? ins.along?)
-                                    (.. "gridCellAlong(" ins.grid ", " (reg ins.pin) ", rd, s" n ", c" n ");")
-                                    (.. "gridCell(" ins.grid ", " (reg ins.pin) ", s" n ", c" n ");"))))
-                     (add 1 (.. "for (int k" n " = 0; k" n " < c" n "; k" n "++) {"))
-                     (add 2 (.. "int " j " = gridMember(s" n " + k" n ");")))
-                 (add 0 (.. "for (int " j " = 0; " j " < " ins.count "; " j "++) {")))
-             (each [_ l (ipairs body)] (add inner l))
-             (when materials?
-               (add inner (.. ins.mout " = " mt.mix "(" bm ", " ins.mout ", "
-                              (weight-name ins.desc) "(" (fold ins.dout bd) "));")))
-             (add inner (.. ins.dout " = " ins.desc.glsl-name "(" (fold ins.dout bd) ");"))
-             (add (- inner 1) "}")
-             (when ins.grid
-               (add 1 (.. ins.dout " = min(" ins.dout ", b" n ");"))
-               (add 0 "}")))
+    :cells (if ins.near? (emit-near-cells cx out ins materials?) (emit-cells cx out ins materials?))
+    :blend (emit-blend cx out ins materials?)
     _ (error (.. "emit-glsl: unknown instruction " (tostring ins.op)))))
 
 (set emit-code
-     (fn [out code materials?]
-       (each [_ ins (ipairs code)] (emit-instr out ins materials?))
+     (fn [cx out code materials?]
+       (each [_ ins (ipairs code)] (emit-instr cx out ins materials?))
        out))
 
 (fn text-lines [text]
@@ -278,21 +291,21 @@ constant indices, and the instance groups', in loops."
     (add lines)
     out))
 
-(fn guarded-lines [o materials? tail]
+(fn guarded-lines [cx o materials? tail]
   "Lines of object `o`'s code, then the lines `tail` (which use its distance). With a
 guard (see src/sdf/lower.fnl), the code after the guard's box and `tail` run only
 where that box is nearer than d: elsewhere the object's value, at least the box's,
 could not lower d."
   (if o.guard
-      (let [head (emit-code [] (fcollect [i 1 o.guard.head] (. o.code i)) materials?)
-            rest (emit-code [] (fcollect [i (+ o.guard.head 1) (length o.code)] (. o.code i))
+      (let [head (emit-code cx [] (fcollect [i 1 o.guard.head] (. o.code i)) materials?)
+            rest (emit-code cx [] (fcollect [i (+ o.guard.head 1) (length o.code)] (. o.code i))
                             materials?)]
         (table.insert head (.. "if (" o.guard.bout " < d) {"))
         (each [_ l (ipairs (indented rest))] (table.insert head l))
         (each [_ l (ipairs (indented tail))] (table.insert head l))
         (table.insert head "}")
         head)
-      (let [lines (emit-code [] o.code materials?)]
+      (let [lines (emit-code cx [] o.code materials?)]
         (each [_ l (ipairs tail)] (table.insert lines l))
         lines)))
 
@@ -301,40 +314,39 @@ could not lower d."
   ;; from `first`.
   (if o.instances (.. (+ first o.id) " + i") (tostring (+ first o.id))))
 
-(fn in-group [o lines-fn ?slot]
-  ;; `(lines-fn)` emitted with `o`'s rows (an instance group's bank while it runs;
-  ;; in a loop over a grid cell's list, the first row at the list slot ?slot).
-  (set group (if ?slot (doto (collect [k v (pairs o.instances)] k v) (tset :slot ?slot)) o.instances))
-  (let [(ok? lines) (pcall lines-fn)]
-    (set group nil)
-    (if ok? lines (error lines 0))))
+(fn in-group [cx o lines-fn ?slot]
+  ;; `(lines-fn cx2)` with cx2 reading `o`'s rows (an instance group's bank; in a
+  ;; loop over a grid cell's list, the first row at the list slot ?slot).
+  (lines-fn (derived cx :group (if ?slot
+                                   (doto (collect [k v (pairs o.instances)] k v) (tset :slot ?slot))
+                                   o.instances))))
 
 (fn bank-point [o]
   ;; A group whose bank is in a texture evaluates its members at pg (see reg).
   (if (?. o :instances :texture?) ["vec3 pg = p - uBankOrigin;"] []))
 
-(fn looped [o block-fn]
-  ;; `(block-fn)`'s lines for object `o` after its comment: once, or for an instance
-  ;; group in a loop over its members, read from its bank. A group with a grid
-  ;; (src/sdf/grid.fnl) loops over the members its cell at pg lists, after folding
-  ;; the lower bound of the others into d (in mapColor too: it lowers d, never the
-  ;; colour, as no surface is nearer than it).
+(fn looped [cx o block-fn]
+  ;; `(block-fn cx2)`'s lines for object `o` after its comment: once, or for an
+  ;; instance group in a loop over its members, read from its bank. A group with a
+  ;; grid (src/sdf/grid.fnl) loops over the members its cell at pg lists, after
+  ;; folding the lower bound of the others into d (in mapColor too: it lowers d, never
+  ;; the colour, as no surface is nearer than it).
   (let [g (?. o :instances :grid)
-        block (in-group o block-fn (when g "gridStart + k"))]
+        block (if o.instances (in-group cx o block-fn (when g "gridStart + k")) (block-fn cx))]
     [(object-comment o)
      (if g
          ["{"
           (indented [(bank-point o)
                      "int gridStart;"
                      "int gridCount;"
-                     (if along?
+                     (if cx.along?
                          (.. "float gridBound = gridCellAlong(" g ", pg, rd, gridStart, gridCount);")
                          (.. "float gridBound = gridCell(" g ", pg, gridStart, gridCount);"))
                      "d = min(d, gridBound);"
                      "for (int k = 0; k < gridCount; k++) {"
                      (indented [;; A march skips a member it is far from by the
                                 ;; ray's entry into its bounding sphere (gridSkip).
-                                (if along?
+                                (if cx.along?
                                     [(.. "float gridStep = gridSkip(" g ", gridStart + k, pg, rd);")
                                      "if (gridStep >= 0.0) {"
                                      "    d = min(d, gridStep);"
@@ -350,12 +362,12 @@ could not lower d."
            (if o.instances.texture? ["{" (indented [(bank-point o) loop]) "}"] loop))
          block)]))
 
-(fn object-block [o first materials? open tail]
+(fn object-block [cx o first materials? open tail]
   "Lines for one object of a minimum: its code and then `(tail id)` (lines using its
 distance), in a block opened by `(open id)`; an instance group's in a loop over its
 members. `id`: the object's number as GLSL (see id-expr)."
   (let [id (id-expr o first)]
-    (looped o #[(open id) (indented (guarded-lines o materials? (tail id))) "}"])))
+    (looped cx o #[(open id) (indented (guarded-lines $ o materials? (tail id))) "}"])))
 
 (fn open-block [] "{")
 
@@ -384,31 +396,29 @@ members. `id`: the object's number as GLSL (see id-expr)."
 (fn objects-of [tape ?which]
   (icollect [_ o (ipairs tape.objects)] (when (or (not ?which) (?which o)) o)))
 
-(fn distance-terms [tape ?which ?along?]
-  "Lines for map(): each tree object's distance (each for which `?which` is true),
-folded into d. With `?along?`, a march's: rd is its ray's direction, and a grid's
-bound reaches along it (see gridCellAlong)."
-  (set along? (= true ?along?))
-  (let [(ok? lines) (pcall #(icollect [_ o (ipairs (objects-of tape ?which))]
-                              (if o.field (field-minimum "-1")
-                                  (object-block o 0 false open-block #[(.. "d = min(d, " o.dout ");")]))))]
-    (set along? false)
-    (if ok? lines (error lines 0))))
+(fn distance-terms [cx tape ?which ?along?]
+  "Lines for map(), emitted with context `cx` (see new-context): each tree object's
+distance (each for which `?which` is true), folded into d. With `?along?`, a march's:
+rd is its ray's direction, and a grid's bound reaches along it (see gridCellAlong)."
+  (let [cx (derived cx :along? (= true ?along?))]
+    (icollect [_ o (ipairs (objects-of tape ?which))]
+      (if o.field (field-minimum "-1")
+          (object-block cx o 0 false open-block #[(.. "d = min(d, " o.dout ");")])))))
 
-(fn others-terms [tape first]
+(fn others-terms [cx tape first]
   "Lines for mapOthers(): map's minimum, each object but the one gObject numbers
 (objects counted from `first`, as color-terms does)."
   (icollect [_ o (ipairs tape.objects)]
     (if o.field (field-minimum (field-index (+ first o.id)))
-        (object-block o first false #(.. "if (gObject != " $ ") {") #[(.. "d = min(d, " o.dout ");")]))))
+        (object-block cx o first false #(.. "if (gObject != " $ ") {") #[(.. "d = min(d, " o.dout ");")]))))
 
-(fn color-terms [tape mirrors? ?first]
+(fn color-terms [cx tape mirrors? ?first]
   "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
 its mirror amount in gMirror when `mirrors?`; with two-row materials, always, and
 the second row in gMaterial). With `?first`, also its number in gObject: the
 objects are numbered from it in tape order, an instance group's members one each."
-  (set mt (. material-types tape.material-size))
-  (let [modern? (= tape.material-size 8)]
+  (let [cx (derived cx :mt (. material-types tape.material-size))
+        modern? (= tape.material-size 8)]
     (icollect [_ o (ipairs tape.objects)]
       (let [row (when o.mout (if modern? (.. o.mout "[0]") o.mout))]
         (if o.field
@@ -424,40 +434,40 @@ objects are numbered from it in tape order, an instance group's members one each
                  [])
              "    }"
              "}"]
-        (object-block o (or ?first 0) true open-block
+        (object-block cx o (or ?first 0) true open-block
                       #[(.. "if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
                             (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
                             (if modern? (.. " gMaterial = " o.mout "[1];") "")
                             (if ?first (.. " gObject = " $ ";") "") " }")]))))))
 
-(fn selected [o first lines-fn]
-  ;; Lines run when gObject is object `o`'s number (one of its group's: then with
-  ;; `i` its member's), objects counted from `first`.
+(fn selected [cx o first lines-fn]
+  ;; `(lines-fn cx2)`, run when gObject is object `o`'s number (one of its group's:
+  ;; then with `i` its member's), objects counted from `first`.
   (let [id (+ first o.id)]
     (if o.instances
         [(.. "if (gObject >= " id " && gObject < " (+ id o.instances.count) ") {  "
              (object-comment o))
          (indented [(.. "int i = gObject" (if (= id 0) "" (.. " - " id)) ";")
                     (bank-point o)
-                    (in-group o lines-fn)])
+                    (in-group cx o lines-fn)])
          "}"]
         [(.. "if (gObject == " id ") {  " (object-comment o))
-         (indented (lines-fn))
+         (indented (lines-fn cx))
          "}"])))
 
-(fn object-terms [tape first]
+(fn object-terms [cx tape first]
   "Lines for mapObject(): each tree object's distance alone, returned when gObject
 holds its number (numbered from `first` as color-terms does)."
   (icollect [_ o (ipairs tape.objects)]
     (if o.field (field-selected o first "return fieldObject")
-        (selected o first #[(emit-code [] o.code false) (.. "return " o.dout ";")]))))
+        (selected cx o first #[(emit-code $ [] o.code false) (.. "return " o.dout ";")]))))
 
-(fn leaf-gradient [o action]
+(fn leaf-gradient [cx o action]
   ;; A leaf object's exact normal: its translations, then its primitive's gradient
   ;; (see lower.fnl's :leaf); `action` is "n = " or "return ".
   (let [{: points : prim} o.leaf]
-    [(emit-code [] points false)
-     (.. action (call (gradient-name prim.desc) (reg prim.pin) prim.args) ";")]))
+    [(emit-code cx [] points false)
+     (.. action (call cx (gradient-name prim.desc) (reg cx prim.pin) prim.args) ";")]))
 
 (fn exact? [o]
   "Whether object `o` has its exact normal in closed form: a leaf whose primitive has
@@ -466,14 +476,14 @@ box's; a field with marched members takes differences for all of them)."
   (if o.field (= 0 (length o.field.kinds.marched))
       (not= nil (?. o :leaf :prim :desc :gradient-glsl))))
 
-(fn gradient-terms [tape first action]
+(fn gradient-terms [cx tape first action]
   "Lines for calcNormal: each object with an exact normal (exact?) gives it when
 gObject is its number (counted from `first`); `action` is \"n = \" or \"return \"."
   (icollect [_ o (ipairs tape.objects)]
     (if o.field (when (exact? o) (field-selected o first (.. action "fieldNormal")))
-        (exact? o) (selected o first #(leaf-gradient o action)))))
+        (exact? o) (selected cx o first #(leaf-gradient $ o action)))))
 
-(fn plane-terms [tape]
+(fn plane-terms [cx tape]
   "Lines for planesHit(ro, rd): each half-space object (lower.fnl's :half-space?: a
 leaf whose primitive is solid below a plane, met in closed form) lowers t to where
 the ray enters it: 0 from inside, t = -s / v for s its distance at the origin and v
@@ -481,18 +491,18 @@ the ray's rate along its normal (the gradient). `p` is the ray's origin."
   (icollect [_ o (ipairs tape.objects)]
     (when o.half-space?
       (let [{: points : prim} o.leaf]
-        (looped o #["{"
-                    (indented [(emit-code [] points false)
-                               (.. "float s = " (call prim.desc.glsl-name (reg prim.pin) prim.args) ";")
-                               (.. "float v = dot(rd, " (call (gradient-name prim.desc) (reg prim.pin)
-                                                                prim.args) ");")
-                               "if (s <= 0.0) {"
-                               "    t = 0.0;"
-                               "} else if (v < 0.0) {"
-                               "    t = min(t, -s / v);"
-                               "}"])
-                    "}"])))))
+        (looped cx o #["{"
+                       (indented [(emit-code $ [] points false)
+                                  (.. "float s = " (call $ prim.desc.glsl-name (reg $ prim.pin) prim.args) ";")
+                                  (.. "float v = dot(rd, " (call $ (gradient-name prim.desc) (reg $ prim.pin)
+                                                                   prim.args) ");")
+                                  "if (s <= 0.0) {"
+                                  "    t = 0.0;"
+                                  "} else if (v < 0.0) {"
+                                  "    t = min(t, -s / v);"
+                                  "}"])
+                       "}"])))))
 
-{: functions : gradient-functions : declarations : declare : reset-reads! : reads : distance-terms : others-terms
- : color-terms : object-terms : gradient-terms : plane-terms : exact? : text-lines
- : float-literal}
+{: functions : gradient-functions : declarations : declare : new-context : reads
+ : distance-terms : others-terms : color-terms : object-terms : gradient-terms : plane-terms
+ : exact? : text-lines : float-literal}
