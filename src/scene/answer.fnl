@@ -25,6 +25,8 @@
 (local sandbox (require :src.scene.sandbox))
 (local custom (require :src.sdf.custom))
 (local translate (require :src.sdf.translate))
+(local primitives (require :src.sdf.primitives))
+(local operations (require :src.sdf.operations))
 
 (local max-depth load.limits.max-depth)
 ;; A field's path: :objects, an index, then :children and an index per level, a
@@ -150,6 +152,30 @@
   (and (= (length a) (length b))
        (accumulate [ok? true j k (ipairs a)] (and ok? (= k (. b j))))))
 
+;;; Directions: the loader divides a direction by its length, and a unit vector divided
+;;; again may move by a unit in the last place. The worker's vector is kept where it is
+;;; the loader's within rounding, so a scene is the same whichever process loaded it.
+
+(fn rounding-of [checked given]
+  ;; `given` (or what it stands for: see place-functions!) when it is three numbers
+  ;; within rounding of `checked`'s, else `checked`.
+  (local raw (if (= (type given) :function) (given) given))
+  (if (and (= (type checked) :table) (= (type raw) :table) (= 3 (length checked))
+           (accumulate [ok? true k c (ipairs checked)]
+             (and ok? (finite? (. raw k)) (<= (math.abs (- (. raw k) c)) 1e-15))))
+      [(. raw 1) (. raw 2) (. raw 3)]
+      checked))
+
+(fn keep-directions! [out given depth]
+  ;; Tree node `out` (the loader's) given as `given` (the worker's, as written).
+  (when (and (= (type given) :table) (<= depth max-depth))
+    (let [desc (or (primitives.lookup out.kind) (operations.lookup out.kind))]
+      (each [_ p (ipairs (or (?. desc :params) []))]
+        (when (= p.type :direction)
+          (tset out p.name (rounding-of (. out p.name) (. given p.name))))))
+    (each [i c (ipairs (or out.children []))]
+      (keep-directions! c (?. given :children i) (+ depth 1)))))
+
 ;;; Parameters
 
 (fn checked-params [file list]
@@ -222,6 +248,10 @@ was refused: FIELD: reason'. Takes the answer's tables apart."
                                          (and ok? (same-path? a.path (. paths i))))))
                               (values nil (refused file "animated: not the scene's functions of time, in order"))
                               (do (set out.file file)
+                                  (each [i l (ipairs (or (?. out.lighting :lights) []))]
+                                    (set l.direction (rounding-of l.direction (?. scene.lighting :lights i :direction))))
+                                  (each [i o (ipairs out.objects)]
+                                    (when o.tree (keep-directions! o.tree (. scene.objects i) 1)))
                                   (set out.animated
                                        (when (> (length animated) 0)
                                          (icollect [_ a (ipairs animated)] {:path a.path :checker a.checker})))
@@ -240,7 +270,7 @@ and a message naming the field."
         (do (var err nil)
             (let [out (icollect [i a (ipairs scene.animated) &until err]
                         (let [(ok? v) (pcall a.checker (. vals i))]
-                          (if ok? v
+                          (if ok? (rounding-of v (. vals i))
                               (do (set err (if (and (= (type v) :table) v.scene-error)
                                                (reword scene.file (load.safe-message v.scene-error))
                                                (refused scene.file (.. "animated[" i "]: not a value"))))
