@@ -91,8 +91,12 @@
 ;; roughness and emission. Unset, a surface is matte white plastic.
 (local modern-material [1 1 1 0 0.5 0 0 0])
 
-(fn new-state [?modern? ?far-field? ?infos]
+(fn new-state [?modern? ?far-field? ?infos ?blends]
+  ;; :blends: the blends of the `lower` under way, shared by every state it makes:
+  ;; their children's rows (appended to the instance bank after the groups') and
+  ;; their instructions (nil: no blends, as when folding).
   {:rows [] :relative [] :inner [] :derived [] :used {} :used-list [] :counter 0 :key []
+   :blends ?blends
    ;; Point registers that are the shader's point translated only (a blend's grid
    ;; may then bound its children along a march's ray: see blend!).
    :translated {}
@@ -183,10 +187,6 @@ translate(rotate(scale(node)))."
 ;; reason: a loop with a grid costs less than the children written out from there.
 (local min-blend (. (require :src.sdf.grid) :min-members))
 
-;; The blends of the `lower` under way: their children's rows (appended to the
-;; instance bank after the groups') and their instructions.
-(var blends nil)
-
 (fn lower-primitive [st code node desc pin material]
   (let [desc (or (and desc.variant (desc.variant node)) desc)
         dout (fresh! st "d")
@@ -270,7 +270,7 @@ first when `?centre?` (else the box is taken as centred); return the register."
 (fn child-info [st child]
   (when (= nil (. st.infos child))
     (tset st.infos child
-          (. (lower-node (doto (new-state st.modern? st.far-field? st.infos) (tset :aside? true)) [] child "p0"
+          (. (lower-node (doto (new-state st.modern? st.far-field? st.infos st.blends) (tset :aside? true)) [] child "p0"
                          (if st.modern? modern-material default-material))
              :info)))
   (. st.infos child))
@@ -298,20 +298,20 @@ distance step after them), as a set: where a blend may stand (see blend!)."
 (fn blend! [st code node desc form args-values pin material]
   "For a union or polynomial smooth union of at least min-blend children of one
 structure (equal keys) that all have a box: append a :blend instruction to `code`
-(one loop over the children's rows in the blend bank, see `blends`) and return what
+(one loop over the children's rows in the blend bank, see new-state's :blends) and return what
 lowering the node gives ({:dout :mout :children :blend?}); else nil, and nothing is
 changed."
   ;; Only where its value reaches the object's through unions and point operations
   ;; (st.min-context: a grid's lower bound for unlisted children then only shortens
   ;; steps); and not when a node inside will be a blend itself: its rows, lowered
   ;; aside, would not be laid out as the loop's body reads them.
-  (when (and blends (not st.aside?) (. (or st.min-context {}) node.path)
+  (when (and st.blends (not st.aside?) (. (or st.min-context {}) node.path)
              (>= (length node.children) min-blend)
              (or (= desc.kind :union)
                  (and (= desc.kind :smooth-union) (= form.glsl-name "opSmoothUnion")))
              (not (blend-inside? st.min-context node)))
     (let [aside (icollect [_ c (ipairs node.children)]
-                  (let [cst (doto (new-state st.modern? st.far-field? st.infos) (tset :aside? true))
+                  (let [cst (doto (new-state st.modern? st.far-field? st.infos st.blends) (tset :aside? true))
                         r (lower-node cst [] c "p0" material)]
                     {: cst :info r.info :key (table.concat cst.key " ")}))
           first (. aside 1)
@@ -321,10 +321,10 @@ changed."
       (when same?
         ;; The loop's body: the first child lowered again in this state's register
         ;; names (its rows from 0, read from the bank), reading the node's point.
-        (let [bst (doto (new-state st.modern? st.far-field? st.infos) (tset :counter st.counter))
+        (let [bst (doto (new-state st.modern? st.far-field? st.infos st.blends) (tset :counter st.counter))
               body []
               r (lower-node bst body (. node.children 1) pin material)
-              base (length blends.bank.rows)
+              base (length st.blends.bank.rows)
               args (alloc-args! st desc args-values)
               dout (fresh! st "d")
               mout (fresh! st "m")]
@@ -334,7 +334,7 @@ changed."
           (use! st form.glsl-name form)
           (each [_ a (ipairs aside)]
             (when a.cst.mirrors? (set st.mirrors? true))
-            (each [_ row (ipairs a.cst.rows)] (table.insert blends.bank.rows row)))
+            (each [_ row (ipairs a.cst.rows)] (table.insert st.blends.bank.rows row)))
           (let [ins {:op :blend :desc form : args : pin : dout : mout :count (length aside)
                      : base :stride (length first.cst.rows)
                      :members {:code body :d r.dout :m r.mout}
@@ -345,10 +345,10 @@ changed."
                      ;; value, at the shader's point translated).
                      :along? false}]
             (table.insert code ins)
-            (table.insert blends.list ins)
+            (table.insert st.blends.list ins)
             ;; Numbered: objects holding blends are never one group (each blend
             ;; reads its own children's rows).
-            (table.insert st.key (.. "blend#" (length blends.list) "[" first.key "]"))
+            (table.insert st.key (.. "blend#" (length st.blends.list) "[" first.key "]"))
             {: dout : mout :blend? true :children (icollect [_ a (ipairs aside)] a.info)}))))))
 
 (fn symmetric-of [desc node children]
@@ -843,9 +843,9 @@ own fields) the same leaf as a node, placed by :pos and coloured by :color."
       (table.insert bank.derived {:row (at dv.row) :centre (at dv.centre)}))
     offset))
 
-(fn lower-one [options infos node]
+(fn lower-one [options infos node blends]
   ;; Object `node` lowered alone: its state (rows from 0) and its tape object.
-  (let [st (new-state options.modern? options.far-field? infos)
+  (let [st (new-state options.modern? options.far-field? infos blends)
         large? (and (large-sphere.large? node) (= nil node.scale))
         o (if large? (lower-large-sphere st node) (lower-object st node))]
     (set o.leaf (leaf-of o.code o.dout))
@@ -864,12 +864,12 @@ those of `hand-in`) into the code as constants (:literal on arguments and materi
 and into the key; an instance group's values stay in its bank. Option :field, a list
 of the article's flat spheres and boxes (scene objects, not in `objects`), draws them
 as a field: the first tape object (see Strategies above)."
-  (set blends {:bank (new-bank) :list []})
-  (let [options (or ?options {})
+  (let [blends {:bank (new-bank) :list []}
+        options (or ?options {})
         field (when (and options.field (> (length options.field) 0)) (field-object options.field))
         infos {}
         (ok? lowered) (pcall #(icollect [_ node (ipairs objects)]
-                                (let [(st o) (lower-one options infos node)]
+                                (let [(st o) (lower-one options infos node blends)]
                                   {: st : o :key (table.concat st.key " ")})))]
     (if (not ok?)
         (if (and (= (type lowered) :table) lowered.lower-error)
