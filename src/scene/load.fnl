@@ -197,16 +197,15 @@ Long words get none: no name is that long, and the distance would cost time."
           (let [(_ newlines) (: (text:sub 1 at) :gsub "\n" "")]
             (+ src.line newlines)))))))
 
-(fn ast-of [ctx]
-  ;; The parsed last form; a plain data file's is read again with source fields the
-  ;; first time a message needs a line (the load itself does without them).
-  (when (and (= nil ctx.ast) ctx.ast-fn)
-    (set ctx.ast (ctx.ast-fn)))
-  ctx.ast)
+(fn ast-of [ctx path]
+  ;; The parsed last form; a plain data file's is read again with source fields when
+  ;; a message needs a line (the load itself does without them), only the tables
+  ;; along `path` built.
+  (if (and (= nil ctx.ast) ctx.ast-fn) (ctx.ast-fn path) ctx.ast))
 
 (fn line-for [ctx path]
   "Best known line for `path`: the line of the deepest literal that matches it."
-  (var node (ast-of ctx))
+  (var node (ast-of ctx path))
   (var line (and node (= (type node) :table) (node-line node)))
   (var done? (not= (type node) :table))
   (each [_ key (ipairs path) &until done?]
@@ -841,7 +840,7 @@ a message; or false when it is code (load it with load-string, in the worker)."
       :code false
       (:data value text)
       (validated value {: file :source text :animated [] :time-budget {:left frame-steps}
-                        :ast-fn #(data.read text {:positions? true})})
+                        :ast-fn #(data.read text {:positions? true :path $1})})
       (nil msg) (values nil (safe-message msg)))))
 
 (fn load-code [source file ?options]
