@@ -70,29 +70,21 @@
 
 (fn translation [data]
   ;; What custom.capture gives, from the worker's data `data`: the texts, checked as
-  ;; the lowering checks them, with the GLSL named as the translator names it; or nil
-  ;; and why not.
-  (if (not (and (= (type data) :table) (= (type data.glsl) :string) (= (type data.lua) :string)
-                (= (type data.glsl-name) :string) (data.glsl-name:match "^sdCustom%d+$")
-                (= (type data.key) :string)))
-      (values nil "a custom node: its data is not a translation (refused)")
-      (not (and (list? data.params (length data.params)) (<= (length data.params) max-names)
-                (accumulate [ok? true _ n (ipairs data.params)] (and ok? (name? n)))
-                (= (length data.params)
-                   (accumulate [c 0 _ (pairs (collect [_ n (ipairs data.params)] n true))] (+ c 1)))))
-      (values nil "a custom node: its parameters are not a list of distinct names (refused)")
-      (not (and (finite? data.cost) (<= 0 data.cost translate.limits.cost)))
-      (values nil (.. "a custom node: its cost is not a number from 0 to " translate.limits.cost " (refused)"))
-      (not (and (finite? data.measured) (<= 0 data.measured load.limits.world)))
-      (values nil "a custom node: its measured factor is not a number from 0 to 1e7 (refused)")
-      (not (custom.check-glsl data.glsl data.glsl-name))
-      (values nil "a custom node: its GLSL is not the translator's (refused)")
-      (not (custom.check-lua data.lua))
-      (values nil "a custom node: its Lua is not the translator's (refused)")
-      (not= data.key (custom.digest data.glsl))
-      (values nil "a custom node: its digest does not match its GLSL (refused)")
-      {:glsl (pick-values 1 (data.glsl:gsub data.glsl-name "sdCustom"))
-       :lua data.lua :params data.params :cost data.cost}))
+  ;; the lowering checks them (custom.check-data: the translator's GLSL and Lua, and
+  ;; the digest), with the GLSL named as the translator names it; or nil and why not.
+  (case (custom.check-data data)
+    why (values nil (.. "a custom node: " why " (refused)"))
+    _ (if (not (and (list? data.params (length data.params)) (<= (length data.params) max-names)
+                    (accumulate [ok? true _ n (ipairs data.params)] (and ok? (name? n)))
+                    (= (length data.params)
+                       (accumulate [c 0 _ (pairs (collect [_ n (ipairs data.params)] n true))] (+ c 1)))))
+          (values nil "a custom node: its parameters are not a list of distinct names (refused)")
+          (not (and (finite? data.cost) (<= 0 data.cost translate.limits.cost)))
+          (values nil (.. "a custom node: its cost is not a number from 0 to " translate.limits.cost " (refused)"))
+          (not (and (finite? data.measured) (<= 0 data.measured load.limits.world)))
+          (values nil "a custom node: its measured factor is not a number from 0 to 1e7 (refused)")
+          {:glsl (pick-values 1 (data.glsl:gsub data.glsl-name "sdCustom"))
+           :lua data.lua :params data.params :cost data.cost})))
 
 ;;; The answer as a file writes it
 

@@ -466,5 +466,5 @@ descriptors of nodes with the same texts share their GLSL and their Lua function
       (doto (collect [k v (pairs (. cache key))] k v)
         (tset :lipschitz (or node.lipschitz 1))))))
 
-{: capture : measure : factor : digest : descriptor : find-form : check-lua : check-glsl
+{: capture : check-data : measure : factor : digest : descriptor : find-form : check-lua : check-glsl
  : limits}
