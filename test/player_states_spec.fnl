@@ -39,6 +39,11 @@
               (let [(code out) (run "OUT=test/out/check-stuck-worker bash tools/check-stuck-worker.sh")]
                 (print out)
                 (assert.are.equal 0 code out)
-                (assert.truthy (out:find "took more than 1 s of CPU (a library call that never returns?); the scene worker was stopped (the animation is paused; space plays)" 1 true) out)
+                ;; Killed by its CPU deadline, or, where the stand-in got under a
+                ;; sixth of a core (a busy 2-core machine), by the wall-clock backstop
+                ;; of six times that: either way the player says so and pauses.
+                (assert.truthy (or (out:find "took more than 1 s of CPU (a library call that never returns?); the scene worker was stopped (the animation is paused; space plays)" 1 true)
+                                   (out:find "got no answer within 6 s; the scene worker was stopped (the animation is paused; space plays)" 1 true))
+                               out)
                 (assert.truthy (out:match "quit [%d.]+ s after escape\n") out)
                 (assert.truthy (out:match "quit [%d.]+ s after escape during a load") out)))))))))
