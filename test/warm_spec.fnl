@@ -30,7 +30,11 @@
         (assert.are.equal "'it'\\''s; rm -rf x'" (warm.shell-quote "it's; rm -rf x"))
         (assert.are.equal
           "SDL_VIDEODRIVER=offscreen '/usr/bin/love' '/home/a b/game' --warm-server '/tmp/x$y' 4242 >/dev/null 2>&1"
-          (warm.helper-command "/usr/bin/love" "/home/a b/game" "/tmp/x$y" 4242))))
+          (warm.helper-command "/usr/bin/love" "/home/a b/game" "/tmp/x$y" 4242))
+        ;; The background lane's helper yields the cores to the player's frames.
+        (assert.are.equal
+          "SDL_VIDEODRIVER=offscreen nice -n 10 '/usr/bin/love' '/g' --warm-server '/tmp/d' 7 >/dev/null 2>&1"
+          (warm.helper-command "/usr/bin/love" "/g" "/tmp/d" 7 10))))
 
     (it "writes a job whole: under its own name only once complete"
       (fn []
@@ -76,6 +80,50 @@
           ;; A shader that cannot be generated needs no helper: the player reports it.
           (assert.is_true (warm.ready? w :d #(values nil "no shader")))
           (assert.are.same [:a :c] started))))
+
+    (it "lets an edit overtake the background lane: its waiting job dropped, its job at work cancelled"
+      (fn []
+        ;; Issue 42: the still's shader takes 3 to 30 s in a helper; an edit made
+        ;; meanwhile waited for it. Stand-in jobs finish when the test says so.
+        (let [started []
+              w {:enabled? true :settled {} :settled-count 0 :failures 0 :cancelled 0
+                 :background {}
+                 :start! (fn [lane key _source]
+                           (table.insert started key)
+                           (set lane.running {: key :check #(. {true :done false :failed}
+                                                               (?. lane.outcome key))})
+                           (set lane.outcome {})
+                           true)}]
+          ;; The folded shader at work in the background, the still's waiting behind it.
+          (assert.is_false (warm.ready? w :folded #"F" true))
+          (assert.is_false (warm.ready? w :still #"S" true))
+          (assert.are.equal :running (warm.status w :folded))
+          (assert.are.equal :queued (warm.status w :still))
+          (assert.are.same [:folded] started)
+          ;; The edit starts at once, in its own lane; the background is cancelled
+          ;; (unsettled: asked for again if it is wanted again).
+          (assert.is_false (warm.ready? w :edit #"E"))
+          (assert.are.same [:folded :edit] started)
+          (assert.are.equal :running (warm.status w :edit))
+          (assert.are.equal nil (warm.status w :folded))
+          (assert.are.equal nil (warm.status w :still))
+          (assert.are.equal 1 w.cancelled)
+          (assert.is_nil w.background.running)
+          ;; Asking again for a job at work cancels nothing (the player asks every frame).
+          (assert.is_false (warm.ready? w :later-background #"L" true))
+          (assert.is_false (warm.ready? w :edit #"E"))
+          (assert.are.equal :running (warm.status w :later-background))
+          (tset w.outcome :edit true)
+          (warm.poll! w)
+          (assert.are.equal :done (warm.status w :edit))
+          (assert.is_true (warm.ready? w :edit #"E"))
+          (assert.are.equal 1 w.cancelled)
+          ;; Background requests never cancel an edit.
+          (assert.is_false (warm.ready? w :edit2 #"E2"))
+          (assert.are.equal 2 w.cancelled)
+          (assert.is_false (warm.ready? w :bg2 #"B2" true))
+          (assert.are.equal :running (warm.status w :edit2))
+          (assert.are.equal :running (warm.status w :bg2)))))
 
     (it "hands the helper the player's texture sizes in lines it removes again"
       (fn []

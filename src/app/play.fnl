@@ -212,7 +212,7 @@ the helper is done, `?since` the time of the first try."
               (do (when (not= (?. state.pending :key) plan.key)
                     (say! (.. path ": compiling its shader in a helper process; "
                               (if old "the last scene stays until it is ready" "please wait"))))
-                  (set state.pending {: path : fresh? :key plan.key : start}))
+                  (set state.pending {: path : fresh? :key plan.key : start : scene : plan}))
               (not shader)
               (do (set state.error serr)
                   (when (not state.quiet?) (io.stderr:write (.. serr "\n"))))
@@ -270,8 +270,14 @@ cache hit in the driver, or a plain compile when the helper failed)."
       (set state.warm.said? true)
       (say! "the compile helper failed three times in a row: shaders compile in the player from now on"))
     (case state.pending
-      p (when (warm.settled? state.warm p.key)
-          (load! p.path p.fresh? p.start)))))
+      ;; A load whose job is no longer asked for (a newer request of the edit lane,
+      ;; a new view, replaced it while it waited) asks again. Before issue 42 a
+      ;; background request could replace it, and the edit never showed.
+      p (if (warm.settled? state.warm p.key)
+            (load! p.path p.fresh? p.start)
+            (= nil (warm.status state.warm p.key))
+            (when (warm.ready? state.warm p.key #(warm-source p.scene p.plan))
+              (load! p.path p.fresh? p.start))))))
 
 (fn apply-parameters! []
   "The panel moved a value: evaluate the scene's text again with the panel's values
@@ -415,7 +421,14 @@ plan without scene trees (nothing to fold)."
           (set memo.folded (or folded false))))
       (let [folded memo.folded]
         (when (and folded (or (gpu.cached? state.cache folded)
-                              (warm.ready? state.warm folded.key #(warm-source scene folded))))
+                              ;; Not while a load waits for its shader: the edit
+                              ;; lane first.
+                              (and (not state.pending) (not state.waiting-since)
+                                   (warm.ready? state.warm folded.key
+                                                #(warm-source scene folded) true)
+                                   ;; A failed helper leaves no folded shader: a
+                                   ;; compile here would freeze the window.
+                                   (not= :failed (warm.status state.warm folded.key)))))
           folded)))))
 
 ;; While the state changes the image is drawn whole at a lower resolution, chosen to
@@ -673,6 +686,25 @@ builds it). While its state stays, a frame only shows it again."
          {:progress p} (progress.complete? p)
          _ true)))
 
+(fn still-whole? []
+  "True when the still of the picture on screen is drawn whole."
+  (case (?. state.refine :still)
+    {:progress p} (progress.complete? p)
+    _ false))
+
+(fn background-done? []
+  "True when nothing is left to do for the state on screen (scripts wait for it): the
+picture is whole, its still is drawn or there is none, no load waits, and the compile
+helper has no job running or waiting (the folded shader asked for, when there is one)."
+  (let [w state.warm
+        memo state.plan-memo]
+    (and (idle?) (not state.pending) (not state.waiting-since)
+         (not= nil (?. state.refine :still))
+         (or (not w) (not w.enabled?)
+             (and (not w.running) (not w.queued)
+                  (not (?. w.background :running)) (not (?. w.background :queued))
+                  (or (not (?. memo :plan :tape)) (not= nil memo.folded)))))))
+
 (fn hud-lines []
   (let [cam state.cam
         canvas state.canvas
@@ -878,7 +910,9 @@ compile in the window's process would freeze it), a failed build."
           (case memo.still
             false false
             still (if (gpu.cached? state.cache still) still
-                      (warm.ready? state.warm still.key #(warm-source scene still))
+                      ;; Not while a load waits for its shader: the edit lane first.
+                      (or state.pending state.waiting-since) nil
+                      (warm.ready? state.warm still.key #(warm-source scene still) true)
                       (if (= :failed (warm.status state.warm still.key)) false still)
                       nil))))))
 
@@ -1059,4 +1093,4 @@ reached the screen."
   (set love.mousereleased mousereleased)
   (set love.joystickadded (fn [j] (when (j:isGamepad) (set state.gamepad j)))))
 
-{: start! : state : load! : poll-file! : current-plan}
+{: start! : state : load! : poll-file! : current-plan : whole? : still-whole? : background-done?}

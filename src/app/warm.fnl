@@ -15,6 +15,16 @@
 ;; quits when process PID (the player) is gone. A LÖVE thread waits on it (os.execute),
 ;; so the player knows when it has died: its job fails, and the next request starts a
 ;; new one.
+;;
+;; Two helpers, two lanes (issue 42): the edit lane compiles what the player must show
+;; next (a structural edit, a new view), the background lane what only improves the
+;; picture on screen (the folded shader, the still's). One process compiles one shader
+;; at a time, and a still's shader takes 3 to 30 s on llvmpipe: in one queue an edit
+;; made meanwhile waited for it (4-19 s instead of 0.5-0.85 s). Now a new request in
+;; the edit lane cancels the background lane: its waiting job is dropped and its helper,
+;; at work for a state that is no longer shown, is killed (the next background request
+;; starts another, off the edit's path). The background helper also runs niced, so it
+;; never takes the cores from the player's frames.
 
 (local max-settled 64)
 (local max-failures 3)
@@ -30,12 +40,17 @@ channel:push(status == 0 or status == true)
 (fn shell-quote [s]
   (.. "'" (pick-values 1 (s:gsub "'" "'\\''")) "'"))
 
-(fn helper-command [love-exe game-source dir pid]
+(fn helper-command [love-exe game-source dir pid ?nice]
   "The shell command that starts the helper: LÖVE on the same game, headless (SDL's
 offscreen driver; Mesa shares one cache between it and a window), taking jobs in
-`dir` for as long as process `pid` lives, its output discarded."
-  (string.format "SDL_VIDEODRIVER=offscreen %s %s --warm-server %s %d >/dev/null 2>&1"
+`dir` for as long as process `pid` lives, its output discarded; at niceness `?nice`
+when given (the background lane's)."
+  (string.format "SDL_VIDEODRIVER=offscreen %s%s %s --warm-server %s %d >/dev/null 2>&1"
+                 (if ?nice (string.format "nice -n %d " ?nice) "")
                  (shell-quote love-exe) (shell-quote game-source) (shell-quote dir) pid))
+
+;; The background helper's niceness: the player's frames (nice 0) come first.
+(local background-nice 10)
 
 (fn job-path [dir n ext]
   "The file of job `n` in `dir`: job-N.glsl (the shader) or job-N.done (the answer)."
@@ -95,17 +110,22 @@ is 0. `getenv` looks up the environment (os.getenv)."
      :settled {} :settled-count 0
      ;; helpers that failed in a row (see poll!)
      :failures 0
-     ;; the job at work ({: key :check (fn [] nil | :done | :failed)}) and the one
-     ;; key waiting for it (a newer request replaces an older waiting one)
+     ;; The edit lane (w itself): the job at work ({: key :check (fn [] nil | :done
+     ;; | :failed)}) and the one key waiting for it (a newer request replaces an
+     ;; older waiting one)
      :running nil :queued nil
-     ;; the helper process ({: dir : thread : channel : jobs}, jobs: the last job's
+     ;; its helper process ({: dir : thread : channel : jobs}, jobs: the last job's
      ;; number)
      :server nil
+     ;; The background lane: the same fields, its own helper (niced).
+     :background {:running nil :queued nil :server nil :nice background-nice}
+     ;; background jobs cancelled by an edit (warm_spec and edit-latency read it)
+     :cancelled 0
      ;; how a job is started (warm_spec gives a stand-in; nil: start!)
      :start! nil}))
 
-(fn start-server! [w]
-  ;; The helper process and its job folder (a fresh name from os.tmpname).
+(fn start-server! [w lane]
+  ;; The helper process of `lane` and its job folder (a fresh name from os.tmpname).
   (let [base (os.tmpname)
         dir (.. base ".warm")
         pid (tonumber (shell-line "echo $PPID"))]
@@ -117,38 +137,38 @@ is 0. `getenv` looks up the environment (os.getenv)."
         (values nil (.. dir ": cannot make the helper's folder"))
         (let [channel (love.thread.newChannel)
               thread (love.thread.newThread thread-code)]
-          (thread:start (helper-command w.exe w.source dir pid) channel)
-          (set w.server {: dir : thread : channel :jobs 0})
-          w.server))))
+          (thread:start (helper-command w.exe w.source dir pid lane.nice) channel)
+          (set lane.server {: dir : thread : channel :jobs 0})
+          lane.server))))
 
 (fn prepare! [w]
   "Start the helper now, before the first edit needs it (it takes about 0.3 s to start)."
   (when (and w.enabled? (not w.server))
-    (start-server! w)))
+    (start-server! w w)))
 
 (fn server-gone? [server]
   (or (not= nil (server.channel:peek)) (not= nil (server.thread:getError))))
 
-(fn forget-server! [w]
+(fn forget-server! [lane]
   ;; A helper that died (it removes its folder when it quits on its own): what it
   ;; left in its folder, and the folder.
-  (let [server w.server]
-    (set w.server nil)
+  (let [server lane.server]
+    (set lane.server nil)
     (remove-jobs! server.dir 1 (+ server.jobs 1))
     (os.remove (.. server.dir "/pid"))
     (os.remove server.dir)))
 
-(fn start! [w key source]
-  "Give the helper the job of compiling `source` for plan `key` (starting the helper
-first when there is none). True, or nil and a message."
-  (when (and w.server (server-gone? w.server))
-    (forget-server! w))
-  (case (or w.server (start-server! w))
+(fn start! [lane key source w]
+  "Give the helper of `lane` (of warmer `w`) the job of compiling `source` for plan
+`key` (starting the helper first when there is none). True, or nil and a message."
+  (when (and lane.server (server-gone? lane.server))
+    (forget-server! lane))
+  (case (or lane.server (start-server! w lane))
     server (let [n (+ server.jobs 1)
                  done (job-path server.dir n :done)]
              (set server.jobs n)
              (case (write-whole! (job-path server.dir n :glsl) source)
-               true (do (set w.running
+               true (do (set lane.running
                              {: key
                               :check #(case (io.open done :rb)
                                         f (let [answer (f:read :*a)]
@@ -156,7 +176,7 @@ first when there is none). True, or nil and a message."
                                             (os.remove done)
                                             (if (= answer "ok") :done :failed))
                                         _ (when (server-gone? server)
-                                            (when (= w.server server) (forget-server! w))
+                                            (when (= lane.server server) (forget-server! lane))
                                             :failed))})
                         true)
                (_ err) (values nil err)))
@@ -169,51 +189,92 @@ first when there is none). True, or nil and a message."
   (tset w.settled key outcome)
   (set w.settled-count (+ w.settled-count 1)))
 
-(fn poll! [w]
-  "Collect a finished helper and start the waiting one. Call once a frame."
-  (let [job w.running]
+(fn poll-lane! [w lane]
+  (let [job lane.running]
     (when job
       (case (job.check)
         outcome (do (settle! w job.key outcome)
-                    (set w.running nil)
+                    (set lane.running nil)
                     ;; A helper that fails again and again (no LÖVE to start, a driver
                     ;; that will not start headless) only delays every edit: stop asking.
                     (set w.failures (if (= outcome :done) 0 (+ w.failures 1)))
                     (when (>= w.failures max-failures)
                       (set w.enabled? false)
                       (set w.gave-up? true))))))
-  (when (and (not w.running) w.queued)
-    (let [{: key : source} w.queued]
-      (set w.queued nil)
+  (when (and w.enabled? (not lane.running) lane.queued)
+    (let [{: key : source} lane.queued]
+      (set lane.queued nil)
       (when (and (not (. w.settled key))
-                 (not ((or w.start! start!) w key source)))
+                 (not ((or w.start! start!) lane key source w)))
         (settle! w key :failed)))))
+
+(fn poll! [w]
+  "Collect finished helpers and start the waiting jobs. Call once a frame."
+  (poll-lane! w w)
+  (when w.background (poll-lane! w w.background)))
+
+(fn helper-pid [server]
+  ;; The helper's process id, from the file it writes before it takes a job.
+  (case (io.open (.. server.dir "/pid") :rb)
+    f (let [l (f:read "*l")] (f:close) (tonumber l))))
+
+(fn stop-server! [lane]
+  "Stop the helper of `lane` now, whatever it is doing: killed when it has said who it
+is (a compile cannot be interrupted otherwise; SDL would turn SIGTERM into a quit
+event it never reads, so SIGKILL), else told to quit before it takes a job (it
+writes its pid first, and looks for `quit` before each job)."
+  (case lane.server
+    server (case (helper-pid server)
+             pid (do (os.execute (.. "kill -9 " pid " 2>/dev/null"))
+                     (forget-server! lane))
+             ;; Not started yet: it removes its folder itself when it quits.
+             _ (do (write-whole! (.. server.dir "/quit") "quit")
+                   (set lane.server nil)))))
+
+(fn cancel-background! [w]
+  "Drop the background lane's waiting job and stop its job at work (see stop-server!):
+an edit never waits for them. Their keys stay unsettled, so they are asked for again
+if they are wanted again."
+  (let [lane w.background]
+    (when lane
+      (when (or lane.running lane.queued)
+        (set w.cancelled (+ (or w.cancelled 0) 1)))
+      (set lane.queued nil)
+      (when lane.running
+        (set lane.running nil)
+        ;; warm_spec's stand-in jobs have no process.
+        (when (not w.start!) (stop-server! lane))))))
 
 (fn status [w key]
   "What became of `key`: :done or :failed once its helper finished, :running or
-:queued meanwhile, nil when it was never asked for."
+:queued meanwhile (in either lane), nil when it was never asked for."
   (or (. w.settled key)
-      (when (= (?. w.running :key) key) :running)
-      (when (= (?. w.queued :key) key) :queued)))
+      (when (or (= (?. w.running :key) key) (= (?. w.background :running :key) key)) :running)
+      (when (or (= (?. w.queued :key) key) (= (?. w.background :queued :key) key)) :queued)))
 
 (fn settled? [w key]
   "True once a helper has finished with `key` (done or failed)."
   (not= nil (. w.settled key)))
 
-(fn ready? [w key source-fn]
+(fn ready? [w key source-fn ?background?]
   "True when the player may compile the shader of plan `key` now: its helper has
-finished (or warming is off). Otherwise asks for a helper (queued behind the one at
-work; `(source-fn)` gives the shader's text, or nil and a message: then the player
-compiles it and shows the message) and returns false."
+finished (or warming is off). Otherwise asks for a helper and returns false:
+`(source-fn)` gives the shader's text, or nil and a message (then the player compiles
+it and shows the message). A request of the edit lane (the default: a shader the
+player must show next) cancels the background lane (cancel-background!) and waits
+only for an edit before it; `?background?` (the folded shader, the still's) queues it
+in the background lane."
   (if (not w.enabled?) true
       (settled? w key) true
       (status w key) false
       (case (source-fn)
-        source (do (set w.queued {: key : source})
-                   (poll! w)
-                   false)
+        source (let [lane (if ?background? w.background w)]
+                 (when (not ?background?) (cancel-background! w))
+                 (set lane.queued {: key : source})
+                 (poll! w)
+                 false)
         _ (do (settle! w key :failed) true))))
 
-{: new : prepare! : ready? : settled? : poll! : status : helper-command : job-path : write-whole!
- : remove-jobs!
+{: new : prepare! : ready? : settled? : poll! : status : cancel-background! : helper-command
+ : job-path : write-whole! : remove-jobs!
  : cache-shared? : shell-quote}

@@ -10,8 +10,9 @@
 
 (fn new-cache []
   "An empty shader cache: plan key -> compiled LÖVE shader, least recently used first.
-:compiles and :released count shaders made and released (live = compiles - released)."
-  {:shaders {} :order [] :compiles 0 :released 0})
+:compiles and :released count shaders made and released (live = compiles - released),
+:compile-seconds adds up the time the compiles took."
+  {:shaders {} :order [] :compiles 0 :released 0 :compile-seconds 0})
 
 (fn touch! [cache key]
   (for [i (length cache.order) 1 -1]
@@ -56,7 +57,9 @@ whether it was compiled now, or nil and a message."
   (let [cached (. cache.shaders plan.key)]
     (if cached
         (do (touch! cache plan.key) (values cached false))
-        (let [(shader err) (compile-plan plan)]
+        (let [t0 (love.timer.getTime)
+              (shader err) (compile-plan plan)]
+          (set cache.compile-seconds (+ cache.compile-seconds (- (love.timer.getTime) t0)))
           (if shader
               (do (tset cache.shaders plan.key shader)
                   (set cache.compiles (+ cache.compiles 1))

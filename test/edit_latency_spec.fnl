@@ -1,0 +1,60 @@
+;; The player's edits with the compile helper, in the running app (headless):
+;; `love . --edit-latency scenes/gallery.fnl` makes a structural edit when idle, a
+;; value edit, a structural edit while a helper compiles the still's (or the folded)
+;; shader and one while the still's bands are drawn (src/app/edit-latency.fnl).
+;; Issue 42: the player must compile nothing the helper has not compiled already
+;; (one compile per edit, the helper's), and an edit must not wait for the helper's
+;; background jobs. Mesa says what its shader cache does when MESA_GLSL=cache_info:
+;; "putting program metadata in cache" is a compile, "loading ... from cache" a hit;
+;; the helpers' output is discarded, so every such line is the player's. About a
+;; minute here.
+
+(fn run [command]
+  (let [p (io.popen (.. command " 2>&1; echo \"exit:$?\""))
+        text (p:read :*a)]
+    (p:close)
+    (values (tonumber (text:match "exit:(%d+)%s*$")) text)))
+
+(fn lines-matching [text pattern]
+  (icollect [line (text:gmatch "[^\n]+")]
+    (when (line:find pattern) line)))
+
+(describe "edits with the compile helper"
+  (fn []
+    (it "compile once, in the helper, and never wait for its background jobs"
+      (fn []
+        (let [cache (.. (os.tmpname) ".mesa")
+              ;; 600 s only catches a hang: the run takes about a minute.
+              (code out) (run (.. "SDL_VIDEODRIVER=offscreen MESA_GLSL=cache_info MESA_SHADER_CACHE_DIR="
+                                  cache " timeout 600 love . --edit-latency scenes/gallery.fnl"))
+              shown (lines-matching out "shown after")]
+          (os.execute (.. "rm -rf '" cache "'"))
+          (each [_ line (ipairs shown)] (print line))
+          (assert.are.equal 0 code out)
+          (if (not (out:find "compile helper:" 1 true))
+              (pending "no compile helper here (the driver keeps no shared cache)")
+              (do
+                (assert.are.equal 4 (length shown) out)
+                (each [_ line (ipairs shown)]
+                  (assert.is_nil (line:find "not shown" 1 true) line)
+                  ;; The player's own newShader calls: one per structural edit (a hit
+                  ;; in the driver's cache after the helper), none for a value edit.
+                  (assert.truthy (line:find (if (line:find "value edit" 1 true)
+                                                "the player compiled 0 "
+                                                "the player compiled 1 ")
+                                            1 true)
+                                 line))
+                ;; The edit made while the helper compiled the still's shader cancelled it.
+                (let [[during] (lines-matching out "structural edit during the still")
+                      cancelled (tonumber (during:match "background jobs cancelled (%d+)"))]
+                  (assert.truthy (and cancelled (>= cancelled 1)) during))
+                ;; After the first load (compiled in the player: nothing is on screen
+                ;; yet), every shader the player compiles is the helper's, found in the
+                ;; driver's cache: no program of its own goes into it.
+                (let [(_ after) (out:find "edit-latency: the first load is done" 1 true)
+                      rest (out:sub (+ (or after 0) 1))]
+                  (assert.truthy after out)
+                  (when (out:find "program metadata in cache" 1 true)   ; Mesa with its cache
+                    (assert.are.same [] (lines-matching rest "^putting program metadata in cache"))
+                    (assert.truthy (rest:find "loading shader program meta data from cache" 1 true)
+                                   rest))))))))))
