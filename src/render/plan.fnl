@@ -186,6 +186,45 @@ nil and a message when a texture would not fit."
           tex {: list : anchor :textures tex}
           (nil err) (values nil err))))))
 
+(fn objects-in-order [scene tape]
+  "The scene's objects in shader order (the numbers gObject gives them): the tape's,
+the field's and an instance group's members in turn. A scene may hold some of a
+file's objects: they are found by index."
+  (let [out []
+        by-index (collect [_ o (ipairs scene.objects)] o.index o)]
+    (each [_ o (ipairs (if tape tape.objects []))]
+      (each [_ index (ipairs (or o.indices [o.index]))]
+        (table.insert out (. by-index index))))
+    out))
+
+(fn lighting-plan [scene plan options]
+  "Which features of the modern lighting model (`scene`'s :lighting section) the
+shader of `plan` holds, and how its soft shadows march."
+  (let [l scene.lighting
+        ;; A softness that is a function of time may be 0 at one time and not
+        ;; at another: its shader has both marches.
+        animated? (accumulate [found? false _ a (ipairs (or scene.animated []))]
+                    (or found? (and (= (. a.path 1) "lighting")
+                                    (= (. a.path (length a.path)) "softness"))))]
+    {:lights (length l.lights)
+     :soft? (and plan.shadows?
+                 (accumulate [soft? animated? _ light (ipairs l.lights)]
+                   (or soft? (> light.softness 0))))
+     ;; A light of softness 0 among soft ones: the soft shadow keeps the
+     ;; hard march for it. A softness that is a function of time may reach 0.
+     :hard? (accumulate [hard? (or animated? options.hard-march?) _ light
+                         (ipairs l.lights)]
+              (or hard? (<= light.softness 0)))
+     ;; Soft shadow rays may march only inside the bounding spheres grown by
+     ;; the penumbra (see :soft-bounded? below), unless switched off.
+     :shadow-bounds? (not= false options.shadow-bounds?)
+     ;; The features it has on (src/render/features/), by name.
+     :features (features.active l)
+     ;; Steps of a soft shadow ray at most: its penumbra estimate needs every
+     ;; step, so it cannot skip empty space by bounds; a ray that has not
+     ;; reached the light by then counts as lit.
+     :shadow-steps 128}))
+
 (fn scene->plan [scene ?options]
   "Lower `scene` into a plan. Options:
   :view           :shaded (default), :normals, :glow or :heat
@@ -242,13 +281,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               :load-once? (not= false options.load-once?)
               ;; The objects in shader order (the numbers gObject gives them): the
               ;; tape's (the field's and an instance group's members in turn).
-              :objects (let [out []
-                             ;; (A scene may hold some of a file's objects: by index.)
-                             by-index (collect [_ o (ipairs scene.objects)] o.index o)]
-                         (each [_ o (ipairs (if tape tape.objects []))]
-                           (each [_ index (ipairs (or o.indices [o.index]))]
-                             (table.insert out (. by-index index))))
-                         out)
+              :objects (objects-in-order scene tape)
               :tape (or tape (lower.lower []))
               :mirrors? (and tape tape.mirrors?
                              (or options.probe? (and shaded? (or uber? (> reflections 0)))))
@@ -290,31 +323,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
     ;; The modern lighting model (a :lighting section): which of its features the
     ;; shader holds.
     (when (and shaded? scene.lighting (not options.probe?) (not= options.model :classic))
-      (let [l scene.lighting
-            ;; A softness that is a function of time may be 0 at one time and not
-            ;; at another: its shader has both marches.
-            animated? (accumulate [found? false _ a (ipairs (or scene.animated []))]
-                        (or found? (and (= (. a.path 1) "lighting")
-                                        (= (. a.path (length a.path)) "softness"))))]
-        (set plan.lighting
-             {:lights (length l.lights)
-              :soft? (and plan.shadows?
-                          (accumulate [soft? animated? _ light (ipairs l.lights)]
-                            (or soft? (> light.softness 0))))
-              ;; A light of softness 0 among soft ones: the soft shadow keeps the
-              ;; hard march for it. A softness that is a function of time may reach 0.
-              :hard? (accumulate [hard? (or animated? options.hard-march?) _ light
-                                  (ipairs l.lights)]
-                       (or hard? (<= light.softness 0)))
-              ;; Soft shadow rays may march only inside the bounding spheres grown by
-              ;; the penumbra (see :soft-bounded? below), unless switched off.
-              :shadow-bounds? (not= false options.shadow-bounds?)
-              ;; The features it has on (src/render/features/), by name.
-              :features (features.active l)
-              ;; Steps of a soft shadow ray at most: its penumbra estimate needs every
-              ;; step, so it cannot skip empty space by bounds; a ray that has not
-              ;; reached the light by then counts as lit.
-              :shadow-steps 128})))
+      (set plan.lighting (lighting-plan scene plan options)))
     (var field-error nil)
     (when members
       (case (field.build members {:reach-at-least (when plan.lighting
