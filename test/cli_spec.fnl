@@ -277,3 +277,14 @@
     (it "reports the first error only"
       (fn []
         (assert.are.equal "unknown option --x" (parse-error ["--x" "--size" "bad"]))))))
+
+(describe "cli: --time"
+  (fn []
+    (it "takes seconds for --render only, finite and not negative"
+      (fn []
+        (assert.are.equal 2.5 (. (cli.parse ["--render" "a.fnl" "--out" "a.png" "--time" "2.5"]) :time))
+        (assert.are.same [nil "--time only goes with --render (--record steps through time itself)"]
+                         [(cli.parse ["--record" "a.fnl" "--out" "d" "--frames" "2" "--time" "1"])])
+        (each [_ bad (ipairs ["-1" "abc" "nan" "inf" "1e10"])]
+          (assert.are.same [nil (.. "--time must be a number of seconds from 0 to 1e9, got " bad)]
+                           [(cli.parse ["--render" "a.fnl" "--out" "a.png" "--time" bad])]))))))

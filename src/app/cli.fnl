@@ -15,7 +15,8 @@
                                              (default: a helper process compiles it first)
        love . [SCENE] --shot FILE.png [--frames N]   play N frames, save the window, quit
        love . --render SCENE --out FILE.png [--size WxH] [--view VIEW] [--quality Q] [--samples N]
-                                             the picture as the player's anti-aliased still
+                      [--time T]             the picture as the player's anti-aliased still, its
+                                             functions of time at T seconds (0)
        love . --record SCENE --out DIR --frames N [--fps F] [--size WxH] [--turntable]
                       [--quality Q] [--samples N]   frames DIR/frame-0001.png ..., each a still
        love . --export-shader SCENE --out FILE.glsl   a Shadertoy shader with the values baked in
@@ -50,7 +51,7 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
                                              with the file system only)
        love . --help-dev                     this text")
 
-(local value-flags {:--out :out :--size :size :--frames :frames :--view :view
+(local value-flags {:--out :out :--size :size :--frames :frames :--view :view :--time :time
                     :--target :target :--shot :shot :--cycles :cycles :--fps :fps
                     :--target-fps :target-fps :--resolution :resolution :--region :region
                     :--samples :samples :--quality :quality})
@@ -120,6 +121,8 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
       (values nil (.. "--target must be love or core, got " o.target))
       (and (or o.samples o.quality) (not= o.mode :render) (not= o.mode :record))
       (values nil (.. (if o.samples "--samples" "--quality") " only goes with --render or --record"))
+      (and o.time (not= o.mode :render))
+      (values nil "--time only goes with --render (--record steps through time itself)")
       (and o.quality (not (. qualities o.quality)))
       (values nil (.. "--quality must be one of draft, still, final, got " o.quality))
       (and o.samples (> o.samples 16))
@@ -134,7 +137,7 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
  |:help-dev|:export-shader|:record|:edit-latency|:mesh
  :scene :out :size [w h] :frames n :view v :target t :gpu? (probe or mesh on the GPU)
  :resolution n :region {:lo :hi} (--mesh) :quality \"draft\"|\"still\"|\"final\" :samples n
- (--render, --record; absent when not given)} or nil and a message (the usage text follows it)."
+ (--render, --record; absent when not given) :time t (--render)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]
     (var i 1)
     (var err nil)
@@ -176,6 +179,12 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
         (let [n (tonumber (. o field))]
           (if (and n (>= n 1) (< n math.huge) (= n (math.floor n))) (tset o field n)
               (set err (.. "--" field " must be a whole number >= 1, got " (. o field)))))))
+    (when (and (not err) o.time)
+      ;; Seconds, as the player's clock counts them: finite, not negative, and within
+      ;; what a double holds to the millisecond.
+      (let [t (tonumber o.time)]
+        (if (and t (= t t) (>= t 0) (<= t 1e9)) (set o.time t)
+            (set err (.. "--time must be a number of seconds from 0 to 1e9, got " o.time)))))
     (when (and (not err) o.resolution)
       (case (mesh-options.parse-resolution o.resolution)
         n (set o.resolution n)

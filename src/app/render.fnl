@@ -6,6 +6,8 @@
 
 (local status (require :src.util.status))
 (local stop (require :src.app.stop))
+(local scene-mod (require :src.scene.load))
+(local worker (require :src.scene.worker))
 (local frame (require :src.backend.frame))
 (local gpu (require :src.backend.gpu))
 (local camera (require :src.render.camera))
@@ -81,14 +83,23 @@ arguments); it stops the drawing on SIGINT or SIGTERM (src/app/stop.fnl)."
   ;; The command line's output: named as --out, never the scene file.
   {:protect [o.scene] :label (.. "--out " o.out)})
 
+(fn at-time [scene ?t]
+  ;; `scene` with its functions of time at ?t seconds (their values at 0 are the
+  ;; load's), or nil and a message.
+  (if (and scene ?t (not= ?t 0) (scene-mod.animated? scene))
+      (case (worker.animate scene ?t)
+        (nil err) (values nil err)
+        _ scene)
+      scene))
+
 (fn run [o]
   "Render o.scene into o.out (a PNG) at o.size (512x448) with o.view, o.quality and
-o.samples (see quality.resolve). Prints what it wrote; true, or nil and a message."
+o.samples (see quality.resolve), its functions of time at o.time seconds (0). Prints what it wrote; true, or nil and a message."
   ;; A refused --out is refused before the scene is even read.
   (case (output.check o.out (out-options o))
     (nil err) (values nil err)
     _
-    (case (frame.load-scene o.scene)
+    (case (at-time (frame.load-scene o.scene) o.time)
       (nil err) (values nil err)
       scene
       ;; One frame of values that never change: the trees' values as constants.

@@ -23,9 +23,15 @@
 (local default-budget {:max-pixels 32 :max-diff 255})
 (local budgets {})
 
+;; Scenes with functions of time have a golden at t = 0 and at these times too, each
+;; named NAME@T (the picture of `love . --render scenes/NAME.fnl --time T`): one where
+;; the shape moved (melt's drops and column), one where the light did (sundial's sun).
+(local timed {:melt [3] :sundial [9]})
+
 (fn scene-names []
-  "Names of the scenes in scenes/ and scenes/stress/ (without .fnl, relative to
-scenes/, like \"seed\" or \"stress/planet\"), sorted."
+  "Names of the goldens: the scenes in scenes/ and scenes/stress/ (without .fnl,
+relative to scenes/, like \"seed\" or \"stress/planet\"), sorted, each followed by its
+timed ones (\"melt@3\": scenes/melt.fnl at t = 3 s)."
   (let [lfs (require :lfs)
         names []]
     (each [_ folder (ipairs ["" "stress/"])]
@@ -34,7 +40,12 @@ scenes/, like \"seed\" or \"stress/planet\"), sorted."
           (let [name (file:match "^(.+)%.fnl$")]
             (when name (table.insert names (.. folder name)))))))
     (table.sort names)
-    names))
+    (let [out []]
+      (each [_ name (ipairs names)]
+        (table.insert out name)
+        (each [_ t (ipairs (or (. timed name) []))]
+          (table.insert out (.. name "@" t))))
+      out)))
 
 (fn budget-for [name]
   (or (. budgets name) default-budget))
@@ -43,18 +54,27 @@ scenes/, like \"seed\" or \"stress/planet\"), sorted."
 
 (fn shell-quote [s] (.. "'" (s:gsub "'" "'\\''") "'"))
 
+(fn label [name]
+  ;; Golden NAME as its scene file says it: scenes/NAME.fnl, or scenes/BASE.fnl at t = T.
+  (case (name:match "^(.-)@([%d.]+)$")
+    (base t) (.. "scenes/" base ".fnl at t = " t " s")
+    _ (.. "scenes/" name ".fnl")))
+
 (fn render! [name out]
-  "Render scenes/NAME.fnl with the real app into `out`. True, or nil and its output."
+  "Render golden NAME (scenes/NAME.fnl, or NAME@T: at T seconds) with the real app into
+`out`. True, or nil and its output."
   ;; LuaJIT's popen close does not give the exit status, so the shell prints it last.
   ;; --samples 1: the goldens are the one-ray picture (--render's default is the
   ;; player's anti-aliased still).
-  (let [cmd (string.format "SDL_VIDEODRIVER=offscreen timeout 120 love . --render %s --out %s --size %dx%d --samples 1 2>&1; echo \"exit:$?\""
-                           (shell-quote (.. "scenes/" name ".fnl")) (shell-quote out)
-                           (. size 1) (. size 2))
+  (let [(scene t) (let [(base at) (name:match "^(.-)@([%d.]+)$")]
+                    (if base (values base at) (values name nil)))
+        cmd (string.format "SDL_VIDEODRIVER=offscreen timeout 120 love . --render %s --out %s --size %dx%d --samples 1%s 2>&1; echo \"exit:$?\""
+                           (shell-quote (.. "scenes/" scene ".fnl")) (shell-quote out)
+                           (. size 1) (. size 2) (if t (.. " --time " t) ""))
         text (with-open [p (io.popen cmd)] (p:read :*a))]
     (if (text:match "exit:0%s*$")
         true
-        (values nil (.. "love . --render failed for scenes/" name ".fnl:\n" text)))))
+        (values nil (.. "love . --render failed for scenes/" scene ".fnl" (if t (.. " at t = " t) "") ":\n" text)))))
 
 (fn diff [a b]
   "Compare images `a` and `b` (from png.decode): {:over n :max d :worst [x y]} where
@@ -103,7 +123,7 @@ test/out/ (git-ignored); never touches test/golden/."
           (nil gerr) (if (io.open (golden-path name) :rb)
                          {:status :failed :message gerr}
                          {:status :missing :new-path new-path
-                   :message (.. "scenes/" name ".fnl has no golden image " (golden-path name)
+                   :message (.. (label name) " has no golden image " (golden-path name)
                                 "; create it with `make golden` and look at it before committing")})
           golden (let [(new nerr) (png.read-file new-path)]
                    (if (not new)
@@ -115,8 +135,8 @@ test/out/ (git-ignored); never touches test/golden/."
                              (do (png.write-file diff-path result.image)
                                  {:status :failed : result :new-path new-path :diff-path diff-path
                                   :message (string.format
-                                            "scenes/%s.fnl differs from %s: %d pixels over %d/255 (budget %d), largest channel difference %d (budget %d) at pixel %s; new image %s, diff image %s (red: over)"
-                                            name (golden-path name) result.over channel-tolerance
+                                            "%s differs from %s: %d pixels over %d/255 (budget %d), largest channel difference %d (budget %d) at pixel %s; new image %s, diff image %s (red: over)"
+                                            (label name) (golden-path name) result.over channel-tolerance
                                             budget.max-pixels result.max budget.max-diff
                                             (if result.worst (.. (. result.worst 1) "," (. result.worst 2)) "-")
                                             new-path diff-path)})))))))))
