@@ -223,48 +223,54 @@ batch counts as work done (see mesh) and `progress` hears of it."
           (progress phase counts.work counts.estimate counts.points)))
       out)))
 
-;;; The mesher.
+;;; The mesher: one function per phase, in the order mesh calls them. What the
+;;; phases share (the grid, the counts, the crossings, the cells, the vertices) is
+;;; one state table, made by new-state and passed along; each phase reads what the
+;;; ones before it left there and adds its own.
 
-(fn mesh [field grid ?progress]
-  "Contour `field` over `grid`. The field: {:distances (fn [flat n]) -> n signed
-distances at the points of the flat list x1 y1 z1 x2 ...; :step the gradient's
-difference step as a share of a cell}. The grid: {:lo [x y z] (its low corner) :h
-(the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a box inside the grid
-by at least one cell: the field is cut by it, which closes the mesh)}.
-`?progress` (fn [phase work estimate points]) hears of each batch of points and
-each step: the phase (:blocks, :corners, :crossings, :normals, :patches, :vertices,
-:projection, :faces), the work done so far (in field evaluations: see geometry-work),
-an estimate of all the work (nil until the blocks are known; the grid's :after-work
-per vertex included) and the points evaluated.
-Returns {:positions [x y z ...] :triangles [a b c ...] (1-based vertex indices,
-counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
-(leaf blocks sampled) :skipped (leaf blocks' worth of volume skipped) :cells
-(cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
-moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
+(fn new-state [field grid ?progress]
+  "The state the phases of mesh share: the grid's corner, cell and size, the
+gradient's step, the counts of work (see mesh), the evaluator and the CPU seconds
+of each step."
   (let [progress (or ?progress (fn []))
         counts {:points 0 :work 0}
-        after (+ geometry-work (or grid.after-work 0))
-        ;; Work not done by evaluating: counted, and heard by progress.
-        worked! (fn [phase units]
-                  (set counts.work (+ counts.work units))
-                  (progress phase counts.work counts.estimate counts.points))
-        evaluate (evaluator field grid.cut counts progress)
         [ox oy oz] grid.lo
         h grid.h
-        [nx ny nz] grid.dims
-        step (* h (or field.step 1e-3))
-        ;; CPU seconds of each step, for the figures (os.clock: a GPU field's waits
-        ;; are not counted).
-        times {}
-        mark! (let [state {:at (os.clock) :step nil}]
-                (fn [step]
-                  (let [now (os.clock)]
-                    (when state.step
-                      (tset times state.step (- now state.at)))
-                    (set (state.at state.step) (values now step)))))]
-    (mark! :blocks)
-    ;; 1. The octree of blocks: keep those whose centre's |d| does not prove them
-    ;; clear of the surface; subdivide down to leaves.
+        [nx ny nz] grid.dims]
+    {: progress : counts
+     :after (+ geometry-work (or grid.after-work 0))
+     :evaluate (evaluator field grid.cut counts progress)
+     : ox : oy : oz : h : nx : ny : nz
+     :step (* h (or field.step 1e-3))
+     ;; Global keys of grid points: i + stride-x j + stride-y k.
+     :stride-x (+ nx 1)
+     :stride-y (* (+ nx 1) (+ ny 1))
+     ;; CPU seconds of each step, for the figures (os.clock: a GPU field's waits
+     ;; are not counted); mark! keeps the step under way and when it began.
+     :times {}
+     :marked-at (os.clock)
+     :marked-step nil}))
+
+(fn worked! [state phase units]
+  "Count `units` of work not done by evaluating (see geometry-work), and tell
+progress."
+  (let [counts state.counts]
+    (set counts.work (+ counts.work units))
+    (state.progress phase counts.work counts.estimate counts.points)))
+
+(fn mark! [state step]
+  "End the step under way (its CPU seconds go to state.times) and begin `step`
+(nil: none)."
+  (let [now (os.clock)]
+    (when state.marked-step
+      (tset state.times state.marked-step (- now state.marked-at)))
+    (set (state.marked-at state.marked-step) (values now step))))
+
+(fn find-leaves! [state]
+  "1. The octree of blocks: keep those whose centre's |d| does not prove them clear
+of the surface; subdivide down to leaves. Leaves state.leaves (their low cells [i j
+k]) and state.skipped (leaf blocks' worth of volume skipped)."
+  (let [{: evaluate : ox : oy : oz : h : nx : ny : nz} state]
     (var blocks [])
     (for [k 0 (- nz 1) top]
       (for [j 0 (- ny 1) top]
@@ -296,312 +302,397 @@ moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
                       (when (and (< a nx) (< b ny) (< d nz))
                         (table.insert blocks [a b d])))))
                 (set size s))))))
-    (mark! :corners)
-    ;; 2. The corners of the leaves, (leaf + 1)^3 each (clamped to the grid).
-    (let [side (+ leaf 1)
-          flat []]
-      (each [_ [i j k] (ipairs leaves)]
-        (for [c 0 leaf]
-          (for [b 0 leaf]
-            (for [a 0 leaf]
-              (table.insert flat (+ ox (* (min nx (+ i a)) h)))
-              (table.insert flat (+ oy (* (min ny (+ j b)) h)))
-              (table.insert flat (+ oz (* (min nz (+ k c)) h)))))))
-      ;; The crossings and normals take about as many points again as the corners:
-      ;; a leaf of 64 cells holds some 13 crossings where a surface crosses it (a
-      ;; sphere at 32 cells), each taking 10 points (measured: 3990 crossings in 308
-      ;; leaves); the estimate is made exact once the crossings are counted.
-      (set counts.estimate (+ counts.work (* (+ 2 (/ after 10)) (/ (length flat) 3))))
-      (let [corner-values (evaluate :corners flat)
-            px [] py [] pz [] nrx [] nry [] nrz []
-            ;; Crossing edges: global key -> index; their ends and values.
-            edge-index {}
-            ex0 [] ey0 [] ez0 [] ed0 [] ed1 [] eaxis []
-            cells []
-            stride-x (+ nx 1)
-            stride-y (* (+ nx 1) (+ ny 1))]
-        (var crossings 0)
-        (mark! :cells)
-        ;; 3. Cells with surface, and their crossing edges (each edge once).
-        (each [l [i0 j0 k0] (ipairs leaves)]
-          (let [base (* (- l 1) side side side)]
-            (for [c 0 (- (min leaf (- nz k0)) 1)]
-              (for [b 0 (- (min leaf (- ny j0)) 1)]
-                (for [a 0 (- (min leaf (- nx i0)) 1)]
-                  (let [v (fcollect [q 0 7]
-                            (let [(qx qy qz) (corner-bits q)]
-                              (. corner-values (+ base 1 (+ a qx) (* side (+ b qy))
-                                           (* side side (+ c qz))))))
-                        inside (accumulate [n 0 _ d (ipairs v)] (if (< d 0) (+ n 1) n))]
-                    (when (and (> inside 0) (< inside 8))
-                      (let [i (+ i0 a) j (+ j0 b) k (+ k0 c)
-                            cell {: i : j : k : v :edges {}}]
-                        (table.insert cells cell)
-                        (for [e 0 11]
-                          (let [[ca cb] (. edge-corners (+ e 1))
-                                da (. v (+ ca 1)) db (. v (+ cb 1))]
-                            (when (not= (< da 0) (< db 0))
-                              (let [(qx qy qz) (corner-bits ca)
-                                    gi (+ i qx) gj (+ j qy) gk (+ k qz)
-                                    axis (floor (/ e 4))
-                                    key (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk))))]
-                                (var idx (. edge-index key))
-                                (when (not idx)
-                                  (set crossings (+ crossings 1))
-                                  (set idx crossings)
-                                  (tset edge-index key idx)
-                                  (tset ex0 idx gi) (tset ey0 idx gj) (tset ez0 idx gk)
-                                  (tset eaxis idx axis)
-                                  (tset ed0 idx da) (tset ed1 idx db))
-                                (tset cell.edges e idx)))))))))))))
-        ;; Each crossing: refine-steps points, 6 for its normal, and about one vertex
-        ;; (a cell has about as many crossing edges as a cell has vertices: 3990 and
-        ;; 3992 on a sphere), whose distance is checked.
-        (set counts.estimate (+ counts.work (* crossings (+ refine-steps 7 after))))
-        (mark! :crossings)
-        ;; 4. Crossing points: the linear guess from the corner values, then regula
-        ;; falsi (the Illinois variant) on the field along each edge.
-        (let [ta (fcollect [e 1 crossings] 0)
-              tb (fcollect [e 1 crossings] 1)
-              fa (fcollect [e 1 crossings] (. ed0 e))
-              fb (fcollect [e 1 crossings] (. ed1 e))
-              side-kept (fcollect [e 1 crossings] 0)
-              guess (fn [e]
-                      (let [a (. fa e) b (. fb e)]
-                        (+ (. ta e) (* (- (. tb e) (. ta e)) (/ a (- a b))))))
-              point (fn [e t]
-                      (let [axis (. eaxis e)]
-                        (values (+ ox (* h (+ (. ex0 e) (if (= axis 0) t 0))))
-                                (+ oy (* h (+ (. ey0 e) (if (= axis 1) t 0))))
-                                (+ oz (* h (+ (. ez0 e) (if (= axis 2) t 0)))))))
-              ts (fcollect [e 1 crossings] (guess e))]
-          (for [s 1 refine-steps]
-            (let [flat []]
-              (for [e 1 crossings]
-                (let [(x y z) (point e (. ts e))]
-                  (table.insert flat x) (table.insert flat y) (table.insert flat z)))
-              (let [ds (evaluate :crossings flat)]
-                (for [e 1 crossings]
-                  (let [t (. ts e) d (. ds e)]
-                    (if (= (< d 0) (< (. fa e) 0))
-                        (do (tset ta e t) (tset fa e d)
-                            (when (= (. side-kept e) 1) (tset fb e (* 0.5 (. fb e))))
-                            (tset side-kept e 1))
-                        (do (tset tb e t) (tset fb e d)
-                            (when (= (. side-kept e) -1) (tset fa e (* 0.5 (. fa e))))
-                            (tset side-kept e -1)))
-                    (tset ts e (if (= d 0) t (guess e))))))))
+    (set (state.leaves state.skipped) (values leaves skipped))))
+
+(fn sample-corners! [state]
+  "2. The corners of the leaves, (leaf + 1)^3 each (clamped to the grid): their
+values in state.corner-values, leaf after leaf, x fastest. Makes the first estimate
+of the work."
+  (let [{: evaluate : counts : after : leaves : ox : oy : oz : h : nx : ny : nz} state
+        flat []]
+    (each [_ [i j k] (ipairs leaves)]
+      (for [c 0 leaf]
+        (for [b 0 leaf]
+          (for [a 0 leaf]
+            (table.insert flat (+ ox (* (min nx (+ i a)) h)))
+            (table.insert flat (+ oy (* (min ny (+ j b)) h)))
+            (table.insert flat (+ oz (* (min nz (+ k c)) h)))))))
+    ;; The crossings and normals take about as many points again as the corners:
+    ;; a leaf of 64 cells holds some 13 crossings where a surface crosses it (a
+    ;; sphere at 32 cells), each taking 10 points (measured: 3990 crossings in 308
+    ;; leaves); the estimate is made exact once the crossings are counted.
+    (set counts.estimate (+ counts.work (* (+ 2 (/ after 10)) (/ (length flat) 3))))
+    (set state.corner-values (evaluate :corners flat))
+    ;; Kept until mesh returns, as when the phases were one function: the live heap
+    ;; paces LuaJIT's collector, and dropping these here (and the edge index, see
+    ;; find-cells!) made the later steps collect more often, 8% slower on a mesh
+    ;; whose field is cheap.
+    (set state.corner-points flat)))
+
+(fn find-cells! [state]
+  "3. Cells with surface, and their crossing edges (each edge once). Leaves
+state.cells ({:i :j :k :v (corner values) :edges (local edge -> crossing index)}),
+state.crossings (their count) and per crossing its low end (state.ex0, ey0, ez0),
+its axis (eaxis) and the values at its ends (ed0, ed1). Makes the estimate exact."
+  (let [{: leaves : corner-values : counts : nx : ny : nz : stride-x : stride-y} state
+        side (+ leaf 1)
+        ;; Crossing edges: global key -> index; their ends and values.
+        edge-index {}
+        ex0 [] ey0 [] ez0 [] ed0 [] ed1 [] eaxis []
+        cells []]
+    (var crossings 0)
+    (each [l [i0 j0 k0] (ipairs leaves)]
+      (let [base (* (- l 1) side side side)]
+        (for [c 0 (- (min leaf (- nz k0)) 1)]
+          (for [b 0 (- (min leaf (- ny j0)) 1)]
+            (for [a 0 (- (min leaf (- nx i0)) 1)]
+              (let [v (fcollect [q 0 7]
+                        (let [(qx qy qz) (corner-bits q)]
+                          (. corner-values (+ base 1 (+ a qx) (* side (+ b qy))
+                                       (* side side (+ c qz))))))
+                    inside (accumulate [n 0 _ d (ipairs v)] (if (< d 0) (+ n 1) n))]
+                (when (and (> inside 0) (< inside 8))
+                  (let [i (+ i0 a) j (+ j0 b) k (+ k0 c)
+                        cell {: i : j : k : v :edges {}}]
+                    (table.insert cells cell)
+                    (for [e 0 11]
+                      (let [[ca cb] (. edge-corners (+ e 1))
+                            da (. v (+ ca 1)) db (. v (+ cb 1))]
+                        (when (not= (< da 0) (< db 0))
+                          (let [(qx qy qz) (corner-bits ca)
+                                gi (+ i qx) gj (+ j qy) gk (+ k qz)
+                                axis (floor (/ e 4))
+                                key (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk))))]
+                            (var idx (. edge-index key))
+                            (when (not idx)
+                              (set crossings (+ crossings 1))
+                              (set idx crossings)
+                              (tset edge-index key idx)
+                              (tset ex0 idx gi) (tset ey0 idx gj) (tset ez0 idx gk)
+                              (tset eaxis idx axis)
+                              (tset ed0 idx da) (tset ed1 idx db))
+                            (tset cell.edges e idx)))))))))))))
+    ;; Each crossing: refine-steps points, 6 for its normal, and about one vertex
+    ;; (a cell has about as many crossing edges as a cell has vertices: 3990 and
+    ;; 3992 on a sphere), whose distance is checked.
+    (set counts.estimate (+ counts.work (* crossings (+ refine-steps 7 state.after))))
+    (set (state.cells state.crossings) (values cells crossings))
+    (set state.edge-index edge-index)
+    (set (state.ex0 state.ey0 state.ez0 state.ed0 state.ed1 state.eaxis)
+         (values ex0 ey0 ez0 ed0 ed1 eaxis))))
+
+(fn refine-crossings! [state]
+  "4. Crossing points: the linear guess from the corner values, then regula falsi
+(the Illinois variant) on the field along each edge. Leaves the points in state.px,
+py, pz."
+  (let [{: evaluate : crossings : ex0 : ey0 : ez0 : ed0 : ed1 : eaxis : ox : oy : oz : h} state
+        px [] py [] pz []
+        ta (fcollect [e 1 crossings] 0)
+        tb (fcollect [e 1 crossings] 1)
+        fa (fcollect [e 1 crossings] (. ed0 e))
+        fb (fcollect [e 1 crossings] (. ed1 e))
+        side-kept (fcollect [e 1 crossings] 0)
+        guess (fn [e]
+                (let [a (. fa e) b (. fb e)]
+                  (+ (. ta e) (* (- (. tb e) (. ta e)) (/ a (- a b))))))
+        point (fn [e t]
+                (let [axis (. eaxis e)]
+                  (values (+ ox (* h (+ (. ex0 e) (if (= axis 0) t 0))))
+                          (+ oy (* h (+ (. ey0 e) (if (= axis 1) t 0))))
+                          (+ oz (* h (+ (. ez0 e) (if (= axis 2) t 0)))))))
+        ts (fcollect [e 1 crossings] (guess e))]
+    (for [s 1 refine-steps]
+      (let [flat []]
+        (for [e 1 crossings]
+          (let [(x y z) (point e (. ts e))]
+            (table.insert flat x) (table.insert flat y) (table.insert flat z)))
+        (let [ds (evaluate :crossings flat)]
           (for [e 1 crossings]
-            (let [(x y z) (point e (. ts e))]
-              (tset px e x) (tset py e y) (tset pz e z))))
-        (mark! :normals)
-        ;; 5. Normals: central differences of the field at each crossing.
-        (let [flat []]
-          (for [e 1 crossings]
-            (let [x (. px e) y (. py e) z (. pz e)]
-              (each [_ [dx dy dz] (ipairs [[step 0 0] [(- step) 0 0] [0 step 0]
-                                           [0 (- step) 0] [0 0 step] [0 0 (- step)]])]
-                (table.insert flat (+ x dx)) (table.insert flat (+ y dy))
-                (table.insert flat (+ z dz)))))
-          (let [ds (evaluate :normals flat)]
-            (for [e 1 crossings]
-              (let [b (* 6 (- e 1))
-                    gx (- (. ds (+ b 1)) (. ds (+ b 2)))
-                    gy (- (. ds (+ b 3)) (. ds (+ b 4)))
-                    gz (- (. ds (+ b 5)) (. ds (+ b 6)))
-                    len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))]
-                (if (> len 0)
-                    (do (tset nrx e (/ gx len)) (tset nry e (/ gy len)) (tset nrz e (/ gz len)))
-                    ;; A flat spot: the edge's own direction, pointing outward.
-                    (let [axis (. eaxis e) sgn (if (< (. ed0 e) 0) 1 -1)]
-                      (tset nrx e (if (= axis 0) sgn 0)) (tset nry e (if (= axis 1) sgn 0))
-                      (tset nrz e (if (= axis 2) sgn 0))))))))
-        (worked! :patches (* 0.25 geometry-work crossings))
-        (mark! :patches)
-        ;; 6. Patches. Where both cells of an ambiguous face have one patch through
-        ;; both of the face's segments, the quads of the two segments would share
-        ;; their edge across the face (four triangles on one edge): reversing the
-        ;; face's decision in both cells splits each patch in two. Repeated until no
-        ;; face is left so (each reversal only splits patches, so it ends).
-        (let [cell-at {}
-              face-key (fn [cell fi]
-                         (let [axis (floor (/ (- fi 1) 2)) side (% (- fi 1) 2)]
-                           (+ axis (* 3 (+ cell.i (if (= axis 0) side 0)
-                                           (* stride-x (+ cell.j (if (= axis 1) side 0)))
-                                           (* stride-y (+ cell.k (if (= axis 2) side 0))))))))
-              ;; The same face seen from the cell across it.
-              across (fn [cell fi]
-                       (let [axis (floor (/ (- fi 1) 2)) sgn (if (= 0 (% (- fi 1) 2)) -1 1)]
-                         (values (. cell-at (+ cell.i (if (= axis 0) sgn 0)
-                                               (* stride-x (+ cell.j (if (= axis 1) sgn 0)))
-                                               (* stride-y (+ cell.k (if (= axis 2) sgn 0)))))
-                                 (if (= sgn 1) (- fi 1) (+ fi 1)))))
-              flipped {}]
-          (each [_ cell (ipairs cells)]
-            (tset cell-at (+ cell.i (* stride-x cell.j) (* stride-y cell.k)) cell)
-            (set (cell.rep cell.joined) (patches cell.v)))
-          ;; Each reversal takes effect at once: a cell between two such faces
-          ;; (a twisted row of cells) must not have both reversed in one pass.
-          (var todo (icollect [_ cell (ipairs cells)] (when (< 0 (length cell.joined)) cell)))
-          (for [_ 1 16 &until (= 0 (length todo))]
-            (let [again []
-                  joined? (fn [c fi] (accumulate [j? false _ g (ipairs c.joined)] (or j? (= g fi))))]
-              (each [_ cell (ipairs todo)]
-                (each [_ fi (ipairs (icollect [_ g (ipairs cell.joined)] g))]
-                  (let [(other ofi) (across cell fi)]
-                    (when (and other (joined? cell fi) (joined? other ofi)
-                               (not (. flipped (face-key cell fi))))
-                      (tset flipped (face-key cell fi) true)
-                      (set counts.flipped (+ 1 (or counts.flipped 0)))
-                      (when (not cell.flips) (set cell.flips {}))
-                      (when (not other.flips) (set other.flips {}))
-                      (tset cell.flips fi (not (. cell.flips fi)))
-                      (tset other.flips ofi (not (. other.flips ofi)))
-                      (set (cell.rep cell.joined) (patches cell.v cell.flips))
-                      (set (other.rep other.joined) (patches other.v other.flips))
-                      (table.insert again cell)
-                      (table.insert again other)))))
-              (set todo again))))
-        (worked! :vertices (* 0.25 geometry-work crossings))
-        (mark! :vertices)
-        ;; 7. One vertex per patch of each cell.
-        (let [positions []
-              ;; Per vertex: its cell's low corner and its crossings' mean.
-              vertex-info []
-              cell-vertices {}]
-          (var vertex-count 0)
-          (each [_ cell (ipairs cells)]
-            (let [rep cell.rep
-                  groups {}
-                  order []
-                  local-vertex {}]
-              (for [e 0 11]
-                (let [r (. rep e)]
-                  (when r
-                    (when (not (. groups r))
-                      (tset groups r [])
-                      (table.insert order r))
-                    (table.insert (. groups r) (. cell.edges e)))))
-              (let [lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
-                    placed (icollect [_ r (ipairs order)]
-                             [(qef-vertex (. groups r) px py pz nrx nry nrz lx ly lz h)])]
-                ;; Patches of this cell whose vertices meet: each moves toward its
-                ;; crossings' mean (or, when that is the same point, apart along x).
-                (for [a 1 (length placed)]
-                  (for [b (+ a 1) (length placed)]
-                    (let [[ax ay az] (. placed a) [bx by bz] (. placed b)]
-                      (when (< (sqrt (+ (* (- ax bx) (- ax bx)) (* (- ay by) (- ay by))
-                                        (* (- az bz) (- az bz))))
-                               (* inset h))
-                        (each [k q (ipairs [(. placed a) (. placed b)])]
-                          (let [[x y z mx my mz] q
-                                dx (- mx x) dy (- my y) dz (- mz z)
-                                len (sqrt (+ (* dx dx) (* dy dy) (* dz dz)))
-                                push (* 10 inset h)
-                                (ux uy uz) (if (> len (* inset h)) (values (/ dx len) (/ dy len) (/ dz len))
-                                               (values (if (= k 1) -1 1) 0 0))]
-                            (tset q 1 (clamp-cell (+ x (* push ux)) lx h))
-                            (tset q 2 (clamp-cell (+ y (* push uy)) ly h))
-                            (tset q 3 (clamp-cell (+ z (* push uz)) lz h))))))))
-                (each [n r (ipairs order)]
-                  (let [[x y z mx my mz] (. placed n)]
-                    (set vertex-count (+ vertex-count 1))
-                    (each [_ v (ipairs [lx ly lz mx my mz])] (table.insert vertex-info v))
-                    (table.insert positions x) (table.insert positions y)
-                    (table.insert positions z)
-                    (tset local-vertex r vertex-count))))
-              (tset cell-vertices (+ cell.i (* stride-x cell.j) (* stride-y cell.k))
-                    (collect [e r (pairs rep)] e (. local-vertex r)))
-              ;; Done with this cell but for its vertices: the rest may go.
-              (set (cell.v cell.edges cell.rep cell.joined cell.flips) nil)))
-          (worked! :projection (* 0.2 geometry-work crossings))
-          (mark! :projection)
-          ;; 8. Vertices off the surface (see off-surface): each moved to the best
-          ;; of a Newton step along the field's gradient (kept in its cell) and its
-          ;; crossings' mean (which may leave the cell, but a crossing is on the
-          ;; surface), where it stays unless that is nearer the surface.
-          (let [flat (icollect [_ v (ipairs positions)] v)
-                ds (evaluate :projection flat)
-                bad (icollect [v d (ipairs ds)] (when (> (abs d) (* off-surface h)) v))
-                grad []]
-            (each [_ v (ipairs bad)]
-              (let [b (* 3 (- v 1))
-                    x (. positions (+ b 1)) y (. positions (+ b 2)) z (. positions (+ b 3))]
-                (each [_ [dx dy dz] (ipairs [[step 0 0] [(- step) 0 0] [0 step 0]
-                                             [0 (- step) 0] [0 0 step] [0 0 (- step)]])]
-                  (table.insert grad (+ x dx)) (table.insert grad (+ y dy))
-                  (table.insert grad (+ z dz)))))
-            (let [gs (evaluate :projection grad)
-                  candidates []]
-              (each [n v (ipairs bad)]
-                (let [b (* 3 (- v 1)) g (* 6 (- n 1))
-                      gx (- (. gs (+ g 1)) (. gs (+ g 2)))
-                      gy (- (. gs (+ g 3)) (. gs (+ g 4)))
-                      gz (- (. gs (+ g 5)) (. gs (+ g 6)))
-                      len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))
-                      d (. ds v)
-                      s (if (> len 0) (/ d len) 0)
-                      clamp (fn [q lo] (clamp-cell q lo h))
-                      i (* 6 (- v 1))]
-                  (table.insert candidates (clamp (- (. positions (+ b 1)) (* s gx)) (. vertex-info (+ i 1))))
-                  (table.insert candidates (clamp (- (. positions (+ b 2)) (* s gy)) (. vertex-info (+ i 2))))
-                  (table.insert candidates (clamp (- (. positions (+ b 3)) (* s gz)) (. vertex-info (+ i 3))))
-                  (for [q 4 6] (table.insert candidates (. vertex-info (+ i q))))))
-              (let [cds (evaluate :projection candidates)]
-                (each [n v (ipairs bad)]
-                  (var best (abs (. ds v)))
-                  (for [c 0 1]
-                    (let [at (+ (* 2 (- n 1)) c 1)]
-                      (when (< (abs (. cds at)) best)
-                        (set best (abs (. cds at)))
-                        (for [q 1 3]
-                          (tset positions (+ (* 3 (- v 1)) q)
-                                (. candidates (+ (* 3 (- at 1)) q)))))))))
-              (set counts.moved (length bad))))
-          (mark! :faces)
-          ;; 9. A quad of the four cells around each crossing edge, split into two
-          ;; triangles along the diagonal that bends it least.
-          (let [triangles []
-                vertex-of (fn [i j k e]
-                            (let [vs (. cell-vertices (+ i (* stride-x j) (* stride-y k)))]
-                              (assert (and vs (. vs e))
-                                      (string.format "mesh: crossing edge without cell (%d %d %d)" i j k))
-                              (. vs e)))
-                pos (fn [v] (let [b (* 3 (- v 1))]
-                              (values (. positions (+ b 1)) (. positions (+ b 2))
-                                      (. positions (+ b 3)))))
-                normal (fn [a b c]
-                         (let [(ax ay az) (pos a) (bx by bz) (pos b) (cx cy cz) (pos c)
-                               ux (- bx ax) uy (- by ay) uz (- bz az)
-                               vx (- cx ax) vy (- cy ay) vz (- cz az)
-                               x (- (* uy vz) (* uz vy)) y (- (* uz vx) (* ux vz))
-                               z (- (* ux vy) (* uy vx))
-                               l (sqrt (+ (* x x) (* y y) (* z z)))]
-                           (if (> l 0) (values (/ x l) (/ y l) (/ z l)) (values 0 0 0))))
-                flatness (fn [a b c d]
-                           (let [(x1 y1 z1) (normal a b c) (x2 y2 z2) (normal a c d)]
-                             (+ (* x1 x2) (* y1 y2) (* z1 z2))))]
-            (for [e 1 crossings]
-              (let [axis (. eaxis e) i (. ex0 e) j (. ey0 e) k (. ez0 e)
-                    ;; The cells at offsets (du dv) in {-1 0}^2 along the two other
-                    ;; axes u, v (u x v = the edge's axis), counter-clockwise.
-                    quad (icollect [_ [du dv] (ipairs [[-1 -1] [0 -1] [0 0] [-1 0]])]
-                           (let [uu (- du) vv (- dv)]
-                             (case axis
-                               0 (vertex-of i (+ j du) (+ k dv) (+ uu (* 2 vv)))
-                               1 (vertex-of (+ i dv) j (+ k du) (+ 4 vv (* 2 uu)))
-                               _ (vertex-of (+ i du) (+ j dv) k (+ 8 uu (* 2 vv))))))
-                    [a b c d] (if (< (. ed0 e) 0) quad
-                                  [(. quad 4) (. quad 3) (. quad 2) (. quad 1)])]
-                (if (>= (flatness a b c d) (flatness b c d a))
-                    (each [_ v (ipairs [a b c a c d])] (table.insert triangles v))
-                    (each [_ v (ipairs [b c d b d a])] (table.insert triangles v)))))
-            (worked! :faces (* 0.3 geometry-work crossings))
-            (mark! nil)
-            {: positions : triangles
-             :stats {:points counts.points :blocks (length leaves) : skipped
-                     :cells (length cells) : crossings :moved counts.moved : times
-                     :flipped (or counts.flipped 0)
-                     :work counts.work :estimate counts.estimate}}))))))
+            (let [t (. ts e) d (. ds e)]
+              (if (= (< d 0) (< (. fa e) 0))
+                  (do (tset ta e t) (tset fa e d)
+                      (when (= (. side-kept e) 1) (tset fb e (* 0.5 (. fb e))))
+                      (tset side-kept e 1))
+                  (do (tset tb e t) (tset fb e d)
+                      (when (= (. side-kept e) -1) (tset fa e (* 0.5 (. fa e))))
+                      (tset side-kept e -1)))
+              (tset ts e (if (= d 0) t (guess e))))))))
+    (for [e 1 crossings]
+      (let [(x y z) (point e (. ts e))]
+        (tset px e x) (tset py e y) (tset pz e z)))
+    (set (state.px state.py state.pz) (values px py pz))))
+
+(fn crossing-normals! [state]
+  "5. Normals: central differences of the field at each crossing, unit length, in
+state.nrx, nry, nrz."
+  (let [{: evaluate : crossings : px : py : pz : step : ed0 : eaxis} state
+        nrx [] nry [] nrz []
+        flat []]
+    (for [e 1 crossings]
+      (let [x (. px e) y (. py e) z (. pz e)]
+        (each [_ [dx dy dz] (ipairs [[step 0 0] [(- step) 0 0] [0 step 0]
+                                     [0 (- step) 0] [0 0 step] [0 0 (- step)]])]
+          (table.insert flat (+ x dx)) (table.insert flat (+ y dy))
+          (table.insert flat (+ z dz)))))
+    (let [ds (evaluate :normals flat)]
+      (for [e 1 crossings]
+        (let [b (* 6 (- e 1))
+              gx (- (. ds (+ b 1)) (. ds (+ b 2)))
+              gy (- (. ds (+ b 3)) (. ds (+ b 4)))
+              gz (- (. ds (+ b 5)) (. ds (+ b 6)))
+              len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))]
+          (if (> len 0)
+              (do (tset nrx e (/ gx len)) (tset nry e (/ gy len)) (tset nrz e (/ gz len)))
+              ;; A flat spot: the edge's own direction, pointing outward.
+              (let [axis (. eaxis e) sgn (if (< (. ed0 e) 0) 1 -1)]
+                (tset nrx e (if (= axis 0) sgn 0)) (tset nry e (if (= axis 1) sgn 0))
+                (tset nrz e (if (= axis 2) sgn 0)))))))
+    (set (state.nrx state.nry state.nrz) (values nrx nry nrz))))
+
+(fn find-patches! [state]
+  "6. Patches: each cell's :rep and :joined (see patches), and :flips where its
+faces' decisions were reversed. Where both cells of an ambiguous face have one patch
+through both of the face's segments, the quads of the two segments would share
+their edge across the face (four triangles on one edge): reversing the face's
+decision in both cells splits each patch in two. Repeated until no face is left so
+(each reversal only splits patches, so it ends); counted in state.counts.flipped."
+  (let [{: cells : counts : stride-x : stride-y} state
+        cell-at {}
+        face-key (fn [cell fi]
+                   (let [axis (floor (/ (- fi 1) 2)) side (% (- fi 1) 2)]
+                     (+ axis (* 3 (+ cell.i (if (= axis 0) side 0)
+                                     (* stride-x (+ cell.j (if (= axis 1) side 0)))
+                                     (* stride-y (+ cell.k (if (= axis 2) side 0))))))))
+        ;; The same face seen from the cell across it.
+        across (fn [cell fi]
+                 (let [axis (floor (/ (- fi 1) 2)) sgn (if (= 0 (% (- fi 1) 2)) -1 1)]
+                   (values (. cell-at (+ cell.i (if (= axis 0) sgn 0)
+                                         (* stride-x (+ cell.j (if (= axis 1) sgn 0)))
+                                         (* stride-y (+ cell.k (if (= axis 2) sgn 0)))))
+                           (if (= sgn 1) (- fi 1) (+ fi 1)))))
+        flipped {}]
+    (each [_ cell (ipairs cells)]
+      (tset cell-at (+ cell.i (* stride-x cell.j) (* stride-y cell.k)) cell)
+      (set (cell.rep cell.joined) (patches cell.v)))
+    ;; Each reversal takes effect at once: a cell between two such faces
+    ;; (a twisted row of cells) must not have both reversed in one pass.
+    (var todo (icollect [_ cell (ipairs cells)] (when (< 0 (length cell.joined)) cell)))
+    (for [_ 1 16 &until (= 0 (length todo))]
+      (let [again []
+            joined? (fn [c fi] (accumulate [j? false _ g (ipairs c.joined)] (or j? (= g fi))))]
+        (each [_ cell (ipairs todo)]
+          (each [_ fi (ipairs (icollect [_ g (ipairs cell.joined)] g))]
+            (let [(other ofi) (across cell fi)]
+              (when (and other (joined? cell fi) (joined? other ofi)
+                         (not (. flipped (face-key cell fi))))
+                (tset flipped (face-key cell fi) true)
+                (set counts.flipped (+ 1 (or counts.flipped 0)))
+                (when (not cell.flips) (set cell.flips {}))
+                (when (not other.flips) (set other.flips {}))
+                (tset cell.flips fi (not (. cell.flips fi)))
+                (tset other.flips ofi (not (. other.flips ofi)))
+                (set (cell.rep cell.joined) (patches cell.v cell.flips))
+                (set (other.rep other.joined) (patches other.v other.flips))
+                (table.insert again cell)
+                (table.insert again other)))))
+        (set todo again)))))
+
+(fn separate! [placed lx ly lz h]
+  "Patches of one cell (their vertices `placed`, each [x y z mx my mz] with the
+crossings' mean; the cell's low corner lx ly lz) whose vertices meet: each moves
+toward its crossings' mean (or, when that is the same point, apart along x)."
+  (for [a 1 (length placed)]
+    (for [b (+ a 1) (length placed)]
+      (let [[ax ay az] (. placed a) [bx by bz] (. placed b)]
+        (when (< (sqrt (+ (* (- ax bx) (- ax bx)) (* (- ay by) (- ay by))
+                          (* (- az bz) (- az bz))))
+                 (* inset h))
+          (each [k q (ipairs [(. placed a) (. placed b)])]
+            (let [[x y z mx my mz] q
+                  dx (- mx x) dy (- my y) dz (- mz z)
+                  len (sqrt (+ (* dx dx) (* dy dy) (* dz dz)))
+                  push (* 10 inset h)
+                  (ux uy uz) (if (> len (* inset h)) (values (/ dx len) (/ dy len) (/ dz len))
+                                 (values (if (= k 1) -1 1) 0 0))]
+              (tset q 1 (clamp-cell (+ x (* push ux)) lx h))
+              (tset q 2 (clamp-cell (+ y (* push uy)) ly h))
+              (tset q 3 (clamp-cell (+ z (* push uz)) lz h)))))))))
+
+(fn place-vertices! [state]
+  "7. One vertex per patch of each cell (see qef-vertex and separate!). Leaves
+state.positions [x y z ...], state.vertex-info (per vertex its cell's low corner and
+its crossings' mean, six numbers) and state.cell-vertices (a cell's key -> its
+local edge -> the vertex of the edge's patch); empties the cells but for i j k."
+  (let [{: cells : px : py : pz : nrx : nry : nrz : ox : oy : oz : h : stride-x : stride-y} state
+        positions []
+        vertex-info []
+        cell-vertices {}]
+    (var vertex-count 0)
+    (each [_ cell (ipairs cells)]
+      (let [rep cell.rep
+            groups {}
+            order []
+            local-vertex {}]
+        (for [e 0 11]
+          (let [r (. rep e)]
+            (when r
+              (when (not (. groups r))
+                (tset groups r [])
+                (table.insert order r))
+              (table.insert (. groups r) (. cell.edges e)))))
+        (let [lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
+              placed (icollect [_ r (ipairs order)]
+                       [(qef-vertex (. groups r) px py pz nrx nry nrz lx ly lz h)])]
+          (separate! placed lx ly lz h)
+          (each [n r (ipairs order)]
+            (let [[x y z mx my mz] (. placed n)]
+              (set vertex-count (+ vertex-count 1))
+              (each [_ v (ipairs [lx ly lz mx my mz])] (table.insert vertex-info v))
+              (table.insert positions x) (table.insert positions y)
+              (table.insert positions z)
+              (tset local-vertex r vertex-count))))
+        (tset cell-vertices (+ cell.i (* stride-x cell.j) (* stride-y cell.k))
+              (collect [e r (pairs rep)] e (. local-vertex r)))
+        ;; Done with this cell but for its vertices: the rest may go.
+        (set (cell.v cell.edges cell.rep cell.joined cell.flips) nil)))
+    (set (state.positions state.vertex-info state.cell-vertices)
+         (values positions vertex-info cell-vertices))))
+
+(fn project-vertices! [state]
+  "8. Vertices off the surface (see off-surface): each moved to the best of a
+Newton step along the field's gradient (kept in its cell) and its crossings' mean
+(which may leave the cell, but a crossing is on the surface), where it stays unless
+that is nearer the surface. Moves them in state.positions; counts them in
+state.counts.moved."
+  (let [{: evaluate : counts : positions : vertex-info : h : step} state
+        flat (icollect [_ v (ipairs positions)] v)
+        ds (evaluate :projection flat)
+        bad (icollect [v d (ipairs ds)] (when (> (abs d) (* off-surface h)) v))
+        grad []]
+    (each [_ v (ipairs bad)]
+      (let [b (* 3 (- v 1))
+            x (. positions (+ b 1)) y (. positions (+ b 2)) z (. positions (+ b 3))]
+        (each [_ [dx dy dz] (ipairs [[step 0 0] [(- step) 0 0] [0 step 0]
+                                     [0 (- step) 0] [0 0 step] [0 0 (- step)]])]
+          (table.insert grad (+ x dx)) (table.insert grad (+ y dy))
+          (table.insert grad (+ z dz)))))
+    (let [gs (evaluate :projection grad)
+          candidates []]
+      (each [n v (ipairs bad)]
+        (let [b (* 3 (- v 1)) g (* 6 (- n 1))
+              gx (- (. gs (+ g 1)) (. gs (+ g 2)))
+              gy (- (. gs (+ g 3)) (. gs (+ g 4)))
+              gz (- (. gs (+ g 5)) (. gs (+ g 6)))
+              len (sqrt (+ (* gx gx) (* gy gy) (* gz gz)))
+              d (. ds v)
+              s (if (> len 0) (/ d len) 0)
+              clamp (fn [q lo] (clamp-cell q lo h))
+              i (* 6 (- v 1))]
+          (table.insert candidates (clamp (- (. positions (+ b 1)) (* s gx)) (. vertex-info (+ i 1))))
+          (table.insert candidates (clamp (- (. positions (+ b 2)) (* s gy)) (. vertex-info (+ i 2))))
+          (table.insert candidates (clamp (- (. positions (+ b 3)) (* s gz)) (. vertex-info (+ i 3))))
+          (for [q 4 6] (table.insert candidates (. vertex-info (+ i q))))))
+      (let [cds (evaluate :projection candidates)]
+        (each [n v (ipairs bad)]
+          (var best (abs (. ds v)))
+          (for [c 0 1]
+            (let [at (+ (* 2 (- n 1)) c 1)]
+              (when (< (abs (. cds at)) best)
+                (set best (abs (. cds at)))
+                (for [q 1 3]
+                  (tset positions (+ (* 3 (- v 1)) q)
+                        (. candidates (+ (* 3 (- at 1)) q))))))))))
+    (set counts.moved (length bad))))
+
+(fn make-triangles [state]
+  "9. A quad of the four cells around each crossing edge, split into two triangles
+along the diagonal that bends it least: the triangles [a b c ...], counter-clockwise
+seen from outside."
+  (let [{: crossings : positions : cell-vertices : ex0 : ey0 : ez0 : ed0 : eaxis
+         : stride-x : stride-y} state
+        triangles []
+        vertex-of (fn [i j k e]
+                    (let [vs (. cell-vertices (+ i (* stride-x j) (* stride-y k)))]
+                      (assert (and vs (. vs e))
+                              (string.format "mesh: crossing edge without cell (%d %d %d)" i j k))
+                      (. vs e)))
+        pos (fn [v] (let [b (* 3 (- v 1))]
+                      (values (. positions (+ b 1)) (. positions (+ b 2))
+                              (. positions (+ b 3)))))
+        normal (fn [a b c]
+                 (let [(ax ay az) (pos a) (bx by bz) (pos b) (cx cy cz) (pos c)
+                       ux (- bx ax) uy (- by ay) uz (- bz az)
+                       vx (- cx ax) vy (- cy ay) vz (- cz az)
+                       x (- (* uy vz) (* uz vy)) y (- (* uz vx) (* ux vz))
+                       z (- (* ux vy) (* uy vx))
+                       l (sqrt (+ (* x x) (* y y) (* z z)))]
+                   (if (> l 0) (values (/ x l) (/ y l) (/ z l)) (values 0 0 0))))
+        flatness (fn [a b c d]
+                   (let [(x1 y1 z1) (normal a b c) (x2 y2 z2) (normal a c d)]
+                     (+ (* x1 x2) (* y1 y2) (* z1 z2))))]
+    (for [e 1 crossings]
+      (let [axis (. eaxis e) i (. ex0 e) j (. ey0 e) k (. ez0 e)
+            ;; The cells at offsets (du dv) in {-1 0}^2 along the two other
+            ;; axes u, v (u x v = the edge's axis), counter-clockwise.
+            quad (icollect [_ [du dv] (ipairs [[-1 -1] [0 -1] [0 0] [-1 0]])]
+                   (let [uu (- du) vv (- dv)]
+                     (case axis
+                       0 (vertex-of i (+ j du) (+ k dv) (+ uu (* 2 vv)))
+                       1 (vertex-of (+ i dv) j (+ k du) (+ 4 vv (* 2 uu)))
+                       _ (vertex-of (+ i du) (+ j dv) k (+ 8 uu (* 2 vv))))))
+            [a b c d] (if (< (. ed0 e) 0) quad
+                          [(. quad 4) (. quad 3) (. quad 2) (. quad 1)])]
+        (if (>= (flatness a b c d) (flatness b c d a))
+            (each [_ v (ipairs [a b c a c d])] (table.insert triangles v))
+            (each [_ v (ipairs [b c d b d a])] (table.insert triangles v)))))
+    triangles))
+
+(fn mesh [field grid ?progress]
+  "Contour `field` over `grid`. The field: {:distances (fn [flat n]) -> n signed
+distances at the points of the flat list x1 y1 z1 x2 ...; :step the gradient's
+difference step as a share of a cell}. The grid: {:lo [x y z] (its low corner) :h
+(the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a box inside the grid
+by at least one cell: the field is cut by it, which closes the mesh)}.
+`?progress` (fn [phase work estimate points]) hears of each batch of points and
+each step: the phase (:blocks, :corners, :crossings, :normals, :patches, :vertices,
+:projection, :faces), the work done so far (in field evaluations: see geometry-work),
+an estimate of all the work (nil until the blocks are known; the grid's :after-work
+per vertex included) and the points evaluated.
+Returns {:positions [x y z ...] :triangles [a b c ...] (1-based vertex indices,
+counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
+(leaf blocks sampled) :skipped (leaf blocks' worth of volume skipped) :cells
+(cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
+moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
+  (let [state (new-state field grid ?progress)
+        counts state.counts]
+    (mark! state :blocks)
+    (find-leaves! state)
+    (mark! state :corners)
+    (sample-corners! state)
+    (mark! state :cells)
+    (find-cells! state)
+    (mark! state :crossings)
+    (refine-crossings! state)
+    (mark! state :normals)
+    (crossing-normals! state)
+    (worked! state :patches (* 0.25 geometry-work state.crossings))
+    (mark! state :patches)
+    (find-patches! state)
+    (worked! state :vertices (* 0.25 geometry-work state.crossings))
+    (mark! state :vertices)
+    (place-vertices! state)
+    (worked! state :projection (* 0.2 geometry-work state.crossings))
+    (mark! state :projection)
+    (project-vertices! state)
+    (mark! state :faces)
+    (let [triangles (make-triangles state)]
+      (worked! state :faces (* 0.3 geometry-work state.crossings))
+      (mark! state nil)
+      {:positions state.positions : triangles
+       :stats {:points counts.points :blocks (length state.leaves) :skipped state.skipped
+               :cells (length state.cells) :crossings state.crossings
+               :moved counts.moved :times state.times
+               :flipped (or counts.flipped 0)
+               :work counts.work :estimate counts.estimate}})))
 
 {: mesh : patches : box-distance : leaf}
