@@ -80,6 +80,28 @@
               r (build s 16 (region "-2,-2,-1,2,2,1"))]
           (assert.are.equal "cut by the region: objects[1] (plane)" r.message))))
 
+    (it "refuses a resolution whose surface would take too much memory, before sampling it"
+      (fn []
+        ;; A unit box at 512 cells: 196,236 leaf blocks, 6.3 GB and 140 s; refused
+        ;; once the octree has counted them, with a resolution that fits.
+        (let [box (scene-of "{:kind :box :size [1 1 1]}")
+              (r err) (export.build box {:quiet? true :resolution 512})]
+          (assert.is_nil r)
+          (assert.are.equal "the surface at 512 cells fills 196236 blocks of 4x4x4 cells, more than the 65536 one mesh may have (memory follows them, about 2 GB at that many); give --resolution 264 or less"
+                            err))
+        ;; The mesher's own limit: raised before any corner is sampled.
+        (let [contour (require :src.mesh.contour)
+              sel (assert (mesh-scene.select-objects two))
+              grid (doto (mesh-scene.grid-for sel 24) (tset :max-leaves 10))
+              field (assert (mesh-scene.cpu-field sel.scene))
+              points []
+              (ok? e) (pcall contour.mesh field grid
+                             (fn [phase _ _ n] (tset points phase n)))]
+          (assert.is_false ok?)
+          (assert.are.equal 10 e.max-leaves)
+          (assert.is_true (> e.leaves 10))
+          (assert.is_nil points.corners))))
+
     (it "refuses a region clear of every object before meshing, and degenerate regions"
       (fn []
         (let [(r err) (export.build two {:quiet? true :region (region "5,5,5,1e30,1e30,1e30")})]

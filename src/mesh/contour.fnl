@@ -652,7 +652,9 @@ seen from outside."
 distances at the points of the flat list x1 y1 z1 x2 ...; :step the gradient's
 difference step as a share of a cell}. The grid: {:lo [x y z] (its low corner) :h
 (the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a box inside the grid
-by at least one cell: the field is cut by it, which closes the mesh)}.
+by at least one cell: the field is cut by it, which closes the mesh) :max-leaves (if
+given, the most leaf blocks to sample: past it, once the octree has found them and
+before any corner is sampled, mesh raises {:leaves n :max-leaves m})}.
 `?progress` (fn [phase work estimate points]) hears of each batch of points and
 each step: the phase (:blocks, :corners, :crossings, :normals, :patches, :vertices,
 :projection, :faces), the work done so far (in field evaluations: see geometry-work),
@@ -667,6 +669,8 @@ moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
         counts state.counts]
     (mark! state :blocks)
     (find-leaves! state)
+    (when (and grid.max-leaves (> (length state.leaves) grid.max-leaves))
+      (error {:leaves (length state.leaves) :max-leaves grid.max-leaves}))
     (mark! state :corners)
     (sample-corners! state)
     (mark! state :cells)

@@ -69,6 +69,12 @@ left at the rate so far."
 ;; What progress raises when asked to stop (see build).
 (local stopped {:stopped true})
 
+(fn resolution-for [resolution too-many]
+  ;; A resolution whose blocks fit (they grow with its square), a tenth below the
+  ;; estimate and a multiple of 8 (the octree's blocks do not scale exactly).
+  (math.max 8 (* 8 (math.floor (/ (* 0.9 resolution (math.sqrt (/ too-many.max-leaves too-many.leaves)))
+                                  8)))))
+
 (fn build [scene ?options]
   "Mesh `scene`. Options: :resolution (cells along the region's longest side,
 default 128), :region {:lo :hi} (default the finite objects' box), :field (fn
@@ -103,6 +109,13 @@ Returns {:mesh {:positions :triangles :colors} :message (what was left out or cu
           (if (or (= m stopped) (= cerr stopped))
               (do (when (not options.quiet?) (status.done!))
                   (values nil options.stop-message))
+              (and (not ok?) (= (type m) :table) m.leaves)
+              ;; Too much surface for the resolution: the blocks grow with its square.
+              (do (when (not options.quiet?) (status.done!))
+                  (values nil (string.format
+                               "the surface at %d cells fills %d blocks of 4x4x4 cells, more than the %d one mesh may have (memory follows them, about 2 GB at that many); give --resolution %d or less"
+                               resolution m.leaves m.max-leaves
+                               (resolution-for resolution m))))
               (not ok?) (error m 0)
               (not coloured?) (error cerr 0)
               (= 0 (length m.triangles))

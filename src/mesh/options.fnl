@@ -7,6 +7,12 @@
 ;; surface cell, so memory grows with the area, four times a doubling.
 (local max-resolution 512)
 (local default-resolution 128)
+;; The most leaf blocks (4x4x4 cells the mesher samples) one mesh may have. Memory
+;; follows them, about 30 KB each at the peak (a unit box: 12,204 at 128 cells, 361 MB;
+;; 48,972 at 256, 1.5 GB; 196,000 at 512 took 6.3 GB and 140 s; machined-part 7,663
+;; at 256, 320 MB): this keeps the main process near 2 GB. At 128 cells a whole grid
+;; has 36,000, so the default is never refused.
+(local max-leaves 65536)
 
 (fn parse-region [s]
   "The box {:lo :hi} of `s` = \"x0,y0,z0,x1,y1,z1\", or nil and a message."
@@ -33,4 +39,5 @@ max-resolution), or nil and a message."
         (values nil (string.format "--resolution must be a whole number from %d to %d, got %s"
                                    min-resolution max-resolution s)))))
 
-{: parse-region : parse-resolution : default-resolution : min-resolution : max-resolution}
+{: parse-region : parse-resolution : default-resolution : min-resolution : max-resolution
+ : max-leaves}

@@ -160,7 +160,7 @@ the cut on every side, so its boundary is outside."
         given selection.cut
         cut {:lo (fcollect [i 1 3] (math.max (- (. lo i) h) (if given (. given.lo i) (- math.huge))))
              :hi (fcollect [i 1 3] (math.min (+ (. hi i) h) (if given (. given.hi i) math.huge)))}]
-    {: h : cut
+    {: h : cut :max-leaves options.max-leaves
      :lo (fcollect [i 1 3] (- (. cut.lo i) (* 2 h)))
      :dims (fcollect [i 1 3] (+ 4 (math.ceil (- (/ (- (. cut.hi i) (. cut.lo i)) h) 1e-9))))}))
 
