@@ -788,12 +788,44 @@ helper has no job running or waiting (the folded shader asked for, when there is
     (love.graphics.printf message (+ x 8) (+ y 6) (+ width 1))
     (love.graphics.setColor 1 1 1 1)))
 
+(fn despeckled [canvas]
+  "`canvas` with each pixel clamped to its four neighbours' range
+(shaders/player/despeckle.glsl: a lone firefly goes, edges and lines stay), drawn into
+a canvas of the same size kept for the next frame; `canvas` itself when the shader
+cannot be made."
+  (when (= nil state.despeckle)
+    (set state.despeckle
+         (case (pcall love.graphics.newShader
+                  (pick-values 1 (love.filesystem.read "shaders/player/despeckle.glsl")))
+           (true shader) {: shader}
+           _ false)))
+  (if (not state.despeckle)
+      canvas
+      (let [d state.despeckle
+            (w h) (canvas:getDimensions)]
+        (when (or (not d.canvas) (not= w (d.canvas:getWidth)) (not= h (d.canvas:getHeight)))
+          (when d.canvas (d.canvas:release))
+          (set d.canvas (love.graphics.newCanvas w h)))
+        (d.canvas:setFilter (canvas:getFilter))
+        (love.graphics.push :all)
+        (love.graphics.setCanvas d.canvas)
+        (love.graphics.setBlendMode :replace)
+        (love.graphics.setShader d.shader)
+        (d.shader:send :texelSize [(/ 1 w) (/ 1 h)])
+        (love.graphics.setColor 1 1 1 1)
+        (love.graphics.draw canvas 0 0)
+        (love.graphics.pop)
+        d.canvas)))
+
 (fn draw-stretched [canvas]
   ;; Stretched to the window exactly: the canvas is the window times the scale
-  ;; rounded down, and 1 / scale would leave strips at the right and bottom.
-  (let [(ww wh) (love.graphics.getDimensions)]
+  ;; rounded down, and 1 / scale would leave strips at the right and bottom. A picture
+  ;; smaller than the window (the moving picture, a lower render scale) is despeckled
+  ;; first: stretched, one firefly pixel would become a blob many pixels wide.
+  (let [(ww wh) (love.graphics.getDimensions)
+        shown (if (< (* 4 (canvas:getWidth)) (* 3 ww)) (despeckled canvas) canvas)]
     (love.graphics.setColor 1 1 1 1)
-    (love.graphics.draw canvas 0 0 0 (/ ww (canvas:getWidth)) (/ wh (canvas:getHeight)))))
+    (love.graphics.draw shown 0 0 0 (/ ww (shown:getWidth)) (/ wh (shown:getHeight)))))
 
 (fn state-key [memo-id]
   "The scene state a picture shows: the scene's values (their generation, which the
