@@ -83,14 +83,16 @@ arguments); it stops the drawing on SIGINT or SIGTERM (src/app/stop.fnl)."
   ;; The command line's output: named as --out, never the scene file.
   {:protect [o.scene] :label (.. "--out " o.out)})
 
-(fn at-time [scene ?t]
-  ;; `scene` with its functions of time at ?t seconds (their values at 0 are the
-  ;; load's), or nil and a message.
-  (if (and scene ?t (not= ?t 0) (scene-mod.animated? scene))
-      (case (worker.animate scene ?t)
-        (nil err) (values nil err)
-        _ scene)
-      scene))
+(fn load-at [path ?t]
+  ;; The scene file `path` loaded, its functions of time at ?t seconds (their values
+  ;; at 0 are the load's), or nil and a message.
+  (case (frame.load-scene path)
+    (nil err) (values nil err)
+    (where scene (and ?t (not= ?t 0) (scene-mod.animated? scene)))
+    (case (worker.animate scene ?t)
+      (nil err) (values nil err)
+      _ scene)
+    scene scene))
 
 (fn run [o]
   "Render o.scene into o.out (a PNG) at o.size (512x448) with o.view, o.quality and
@@ -99,7 +101,7 @@ o.samples (see quality.resolve), its functions of time at o.time seconds (0). Pr
   (case (output.check o.out (out-options o))
     (nil err) (values nil err)
     _
-    (case (at-time (frame.load-scene o.scene) o.time)
+    (case (load-at o.scene o.time)
       (nil err) (values nil err)
       scene
       ;; One frame of values that never change: the trees' values as constants.
