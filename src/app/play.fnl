@@ -788,17 +788,22 @@ helper has no job running or waiting (the folded shader asked for, when there is
     (love.graphics.printf message (+ x 8) (+ y 6) (+ width 1))
     (love.graphics.setColor 1 1 1 1)))
 
+(fn prepare-despeckle! []
+  "Compile the despeckle shader (see despeckled) once, at the start: compiled at its
+first use, mid-play, it would be a compile of the player's own after the first load."
+  (when (= nil state.despeckle)
+    (set state.despeckle
+         (case (pcall love.graphics.newShader
+                      (pick-values 1 (love.filesystem.read "shaders/player/despeckle.glsl")))
+           (true shader) {: shader}
+           _ false))))
+
 (fn despeckled [canvas]
   "`canvas` with each pixel clamped to its four neighbours' range
 (shaders/player/despeckle.glsl: a lone firefly goes, edges and lines stay), drawn into
 a canvas of the same size kept for the next frame; `canvas` itself when the shader
 cannot be made."
-  (when (= nil state.despeckle)
-    (set state.despeckle
-         (case (pcall love.graphics.newShader
-                  (pick-values 1 (love.filesystem.read "shaders/player/despeckle.glsl")))
-           (true shader) {: shader}
-           _ false)))
+  (prepare-despeckle!)
   (if (not state.despeckle)
       canvas
       (let [d state.despeckle
@@ -1066,6 +1071,7 @@ reached the screen."
   ;; What the player prints reaches a log as it happens, not when it quits.
   (io.stdout:setvbuf :line)
   (prepare-font!)
+  (prepare-despeckle!)
   (set state.warm (when options.warm? (warm.new)))
   (set state.interactive-fps (or options.target-fps default-interactive-fps))
   ;; A load waits for the scene worker (up to its deadline of 5 s): escape and the
