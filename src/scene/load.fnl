@@ -122,32 +122,13 @@ scene never changes another's defaults."
 
 ;;; Messages
 
-(fn edit-distance [a b]
-  "Edits that turn `a` into `b`: insertions, deletions, substitutions and swaps of two
-neighbouring letters (optimal string alignment), so :pixle is one edit from :pixel."
-  (let [la (length a) lb (length b)
-        d {}]
-    (for [i 0 la] (tset d i {0 i}))
-    (for [j 0 lb] (tset (. d 0) j j))
-    (for [i 1 la]
-      (for [j 1 lb]
-        (let [cost (if (= (a:sub i i) (b:sub j j)) 0 1)
-              best (math.min (+ (. d (- i 1) j) 1) (+ (. d i (- j 1)) 1)
-                             (+ (. d (- i 1) (- j 1)) cost))]
-          (tset (. d i) j
-                (if (and (> i 1) (> j 1) (= (a:sub i i) (b:sub (- j 1) (- j 1)))
-                         (= (a:sub (- i 1) (- i 1)) (b:sub j j)))
-                    (math.min best (+ (. d (- i 2) (- j 2)) 1))
-                    best)))))
-    (. d la lb)))
-
 (fn suggestion [word candidates]
   "A ' (did you mean :x?)' hint when a candidate is close to `word`, else ''.
 Long words get none: no name is that long, and the distance would cost time."
   (var best nil)
   (var best-distance math.huge)
   (each [_ c (ipairs candidates) &until (> (length word) text.max-shown)]
-    (let [d (edit-distance word c)]
+    (let [d (text.edit-distance word c)]
       (when (< d best-distance)
         (set best c)
         (set best-distance d))))

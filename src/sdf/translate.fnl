@@ -25,6 +25,7 @@
 ;; same text for the same form.
 
 (local fennel (require :fennel))
+(local text (require :src.util.text))
 
 (local limits
   {:loop-turns 64     ; one for loop's turns: a constant bound, unrolled or not
@@ -143,31 +144,13 @@
 
 ;;; Suggestions, for a name the function may not use
 
-(fn edit-distance [a b]
-  "The optimal string alignment distance of `a` and `b`: insertions, deletions,
-substitutions and swaps of neighbours, one each (clmap is one from clamp)."
-  (let [d []]
-    (for [i 0 (length a)] (tset d i {0 i}))
-    (for [j 0 (length b)] (tset (. d 0) j j))
-    (for [i 1 (length a)]
-      (for [j 1 (length b)]
-        (let [cost (if (= (a:sub i i) (b:sub j j)) 0 1)
-              best (math.min (+ (. d (- i 1) j) 1) (+ (. d i (- j 1)) 1)
-                             (+ (. d (- i 1) (- j 1)) cost))]
-          (tset (. d i) j
-                (if (and (> i 1) (> j 1) (= (a:sub i i) (b:sub (- j 1) (- j 1)))
-                         (= (a:sub (- i 1) (- i 1)) (b:sub j j)))
-                    (math.min best (+ (. d (- i 2) (- j 2)) 1))
-                    best)))))
-    (. d (length a) (length b))))
-
 (fn closest [name candidates]
   "The candidate nearest `name` when it is near enough to be a slip of the pen (at
 most 2 edits, and fewer than half its letters), else nil; the first of a tie."
   (var best nil)
   (var best-d math.huge)
   (each [_ c (ipairs candidates)]
-    (let [d (edit-distance name c)]
+    (let [d (text.edit-distance name c)]
       (when (and (< d best-d) (<= d 2) (< d (/ (length name) 2)))
         (set best c)
         (set best-d d))))
@@ -180,8 +163,8 @@ most 2 edits, and fewer than half its letters), else nil; the first of a tie."
         math-guess (closest short math-names)
         helper-guess (and ?helpers (closest name ?helpers))]
     (if (. aliases short) (.. "; " (. aliases short))
-        (and helper-guess (or (not math-guess) (<= (edit-distance name helper-guess)
-                                                   (edit-distance short math-guess))))
+        (and helper-guess (or (not math-guess) (<= (text.edit-distance name helper-guess)
+                                                   (text.edit-distance short math-guess))))
         (.. "; did you mean `" helper-guess "`?")
         math-guess (.. "; did you mean math." math-guess "?")
         "")))

@@ -91,5 +91,24 @@ characters when given."
                 (escape line (or ?max (+ (length line) 1))))]
     (table.concat lines "\n")))
 
-{: valid-utf8? : first-invalid-byte : escape : quote-string : keyword : name?
+(fn edit-distance [a b]
+  "Edits that turn `a` into `b`: insertions, deletions, substitutions and swaps of two
+neighbouring letters (optimal string alignment), so :pixle is one edit from :pixel."
+  (let [la (length a) lb (length b)
+        d {}]
+    (for [i 0 la] (tset d i {0 i}))
+    (for [j 0 lb] (tset (. d 0) j j))
+    (for [i 1 la]
+      (for [j 1 lb]
+        (let [cost (if (= (a:sub i i) (b:sub j j)) 0 1)
+              best (math.min (+ (. d (- i 1) j) 1) (+ (. d i (- j 1)) 1)
+                             (+ (. d (- i 1) (- j 1)) cost))]
+          (tset (. d i) j
+                (if (and (> i 1) (> j 1) (= (a:sub i i) (b:sub (- j 1) (- j 1)))
+                         (= (a:sub (- i 1) (- i 1)) (b:sub j j)))
+                    (math.min best (+ (. d (- i 2) (- j 2)) 1))
+                    best)))))
+    (. d la lb)))
+
+{: valid-utf8? : edit-distance : first-invalid-byte : escape : quote-string : keyword : name?
  : printable : max-shown}
