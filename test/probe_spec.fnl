@@ -152,7 +152,7 @@
 KB (nil without /usr/bin/time) and seconds."
   (let [time? (os.execute "test -x /usr/bin/time")
         t0 (os.time)
-        (code out err) (app.sh (.. producer " | SDL_VIDEODRIVER=offscreen timeout 120 "
+        (code out err) (app.sh (.. producer " | SDL_VIDEODRIVER=offscreen timeout 600 "
                                    (if time? "/usr/bin/time -f %M -o test/out/probe-peak " "")
                                    "love . --probe " scene-path)
                                {:stderr true})]

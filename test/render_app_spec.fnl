@@ -7,7 +7,7 @@
 (local {: sh : root &as app} (require :test.support.app))
 
 (fn run [args]
-  (app.love args {:timeout 120}))
+  (app.love args))
 
 (fn read [path] (with-open [f (assert (io.open path :rb))] (f:read :*a)))
 
@@ -34,7 +34,7 @@
       (fn []
         (os.execute "rm -rf test/out/runtime-tmp && mkdir -p test/out/runtime-tmp")
         (let [(code out) (sh (.. "env -u XDG_RUNTIME_DIR -u SDL_VIDEODRIVER -u DISPLAY -u WAYLAND_DISPLAY"
-                                 " TMPDIR=" root "/test/out/runtime-tmp timeout 120 love . --render"
+                                 " TMPDIR=" root "/test/out/runtime-tmp timeout 600 love . --render"
                                  " scenes/flat.fnl --out test/out/render-xdg.png --size 32x24 --samples 1"))]
           (assert.are.equal 0 code out)
           (assert.falsy (out:find "error" 1 true) out)

@@ -40,10 +40,16 @@
         limit (or (tonumber (os.getenv "EDIT_LATENCY_LIMIT")) 600)
         frames []                       ; the time at the start of each update
         wait (fn [] (coroutine.yield) (table.insert frames (love.timer.getTime)))
-        until-true (fn [ok? limit]
+        until-true (fn [ok? limit ?what]
                      ;; Frames until (ok?) holds; `limit` seconds only catch a hang.
-                     (let [stop (+ (love.timer.getTime) limit)]
+                     ;; With `?what`, says on stderr how long the wait took.
+                     (let [start (love.timer.getTime)
+                           stop (+ start limit)]
                        (while (and (not (ok?)) (< (love.timer.getTime) stop)) (wait))
+                       (when ?what
+                         (io.stderr:write (string.format "edit-latency: %s %s after %.1f s\n"
+                                                         ?what (if (ok?) "came" "did not come")
+                                                         (- (love.timer.getTime) start))))
                        (ok?)))]
     ;; On stderr, where Mesa's own lines go (MESA_GLSL=cache_info): what follows is
     ;; after the first load (test/edit_latency_spec.fnl counts the compiles after it).
@@ -89,18 +95,22 @@
       (and (play.whole?) (not= nil (?. state.refine :still :progress))
            (not (play.still-whole?))))
     ;; An edit that never shows ends the script: what follows would wait for it.
-    (and (until-true play.background-done? limit)
+    (and (until-true play.background-done? limit "the first state's background work's end")
          (structural! "structural edit when idle" 1)
          ;; Without the helper there is no still to be made during. Each structural
          ;; edit is a new shader, so its still's is new too: a helper builds it.
          (or (not (?. state.warm :enabled?))
-             (and (if (until-true still-building? limit)
+             (and (if (until-true still-building? limit "a helper building the still")
                       (structural! "structural edit during the still" 2)
                       (report "structural edit during the still" 0 0 0 0 0 "  (no still was built)"))
-                  (if (until-true bands? limit)
+                  ;; The wait ends too when the still is given up (its helper failed).
+                  (if (and (until-true #(or (bands?) (= false (?. state.refine :still)))
+                                       limit "the still's bands")
+                           (bands?))
                       (structural! "structural edit during its bands" 3)
-                      (report "structural edit during its bands" 0 0 0 0 0 "  (no still was drawn)"))))
-         (until-true play.background-done? limit)
+                      (report "structural edit during its bands" 0 0 0 0 0
+                              "  (no still was drawn: its shader failed)"))))
+         (until-true play.background-done? limit "the background work's end")
          (let [before state.scene
                n (if (?. state.warm :enabled?) 3 1)]
            (edit! "value edit when idle" (with-spheres text n "[0.5 0.9 0.2]")
