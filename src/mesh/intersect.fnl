@@ -1,0 +1,271 @@
+;; Self-intersections of a triangle mesh: pairs of triangles that cross each other
+;; (issue 46). A uniform grid of boxes finds the pairs whose bounding boxes overlap
+;; (the broad phase); each such pair gets an exact test in double precision (the
+;; narrow phase, after Möller's "A fast triangle-triangle intersection test": each
+;; triangle is cut by the other's plane, and the two cuts, both on the line where the
+;; planes meet, overlap or not). What is counted is the length of the part the two
+;; triangles have in common: a pair that only touches at a point has none, a pair
+;; that crosses has a segment, a coplanar pair that overlaps has an area (its
+;; diameter is taken as the length). A mesh is {:positions [x y z ...] :triangles [a
+;; b c ...]} (1-based vertex indices). Pure: runs under plain LuaJIT.
+
+(local sqrt math.sqrt)
+(local floor math.floor)
+(local abs math.abs)
+(local min math.min)
+(local max math.max)
+
+;; A vertex nearer a plane than this share of the triangles' size is on it: the
+;; distances are sums of products of coordinates, good to some 1e-16 of their size,
+;; so 1e-12 takes rounding for zero and nothing a mesher would make on purpose.
+(local on-plane 1e-12)
+
+(fn sub [ax ay az bx by bz] (values (- ax bx) (- ay by) (- az bz)))
+
+(fn cross [ax ay az bx by bz]
+  (values (- (* ay bz) (* az by)) (- (* az bx) (* ax bz)) (- (* ax by) (* ay bx))))
+
+(fn dot [ax ay az bx by bz] (+ (* ax bx) (* ay by) (* az bz)))
+
+(fn plane-cut [p d]
+  "The points where the triangle `p` ([x y z x y z x y z]) meets a plane, its
+vertices' signed distances from it being `d` ([d1 d2 d3], zero meaning on it): a
+flat list of points [x y z ...] (one: touching at a vertex; two: a segment; none:
+clear of it). Not for a triangle in the plane."
+  (let [out []]
+    (for [i 1 3]
+      (let [j (+ 1 (% i 3))
+            di (. d i) dj (. d j)
+            bi (* 3 (- i 1)) bj (* 3 (- j 1))]
+        (when (= di 0)
+          (for [q 1 3] (table.insert out (. p (+ bi q)))))
+        (when (or (and (< di 0) (> dj 0)) (and (> di 0) (< dj 0)))
+          (let [t (/ di (- di dj))]
+            (for [q 1 3]
+              (table.insert out (+ (. p (+ bi q)) (* t (- (. p (+ bj q)) (. p (+ bi q)))))))))))
+    out))
+
+;;; The coplanar case: both triangles in the plane of the first, projected on the
+;;; coordinate plane where it is largest, the first clipped by the second (Sutherland
+;;; and Hodgman).
+
+(fn clip-polygon [poly ax ay bx by sgn]
+  "`poly` (a flat list [u v ...]) clipped to the side of the line a->b where
+points with sgn * cross > 0 lie (the inside of a triangle wound with sign sgn)."
+  (let [out []
+        n (/ (length poly) 2)
+        side (fn [u v] (* sgn (- (* (- bx ax) (- v ay)) (* (- by ay) (- u ax)))))]
+    (for [i 1 n]
+      (let [j (+ 1 (% i n))
+            ui (. poly (- (* 2 i) 1)) vi (. poly (* 2 i))
+            uj (. poly (- (* 2 j) 1)) vj (. poly (* 2 j))
+            si (side ui vi) sj (side uj vj)]
+        (when (>= si 0) (table.insert out ui) (table.insert out vi))
+        (when (or (and (> si 0) (< sj 0)) (and (< si 0) (> sj 0)))
+          (let [t (/ si (- si sj))]
+            (table.insert out (+ ui (* t (- uj ui))))
+            (table.insert out (+ vi (* t (- vj vi))))))))
+    out))
+
+(fn coplanar-overlap [p q nx ny nz scale]
+  "The diameter of the overlap of triangles `p` and `q` lying in one plane of
+normal n (0 when they are apart or only touch, at a point or along a segment;
+`scale` is their size)."
+  (let [ax (abs nx) ay (abs ny) az (abs nz)
+        ;; Drop the largest coordinate of the normal (w); keep the other two (u v).
+        (iu iv iw) (if (and (>= ax ay) (>= ax az)) (values 2 3 1)
+                       (>= ay az) (values 3 1 2)
+                       (values 1 2 3))
+        proj (fn [t] (fcollect [k 0 5] (. t (+ (* 3 (floor (/ k 2))) (if (= 0 (% k 2)) iu iv)))))
+        pp (proj p) qp (proj q)
+        area2 (fn [t] (- (* (- (. t 3) (. t 1)) (- (. t 6) (. t 2)))
+                         (* (- (. t 4) (. t 2)) (- (. t 5) (. t 1)))))
+        sgn (if (>= (area2 qp) 0) 1 -1)]
+    (var poly pp)
+    (for [e 0 2 &until (= 0 (length poly))]
+      (let [f (% (+ e 1) 3)]
+        (set poly (clip-polygon poly (. qp (+ 1 (* 2 e))) (. qp (+ 2 (* 2 e)))
+                                (. qp (+ 1 (* 2 f))) (. qp (+ 2 (* 2 f))) sgn))))
+    ;; The overlap's corners back in the plane (the coordinate dropped, from the
+    ;; plane's equation through p's first vertex), to measure it there.
+    (let [n (/ (length poly) 2)
+          nn [nx ny nz]
+          w (fn [u v] (- (. p iw) (/ (+ (* (. nn iu) (- u (. p iu))) (* (. nn iv) (- v (. p iv))))
+                                     (. nn iw))))
+          ws (fcollect [i 1 n] (w (. poly (- (* 2 i) 1)) (. poly (* 2 i))))]
+      (var (d area) (values 0 0))
+      (for [i 1 n]
+        (let [j (+ 1 (% i n))]
+          (set area (+ area (- (* (. poly (- (* 2 i) 1)) (. poly (* 2 j)))
+                               (* (. poly (- (* 2 j) 1)) (. poly (* 2 i)))))))
+        (for [j (+ i 1) n]
+          (let [du (- (. poly (- (* 2 i) 1)) (. poly (- (* 2 j) 1)))
+                dv (- (. poly (* 2 i)) (. poly (* 2 j)))
+                dw (- (. ws i) (. ws j))]
+            (set d (max d (sqrt (+ (* du du) (* dv dv) (* dw dw))))))))
+      ;; Triangles that only touch along an edge leave a polygon of no width (its
+      ;; projected area over its diameter): a segment in common, not an overlap.
+      (if (or (= d 0) (<= (/ (* 0.5 (abs area)) d) (* on-plane scale))) 0 d))))
+
+(fn pair-overlap [p q]
+  "The length of what triangles `p` and `q` (each [x y z x y z x y z]) have in
+common: 0 when apart or touching at a point, the length of their common segment
+when they cross or touch along one, the diameter of their common area when
+coplanar and overlapping. Second value: :crossing, :coplanar or nil."
+  (let [[p1x p1y p1z p2x p2y p2z p3x p3y p3z] p
+        [q1x q1y q1z q2x q2y q2z q3x q3y q3z] q
+        (ux uy uz) (sub p2x p2y p2z p1x p1y p1z)
+        (vx vy vz) (sub p3x p3y p3z p1x p1y p1z)
+        (nx ny nz) (cross ux uy uz vx vy vz)
+        (sx sy sz) (sub q2x q2y q2z q1x q1y q1z)
+        (tx ty tz) (sub q3x q3y q3z q1x q1y q1z)
+        (mx my mz) (cross sx sy sz tx ty tz)
+        ;; The scale of both triangles: the longest edge vector's coordinate.
+        scale (max (abs ux) (abs uy) (abs uz) (abs vx) (abs vy) (abs vz)
+                   (abs sx) (abs sy) (abs sz) (abs tx) (abs ty) (abs tz))
+        ln (sqrt (dot nx ny nz nx ny nz))
+        lm (sqrt (dot mx my mz mx my mz))]
+    (if (or (= ln 0) (= lm 0) (= scale 0))
+        ;; A degenerate triangle (a segment or a point) is another kind of fault
+        ;; (check.topology counts them); it crosses nothing here.
+        (values 0 nil)
+        (let [tol (* on-plane scale)
+              snap (fn [d] (if (< (abs d) tol) 0 d))
+              ;; Distances of q's vertices from p's plane, and p's from q's.
+              dq (fcollect [k 0 2]
+                   (snap (/ (dot nx ny nz (- (. q (+ 1 (* 3 k))) p1x)
+                                 (- (. q (+ 2 (* 3 k))) p1y) (- (. q (+ 3 (* 3 k))) p1z))
+                            ln)))
+              dp (fcollect [k 0 2]
+                   (snap (/ (dot mx my mz (- (. p (+ 1 (* 3 k))) q1x)
+                                 (- (. p (+ 2 (* 3 k))) q1y) (- (. p (+ 3 (* 3 k))) q1z))
+                            lm)))
+              one-side? (fn [d] (or (and (> (. d 1) 0) (> (. d 2) 0) (> (. d 3) 0))
+                                    (and (< (. d 1) 0) (< (. d 2) 0) (< (. d 3) 0))))]
+          (if (or (one-side? dq) (one-side? dp))
+              (values 0 nil)
+              (and (= 0 (. dq 1)) (= 0 (. dq 2)) (= 0 (. dq 3)))
+              (let [d (coplanar-overlap p q nx ny nz scale)]
+                (values d (when (> d 0) :coplanar)))
+              ;; Each triangle's cut by the other's plane lies on the line where
+              ;; the planes meet, of direction n x m: the overlap of the two cuts
+              ;; along it is what they share.
+              (let [cp (plane-cut p dp)
+                    cq (plane-cut q dq)
+                    (lx ly lz) (cross nx ny nz mx my mz)
+                    ll (sqrt (dot lx ly lz lx ly lz))
+                    range (fn [pts]
+                            (var (lo hi) (values math.huge (- math.huge)))
+                            (for [b 0 (- (length pts) 1) 3]
+                              (let [s (/ (dot lx ly lz (. pts (+ b 1)) (. pts (+ b 2))
+                                              (. pts (+ b 3)))
+                                         ll)]
+                                (set (lo hi) (values (min lo s) (max hi s)))))
+                            (values lo hi))]
+                (if (or (= 0 (length cp)) (= 0 (length cq)) (= ll 0))
+                    (values 0 nil)
+                    (let [(a0 a1) (range cp) (b0 b1) (range cq)
+                          d (- (min a1 b1) (max a0 b0))]
+                      (if (> d 0) (values d :crossing) (values 0 nil))))))))))
+
+(fn triangle-points [positions tris t]
+  ;; Triangle t's (0-based) corners as [x y z x y z x y z].
+  (let [out []]
+    (for [c 1 3]
+      (let [b (* 3 (- (. tris (+ (* 3 t) c)) 1))]
+        (for [q 1 3] (table.insert out (. positions (+ b q))))))
+    out))
+
+(fn shared-vertices [tris s t]
+  (var n 0)
+  (for [a 1 3]
+    (for [b 1 3]
+      (when (= (. tris (+ (* 3 s) a)) (. tris (+ (* 3 t) b)))
+        (set n (+ n 1)))))
+  n)
+
+(fn self-intersections [m ?options]
+  "The pairs of triangles of mesh `m` that cross: {:pairs (pairs sharing no vertex
+whose common part, see pair-overlap, is longer than :min-length) :coplanar (those
+of them that overlap in a plane) :longest (the longest common part of those) :at
+[x y z] (a point of that longest one's triangles) :folds (pairs sharing one vertex
+that meet along more than that vertex: a fold through the vertex) :tested (pairs
+whose boxes overlap, tested exactly) :list [[s t length] ...] (the first
+:max-list pairs, 0-based triangle indices)}. Pairs sharing an edge meet along it
+and are not tested. Options: :min-length (default 1e-9 of the mesh's size; pass
+e.g. 1e-6 cells), :max-list (default 100)."
+  (let [options (or ?options {})
+        positions m.positions
+        tris m.triangles
+        nt (/ (length tris) 3)
+        max-list (or options.max-list 100)
+        ;; Each triangle's box, and the mean of their largest sides: the grid's
+        ;; cell (a triangle then spans a few cells at most).
+        box []
+        result {:pairs 0 :coplanar 0 :folds 0 :tested 0 :longest 0 :at nil :list []}]
+    (var (glo-x glo-y glo-z ghi-x ghi-y ghi-z) (values math.huge math.huge math.huge
+                                                       (- math.huge) (- math.huge) (- math.huge)))
+    (var side-sum 0)
+    (for [t 0 (- nt 1)]
+      (let [p (triangle-points positions tris t)
+            b [(min (. p 1) (. p 4) (. p 7)) (min (. p 2) (. p 5) (. p 8))
+               (min (. p 3) (. p 6) (. p 9)) (max (. p 1) (. p 4) (. p 7))
+               (max (. p 2) (. p 5) (. p 8)) (max (. p 3) (. p 6) (. p 9))]]
+        (tset box (+ t 1) b)
+        (set side-sum (+ side-sum (max (- (. b 4) (. b 1)) (- (. b 5) (. b 2))
+                                       (- (. b 6) (. b 3)))))
+        (set (glo-x glo-y glo-z) (values (min glo-x (. b 1)) (min glo-y (. b 2)) (min glo-z (. b 3))))
+        (set (ghi-x ghi-y ghi-z) (values (max ghi-x (. b 4)) (max ghi-y (. b 5)) (max ghi-z (. b 6))))))
+    (when (> nt 1)
+      (let [size (max (- ghi-x glo-x) (- ghi-y glo-y) (- ghi-z glo-z))
+            min-length (or options.min-length (* 1e-9 size))
+            ;; At least 1/1000 of the mesh's size, so a mesh of slivers does not
+            ;; make more cells than triangles.
+            cell (max (* 2 (/ side-sum nt)) (* 1e-3 size) 1e-300)
+            gx (+ 1 (floor (/ (- ghi-x glo-x) cell)))
+            gy (+ 1 (floor (/ (- ghi-y glo-y) cell)))
+            at (fn [v lo] (floor (/ (- v lo) cell)))
+            key (fn [i j k] (+ i (* gx (+ j (* gy k)))))
+            buckets {}]
+        (for [t 1 nt]
+          (let [b (. box t)]
+            (for [k (at (. b 3) glo-z) (at (. b 6) glo-z)]
+              (for [j (at (. b 2) glo-y) (at (. b 5) glo-y)]
+                (for [i (at (. b 1) glo-x) (at (. b 4) glo-x)]
+                  (let [q (key i j k)
+                        list (. buckets q)]
+                    (if list (table.insert list t) (tset buckets q [t]))))))))
+        (each [q list (pairs buckets)]
+          (for [a 1 (length list)]
+            (for [c (+ a 1) (length list)]
+              (let [s (. list a) t (. list c)
+                    bs (. box s) bt (. box t)]
+                ;; Boxes that overlap; tested only in the cell holding the low
+                ;; corner of their overlap, so each pair once.
+                (when (and (<= (max (. bs 1) (. bt 1)) (min (. bs 4) (. bt 4)))
+                           (<= (max (. bs 2) (. bt 2)) (min (. bs 5) (. bt 5)))
+                           (<= (max (. bs 3) (. bt 3)) (min (. bs 6) (. bt 6)))
+                           (= q (key (at (max (. bs 1) (. bt 1)) glo-x)
+                                     (at (max (. bs 2) (. bt 2)) glo-y)
+                                     (at (max (. bs 3) (. bt 3)) glo-z))))
+                  (let [shared (shared-vertices tris (- s 1) (- t 1))]
+                    (when (< shared 2)
+                      (set result.tested (+ result.tested 1))
+                      (let [p (triangle-points positions tris (- s 1))
+                            r (triangle-points positions tris (- t 1))
+                            (len kind) (pair-overlap p r)]
+                        (when (> len min-length)
+                          (if (= shared 1)
+                              (set result.folds (+ result.folds 1))
+                              (do
+                                (set result.pairs (+ result.pairs 1))
+                                (when (= kind :coplanar)
+                                  (set result.coplanar (+ result.coplanar 1)))
+                                (when (< (length result.list) max-list)
+                                  (table.insert result.list [(- s 1) (- t 1) len]))
+                                (when (> len result.longest)
+                                  (set result.longest len)
+                                  (set result.at [(. p 1) (. p 2) (. p 3)])))))))))))))))
+    result))
+
+{: self-intersections : pair-overlap}

@@ -1,0 +1,118 @@
+;; tier: fast
+;; Self-intersections of a mesh (issue 46): src/mesh/intersect.fnl's exact test of a
+;; pair of triangles on constructed cases whose answer is known by hand, and its
+;; count over a mesh (the broad phase finds every pair once). The meshes of scenes
+;; are checked in test/mesh_spec.fnl.
+
+(local intersect (require :src.mesh.intersect))
+
+(fn mesh-of [...]
+  "A mesh of the given triangles, each [x y z x y z x y z], no vertex shared."
+  (let [positions [] triangles []]
+    (each [_ t (ipairs [...])]
+      (let [n (/ (length positions) 3)]
+        (each [_ v (ipairs t)] (table.insert positions v))
+        (for [c 1 3] (table.insert triangles (+ n c)))))
+    {: positions : triangles}))
+
+(fn near [want got what]
+  ;; Lengths worked out by hand; 1e-12 is rounding on numbers of size 1.
+  (assert.is_true (< (math.abs (- want got)) 1e-12)
+                  (string.format "%s: want %.15g, got %.15g" what want got)))
+
+(local base [0 0 0 2 0 0 0 2 0])
+
+(describe "triangle self-intersections"
+  (fn []
+    (it "measures the segment two crossing triangles share"
+      (fn []
+        ;; A vertical triangle through the base: it crosses z = 0 along y = 0.5
+        ;; from x = 0.5 to x = 1.5, all inside the base (x + y < 2 there).
+        (let [(len kind) (intersect.pair-overlap base [0.5 0.5 -1 0.5 0.5 1 2.5 0.5 0])]
+          (near 1 len "crossing") (assert.are.equal :crossing kind))
+        ;; The same crossing, the other way round and with the base wound the
+        ;; other way: the same segment.
+        (near 1 (intersect.pair-overlap [0.5 0.5 -1 0.5 0.5 1 2.5 0.5 0]
+                                        [0 0 0 0 2 0 2 0 0])
+              "swapped")
+        ;; One that pierces it only partly: the cut from x = 1 to 2.5 along
+        ;; y = 0.5 leaves the base at x = 1.5.
+        (near 0.5 (intersect.pair-overlap base [1 0.5 -1 1 0.5 1 4 0.5 0]) "part")))
+
+    (it "counts nothing where triangles only touch or are apart"
+      (fn []
+        ;; A vertex on the base's face; an edge lying on it counts as a segment
+        ;; of contact (a mesh touching itself), a vertex does not.
+        (assert.are.equal 0 (intersect.pair-overlap base [0.5 0.5 0 0.5 0.5 1 1.5 0.5 1]))
+        ;; Above it, parallel.
+        (assert.are.equal 0 (intersect.pair-overlap base [0 0 1 2 0 1 0 2 1]))
+        ;; Crossing the base's plane, but beside the base.
+        (assert.are.equal 0 (intersect.pair-overlap base [3 0.5 -1 3 0.5 1 4 0.5 0]))
+        ;; Coplanar, beside it, and coplanar along its hypotenuse (touching along
+        ;; an edge: no area in common).
+        (assert.are.equal 0 (intersect.pair-overlap base [3 0 0 4 2 0 3 2 0]))
+        (assert.are.equal 0 (intersect.pair-overlap base [2 0 0 0 2 0 2 2 0]))))
+
+    (it "measures coplanar triangles that overlap"
+      (fn []
+        ;; A small triangle inside the base: their common part is the small one,
+        ;; whose diameter is its hypotenuse, sqrt(0.5).
+        (let [(len kind) (intersect.pair-overlap base [0.5 0.5 0 1 0.5 0 0.5 1 0])]
+          (near (math.sqrt 0.5) len "inside")
+          (assert.are.equal :coplanar kind))
+        ;; Tilted out of every coordinate plane: the same, measured in its plane.
+        (let [turn (fn [x y z] [(/ (+ x z) (math.sqrt 2)) y (/ (- z x) (math.sqrt 2))])
+              tri (fn [t] (let [out []]
+                            (for [b 0 6 3]
+                              (each [_ v (ipairs (turn (. t (+ b 1)) (. t (+ b 2)) (. t (+ b 3))))]
+                                (table.insert out v)))
+                            out))]
+          (near (math.sqrt 0.5) (intersect.pair-overlap (tri base) (tri [0.5 0.5 0 1 0.5 0 0.5 1 0]))
+                "tilted"))))
+
+    (it "counts crossing pairs in a mesh, not neighbours sharing an edge or a vertex"
+      (fn []
+        ;; Two crossing triangles and one far away: one pair.
+        (let [r (intersect.self-intersections
+                 (mesh-of base [0.5 0.5 -1 0.5 0.5 1 2.5 0.5 0] [10 10 10 11 10 10 10 11 10]))]
+          (assert.are.equal 1 r.pairs)
+          (near 1 r.longest "longest")
+          (assert.are.same [0 1] [(. r.list 1 1) (. r.list 1 2)]))
+        ;; Two triangles sharing an edge (a folded square) and a fan of four
+        ;; sharing a vertex, all indexed: nothing crosses.
+        (let [r (intersect.self-intersections
+                 {:positions [0 0 0 1 0 0 1 1 0.5 0 1 0 -1 0 0 0 -1 0]
+                  :triangles [1 2 3 1 3 4 1 4 5 1 5 6 1 6 2]})]
+          (assert.are.equal 0 r.pairs)
+          (assert.are.equal 0 r.folds))
+        ;; Two triangles sharing a vertex, one folded through the other: they meet
+        ;; along more than the vertex, counted apart (:folds) from the crossings.
+        (let [r (intersect.self-intersections
+                 {:positions [0 0 0 2 0 0 0 2 0 1 1 -1 1 0.2 1]
+                  :triangles [1 2 3 1 4 5]})]
+          (assert.are.equal 0 r.pairs)
+          (assert.are.equal 1 r.folds))))
+
+    (it "finds every crossing pair of a grid of triangles, each pair once"
+      (fn []
+        ;; n x n small horizontal triangles, and n vertical ones each piercing
+        ;; one row of them: n crossings per vertical triangle, which cuts z = 0
+        ;; from x = -1.375 n to 2.375 n along y = j + 0.25, through the n
+        ;; horizontal ones of row j (each spans x from i to i + 0.9, y from j to
+        ;; j + 0.9 - (x - i): the line crosses it from x = i to i + 0.65).
+        (let [n 12
+              tris []]
+          (for [j 0 (- n 1)]
+            (for [i 0 (- n 1)]
+              (table.insert tris [i j 0 (+ i 0.9) j 0 i (+ j 0.9) 0])))
+          (for [j 0 (- n 1)]
+            (table.insert tris [(* -2 n) (+ j 0.25) -0.5 (* 3 n) (+ j 0.25) -0.5
+                                (* 0.5 n) (+ j 0.25) 1.5]))
+          (let [r (intersect.self-intersections (mesh-of (unpack tris)) {:max-list 1000})
+                seen {}]
+            (assert.are.equal (* n n) r.pairs)
+            (near 0.65 r.longest "longest")
+            (each [_ [s t] (ipairs r.list)]
+              (let [k (.. s " " t)]
+                (assert.is_nil (. seen k) k)
+                (tset seen k true)))))))))
