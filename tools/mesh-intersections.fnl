@@ -34,5 +34,5 @@
                         (if r.at (string.format " near (%.3f, %.3f, %.3f)" (unpack r.at)) "")
                         r.folds r.tested (- (os.clock) t0)))
   (each [_ [s t len] (ipairs r.list)]
-    (print (string.format "  triangles %d and %d: %.3f cells" s t (/ len h))))
+    (print (string.format "  triangles %d and %d: %.3g cells" s t (/ len h))))
   (os.exit (if (= 0 r.pairs) 0 1)))

@@ -107,6 +107,28 @@ normal n (0 when they are apart or only touch, at a point or along a segment;
       ;; projected area over its diameter): a segment in common, not an overlap.
       (if (or (= d 0) (<= (/ (* 0.5 (abs area)) d) (* on-plane scale))) 0 d))))
 
+;; Where the two cuts of a crossing pair must agree (a share of the triangles'
+;; size): their points carry rounding of some 1e-16 of it over the sine of the
+;; planes' angle, so 1e-8 holds down to angles of some 1e-7.
+(local agree 1e-8)
+
+(fn point-at [pts lx ly lz ll s]
+  "The point of the cut `pts` (one or two points) whose parameter along the unit
+direction l/ll is `s`."
+  (let [x0 (. pts 1) y0 (. pts 2) z0 (. pts 3)
+        s0 (/ (dot lx ly lz x0 y0 z0) ll)]
+    (if (< (length pts) 6) (values x0 y0 z0)
+        (let [x1 (. pts 4) y1 (. pts 5) z1 (. pts 6)
+              s1 (/ (dot lx ly lz x1 y1 z1) ll)
+              t (if (= s1 s0) 0 (/ (- s s0) (- s1 s0)))]
+          (values (+ x0 (* t (- x1 x0))) (+ y0 (* t (- y1 y0))) (+ z0 (* t (- z1 z0))))))))
+
+(fn gap [cp cq lx ly lz ll s]
+  "How far apart the cuts `cp` and `cq` are at parameter `s` along the line."
+  (let [(ax ay az) (point-at cp lx ly lz ll s)
+        (bx by bz) (point-at cq lx ly lz ll s)]
+    (sqrt (+ (* (- ax bx) (- ax bx)) (* (- ay by) (- ay by)) (* (- az bz) (- az bz))))))
+
 (fn pair-overlap [p q]
   "The length of what triangles `p` and `q` (each [x y z x y z x y z]) have in
 common: 0 when apart or touching at a point, the length of their common segment
@@ -165,8 +187,19 @@ coplanar and overlapping. Second value: :crossing, :coplanar or nil."
                 (if (or (= 0 (length cp)) (= 0 (length cq)) (= ll 0))
                     (values 0 nil)
                     (let [(a0 a1) (range cp) (b0 b1) (range cq)
-                          d (- (min a1 b1) (max a0 b0))]
-                      (if (> d 0) (values d :crossing) (values 0 nil))))))))))
+                          s0 (max a0 b0) s1 (min a1 b1)
+                          d (- s1 s0)]
+                      (if (<= d 0) (values 0 nil)
+                          ;; Both cuts lie on the planes' line only as well as that
+                          ;; line is defined: for nearly parallel planes it is not,
+                          ;; and the cuts, far apart, may still overlap along it.
+                          ;; Where the overlap's ends are not one point on both
+                          ;; cuts, the triangles are as good as coplanar.
+                          (and (< (gap cp cq lx ly lz ll s0) (* agree scale))
+                               (< (gap cp cq lx ly lz ll s1) (* agree scale)))
+                          (values d :crossing)
+                          (let [c (coplanar-overlap p q nx ny nz scale)]
+                            (values c (when (> c 0) :coplanar))))))))))))
 
 (fn triangle-points [positions tris t]
   ;; Triangle t's (0-based) corners as [x y z x y z x y z].
