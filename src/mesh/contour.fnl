@@ -526,6 +526,7 @@ local edge -> the vertex of the edge's patch); empties the cells but for i j k."
   (let [{: cells : px : py : pz : nrx : nry : nrz : ox : oy : oz : h : stride-x : stride-y} state
         positions []
         vertex-info []
+        shared {}
         cell-vertices {}]
     (var vertex-count 0)
     (each [_ cell (ipairs cells)]
@@ -543,10 +544,21 @@ local edge -> the vertex of the edge's patch); empties the cells but for i j k."
         (let [lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
               placed (icollect [_ r (ipairs order)]
                        [(qef-vertex (. groups r) px py pz nrx nry nrz lx ly lz h)])]
+          ;; Two or more patches in one cell (a feature thinner than a cell, two
+          ;; objects close together): their tangent planes meet anywhere in the
+          ;; cell, and a vertex there, or pulled onto the nearest surface, may
+          ;; lie beyond the other patch, whose triangles its own then cross (48
+          ;; crossing pairs on flower at 128 cells, all in such cells). Each
+          ;; goes to its crossings' mean instead, on its own side of the others,
+          ;; and stays there (see project-vertices!).
+          (when (> (length order) 1)
+            (each [_ q (ipairs placed)]
+              (for [c 1 3] (tset q c (. q (+ c 3))))))
           (separate! placed lx ly lz h)
           (each [n r (ipairs order)]
             (let [[x y z mx my mz] (. placed n)]
               (set vertex-count (+ vertex-count 1))
+              (when (> (length order) 1) (tset shared vertex-count true))
               (each [_ v (ipairs [lx ly lz mx my mz])] (table.insert vertex-info v))
               (table.insert positions x) (table.insert positions y)
               (table.insert positions z)
@@ -555,8 +567,8 @@ local edge -> the vertex of the edge's patch); empties the cells but for i j k."
               (collect [e r (pairs rep)] e (. local-vertex r)))
         ;; Done with this cell but for its vertices: the rest may go.
         (set (cell.v cell.edges cell.rep cell.joined cell.flips) nil)))
-    (set (state.positions state.vertex-info state.cell-vertices)
-         (values positions vertex-info cell-vertices))))
+    (set (state.positions state.vertex-info state.cell-vertices state.shared-cell)
+         (values positions vertex-info cell-vertices shared))))
 
 (fn project-vertices! [state]
   "8. Vertices off the surface (see off-surface): each moved to the best of a
@@ -564,10 +576,11 @@ Newton step along the field's gradient (kept in its cell) and its crossings' mea
 (which may leave the cell, but a crossing is on the surface), where it stays unless
 that is nearer the surface. Moves them in state.positions; counts them in
 state.counts.moved."
-  (let [{: evaluate : counts : positions : vertex-info : h : step} state
+  (let [{: evaluate : counts : positions : vertex-info : shared-cell : h : step} state
         flat (icollect [_ v (ipairs positions)] v)
         ds (evaluate :projection flat)
-        bad (icollect [v d (ipairs ds)] (when (> (abs d) (* off-surface h)) v))
+        bad (icollect [v d (ipairs ds)]
+              (when (and (> (abs d) (* off-surface h)) (not (. shared-cell v))) v))
         grad []]
     (each [_ v (ipairs bad)]
       (let [b (* 3 (- v 1))
