@@ -161,6 +161,8 @@ exact in doubles) and its length: equal texts, equal digests."
     (var a 0)
     (var b 7)
     (for [i 1 (length text)]
+            ;; An array of numbers or vectors (translate checks its items).
+            :table {:table value}
       (let [c (text:byte i)]
         (set a (% (+ (* a 31) c) p))
         (set b (% (+ (* b 131) c) p))))
@@ -243,14 +245,14 @@ are `forms`): {:glsl :lua :glsl-name :params :cost}, or nil, a message and a lin
 
 (local lua-words
   (collect [_ w (ipairs ["local" "function" "return" "end" "if" "then" "else" "for" "do" "and"
-                         "or" "not" "math"])]
+                         "or" "not" "math" "break"])]
     w true))
 (local lua-math
   (collect [_ w (ipairs ["sqrt" "abs" "floor" "ceil" "sin" "cos" "tan" "asin" "acos" "atan"
                          "atan2" "exp" "log" "min" "max"])]
     w true))
 (local glsl-words
-  (collect [_ w (ipairs ["float" "vec2" "vec3" "vec4" "int" "bool" "return" "if" "else" "for"
+  (collect [_ w (ipairs ["float" "vec2" "vec3" "vec4" "int" "bool" "return" "if" "else" "for" "break"
                          "p" "sqrt" "abs" "floor" "ceil" "sin" "cos" "tan" "asin" "acos" "atan"
                          "exp" "log" "pow" "min" "max" "mod" "length" "sign"])]
     w true))
@@ -468,3 +470,5 @@ descriptors of nodes with the same texts share their GLSL and their Lua function
 
 {: capture : check-data : measure : factor : digest : descriptor : find-form : check-lua : check-glsl
  : limits}
+  ;; break: an early end of a for loop (&until, a stop of (math.min n K)), which
+  ;; only shortens a bounded loop.

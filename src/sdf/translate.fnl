@@ -18,6 +18,29 @@
 ;;   function is looked up by `?resolve`: a number (inlined), a math function (as
 ;;   math.x), nil under a name of `library` ((local {: clamp} math)) or a function of
 ;;   the file (a helper).
+;;   Vectors (issue 44): [a b] and [a b c]; + - * / % of vectors and numbers, component
+;;   by component (a number goes to every component); math's functions and GLSL's
+;;   clamp mix ... component-wise; (length v), (dot a b), (cross a b), (normalize v)
+;;   (math.length ... or names taken from math); (. v 1); (let [[x y z] p] ...);
+;;   vectors as helpers' arguments and values; (fn [p] ...) takes the point as one
+;;   vector. Arrays of numbers or of vectors ([[0 1] [1 0] ...], in the function or a
+;;   (local verts ...) of the file) indexed by (. verts i), where i is known to stay
+;;   in range: a whole constant or a loop counter, plus or minus constants, % a
+;;   constant, or an if of such. for takes &until (GLSL's if (c) break;) and a stop of
+;;   (math.min n K) with K a whole constant: K turns at most, and a break past n.
+;;
+;;   Vectors are scalarised on both sides: a vector is a value {:t :vec :comps [...]}
+;;   of one part per component, and a GLSL vec3 is never declared (but for length(),
+;;   the builtin a hand-written distance uses). Lua has no vectors, so its side must
+;;   be scalarised anyway; doing the same in GLSL keeps the one walk writing one
+;;   expression per component for both texts, the same operations in the same order,
+;;   and every existing mechanism (locals, if results, helpers' several values, the
+;;   main process's checks of the texts, which know floats only) takes a vector as
+;;   the numbers it is. An array index is a chain of selects, (i == 1.0 ? a : ...),
+;;   alike in both texts (no GLSL array, no Lua table): the GLSL compiler folds it in
+;;   an unrolled loop, and the check of the texts needs no new construct.
+;;   Helpers are translated at their first call, once per kind of arguments
+;;   (numbers or vectors of a size), each kind its own GLSL function.
 ;; Anything else is refused with the line and the construct. The output holds only
 ;; generated names (p, v0 v1 ..., i0 ... for loop counters, a0 ... for vector
 ;; arguments, sdCustom and its helpers sdCustomFn0 ...) and floats with a decimal
@@ -35,10 +58,11 @@
    :locals 150        ; names in one function (Lua allows 200 live locals)
    :values 4          ; values a helper returns: GLSL's vec4 at most
    :helpers 32
+   :array-items 64    ; items of one array (each index is a chain of selects)
    :power 8})         ; the largest constant exponent of ^
 
 (local supported
-  "numbers, let, local, var/set, if, when, do, -> ->>, values, fn helpers, for with constant bounds, + - * / % ^, comparisons, and/or/not, math functions")
+  "numbers, vectors [a b c] and arrays of them, let, local, var/set, if, when, do, -> ->>, values, fn helpers, for with constant bounds, + - * / % ^, comparisons, and/or/not, math functions")
 
 ;; math's functions: the GLSL name and the argument counts taken (none: one or more).
 (local math-functions
@@ -56,7 +80,12 @@
    :log {:glsl "log" :counts {1 true}}
    :pow {:glsl "pow" :counts {2 true}}
    :min {:glsl "min"}
-   :max {:glsl "max"}})
+   :max {:glsl "max"}
+   ;; Of vectors only (see vector-call): GLSL's, written out alike in both texts.
+   :length {:vector true :counts {1 true} :args "v"}
+   :dot {:vector true :counts {2 true} :args "a b"}
+   :cross {:vector true :counts {2 true} :args "a b"}
+   :normalize {:vector true :counts {1 true} :args "v"}})
 
 ;; GLSL's own functions that Lua's math lacks, called as math.NAME (or a name
 ;; destructured from math: (local {: clamp} math), which holds nil when the file
@@ -91,13 +120,14 @@
 
 (local math-names
   ["sqrt" "abs" "floor" "ceil" "sin" "cos" "tan" "asin" "acos" "atan" "exp" "log" "pow" "min"
-   "max" "clamp" "mix" "fract" "sign" "step" "smoothstep" "round" "mod"])
+   "max" "clamp" "mix" "fract" "sign" "step" "smoothstep" "round" "mod" "length" "dot" "cross"
+   "normalize"])
 
 (local math-call-list
-  "math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max and GLSL's clamp mix fract sign step smoothstep round mod as math.clamp ...")
+  "math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max and GLSL's clamp mix fract sign step smoothstep round mod length dot cross normalize as math.clamp ...")
 
 (local math-list
-  "math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max, GLSL's clamp mix fract sign step smoothstep round mod, and math.pi huge")
+  "math.sqrt abs floor ceil sin cos tan asin acos atan exp log pow min max, GLSL's clamp mix fract sign step smoothstep round mod, of vectors length dot cross normalize, and math.pi huge")
 
 ;; Names authors reach for that go by another name here: the hint to give instead of
 ;; a guess at the spelling.
@@ -108,7 +138,6 @@
    :saturate "write (math.clamp x 0 1)"
    :atan2 "write (math.atan y x), GLSL's atan(y, x)"
    :sgn "write (math.sign x)"
-   :length "write (math.sqrt (+ (* x x) (* y y) (* z z))), which becomes GLSL's length()"
    :trunc "write (if (< x 0) (math.ceil x) (math.floor x))"
    :modf "write (math.fract x) and (math.floor x)"
    :huge "math.huge is a value, not a function"
@@ -117,13 +146,11 @@
 ;; Forms a reader may expect to work, with a hint at what to write instead.
 (local refused-forms
   {:while "use for with constant bounds"
-   :each "no tables"
+   :each "index an array in a numeric for: (for [i 1 n] (. items i))"
    :lambda "use fn"
    :λ "use fn"
    :hashfn "use fn"
    :tset "no tables"
-   :. "no tables"
-   :length "no tables"
    :# "no tables"
    :.. "no strings"
    :// "use math.floor of /"})
@@ -273,16 +300,50 @@ most 2 edits, and fewer than half its letters), else nil; the first of a tie."
                         " values where one is needed")))
   (. parts 1))
 
+(fn describe [p]
+  "What the value `p` is, for messages."
+  (case p.t
+    :vec (.. "a vector of " (length p.comps) " numbers")
+    :array (.. "an array of " (length p.items) " "
+               (if (= :vec (. p.items 1 :t)) (.. "vectors of " (length (. p.items 1 :comps)) " numbers") "numbers"))
+    :bool "a comparison"
+    _ "a number"))
+
+(fn constant-value? [p]
+  "True when `p` holds constants only (a number, or a vector or array of them)."
+  (case p.t
+    :vec (accumulate [c? true _ c (ipairs p.comps)] (and c? (not= nil c.const)))
+    :array (accumulate [c? true _ item (ipairs p.items)] (and c? (constant-value? item)))
+    _ (not= nil p.const)))
+
+(fn int-range [p]
+  "[lo hi], the whole numbers `p` may hold, when known (a whole constant, a loop
+counter, and + - % of such), else nil."
+  (if (and p.const (= p.const (math.floor p.const))) [p.const p.const] p.range))
+
 (fn number-arg [st node]
   (let [p (one st node (expr st node))]
-    (when (not= p.t :float)
-      (refuse st node "a comparison is used as a number (and/or/not and if conditions take comparisons; arithmetic takes numbers)"))
+    (case p.t
+      :bool (refuse st node "a comparison is used as a number (and/or/not and if conditions take comparisons; arithmetic takes numbers)")
+      :vec (refuse st node (.. (describe p) " is used where a number is needed; take a component, (. v 1), or (length v) or (dot a b)"))
+      :array (refuse st node (.. (describe p) " is used where a number is needed; take an item, (. a i)")))
+    p))
+
+(fn value-arg [st node]
+  "A number or a vector: what arithmetic and math's functions take."
+  (let [p (one st node (expr st node))]
+    (case p.t
+      :bool (refuse st node "a comparison is used as a number (and/or/not and if conditions take comparisons; arithmetic takes numbers)")
+      :array (refuse st node (.. (describe p) " is used as a value; arithmetic takes numbers and vectors: take an item, (. a i)")))
     p))
 
 (fn bool-arg [st node]
   (let [p (one st node (expr st node) "a condition")]
     (when (not= p.t :bool)
-      (refuse st node "a condition must be a comparison like (< a b), or and/or/not of comparisons: a number is always true in Fennel and never in GLSL"))
+      (refuse st node (if (= p.t :float)
+                          "a condition must be a comparison like (< a b), or and/or/not of comparisons: a number is always true in Fennel and never in GLSL"
+                          (.. "a condition must be a comparison like (< a b); this is " (describe p)
+                              ": compare its components, (< (. v 1) 0)"))))
     p))
 
 (fn args-of [node] (fcollect [i 2 (length node)] (. node i)))
@@ -295,24 +356,66 @@ most 2 edits, and fewer than half its letters), else nil; the first of a tie."
             {:g (.. "(" acc.g " " g-op " " p.g ")") :l (.. "(" acc.l " " l-op " " p.l ")")
              :t :float}))))
 
+(var repeatable nil)
+
+(fn vector-size [st node args what]
+  ;; The size of the vectors among `args` (all one size), or nil when there is none.
+  (var n nil)
+  (each [_ a (ipairs args)]
+    (when (= a.t :vec)
+      (let [k (length a.comps)]
+        (when (and n (not= n k))
+          (refuse st node (.. what " mixes a vector of " n " numbers with one of " k
+                              "; make them one size: [(. v 1) (. v 2)] is two of three")))
+        (set n k))))
+  n)
+
+(fn per-component [st node args what f]
+  "(f args plain?) for numbers `args`; with vectors among them, a vector of f of
+each component (a number goes to each, computed once): f gives one part."
+  (case (vector-size st node args what)
+    nil (f args true)
+    n (let [held (icollect [_ a (ipairs args)] (if (= a.t :vec) a (repeatable st node a)))]
+        {:t :vec :comps (fcollect [k 1 n]
+                          (f (icollect [_ a (ipairs held)] (if (= a.t :vec) (. a.comps k) a)) false))})))
+
+(fn range-of [op args]
+  ;; The whole numbers + - % of whole `args` give, when all are known.
+  (let [rs (icollect [_ a (ipairs args)] (int-range a))]
+    (when (and (= (length rs) (length args)) (> (length rs) 0))
+      (case op
+        "+" [(accumulate [s 0 _ [lo] (ipairs rs)] (+ s lo)) (accumulate [s 0 _ [_ hi] (ipairs rs)] (+ s hi))]
+        "-" (if (= 1 (length rs)) (let [[[lo hi]] rs] [(- hi) (- lo)])
+                (let [[[lo hi]] rs]
+                  [(- lo (accumulate [s 0 i [_ h] (ipairs rs)] (if (> i 1) (+ s h) s)))
+                   (- hi (accumulate [s 0 i [l] (ipairs rs)] (if (> i 1) (+ s l) s)))]))
+        "%" (let [[_ [m m2]] rs]
+              (when (and (= 2 (length rs)) (= m m2) (> m 0)) [0 (- m 1)]))))))
+
+(fn scalar-arithmetic [st node op args]
+  (cost! st node (math.max 1 (- (length args) 1)))
+  (let [p (case op
+            "+" (fold st node args #(+ $1 $2) "+" "+" 0)
+            "*" (fold st node args #(* $1 $2) "*" "*" 1)
+            "-" (if (= 0 (length args)) (refuse st node "(-) needs an argument")
+                    (= 1 (length args))
+                    (let [a (. args 1)]
+                      (if a.const (constant st node (- a.const))
+                          {:g (.. "(-" a.g ")") :l (.. "(-" a.l ")") :t :float}))
+                    (fold st node args #(- $1 $2) "-" "-" 0))
+            "/" (if (= 0 (length args)) (refuse st node "(/) needs an argument")
+                    (= 1 (length args)) (fold st node [(constant st node 1) (. args 1)] #(/ $1 $2) "/" "/" 1)
+                    (fold st node args #(/ $1 $2) "/" "/" 1))
+            "%" (if (not= 2 (length args)) (refuse st node "(% a b) takes two arguments")
+                    (let [[a b] args]
+                      {:g (.. "mod(" a.g ", " b.g ")") :l (.. "(" a.l " % " b.l ")") :t :float})))
+        r (and (not p.const) (range-of op args))]
+    (if r (doto (collect [k v (pairs p)] k v) (tset :range r)) p)))
+
 (fn arithmetic [st node op]
-  (let [args (icollect [_ a (ipairs (args-of node))] (number-arg st a))]
-    (cost! st node (math.max 1 (- (length args) 1)))
-    (case op
-      "+" [(fold st node args #(+ $1 $2) "+" "+" 0)]
-      "*" [(fold st node args #(* $1 $2) "*" "*" 1)]
-      "-" (if (= 0 (length args)) (refuse st node "(-) needs an argument")
-              (= 1 (length args))
-              (let [a (. args 1)]
-                [(if a.const (constant st node (- a.const))
-                     {:g (.. "(-" a.g ")") :l (.. "(-" a.l ")") :t :float})])
-              [(fold st node args #(- $1 $2) "-" "-" 0)])
-      "/" (if (= 0 (length args)) (refuse st node "(/) needs an argument")
-              (= 1 (length args)) [(fold st node [(constant st node 1) (. args 1)] #(/ $1 $2) "/" "/" 1)]
-              [(fold st node args #(/ $1 $2) "/" "/" 1)])
-      "%" (if (not= 2 (length args)) (refuse st node "(% a b) takes two arguments")
-              (let [[a b] args]
-                [{:g (.. "mod(" a.g ", " b.g ")") :l (.. "(" a.l " % " b.l ")") :t :float}])))))
+  ;; Of numbers, or component-wise of vectors (a number goes to every component).
+  (let [args (icollect [_ a (ipairs (args-of node))] (value-arg st a))]
+    [(per-component st node args (.. "(" op " ...)") #(scalar-arithmetic st node op $1))]))
 
 (fn declare! [st node part]
   "A new local holding `part`'s value; its name as a part."
@@ -320,7 +423,15 @@ most 2 edits, and fewer than half its letters), else nil; the first of a tie."
     (count-local! st node)
     (emit! st (.. (if (= part.t :bool) "bool " "float ") name " = " part.g ";")
            (.. "local " name " = " part.l))
-    {:g name :l name :t part.t}))
+    {:g name :l name :t part.t :range part.range}))
+
+(fn hold [st node p]
+  "`p` in new locals (constants stay inline): a value bound to a name keeps what it
+was when bound. A vector or an array, component by component."
+  (case p.t
+    :vec {:t :vec :comps (icollect [_ c (ipairs p.comps)] (hold st node c))}
+    :array {:t :array :items (icollect [_ item (ipairs p.items)] (hold st node item))}
+    _ (if p.const p (declare! st node p))))
 
 (fn power [st node]
   (let [args (args-of node)]
@@ -376,11 +487,15 @@ most 2 edits, and fewer than half its letters), else nil; the first of a tie."
                       (. term 2))))]
       (when (= (length names) (- (length form) 1)) names))))
 
-(fn repeatable [st node p]
-  "`p` itself when its text may be written twice (a constant or a name), else a new
-local holding it: an argument a library function reads twice is computed once."
-  (if (or p.const (and (p.g:match "^[%w_]+[.xyzw]*$") (p.l:match "^[%w_]+$"))) p
-      (declare! st node p)))
+(set repeatable
+     (fn [st node p]
+       "`p` itself when its text may be written twice (a constant or a name), else a
+new local holding it: an argument a library function reads twice is computed once. A
+vector's components each so."
+       (if (= p.t :vec) {:t :vec :comps (icollect [_ c (ipairs p.comps)] (repeatable st node c))}
+           (= p.t :array) p
+           (or p.const (and (p.g:match "^[%w_]+[.xyzw]*$") (p.l:match "^[%w_]+$"))) p
+           (declare! st node p))))
 
 (fn sign-part [st node p]
   ;; GLSL's sign(); in Lua the same three cases (a number is never false in Lua).
@@ -427,70 +542,237 @@ local holding it: an argument a library function reads twice is computed once."
           :mod (let [[x y] args]
                  [{:g (.. "mod(" x.g ", " y.g ")") :l (.. "(" x.l " % " y.l ")") :t :float}])))))
 
-(fn math-call [st node fname]
+(fn scalar-math [st node fname args plain?]
+  ;; One call of math's `fname` on numbers `args`: a part. `plain?`: args are the
+  ;; node's own (not a vector's components), for sqrt's length() below.
   (let [spec (. math-functions fname)
-        args (icollect [_ a (ipairs (args-of node))] (number-arg st a))
         n (length args)]
-    (when (if spec.counts (not (. spec.counts n)) (= n 0))
-      (refuse st node (.. "math." fname " takes "
-                          (if (= fname :atan) "1 or 2 arguments (atan y x)"
-                              spec.library (let [(_ k) (spec.args:gsub " " "")]
-                                             (.. (+ k 1) " argument" (if (> k 0) "s" "")
-                                                 " (math." fname " " spec.args ")"))
-                              (not spec.counts) "one or more arguments"
-                              (. spec.counts 2) "2 arguments" "1 argument")
-                          ", got " n)))
     (when (not spec.library) (cost! st node (math.max 1 (- n 1))))
-    (if spec.library (library-call st node fname args)
+    (if spec.library (. (library-call st node fname args) 1)
         (or (= fname :min) (= fname :max))
-        [(accumulate [acc nil _ p (ipairs args)]
-           (if acc {:g (.. fname "(" acc.g ", " p.g ")") :l (.. "math." fname "(" acc.l ", " p.l ")")
-                    :t :float}
-               p))]
+        (accumulate [acc nil _ p (ipairs args)]
+          (if acc {:g (.. fname "(" acc.g ", " p.g ")") :l (.. "math." fname "(" acc.l ", " p.l ")")
+                   :t :float}
+              p))
         (let [gs (table.concat (icollect [_ a (ipairs args)] a.g) ", ")
               ls (table.concat (icollect [_ a (ipairs args)] a.l) ", ")
               ;; The square root of a sum of squares is GLSL's length(), as a
               ;; hand-written distance says it (the same rounding as length(p)).
-              lengths (when (= fname :sqrt) (squared-names (. node 2)))]
-          [{:g (if lengths
-                   (.. "length(vec" (length lengths) "("
-                       (table.concat (icollect [_ n (ipairs lengths)] (. (number-arg st n) :g)) ", ")
-                       "))")
-                   (.. spec.glsl "(" gs ")"))
-            :l (if (= fname :pow) (.. "(" (. args 1 :l) " ^ " (. args 2 :l) ")")
-                   (.. (if (and (= fname :atan) (= n 2)) "math.atan2" (.. "math." fname)) "(" ls ")"))
-            :t :float}]))))
+              lengths (when (and plain? (= fname :sqrt)) (squared-names (. node 2)))]
+          {:g (if lengths
+                  (.. "length(vec" (length lengths) "("
+                      (table.concat (icollect [_ n (ipairs lengths)] (. (number-arg st n) :g)) ", ")
+                      "))")
+                  (.. spec.glsl "(" gs ")"))
+           :l (if (= fname :pow) (.. "(" (. args 1 :l) " ^ " (. args 2 :l) ")")
+                  (.. (if (and (= fname :atan) (= n 2)) "math.atan2" (.. "math." fname)) "(" ls ")"))
+           :t :float}))))
+
+(fn sum-of-products [st node as bs]
+  ;; a1 b1 + a2 b2 + ..., left to right, the same text in both languages.
+  (fold st node (icollect [k a (ipairs as)]
+                  (let [b (. bs k)]
+                    {:g (.. "(" a.g " * " b.g ")") :l (.. "(" a.l " * " b.l ")") :t :float}))
+        #(+ $1 $2) "+" "+" 0))
+
+(fn vector-call [st node fname args]
+  ;; GLSL's length dot cross normalize: vectors in, a number or a vector out.
+  (let [vec (fn [k]
+              (let [a (. args k)]
+                (when (not= a.t :vec)
+                  (refuse st node (.. "(" fname " " (. math-functions fname :args) ") takes vectors; its argument "
+                                      k " is " (describe a)
+                                      (if (or (= fname :length) (= fname :normalize))
+                                          "; for a number use (math.abs x)" ""))))
+                a))
+        same (fn [a b]
+               (when (not= (length a.comps) (length b.comps))
+                 (refuse st node (.. "(" fname " a b) takes two vectors of one size, got "
+                                     (describe a) " and " (describe b))))
+               (length a.comps))
+        len (fn [v]
+              ;; GLSL's length(); in Lua the square root of the sum of squares.
+              (let [v (repeatable st node v)
+                    n (length v.comps)
+                    sq (sum-of-products st node v.comps v.comps)]
+                (cost! st node (* 2 n))
+                (if sq.const (constant st node (math.sqrt sq.const))
+                    {:g (.. "length(vec" n "(" (table.concat (icollect [_ c (ipairs v.comps)] c.g) ", ") "))")
+                     :l (.. "math.sqrt(" sq.l ")") :t :float})))]
+    (case fname
+      :length (len (vec 1))
+      :dot (let [a (vec 1) b (vec 2)]
+             (cost! st node (* 2 (same a b)))
+             (sum-of-products st node a.comps b.comps))
+      :cross (let [a (repeatable st node (vec 1)) b (repeatable st node (vec 2))]
+               (when (or (not= 3 (length a.comps)) (not= 3 (length b.comps)))
+                 (refuse st node (.. "(cross a b) takes two vectors of 3 numbers, got " (describe a)
+                                     " and " (describe b))))
+               (cost! st node 9)
+               (let [[a1 a2 a3] a.comps [b1 b2 b3] b.comps
+                     term (fn [p q r s] (scalar-arithmetic st node "-" [(scalar-arithmetic st node "*" [p q])
+                                                                         (scalar-arithmetic st node "*" [r s])]))]
+                 {:t :vec :comps [(term a2 b3 a3 b2) (term a3 b1 a1 b3) (term a1 b2 a2 b1)]}))
+      :normalize (let [v (repeatable st node (vec 1))
+                       l (let [p (len v)] (if p.const p (declare! st node p)))]
+                   (cost! st node (length v.comps))
+                   {:t :vec :comps (icollect [_ c (ipairs v.comps)] (scalar-arithmetic st node "/" [c l]))}))))
+
+(fn math-call [st node fname]
+  (let [spec (. math-functions fname)
+        args (icollect [_ a (ipairs (args-of node))] (value-arg st a))
+        n (length args)]
+    (when (if spec.counts (not (. spec.counts n)) (= n 0))
+      (refuse st node (.. "math." fname " takes "
+                          (if (= fname :atan) "1 or 2 arguments (atan y x)"
+                              spec.args (let [(_ k) (spec.args:gsub " " "")]
+                                          (.. (+ k 1) " argument" (if (> k 0) "s" "")
+                                              " (math." fname " " spec.args ")"))
+                              (not spec.counts) "one or more arguments"
+                              (. spec.counts 2) "2 arguments" "1 argument")
+                          ", got " n)))
+    (if spec.vector [(vector-call st node fname args)]
+        [(per-component st node args (.. "(math." fname " ...)")
+                        #(scalar-math st node fname $1 $2))])))
+
+(fn length-form [st node]
+  ;; Fennel's length of a table is its count of items; of a vector here, GLSL's
+  ;; length(): the distance a Shadertoy author means.
+  (let [args (args-of node)]
+    (when (not= 1 (length args)) (refuse st node (.. "(length v) takes one vector, got " (length args) " arguments")))
+    [(vector-call st node :length [(value-arg st (. args 1))])]))
+
+(fn sequence-form [st node]
+  ;; [a b] and [a b c] of numbers: a vector; of 1 or more than 3 numbers, or of
+  ;; vectors of one size: an array, to index.
+  (let [n (length node)]
+    (when (= n 0) (refuse st node "an empty [] has no value; a vector is [a b] or [a b c]"))
+    (when (> n limits.array-items)
+      (refuse st node (.. "an array of " n " items; at most " limits.array-items)))
+    (let [items (fcollect [i 1 n]
+                  (let [p (one st (. node i) (expr st (. node i)) "an item of [...]")]
+                    (when (or (= p.t :bool) (= p.t :array))
+                      (refuse st (. node i) (.. "an item of [...] is " (describe p)
+                                                "; items are numbers, or vectors of one size")))
+                    p))
+          vectors (icollect [_ p (ipairs items)] (when (= p.t :vec) p))]
+      (if (= 0 (length vectors))
+          (if (<= 2 n 3) [{:t :vec :comps items}] [{:t :array :items items}])
+          (do (when (not= (length vectors) n)
+                (refuse st node "an array mixes numbers and vectors; items are all numbers or all vectors of one size"))
+              (vector-size st node items "an array")
+              [{:t :array :items items}])))))
+
+(fn select-chain [st node items index lo]
+  ;; (index == lo ? items[1] : index == lo + 1 ? items[2] : ... : the last), of
+  ;; numbers; written alike in both texts (a number is never false in Lua).
+  (let [n (length items)]
+    (cost! st node (- n 1))
+    (var acc (. items n))
+    (for [k (- n 1) 1 -1]
+      (let [item (. items k)
+            at (+ lo k -1)]
+        (set acc {:g (.. "((" index.g " == " (glsl-number at) ") ? " item.g " : " acc.g ")")
+                  :l (.. "(" index.l " == " (lua-number at) " and " item.l " or " acc.l ")")
+                  :t :float})))
+    acc))
+
+(fn index-part [st node p i]
+  ;; Item `i` (a part) of vector or array `p`.
+  (let [items (case p.t
+                :vec p.comps
+                :array p.items
+                _ (refuse st node (.. "(. v i) takes an item of a vector or an array; this is " (describe p))))
+        n (length items)
+        r (int-range i)]
+    (when (not r)
+      (refuse st node "an index must be known to stay in range: a whole constant, or a loop counter (plus or minus whole constants, % a whole constant, or an if of such)"))
+    (let [[lo hi] r]
+      (when (and (<= lo hi) (or (< lo 1) (> hi n)))
+        (refuse st node (.. "the index may be " lo (if (= lo hi) "" (.. " to " hi)) ", outside "
+                            (describe p) " (items 1 to " n ")")))
+      ;; lo > hi: on a branch never taken (see narrow); any item will do.
+      (if (> lo hi) (. items 1)
+          (= lo hi) (. items lo)
+          (let [index (repeatable st node i)
+                slice (fcollect [k lo hi] (. items k))]
+            (if (= :vec (. slice 1 :t))
+                {:t :vec :comps (fcollect [c 1 (length (. slice 1 :comps))]
+                                  (select-chain st node (icollect [_ v (ipairs slice)] (. v.comps c)) index lo))}
+                (select-chain st node slice index lo)))))))
+
+(fn index-form [st node]
+  ;; (. v i) and (. verts i 1).
+  (let [args (args-of node)]
+    (when (< (length args) 2) (refuse st node "(. v i) takes a vector or an array and an index"))
+    (var p (one st (. args 1) (expr st (. args 1))))
+    (for [k 2 (length args)]
+      (set p (index-part st (. args k) p (number-arg st (. args k)))))
+    [p]))
 
 (fn values-form [st node]
-  (icollect [_ a (ipairs (args-of node))] (number-arg st a)))
+  (icollect [_ a (ipairs (args-of node))] (value-arg st a)))
 
 (fn vec-type [n] (if (= n 1) "float" (.. "vec" n)))
 
-(fn helper-call [st node helper]
-  (let [args (icollect [_ a (ipairs (args-of node))] (number-arg st a))]
-    (when (not= (length args) helper.nargs)
-      (refuse st node (.. "a helper function takes " helper.nargs " arguments, given "
+(fn flat [st node parts]
+  "The numbers (or comparisons) of `parts`, each vector's components in order, and
+the shape to put them back with `unflat`: per value 0 (one) or a vector's size."
+  (let [out []
+        shape []]
+    (each [_ p (ipairs parts)]
+      (case p.t
+        :vec (do (table.insert shape (length p.comps))
+                 (each [_ c (ipairs p.comps)] (table.insert out c)))
+        :array (refuse st node (.. (describe p) " cannot be the value of an if or a function; bind it with local and take its items, (. a i)"))
+        _ (do (table.insert shape 0) (table.insert out p))))
+    (values out shape)))
+
+(fn unflat [numbers shape]
+  "The values of `numbers` in `shape` (see flat)."
+  (var i 0)
+  (icollect [_ n (ipairs shape)]
+    (if (= n 0)
+        (do (set i (+ i 1)) (. numbers i))
+        (let [v {:t :vec :comps (fcollect [k 1 n] (. numbers (+ i k)))}]
+          (set i (+ i n))
+          v))))
+
+(var instance nil)
+
+(fn helper-call [st node b]
+  ;; A call of the helper `b` (a binding of its form): its translation for these
+  ;; kinds of arguments, the arguments one number each, the values put back in shape.
+  (let [args (icollect [_ a (ipairs (args-of node))] (value-arg st a))]
+    (when (not= (length args) b.nargs)
+      (refuse st node (.. "a helper function takes " b.nargs " arguments, given "
                           (length args))))
-    (set st.cost (+ st.cost (* st.weight helper.cost)))
-    (cost! st node 1)
-    (let [gs (.. helper.name "(" (table.concat (icollect [_ a (ipairs args)] a.g) ", ") ")")
-          ls (.. helper.name "(" (table.concat (icollect [_ a (ipairs args)] a.l) ", ") ")")]
-      (if (= helper.nret 1) [{:g gs :l ls :t :float}]
-          ;; Several values: a vector in GLSL, as many locals in Lua.
-          (let [v (fresh! st "v")
-                names (fcollect [_ 1 helper.nret] (fresh! st "v"))]
-            (count-local! st node helper.nret)
-            (emit! st (.. (vec-type helper.nret) " " v " = " gs ";")
-                   (.. "local " (table.concat names ", ") " = " ls))
-            (icollect [i name (ipairs names)]
-              {:g (.. v "." (. ["x" "y" "z" "w"] i)) :l name :t :float}))))))
+    (let [helper (instance st node b args)
+          numbers (flat st node args)]
+      (set st.cost (+ st.cost (* st.weight helper.cost)))
+      (cost! st node 1)
+      (let [gs (.. helper.name "(" (table.concat (icollect [_ a (ipairs numbers)] a.g) ", ") ")")
+            ls (.. helper.name "(" (table.concat (icollect [_ a (ipairs numbers)] a.l) ", ") ")")]
+        (if (= helper.nret 1) (unflat [{:g gs :l ls :t :float}] helper.shape)
+            ;; Several values: a vector in GLSL, as many locals in Lua.
+            (let [v (fresh! st "v")
+                  names (fcollect [_ 1 helper.nret] (fresh! st "v"))]
+              (count-local! st node helper.nret)
+              (emit! st (.. (vec-type helper.nret) " " v " = " gs ";")
+                     (.. "local " (table.concat names ", ") " = " ls))
+              (unflat (icollect [i name (ipairs names)]
+                        {:g (.. v "." (. ["x" "y" "z" "w"] i)) :l name :t :float})
+                      helper.shape)))))))
 
 (fn check-parts [st node parts]
-  ;; What a value may be: numbers, or one comparison.
-  (when (> (length parts) limits.values)
-    (refuse st node (.. "gives " (length parts) " values; at most " limits.values)))
-  (when (and (> (length parts) 1) (accumulate [b? false _ p (ipairs parts)] (or b? (= p.t :bool))))
-    (refuse st node "several values must all be numbers"))
+  ;; What a value may be: numbers and vectors (at most 4 numbers in all), or one
+  ;; comparison.
+  (let [(numbers) (flat st node parts)]
+    (when (> (length numbers) limits.values)
+      (refuse st node (.. "gives " (length numbers) " numbers; at most " limits.values
+                          " (a vector counts its components)")))
+    (when (and (> (length numbers) 1) (accumulate [b? false _ p (ipairs numbers)] (or b? (= p.t :bool))))
+      (refuse st node "several values must all be numbers")))
   parts)
 
 (fn sign-operand [node]
@@ -505,6 +787,47 @@ local holding it: an argument a library function reads twice is computed once."
                (test? c1 ">") (test? c2 "<") (= (sym-name (. c1 2)) (sym-name (. c2 2))))
       (. c1 2))))
 
+(local flipped {"<" ">" ">" "<" "<=" ">=" ">=" "<=" "=" "=" "not=" "not=" "~=" "not="})
+(local negated {"<" ">=" ">" "<=" "<=" ">" ">=" "<" "=" "not=" "not=" "=" "~=" "="})
+
+(fn narrow [st c-node true?]
+  ;; The name a comparison (op name K) or (op K name) of a whole-valued name bounds,
+  ;; and the range it leaves that name where the comparison is `true?`.
+  (when (and (fennel.list? c-node) (= 3 (length c-node)) (. flipped (sym-name (. c-node 1))))
+    (let [[head a b] c-node
+          op (sym-name head)
+          (name k op) (if (and (sym-name a) (= (type b) :number)) (values (sym-name a) b op)
+                          (and (sym-name b) (= (type a) :number)) (values (sym-name b) a (. flipped op)))
+          binding (and name (lookup st.scope name))
+          r (and binding (= binding.kind :value) binding.part.range)]
+      (when r
+        (let [[lo hi] r
+              whole? (= k (math.floor k))]
+          (values name binding
+                  (case (if true? op (. negated op))
+                    "=" (if whole? [(math.max lo k) (math.min hi k)] [lo (- lo 1)])
+                    (where (or "not=" "~=")) (if (= k lo hi) [lo (- lo 1)] (= k lo) [(+ lo 1) hi] (= k hi) [lo (- hi 1)] [lo hi])
+                    "<" [lo (math.min hi (- (math.ceil k) 1))]
+                    "<=" [lo (math.min hi (math.floor k))]
+                    ">" [(math.max lo (+ (math.floor k) 1)) hi]
+                    ">=" [(math.max lo (math.ceil k)) hi])))))))
+
+(fn narrowed [st conds f]
+  ;; (f) in a scope where each whole-valued name the conditions `conds` ([node true?]
+  ;; pairs) bound has the range they leave it: in (if (= i 1) n (- i 1)), i - 1 is
+  ;; at least 1 (an index's range, see index-part).
+  (let [sc (new-scope st.scope)
+        saved st.scope]
+    (set st.scope sc)
+    (each [_ [c true?] (ipairs conds)]
+      (case (narrow st c true?)
+        (name binding r) (bind! sc name (doto (collect [k v (pairs binding)] k v)
+                                          (tset :part (doto (collect [k v (pairs binding.part)] k v)
+                                                        (tset :range r)))))))
+    (let [(block value) (capture st f)]
+      (set st.scope saved)
+      (values block value))))
+
 (fn if-chain [st node]
   (let [args (args-of node)
         n (length args)]
@@ -512,14 +835,21 @@ local holding it: an argument a library function reads twice is computed once."
     (when (= 0 (% n 2))
       (refuse st node "an if needs an else branch (the last argument): a distance has a value everywhere"))
     ;; Each condition's own lines and the branches' lines, captured apart.
-    (let [arms (fcollect [i 1 (- n 1) 2]
+    ;; A vector is its components here (see flat): the branches' shapes must agree.
+    (let [branch (fn [k]
+                   (let [conds (fcollect [i 1 (- k 1) 2] [(. args i) (= i (- k 1))])
+                         (block parts) (narrowed st conds #(check-parts st (. args k) (expr st (. args k))))
+                         (numbers shape) (flat st (. args k) parts)]
+                     (values block numbers (table.concat shape " "))))
+          arms (fcollect [i 1 (- n 1) 2]
                  (let [(cblock c) (capture st #(bool-arg st (. args i)))
-                       (bblock b) (capture st #(check-parts st (. args (+ i 1)) (expr st (. args (+ i 1)))))]
-                   {: cblock : c : bblock : b}))
-          (eblock e) (capture st #(check-parts st (. args n) (expr st (. args n))))
+                       (bblock b shape) (branch (+ i 1))]
+                   {: cblock : c : bblock : b : shape}))
+          (eblock e eshape) (branch n)
+          shape (icollect [k (eshape:gmatch "%d+")] (tonumber k))
           width (length e)]
       (each [_ arm (ipairs arms)]
-        (when (or (not= width (length arm.b))
+        (when (or (not= width (length arm.b)) (not= arm.shape eshape)
                   (accumulate [bad? false i p (ipairs arm.b)] (or bad? (not= p.t (. e i :t)))))
           (refuse st node "the branches of an if give different kinds or numbers of values")))
       ;; No value at all: an if for its sets, in a body.
@@ -529,11 +859,21 @@ local holding it: an argument a library function reads twice is computed once."
                  (and simple? (= 0 (length arm.cblock)) (= 0 (length arm.bblock)))))
           ;; Expressions only: the conditional expression (a number is never false in
           ;; Lua, so `c and a or b` is c ? a : b).
-          [(accumulate [acc (. e 1) i (ipairs arms)]
-             (let [arm (. arms (- (length arms) i -1))
-                   b (. arm.b 1)]
-               {:g (.. "(" arm.c.g " ? " b.g " : " acc.g ")")
-                :l (.. "(" arm.c.l " and " b.l " or " acc.l ")") :t acc.t}))]
+          (let [ranges (icollect [_ arm (ipairs arms)] (int-range (. arm.b 1)))
+                ;; The union of the branches' ranges, but those of branches never
+                ;; taken (lo > hi, see narrow).
+                r (when (and (= (length ranges) (length arms)) (int-range (. e 1)))
+                    (accumulate [acc nil _ [l h] (ipairs (doto ranges (table.insert (int-range (. e 1)))))]
+                      (if (> l h) acc
+                          acc [(math.min (. acc 1) l) (math.max (. acc 2) h)]
+                          [l h])))
+                part (accumulate [acc (. e 1) i (ipairs arms)]
+                       (let [arm (. arms (- (length arms) i -1))
+                             b (. arm.b 1)]
+                         {:g (.. "(" arm.c.g " ? " b.g " : " acc.g ")")
+                          :l (.. "(" arm.c.l " and " b.l " or " acc.l ")") :t acc.t}))]
+            (set part.range r)
+            (unflat [part] shape))
           (let [results (icollect [_ p (ipairs e)]
                           (let [name (fresh! st "v")] {:g name :l name :t p.t}))
                 assign (fn [parts]
@@ -561,7 +901,7 @@ local holding it: an argument a library function reads twice is computed once."
                                        :g-close "}" :l-close "end"})
                     out)))
             (each [_ item (ipairs (chain 1))] (table.insert st.out item))
-            results)))))
+            (unflat results shape))))))
 
 (fn if-form [st node]
   (case (sign-operand node)
@@ -584,13 +924,33 @@ local holding it: an argument a library function reads twice is computed once."
   "Bind `name` in `sc` to the single value `parts`: a constant stays inline, anything
 else gets a local."
   (let [p (one st node parts (.. "the value bound to `" name "`"))]
-    (bind! sc name {:kind :value :fn st.fn :part (if p.const p (declare! st node p))})))
+    (bind! sc name {:kind :value :fn st.fn :part (hold st node p)})))
 
-(var define-helper nil)
+(fn bind-part! [st sc pattern p node ?as-is]
+  "Bind `pattern` (a name, or [a b c] of patterns, to take a vector or an array apart)
+in `sc` to the value `p`, held in locals unless `?as-is` (a helper's arguments)."
+  (if (fennel.sequence? pattern)
+      (let [items (case p.t
+                    :vec p.comps
+                    :array p.items
+                    _ (refuse st pattern (.. "a [...] pattern takes a vector or an array apart; this value is "
+                                             (describe p))))]
+        (when (> (length pattern) (length items))
+          (refuse st pattern (.. "the pattern takes " (length pattern) " items from " (describe p))))
+        (each [i sub (ipairs pattern)]
+          (bind-part! st sc sub (. items i) node ?as-is)))
+      (let [name (if (= (type pattern) :string) pattern (check-name! st pattern))]
+        (when (not= name "_")
+          (bind! sc name {:kind :value :fn st.fn :part (if ?as-is p (hold st node p))})))))
+
+(var helper-binding nil)
 
 (fn bind-pattern! [st sc pattern value-node]
   (if (and (fennel.list? value-node) (= "fn" (sym-name (. value-node 1))) (fennel.sym? pattern))
-      (bind! sc (check-name! st pattern) (define-helper st sc value-node))
+      (let [name (check-name! st pattern)]
+        (bind! sc name (helper-binding st sc value-node name)))
+      (fennel.sequence? pattern)
+      (bind-part! st sc pattern (one st value-node (expr st value-node)) value-node)
       (fennel.list? pattern)
       (let [names (icollect [_ n (ipairs pattern)] (check-name! st n))
             parts (check-parts st value-node (expr st value-node))]
@@ -599,7 +959,7 @@ else gets a local."
         (each [i name (ipairs names)]
           (when (not= name "_")
             (let [p (. parts i)]
-              (bind! sc name {:kind :value :fn st.fn :part (if p.const p (declare! st pattern p))})))))
+              (bind! sc name {:kind :value :fn st.fn :part (hold st pattern p)})))))
       (let [name (check-name! st pattern)
             parts (expr st value-node)]
         (when (not= name "_") (bind-value! st value-node sc name parts)))))
@@ -635,13 +995,16 @@ or set together."
       (refuse st node (.. "(" (if mutable? "var" "local") " name value) takes a name and a value")))
     (if mutable?
         ;; (var d 1) or (var (a b) (values 1 2)): each a new local, never a constant.
+        ;; A vector var: a new local per component.
         (let [names (if (fennel.list? pattern) (icollect [_ n (ipairs pattern)] (check-name! st n))
                         [(check-name! st pattern)])
               parts (if (fennel.list? pattern) (numbers-of st node value (length names))
-                        [(number-arg st value)])]
+                        [(value-arg st value)])
+              new-local (fn [p] (declare! st node (collect [k x (pairs p)] (when (and (not= k :const) (not= k :range)) (values k x)))))]
           (each [i name (ipairs names)]
             (let [p (. parts i)
-                  v (declare! st node (collect [k x (pairs p)] (when (not= k :const) (values k x))))]
+                  v (if (= p.t :vec) {:t :vec :comps (icollect [_ c (ipairs p.comps)] (new-local c))}
+                        (new-local p))]
               (when (not= name "_") (bind! sc name {:kind :var :fn st.fn :part v})))))
         (bind-pattern! st sc pattern value))
     []))
@@ -671,26 +1034,70 @@ or set together."
             (let [p (. held i)]
               (emit! st (.. b.part.g " = " p.g ";") (.. b.part.l " = " p.l))))
           [])
-        (let [b (set-target st (check-name! st target))
-              p (number-arg st value)]
-          (cost! st node 1)
-          (emit! st (.. b.part.g " = " p.g ";") (.. b.part.l " = " p.l))
+        (let [name (check-name! st target)
+              b (set-target st name)
+              p (value-arg st value)]
+          (when (not= (describe p) (describe b.part))
+            (refuse st node (.. "set gives " (describe p) " to `" name "`, which holds " (describe b.part)
+                                "; a var keeps its kind")))
+          (if (= p.t :vec)
+              ;; Component by component; a component's new value that reads one set
+              ;; before it goes through a new local first (as (set (a b) ...)).
+              (let [targets b.part.comps
+                    reads? (fn [c k]
+                             (accumulate [r? false j t (ipairs targets)]
+                               (or r? (and (< j k) (not= nil (c.l:find (.. "%f[%w_]" t.l "%f[^%w_]")))))))
+                    early? (accumulate [r? false k c (ipairs p.comps)] (or r? (reads? c k)))
+                    held (icollect [_ c (ipairs p.comps)] (if (or c.const (not early?)) c (declare! st node c)))]
+                (cost! st node (length targets))
+                (each [k t (ipairs targets)]
+                  (let [c (. held k)]
+                    (emit! st (.. t.g " = " c.g ";") (.. t.l " = " c.l)))))
+              (do (cost! st node 1)
+                  (emit! st (.. b.part.g " = " p.g ";") (.. b.part.l " = " p.l))))
           []))))
 
+(fn capped-stop [st node stop-node step]
+  ;; A stop of (math.min n K ...) (step > 0) or (math.max n K ...) (step < 0), K whole
+  ;; constants: the bound K of the turns, and the rest's value, or nil.
+  (when (fennel.list? stop-node)
+    (let [head (sym-name (. stop-node 1))
+          b (and head (not (head:find ":")) (not (. refused-forms head))
+                 (or (lookup st.scope head)
+                     (and (head:match "^math%.[%w_]+$") (. math-functions (head:sub 6))
+                          {:kind :math :name (head:sub 6)})
+                     (and st.resolve (case (st.resolve head) {:math f} {:kind :math :name f}))))
+          want (if (> step 0) :min :max)]
+      (when (and b (= b.kind :math) (= b.name want) (>= (length stop-node) 3))
+        (let [args (icollect [_ a (ipairs (args-of stop-node))] (number-arg st a))
+              ks (icollect [_ a (ipairs args)] (when (and a.const (= a.const (math.floor a.const))) a.const))
+              rest (icollect [_ a (ipairs args)] (when (not (and a.const (= a.const (math.floor a.const)))) a))]
+          (when (and (> (length ks) 0) (> (length rest) 0))
+            (values ((. math want) ((or table.unpack _G.unpack) ks))
+                    (declare! st node (scalar-math st stop-node want rest false)))))))))
+
 (fn for-form [st node]
-  (let [spec (. node 2)]
-    (when (or (not (fennel.sequence? spec)) (< (length spec) 3) (> (length spec) 4))
-      (refuse st node "(for [i start stop step] ...) needs a name and two or three bounds"))
+  (let [spec (. node 2)
+        until-at (when (fennel.sequence? spec)
+                   (accumulate [at nil k v (ipairs spec)]
+                     (or at (when (or (= (sym-name v) "&until") (= v "until")) k))))
+        until-node (when until-at (. spec (+ until-at 1)))
+        nbounds (if until-at (- until-at 1) (and (fennel.sequence? spec) (length spec)))]
+    (when (or (not (fennel.sequence? spec)) (< nbounds 3) (> nbounds 4)
+              (and until-at (not= (length spec) (+ until-at 1))))
+      (refuse st node "(for [i start stop step &until c] ...) needs a name and two or three bounds (&until and its condition last)"))
     (let [name (check-name! st (. spec 1))
-          bound (fn [k]
+          whole (fn [k]
                   (let [p (number-arg st (. spec k))]
                     (when (not (and p.const (= p.const (math.floor p.const))))
-                      (refuse st node "a for loop's bounds must be whole constant numbers (the shader unrolls what it can; a loop must end)"))
+                      (refuse st node "a for loop's bounds must be whole constant numbers, or a stop of (math.min n K) for at most K turns, K a whole constant (the shader needs a bound on the turns; a loop must end)"))
                     p.const))
-          start (bound 2)
-          stop (bound 3)
-          step (if (. spec 4) (bound 4) 1)
-          turns (if (= step 0) math.huge (math.max 0 (+ 1 (math.floor (/ (- stop start) step)))))]
+          start (whole 2)
+          step (if (= nbounds 4) (whole 4) 1)
+          (capped cap-value) (capped-stop st node (. spec 3) step)
+          stop (or capped (whole 3))
+          turns (if (= step 0) math.huge (math.max 0 (+ 1 (math.floor (/ (- stop start) step)))))
+          last (+ start (* step (- turns 1)))]
       (when (or (= step 0) (> turns limits.loop-turns))
         (refuse st node (.. "a for loop may turn at most " limits.loop-turns " times, this one "
                             (if (= step 0) "never ends" (.. "turns " turns " times")))))
@@ -700,10 +1107,24 @@ or set together."
             saved-weight st.weight
             saved-scope st.scope]
         (count-local! st node 1)
-        (bind! sc name {:kind :value :fn st.fn :part {:g v :l v :t :float}})
+        (bind! sc name {:kind :value :fn st.fn
+                        :part {:g v :l v :t :float
+                               :range (when (> turns 0) [(math.min start last) (math.max start last)])}})
         (set st.weight (* st.weight (math.max turns 1)))
         (set st.scope sc)
-        (let [(block) (capture st #(body st sc (fcollect [k 3 (length node)] (. node k)) node))]
+        (let [(block) (capture st
+                               (fn []
+                                 ;; Fennel's loop stops before a turn past its stop, then
+                                 ;; tests &until at the top of each turn.
+                                 (when cap-value
+                                   (emit! st (.. "if (" v (if (> step 0) " > " " < ") cap-value.g ") break;")
+                                          (.. "if " v (if (> step 0) " > " " < ") cap-value.l " then break end")))
+                                 (when until-node
+                                   (let [(cblock c) (capture st #(bool-arg st until-node))]
+                                     (cost! st until-node 1)
+                                     (each [_ item (ipairs cblock)] (table.insert st.out item))
+                                     (emit! st (.. "if (" c.g ") break;") (.. "if " c.l " then break end"))))
+                                 (body st sc (fcollect [k 3 (length node)] (. node k)) node)))]
           (set st.weight saved-weight)
           (set st.scope saved-scope)
           (table.insert block 1 {:g (.. "float " v " = float(" i ");")})
@@ -717,17 +1138,11 @@ or set together."
 
 (fn external-helper [st node name form resolve]
   ;; A function of the scene file outside the distance function (a top-level fn):
-  ;; translated once as a helper, its own outside names looked up by its `resolve`.
-  (case (. st.external form)
-    :busy (refuse st node (.. "`" name "` calls itself: recursion is not supported in a distance function"))
-    helper helper
-    nil (let [saved st.resolve]
-          (tset st.external form :busy)
-          (set st.resolve resolve)
-          (let [helper (define-helper st (new-scope nil) form)]
-            (set st.resolve saved)
-            (tset st.external form helper)
-            helper))))
+  ;; translated as a helper at each call with new kinds of arguments, its own outside
+  ;; names looked up by its `resolve`.
+  (when (not (. st.external form))
+    (tset st.external form (helper-binding st (new-scope nil) form name resolve)))
+  (. st.external form))
 
 (fn scope-helpers [st]
   "The names of the helpers in reach, for a guess at a misspelt one."
@@ -745,6 +1160,37 @@ or set together."
   ;; math.huge itself; any other infinity or a nan is refused by `constant`.
   (if (= n math.huge) huge (= n (- math.huge)) (- huge) n))
 
+(fn table-part [st node name t]
+  ;; A table of the file: an array of numbers, or of vectors of 2 or 3 numbers, as
+  ;; constants (a vector when it is 2 or 3 numbers).
+  (let [n (length t)
+        keys (accumulate [k 0 _ (pairs t)] (+ k 1))
+        bad #(refuse st node (.. "`" name "` is a table that is not an array of numbers or of vectors [a b] or [a b c]"
+                                 (if $ (.. " (" $ ")") "")
+                                 "; a distance function may use numbers, math functions, functions of the file and such arrays from outside it"))
+        number (fn [x] (if (= (type x) :number) (constant st node (finite x)) (bad "an item is not a number")))]
+    (when (or (= n 0) (not= keys n)) (bad (if (= n 0) "it has no items 1, 2, ..." "it has keys besides 1 to n")))
+    (when (> n limits.array-items) (bad (.. n " items; at most " limits.array-items)))
+    (let [items (fcollect [i 1 n]
+                  (let [x (. t i)]
+                    (if (= (type x) :table)
+                        (let [m (length x)]
+                          (when (or (not (<= 2 m 3)) (not= m (accumulate [k 0 _ (pairs x)] (+ k 1))))
+                            (bad "a vector item must be [a b] or [a b c]"))
+                          {:t :vec :comps (fcollect [j 1 m] (number (. x j)))})
+                        (number x))))
+          sizes (collect [_ p (ipairs items)] (if (= p.t :vec) (length p.comps) 0) true)]
+      (when (not= 1 (accumulate [k 0 _ (pairs sizes)] (+ k 1)))
+        (bad "its items are not all numbers or all vectors of one size"))
+      (if (and (<= 2 n 3) (= :float (. items 1 :t))) {:t :vec :comps items}
+          {:t :array : items}))))
+
+(fn may-use [name]
+  ;; The list of math's names a distance function may use, but after an alias's hint,
+  ;; which says what to write (and a message stays short enough to be shown whole).
+  (if (. aliases (or (name:match "^math%.(.+)$") name)) ""
+      (.. " (it may use " math-list ")")))
+
 (fn resolve-free [st node name ?call]
   "The binding of `name`, which is not bound in the function: math's (math.x), or
 what the scene's resolver says of a name from outside the function. `?call`: the
@@ -753,15 +1199,15 @@ name is called, and a refusal lists what may be called."
     (if (and field (. math-constants field)) {:kind :value :part (constant st node (. math-constants field))}
         (and field (. math-functions field)) {:kind :math :name field}
         field (refuse st node (.. "`" name "` is not one of the math functions a distance function may use"
-                                  (suggestion name) " (it may use " math-list ")"))
+                                  (suggestion name) (may-use name)))
         (case (and st.resolve (st.resolve name))
           {:number n} {:kind :value :part (constant st node (finite n))}
           {:math f} (if (. math-functions f) {:kind :math :name f}
                         (refuse st node (.. "`" name "` is math." f ", which a distance function cannot use"
-                                            (suggestion f) " (it may use " math-list ")")))
+                                            (suggestion f) (may-use f))))
           ;; (local {: clamp} math): Lua's math has no clamp, so the name holds nil
           ;; when the file runs; the translation has GLSL's.
-          {:nil true} (if (?. math-functions name :library) {:kind :math :name name}
+          {:nil true} (if (or (?. math-functions name :library) (?. math-functions name :vector)) {:kind :math :name name}
                           (refuse st node (.. "`" name "` is nil from outside the function; a name from outside it may hold a number, a math function or a function of the file"
                                               (suggestion name (scope-helpers st)))))
           {:unreadable why} (refuse st node (.. "`" name "` is a function the translator cannot read: " why
@@ -769,6 +1215,7 @@ name is called, and a refusal lists what may be called."
                                                     (.. "; or call math." name ", GLSL's " name)
                                                     (suggestion name))))
           {:helper form :resolve resolve} (external-helper st node name form resolve)
+          {:table t} {:kind :value :part (table-part st node name t)}
           {:other what} (refuse st node (.. "`" name "` is " what " from outside the function; a distance function may use numbers and math functions from outside it"))
           _ (if ?call
                 (refuse st node (.. "`" name "` is not a function a distance function may call"
@@ -779,8 +1226,13 @@ name is called, and a refusal lists what may be called."
 (fn symbol [st node]
   (let [name (tostring node)]
     (when (= name "nil") (refuse st node "`nil` is not a number"))
+    ;; v.x is Fennel's field "x" of the table v: nil for a vector [x y z].
+    (case (name:match "^([^.]+)%.([xyzw])$")
+      (base field) (when (?. (lookup st.scope base) :part :comps)
+                     (refuse st node (.. "`" name "` is the field \"" field "\" of a table, nil for a vector [a b c] in Fennel; take its component: (. " base " "
+                                         (. {:x 1 :y 2 :z 3 :w 4} field) ")"))))
     (case (or (lookup st.scope name) (resolve-free st node name))
-      {:kind :value : part} (do (when (and (not part.const) (not= (?. (lookup st.scope name) :fn) st.fn))
+      {:kind :value : part} (do (when (and (not (constant-value? part)) (not= (?. (lookup st.scope name) :fn) st.fn))
                                   (refuse st node (.. "a helper function uses `" name "` of the function around it; pass it as an argument")))
                                 [part])
       {:kind :var : part} (do (when (not= (. (lookup st.scope name) :fn) st.fn)
@@ -822,6 +1274,8 @@ name is called, and a refusal lists what may be called."
           "let" (let-form st node)
           "values" (check-parts st node (values-form st node))
           "for" (for-form st node)
+          "." (index-form st node)
+          "length" (length-form st node)
           "set" (set-form st node)
           "local" (refuse st node "(local ...) belongs in a body (a fn's or a let's), not inside an expression")
           "var" (refuse st node "(var ...) belongs in a body (a fn's or a let's), not inside an expression")
@@ -845,7 +1299,7 @@ name is called, and a refusal lists what may be called."
                          (fennel.list? node) (call st node)
                          (= (type node) :string) (not-supported st node "a string")
                          (= (type node) :boolean) (refuse st node (.. "`" (tostring node) "` is not a number; conditions are comparisons"))
-                         (fennel.sequence? node) (not-supported st node "a [...] table" "for several numbers use (values a b c)")
+                         (fennel.sequence? node) (sequence-form st node)
                          (fennel.table? node) (not-supported st node "a {...} table")
                          (not-supported st node (.. "a " (type node))))]
            (set st.line saved)
@@ -863,7 +1317,9 @@ parts."
              (when line (set st.line line)))
            (set parts
                 (if (and (fennel.list? form) (= "fn" (sym-name (. form 1))) (fennel.sym? (. form 2)))
-                    (do (bind! sc (check-name! st (. form 2)) (define-helper st sc form)) [])
+                    (let [name (check-name! st (. form 2))]
+                      (bind! sc name (helper-binding st sc form name))
+                      [])
                     (and (fennel.list? form) (= "local" (sym-name (. form 1))))
                     (local-form st form sc false)
                     (and (fennel.list? form) (= "var" (sym-name (. form 1))))
@@ -873,8 +1329,9 @@ parts."
          (set st.scope saved)
          parts)))
 
-(fn params-of [st node]
-  "The fn form `node`'s name symbol (or nil), parameter names and body forms."
+(fn params-of [st node ?patterns]
+  "The fn form `node`'s name symbol (or nil), parameter names (with `?patterns`, the
+parameters as written: names or [...] patterns) and body forms."
   (let [named? (fennel.sym? (. node 2))
         params (. node (if named? 3 2))
         start (if named? 4 3)]
@@ -887,61 +1344,101 @@ parts."
     ;; A docstring (a string first, with forms after it) is not code: skipped.
     (let [first (if (and (= (type (. node start)) :string) (> (length node) start)) (+ start 1) start)]
       (values (and named? (. node 2))
-              (icollect [_ p (ipairs params)] (check-name! st p))
+              (icollect [_ p (ipairs params)] (if (and ?patterns (fennel.sequence? p)) p (check-name! st p)))
               (fcollect [i first (length node)] (. node i))))))
 
 (fn new-fn [st]
   (set st.fn-count (+ st.fn-count 1))
   {:id st.fn-count :locals 0})
 
-(set define-helper
-     (fn [st sc node]
-       (when (>= (length st.helpers) limits.helpers)
-         (refuse st node (.. "more than " limits.helpers " helper functions")))
-       (let [(name-sym names forms) (params-of st node)
-             ;; Named after the function: two custom functions in one shader each
-             ;; have their own helpers.
-             name (.. st.name "Fn" (length st.helpers))
-             _ (table.insert st.helpers false)   ; its place, for the next helper's name
-             slot (length st.helpers)
-             saved {:fn st.fn :scope st.scope :weight st.weight :cost st.cost :out st.out}
-             fsc (new-scope sc)]
-         (set st.fn (new-fn st))
-         (set st.weight 1)
-         (set st.cost 0)
-         (when name-sym (bind! fsc (tostring name-sym) {:kind :recursive}))
-         (let [args (icollect [_ n (ipairs names)]
-                      (let [v (fresh! st "v")]
-                        (count-local! st node 1)
-                        (bind! fsc n {:kind :value :fn st.fn :part {:g v :l v :t :float}})
-                        v))
-               (block parts) (capture st #(check-parts st node (body st fsc forms node)))
-               nret (length parts)]
-           (when (or (= nret 0) (accumulate [b? false _ p (ipairs parts)] (or b? (= p.t :bool))))
-             (refuse st node "a helper function must return one to four numbers"))
-           (let [helper {:kind :helper : name :nargs (length args) : nret :cost st.cost}
-                 gargs (table.concat (icollect [_ a (ipairs args)] (.. "float " a)) ", ")
-                 gret (if (= nret 1) (. parts 1 :g)
-                          (.. (vec-type nret) "(" (table.concat (icollect [_ p (ipairs parts)] p.g) ", ") ")"))]
-             (table.insert block {:g (.. "return " gret ";")
-                                  :l (.. "return " (table.concat (icollect [_ p (ipairs parts)] p.l) ", "))})
-             (tset st.helpers slot
-                   {: helper
-                    :item {:g (.. (vec-type nret) " " name "(" gargs ") {")
-                           :l (.. "local function " name "(" (table.concat args ", ") ")")
-                           : block :g-close "}" :l-close "end"}})
-             ;; Written out in the order they end: a helper's body may call helpers
-             ;; begun after it (one of the file, translated when first called, or
-             ;; one defined in its body), and GLSL and Lua both need a function
-             ;; defined before the line that calls it. No helper calls itself, so
-             ;; each one's callees have ended before it does.
-             (table.insert st.finished (. st.helpers slot))
-             (set st.fn saved.fn)
-             (set st.scope saved.scope)
-             (set st.weight saved.weight)
-             (set st.cost saved.cost)
-             (set st.out saved.out)
-             helper)))))
+(fn snapshot [sc]
+  ;; The names in reach at `sc`, in a scope of their own: a helper translated at its
+  ;; first call sees what it saw where it was written, not names bound after it.
+  (let [names {}]
+    (var s sc)
+    (while s
+      (each [k v (pairs s.names)] (when (= nil (. names k)) (tset names k v)))
+      (set s s.parent))
+    {: names}))
+
+(set helper-binding
+     (fn [st sc node label ?resolve]
+       "The binding of the helper function `node`, written where `sc` is in reach:
+translated at each call with a new kind of arguments (see instance)."
+       (let [(_ params) (params-of st node true)]
+         {:kind :helper :form node :scope (snapshot sc) :label label :nargs (length params)
+          :resolve (or ?resolve st.resolve) :instances {}})))
+
+(fn define-helper [st sc node args]
+  ;; The GLSL and Lua function of the helper `node` for argument values like `args`
+  ;; (numbers and vectors), in scope `sc`: its helper record.
+  (when (>= (length st.helpers) limits.helpers)
+    (refuse st node (.. "more than " limits.helpers " helper functions")))
+  (let [(name-sym patterns forms) (params-of st node true)
+        ;; Named after the function: two custom functions in one shader each
+        ;; have their own helpers.
+        name (.. st.name "Fn" (length st.helpers))
+        _ (table.insert st.helpers false)   ; its place, for the next helper's name
+        slot (length st.helpers)
+        saved {:fn st.fn :scope st.scope :weight st.weight :cost st.cost :out st.out}
+        fsc (new-scope sc)]
+    (set st.fn (new-fn st))
+    (set st.weight 1)
+    (set st.cost 0)
+    (when name-sym (bind! fsc (tostring name-sym) {:kind :recursive}))
+    (let [fresh (fn [] (let [v (fresh! st "v")] {:g v :l v :t :float}))
+          params (icollect [i pattern (ipairs patterns)]
+                   (let [a (. args i)
+                         p (if (= a.t :vec) {:t :vec :comps (fcollect [_ 1 (length a.comps)] (fresh))} (fresh))]
+                     (bind-part! st fsc pattern p node true)
+                     p))
+          (names) (flat st node params)
+          _ (count-local! st node (length names))
+          (block parts) (capture st #(check-parts st node (body st fsc forms node)))
+          (numbers shape) (flat st node parts)
+          nret (length numbers)]
+      (when (or (= nret 0) (accumulate [b? false _ p (ipairs numbers)] (or b? (= p.t :bool))))
+        (refuse st node "a helper function must return numbers or vectors, one to four numbers in all"))
+      (let [helper {: name :nargs (length names) : nret : shape :cost st.cost}
+            gargs (table.concat (icollect [_ a (ipairs names)] (.. "float " a.g)) ", ")
+            gret (if (= nret 1) (. numbers 1 :g)
+                     (.. (vec-type nret) "(" (table.concat (icollect [_ p (ipairs numbers)] p.g) ", ") ")"))]
+        (table.insert block {:g (.. "return " gret ";")
+                             :l (.. "return " (table.concat (icollect [_ p (ipairs numbers)] p.l) ", "))})
+        (tset st.helpers slot
+              {: helper
+               :item {:g (.. (vec-type nret) " " name "(" gargs ") {")
+                      :l (.. "local function " name "(" (table.concat (icollect [_ a (ipairs names)] a.l) ", ") ")")
+                      : block :g-close "}" :l-close "end"}})
+        ;; Written out in the order they end: a helper's body may call helpers
+        ;; begun after it (one of the file, translated when first called, or
+        ;; one defined in its body), and GLSL and Lua both need a function
+        ;; defined before the line that calls it. No helper calls itself, so
+        ;; each one's callees have ended before it does.
+        (table.insert st.finished (. st.helpers slot))
+        (set st.fn saved.fn)
+        (set st.scope saved.scope)
+        (set st.weight saved.weight)
+        (set st.cost saved.cost)
+        (set st.out saved.out)
+        helper))))
+
+(set instance
+     (fn [st node b args]
+       "The translation of helper binding `b` for arguments like `args`: the one made
+at an earlier call with the same kinds (numbers, vectors of a size), else a new one."
+       (let [kinds (table.concat (icollect [_ a (ipairs args)] (if (= a.t :vec) (.. "vec" (length a.comps)) "float")) " ")]
+         (or (. b.instances kinds)
+             (do (when b.busy
+                   (refuse st node (.. "`" b.label "` calls itself: recursion is not supported in a distance function")))
+                 (set b.busy true)
+                 (let [saved st.resolve
+                       _ (set st.resolve b.resolve)
+                       helper (define-helper st b.scope b.form args)]
+                   (set st.resolve saved)
+                   (set b.busy false)
+                   (tset b.instances kinds helper)
+                   helper))))))
 
 (local type-sizes {:float 1 :vec2 2 :vec3 3 :vec4 4})
 
@@ -986,26 +1483,34 @@ those vectors (a0, a1, ...; the Lua function still takes them one by one)."
          (fn []
            (when (not (and (fennel.list? form) (= "fn" (sym-name (. form 1)))))
              (refuse st form "a distance function must be written (fn [x y z] ...) in the scene file"))
-           (let [(name-sym names forms) (params-of st form)
-                 _ (when (< (length names) 3)
-                     (refuse st form "a distance function takes the point first: (fn [x y z] ...)"))
+           (let [(name-sym names forms) (params-of st form true)
+                 ;; (fn [p] ...): the point as one vector.
+                 point? (= 1 (length names))
+                 _ (when (and (not point?) (< (length names) 3))
+                     (refuse st form "a distance function takes the point first: (fn [x y z] ...), or as one vector (fn [p] ...)"))
+                 _ (when (not point?) (each [_ n (ipairs names)] (when (not= (type n) :string) (check-name! st n))))
                  sc (new-scope nil)
                  main-fn (new-fn st)
                  _ (set st.fn main-fn)
-                 vars (fcollect [_ 1 (length names)] (fresh! st "v"))
+                 vars (fcollect [_ 1 (if point? 3 (length names))] (fresh! st "v"))
                  scale (when (not= false options.scale?) (fresh! st "v"))]
-             (count-local! st form (length names))
+             (count-local! st form (length vars))
              (when name-sym (bind! sc (tostring name-sym) {:kind :recursive}))
-             (each [i n (ipairs names)]
-               (when (not= n "_")
-                 (bind! sc n {:kind :value :fn main-fn :part {:g (. vars i) :l (. vars i) :t :float}})))
+             (if point?
+                 (bind-part! st sc (. names 1) {:t :vec :comps (icollect [_ v (ipairs vars)] {:g v :l v :t :float})}
+                             form true)
+                 (each [i n (ipairs names)]
+                   (when (not= n "_")
+                     (bind! sc n {:kind :value :fn main-fn :part {:g (. vars i) :l (. vars i) :t :float}}))))
              (let [(block parts) (capture st #(body st sc forms form))
                    _ (when (not= 1 (length parts))
                        (refuse st form (.. "a distance function must give one number, this one gives "
                                            (length parts) " values")))
                    d (. parts 1)
                    _ (when (not= d.t :float)
-                       (refuse st form "a distance function must give a number, not a comparison"))
+                       (refuse st form (if (= d.t :bool) "a distance function must give a number, not a comparison"
+                                           (.. "a distance function must give a number, not " (describe d)
+                                               "; take (length v) or a component (. v 1)"))))
                    name st.name
                    head [{:g (.. "float " (. vars 1) " = p.x;")} {:g (.. "float " (. vars 2) " = p.y;")}
                          {:g (.. "float " (. vars 3) " = p.z;")}]
