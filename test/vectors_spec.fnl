@@ -412,3 +412,45 @@ GLSL's (nil in the file), and the file's arrays `tables`."
                     (assert.is_true (<= (math.abs (- got want)) (* 1e-9 (+ 1 (math.abs want))))
                                     (string.format "%s node %d at %g %g %g: %.17g, scalar %.17g"
                                                    file k x y z got want))))))))))))
+
+;;; On the GPU: the example scenes drawn by the shader against the CPU reference.
+
+(local headless (require :src.backend.headless))
+(local codegen (require :src.render.codegen))
+(local {: prepare : gpu-render : compare-image : passes? : describe-failures : report-line}
+       (require :test.support.gpu-check))
+
+;; As test/gpu_vs_cpu_spec.fnl's budgets for scenes/custom.fnl: at most two pixels of
+;; the sampled ones more than 2/255 apart (a grazing reflection or shadow edge), none
+;; past 40; the normals view at most one, by 3.
+(local budgets {:shaded {:over 2 :max 40} :normals {:over 1 :max 3}})
+
+(describe "the example scenes of vectors on the GPU"
+  (fn []
+    (let [(ctx why) (headless.context)]
+      (if (not ctx)
+          (pending (.. "OSMesa is not available: " (tostring why)))
+          (do
+            (each [_ file (ipairs ["examples/polygon-prism.fnl" "examples/vector-box.fnl"])]
+              (it (.. file ": the GPU picture matches the CPU reference, shaded and normals")
+                (fn []
+                  (each [_ view (ipairs [:shaded :normals])]
+                    (let [budget (. budgets view)
+                          prepared (prepare file {: view})
+                          st (compare-image prepared (gpu-render ctx prepared))
+                          label (.. file " " view)]
+                      (print (report-line label st))
+                      (assert.is_true (>= st.count 256) (.. label ": only " st.count " pixels sampled"))
+                      (assert.is_true (passes? st budget) (describe-failures label st budget)))))))
+
+            (it "fails when the shader takes another vertex of the star (the check sees the chain)"
+              (fn []
+                (let [prepared (prepare "examples/polygon-prism.fnl" {:view :normals})
+                      shader (codegen.shader prepared.plan :core)
+                      ;; The first item of each chain of the vertices: vertex 1 at
+                      ;; counter 2 instead (a fault the CPU reference lacks).
+                      (broken n) (shader:gsub "%(v(%d+) == 1%.0%)" "(v%1 == 2.0)")
+                      st (compare-image prepared (gpu-render ctx prepared {:source #broken}))]
+                  (assert.is_true (> n 0))
+                  (print (report-line "polygon-prism, broken chain" st))
+                  (assert.is_false (passes? st budgets.normals))))))))))
