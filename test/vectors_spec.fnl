@@ -311,6 +311,12 @@ GLSL's (nil in the file), and the file's arrays `tables`."
           (each [_ [x n] (ipairs [[100 0] [100 2] [100 2.5] [100 6] [100 9] [2 9] [5 9] [-1 4]])]
             (assert.are.equal (fennel-f x 0 0 n) (f x 0 0 n 1) (.. x " " n))))))
 
+    (it "raises each component to a whole power, and takes a vector from (values ...)"
+      (fn []
+        (let [t (translated "(fn [p] (let [(q k) (values (^ (- p 1) 3) 2)] (+ (. q 1) (* k (. q 2)) (. q 3))))")
+              f (translate.compile-lua t.lua)]
+          (assert.are.equal (+ (^ 1 3) (* 2 (^ -1 3)) (^ 3 3)) (f 2 0 4 1)))))
+
     (it "keeps a var's components apart when a new one reads an older (a swap)"
       (fn []
         (let [t (translated "(fn [x y z] (var v [x y z]) (set v [(. v 2) (. v 1) (. v 3)]) (set v (* v 2)) (+ (. v 1) (* 10 (. v 2)) (* 100 (. v 3))))")

@@ -434,18 +434,21 @@ was when bound. A vector or an array, component by component."
     _ (if p.const p (declare! st node p))))
 
 (fn power [st node]
+  ;; (^ a n) of a number or, component by component, of a vector.
   (let [args (args-of node)]
     (when (not= 2 (length args)) (refuse st node "(^ a n) takes two arguments"))
-    (let [base (number-arg st (. args 1))
+    (let [base (value-arg st (. args 1))
           n (. (number-arg st (. args 2)) :const)]
       (when (not (and n (= n (math.floor n)) (<= 0 n limits.power)))
         (refuse st node (.. "(^ a n) needs a whole constant n from 0 to " limits.power
                             "; for other powers use (math.pow a b), with a >= 0")))
-      (cost! st node (math.max 1 (- n 1)))
-      (if (= n 0) [(constant st node 1)]
-          base.const [(constant st node (^ base.const n))]
-          (let [b (if (= n 1) base (declare! st node base))]
-            [(fold st node (fcollect [_ 1 n] b) #(* $1 $2) "*" "*" 1)])))))
+      [(per-component st node [base] "(^ ...)"
+                      (fn [[b]]
+                        (cost! st node (math.max 1 (- n 1)))
+                        (if (= n 0) (constant st node 1)
+                            b.const (constant st node (^ b.const n))
+                            (let [b (if (= n 1) b (declare! st node b))]
+                              (fold st node (fcollect [_ 1 n] b) #(* $1 $2) "*" "*" 1)))))])))
 
 (local comparison-ops {"<" ["<" "<"] ">" [">" ">"] "<=" ["<=" "<="] ">=" [">=" ">="]
                        "=" ["==" "=="] "not=" ["!=" "~="] "~=" ["!=" "~="]})
@@ -1380,7 +1383,7 @@ translated at each call with a new kind of arguments (see instance)."
         name (.. st.name "Fn" (length st.helpers))
         _ (table.insert st.helpers false)   ; its place, for the next helper's name
         slot (length st.helpers)
-        saved {:fn st.fn :scope st.scope :weight st.weight :cost st.cost :out st.out}
+        saved {:fn st.fn :scope st.scope :weight st.weight :cost st.cost :out st.out :line st.line}
         fsc (new-scope sc)]
     (set st.fn (new-fn st))
     (set st.weight 1)
@@ -1421,6 +1424,7 @@ translated at each call with a new kind of arguments (see instance)."
         (set st.weight saved.weight)
         (set st.cost saved.cost)
         (set st.out saved.out)
+        (set st.line saved.line)
         helper))))
 
 (set instance
