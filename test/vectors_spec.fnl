@@ -449,6 +449,26 @@ GLSL's (nil in the file), and the file's arrays `tables`."
                       (assert.is_true (>= st.count 256) (.. label ": only " st.count " pixels sampled"))
                       (assert.is_true (passes? st budget) (describe-failures label st budget)))))))
 
+            (it "the app's --render of the star, one ray a pixel, is the CPU reference's picture"
+              (fn []
+                (let [png (require :src.util.png)
+                      {: love} (require :test.support.app)
+                      compare (require :src.verify.compare)
+                      (code out) (love "--render examples/polygon-prism.fnl --out test/out/vectors-star.png --size 64x48 --samples 1")
+                      _ (assert.are.equal 0 code out)
+                      img (assert (png.read-file "test/out/vectors-star.png"))
+                      prepared (prepare "examples/polygon-prism.fnl" {:size [64 48]})
+                      diffs (icollect [_ r (ipairs prepared.expected)]
+                              ;; The PNG's rows from the top, as the sampled pixels'.
+                              (let [i (* 4 (+ (* r.y img.width) r.x))]
+                                (compare.pixel-diff [(. img.pixels i) (. img.pixels (+ i 1)) (. img.pixels (+ i 2))]
+                                                    (icollect [_ c (ipairs r.color)] (* 255 c)))))
+                      st (compare.stats diffs 2)]
+                  (print (report-line "examples/polygon-prism.fnl through --render" st))
+                  (assert.are.same [64 48] [img.width img.height])
+                  (assert.is_true (>= st.count 200) (.. "only " st.count " pixels sampled"))
+                  (assert.is_true (passes? st budgets.shaded) (.. "over " st.over ", max " st.max)))))
+
             (it "fails when the shader takes another vertex of the star (the check sees the chain)"
               (fn []
                 (let [prepared (prepare "examples/polygon-prism.fnl" {:view :normals})
