@@ -30,8 +30,8 @@
 ;;   (math.min n K) with K a whole constant: K turns at most, and a break past n.
 ;;
 ;;   Vectors are scalarised on both sides: a vector is a value {:t :vec :comps [...]}
-;;   of one part per component, and a GLSL vec3 is never declared (but for length(),
-;;   the builtin a hand-written distance uses). Lua has no vectors, so its side must
+;;   of one part per component: a GLSL vec2 or vec3 appears only in length(vec3(...)),
+;;   the builtin a hand-written distance uses, and as a helper's several values. Lua has no vectors, so its side must
 ;;   be scalarised anyway; doing the same in GLSL keeps the one walk writing one
 ;;   expression per component for both texts, the same operations in the same order,
 ;;   and every existing mechanism (locals, if results, helpers' several values, the
@@ -1467,7 +1467,7 @@ at an earlier call with the same kinds (numbers, vectors of a size), else a new 
 
 (fn translate [form ?options]
   "GLSL and Lua for the distance function `form`, the parsed (fn [x y z ...] ...) of a
-scene file. Returns {:glsl :lua :params [name ...] :cost n}: :glsl defines
+scene file, or (fn [p] ...), the point as one vector. Returns {:glsl :lua :params [name ...] :cost n}: :glsl defines
 `float NAME(vec3 p, float ...)` and :lua is a chunk returning the Lua function
 (x y z ...); the extra arguments are the fn's parameters after x y z (:params, in
 order), then, with :scale? (default true), a factor the distance is multiplied by.
