@@ -369,7 +369,7 @@ GLSL's (nil in the file), and the file's arrays `tables`."
                         ["(fn [p]\n (- (. sizes 1) 1))" 2 "(it has keys besides 1 to n)" {:sizes {1 1 2 2 :x 3}}]
                         ["(fn [p]\n (- (. sizes 1) 1))" 2 "`sizes` is a table that is not an array of numbers or of vectors [a b] or [a b c] (a vector item must be [a b] or [a b c])" {:sizes [[1 2 3 4]]}]
                         ["(fn [p]\n (- (. sizes 1) 1))" 2 "(an item is not a number)" {:sizes [1 "2"]}]
-                        ["(fn [p q]\n 1)" 1 "a distance function takes the point first: (fn [x y z] ...), or as one vector (fn [p] ...)"]])]
+                        ["(fn [p q]\n 1)" 1 "a distance function takes the point first: (fn [x y z] ...), or as one vector (fn [p] ...); with parameters after a vector point, write (fn [x y z r] (let [p [x y z]] ...))"]])]
           (let [(ok? msg got-line) (translate.translate (parse source) {:resolve (resolver (or ?tables {}))})]
             (assert.is_nil ok? source)
             (assert.truthy (msg:find expected 1 true) (.. source "\n=> " (tostring msg)))

@@ -1491,7 +1491,10 @@ those vectors (a0, a1, ...; the Lua function still takes them one by one)."
                  ;; (fn [p] ...): the point as one vector.
                  point? (= 1 (length names))
                  _ (when (and (not point?) (< (length names) 3))
-                     (refuse st form "a distance function takes the point first: (fn [x y z] ...), or as one vector (fn [p] ...)"))
+                     (refuse st form (.. "a distance function takes the point first: (fn [x y z] ...), or as one vector (fn [p] ...)"
+                                         (if (= 2 (length names))
+                                             "; with parameters after a vector point, write (fn [x y z r] (let [p [x y z]] ...))"
+                                             ""))))
                  _ (when (not point?) (each [_ n (ipairs names)] (when (not= (type n) :string) (check-name! st n))))
                  sc (new-scope nil)
                  main-fn (new-fn st)
