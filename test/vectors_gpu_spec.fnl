@@ -18,7 +18,7 @@
       (if (not ctx)
           (pending (.. "OSMesa is not available: " (tostring why)))
           (do
-            (each [_ file (ipairs ["examples/polygon-prism.fnl" "examples/vector-box.fnl"])]
+            (each [_ file (ipairs ["examples/polygon-prism.fnl" "examples/vector-box.fnl" "examples/menger-fold.fnl"])]
               (it (.. file ": the GPU picture matches the CPU reference, shaded and normals")
                 (fn []
                   (each [_ view (ipairs [:shaded :normals])]
@@ -26,6 +26,33 @@
                           prepared (prepare file {: view})
                           st (compare-image prepared (gpu-render ctx prepared))
                           label (.. file " " view)]
+                      (print (report-line label st))
+                      (assert.is_true (>= st.count 256) (.. label ": only " st.count " pixels sampled"))
+                      (assert.is_true (passes? st budget) (describe-failures label st budget)))))))
+
+            (it "a loop with &until draws as the CPU reference draws it (a union of balls that stops inside one)"
+              (fn []
+                ;; Outside every ball the loop runs to its end, so the picture is the
+                ;; one without the stop: this checks the shader's break compiles and
+                ;; runs; test/vectors_spec.fnl checks where the stop changes values.
+                (let [file "test/out/vectors-until.fnl"]
+                  (with-open [f (assert (io.open file :w))]
+                    (f:write "(local centres [[0.8 0 0] [0 0.8 0] [-0.8 0 0] [0 -0.8 0] [0 0 0.6]])
+{:camera {:pos [0 -5 3] :yaw 90 :pitch 30 :fov 50}
+ :light {:pos [-10 -14 20]}
+ :objects [{:kind :plane :height -0.6}
+           {:kind :custom :color [0.4 0.6 0.9] :bounds [1.3 1.3 1.1]
+            :distance (fn [p]
+                        (var d 100)
+                        (for [i 1 5 &until (< d -0.05)]
+                          (set d (math.min d (- (length (- p (. centres i))) 0.5))))
+                        d)}]}
+"))
+                  (each [_ view (ipairs [:shaded :normals])]
+                    (let [budget (. budgets view)
+                          prepared (prepare file {: view})
+                          st (compare-image prepared (gpu-render ctx prepared))
+                          label (.. "&until " view)]
                       (print (report-line label st))
                       (assert.is_true (>= st.count 256) (.. label ": only " st.count " pixels sampled"))
                       (assert.is_true (passes? st budget) (describe-failures label st budget)))))))
