@@ -202,6 +202,22 @@ the cell whose low corner is lo and side h, then the crossings' mean."
         ox (max qx 0) oy (max qy 0) oz (max qz 0)]
     (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz))) (min (max qx qy qz) 0))))
 
+;; The heap is kept within twice what was live at the last full collection (and at
+;; least this many KB): LuaJIT's incremental collector, paced by allocation, fell
+;; behind the evaluator's garbage while big arrays were live, and six identical runs
+;; of platonic-shelf at 256 cells peaked anywhere from 470 MB to 1.6 GB (the Lua
+;; heap alone 300 MB to 1.5 GB, in the corners step). A full collection when the
+;; heap has doubled costs a few of them per mesh (the live heap grows by steps).
+(local heap-floor (* 64 1024))
+
+(fn bound-heap! [counts]
+  "A full collection when the Lua heap has grown past twice the live heap at the
+last one (counts.live-kb, KB)."
+  (when (> (collectgarbage :count) (* 2 (max heap-floor (or counts.live-kb 0))))
+    (collectgarbage)
+    (set counts.live-kb (collectgarbage :count))
+    (set counts.collections (+ 1 (or counts.collections 0)))))
+
 (fn evaluator [field cut counts progress]
   "A function from a phase name and a flat list of points x y z ... to their
 distances (the field cut by the box `cut`), in batches of batch-size points; each
@@ -220,6 +236,7 @@ batch counts as work done (see mesh) and `progress` hears of it."
               (tset out (+ start k) (max d b))))
           (set counts.points (+ counts.points count))
           (set counts.work (+ counts.work count))
+          (bound-heap! counts)
           (progress phase counts.work counts.estimate counts.points)))
       out)))
 
@@ -677,7 +694,8 @@ Returns {:positions [x y z ...] :triangles [a b c ...] (1-based vertex indices,
 counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
 (leaf blocks sampled) :skipped (leaf blocks' worth of volume skipped) :cells
 (cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
-moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
+moved onto the surface) :collections (full collections of the Lua heap, see
+bound-heap!) :times (CPU seconds per step) :work :estimate}}."
   (let [state (new-state field grid ?progress)
         counts state.counts]
     (mark! state :blocks)
@@ -710,6 +728,7 @@ moved onto the surface) :times (CPU seconds per step) :work :estimate}}."
                :cells (length state.cells) :crossings state.crossings
                :moved counts.moved :times state.times
                :flipped (or counts.flipped 0)
+               :collections (or counts.collections 0)
                :work counts.work :estimate counts.estimate}})))
 
 {: mesh : patches : box-distance : leaf}
