@@ -303,7 +303,8 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
           (assert.truthy (msg:find "operations per point" 1 true) msg))))))
 
 (fn scene-with [params ?body]
-  (.. "{:objects [{:kind :custom :bounds [1 1 1] :params " params "\n"
+  ;; Bounds that hold a ball of radius up to 2.2 (the loader checks them).
+  (.. "{:objects [{:kind :custom :bounds [2.2 2.2 2.2] :params " params "\n"
       " :distance (fn [x y z r] " (or ?body "(- (math.sqrt (+ (* x x) (* y y) (* z z))) r)") ")}]}"))
 
 (describe "custom nodes in the loader"
@@ -341,7 +342,7 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
       (fn []
         (let [s (assert (load.load-string "(local ball (fn [x y z] (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1)))
 {:objects [{:kind :custom :bounds [1 1 1] :distance ball :pos [3 0 0]}
-           {:kind :custom :bounds [1 1 1] :distance (fn [x y z] (- (math.abs x) 1))}
+           {:kind :custom :bounds [1 1 1] :distance (fn [x y z] (- (math.max (math.abs x) (math.abs y) (math.abs z)) 1))}
            {:kind :custom :bounds [1 1 1] :distance ball}]}" "t.fnl"))
               names (icollect [_ o (ipairs s.objects)] o.tree.custom.glsl-name)]
           (assert.are.same ["sdCustom1" "sdCustom2" "sdCustom1"] names))))
@@ -349,8 +350,8 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
     (it "packs each node's own parameters when two functions differ only in their names"
       (fn []
         (let [s (assert (load.load-string "{:objects [
-  {:kind :custom :bounds [2 2 2] :params {:r 1} :distance (fn [x y z r] (- (math.abs x) r))}
-  {:kind :custom :bounds [2 2 2] :params {:radius 2} :distance (fn [x y z radius] (- (math.abs x) radius))}]}" "t.fnl"))
+  {:kind :custom :bounds [2 2 2] :params {:r 1} :distance (fn [x y z r] (- (math.max (math.abs x) (math.abs y) (math.abs z)) r))}
+  {:kind :custom :bounds [2 2 2] :params {:radius 2} :distance (fn [x y z radius] (- (math.max (math.abs x) (math.abs y) (math.abs z)) radius))}]}" "t.fnl"))
               packs (icollect [_ o (ipairs s.objects)]
                       (let [d (custom.descriptor o.tree)] (. (d.pack o.tree) 1)))]
           (assert.are.same [1 2] packs))))
@@ -372,7 +373,7 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
 (local r 1)
 (local r 2)
 (fn sd-box [x y z s] (- (math.max (math.abs x) (math.abs y) (math.abs z)) s))
-{:objects [{:kind :custom :bounds [2 2 2] :distance (fn [x y z] (- (sd-box x y z half-size) r))}]}" "t.fnl"))
+{:objects [{:kind :custom :bounds [3 3 3] :distance (fn [x y z] (- (sd-box x y z half-size) r))}]}" "t.fnl"))
               c (. s.objects 1 :tree :custom)]
           (assert.are.equal -1 ((translate.compile-lua c.lua) 2 0 0 1)))))
 
@@ -392,7 +393,8 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
         (let [s (assert (load.load-string "(local {: clamp : smoothstep : huge} math)
 (local {: mod} math)
 {:objects [{:kind :custom :bounds [1 1 1]
-  :distance (fn [x y z] (math.min huge (+ (- (math.abs z) 0.5) (* 0.01 (+ (clamp x 0 1) (smoothstep 0 1 y) (mod x 0.3))))))}]}" "t.fnl"))
+  :distance (fn [x y z] (math.max (- (math.max (math.abs x) (math.abs y)) 0.9)
+                                  (math.min huge (+ (- (math.abs z) 0.5) (* 0.01 (+ (clamp x 0 1) (smoothstep 0 1 y) (mod x 0.3)))))))}]}" "t.fnl"))
               f (translate.compile-lua (. s.objects 1 :tree :custom :lua))]
           ;; mod is GLSL's (floored), not LuaJIT's math.mod (fmod, truncated).
           (assert.are.near (+ 0.5 (* 0.01 (+ 0 0.5 0.05))) (f -0.25 0.5 1 1) 1e-12))))
@@ -423,7 +425,8 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
       (fn []
         (let [exact (assert (load.load-string (scene-with "{:r 1}") "t.fnl"))
               gyroid (assert (load.load-string "{:objects [{:kind :custom :bounds [1 1 1]
- :distance (fn [x y z] (- (math.abs (+ (* (math.sin (* 4 x)) (math.cos (* 4 y))) (* (math.sin (* 4 y)) (math.cos (* 4 z))) (* (math.sin (* 4 z)) (math.cos (* 4 x))))) 0.2))}]}" "t.fnl"))
+ :distance (fn [x y z] (math.max (- (math.abs (+ (* (math.sin (* 4 x)) (math.cos (* 4 y))) (* (math.sin (* 4 y)) (math.cos (* 4 z))) (* (math.sin (* 4 z)) (math.cos (* 4 x))))) 0.2)
+                                 (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1)))}]}" "t.fnl"))
               g (. gyroid.objects 1 :tree)]
           (assert.are.equal 1 (. exact.objects 1 :tree :lipschitz))
           ;; sin(4x)cos(4y) + ...: the gradient's length reaches 4 * sqrt(3) = 6.93
@@ -434,7 +437,7 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
     (it "measures GLSL's functions as the shader computes them (smoothstep's slope)"
       (fn []
         (let [smooth (assert (load.load-string "{:objects [{:kind :custom :bounds [1 1 1]
- :distance (fn [x y z] (- (math.abs z) (math.smoothstep -1 1 x)))}]}" "t.fnl"))
+ :distance (fn [x y z] (math.max (- (math.max (math.abs x) (math.abs y)) 0.9) (- (math.abs z) (math.smoothstep -1 1 x))))}]}" "t.fnl"))
               node (. smooth.objects 1 :tree)]
           ;; smoothstep(-1, 1, x) rises fastest at x = 0, by 1.5 / 2: with |z|'s 1,
           ;; a gradient of length sqrt(1 + 0.75^2) = 1.25, divided with the margin.
@@ -444,9 +447,9 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
     (it "takes a declared :lipschitz at least the measured one, and refuses a smaller one"
       (fn []
         (let [ok (assert (load.load-string "{:objects [{:kind :custom :bounds [1 1 1] :lipschitz 3
- :distance (fn [x y z] (- (* 2 (math.abs x)) 1))}]}" "t.fnl"))
+ :distance (fn [x y z] (- (* 2 (math.max (math.abs x) (math.abs y) (math.abs z))) 1))}]}" "t.fnl"))
               (bad msg) (load.load-string "{:objects [{:kind :custom :bounds [1 1 1] :lipschitz 1.5
- :distance (fn [x y z] (- (* 2 (math.abs x)) 1))}]}" "t.fnl")]
+ :distance (fn [x y z] (- (* 2 (math.max (math.abs x) (math.abs y) (math.abs z))) 1))}]}" "t.fnl")]
           (assert.are.equal 3 (. ok.objects 1 :tree :lipschitz))
           (assert.is_nil bad)
           (assert.truthy (msg:find "t.fnl:1: objects[1].lipschitz: declares 1.5, but the distance changes by 2 per unit" 1 true) msg))))
@@ -454,7 +457,7 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
     (it "divides the distance by the factor, on the CPU as on the GPU (one argument)"
       (fn []
         (let [s (assert (load.load-string "{:objects [{:kind :custom :bounds [1 1 1]
- :distance (fn [x y z] (- (* 3 (math.abs x)) 1))}]}" "t.fnl"))
+ :distance (fn [x y z] (- (* 3 (math.max (math.abs x) (math.abs y) (math.abs z))) 1))}]}" "t.fnl"))
               node (. s.objects 1 :tree)
               desc (custom.descriptor node)
               args (desc.pack node)]

@@ -533,15 +533,33 @@ shines from where the classic :light is (seen from the origin)."
 (local custom-spec
   {:params [{:name :bounds :type :size3 :required? true
              :missing "missing; a custom node needs :bounds [hx hy hz], the half extents of a box about its origin that holds the shape"}
-            {:name :lipschitz :type :positive :optional? true}]
+            {:name :lipschitz :type :positive :optional? true}
+            {:name :trust-lipschitz :type :boolean :optional? true}]
    :extra-fields [:distance :params]})
 
+(fn bounds-message [low on on-face? bounds ?box]
+  ;; Why a custom node's :bounds are refused: its distance `low` at `on`, on a face
+  ;; of the box or outside it.
+  (let [g #(string.format "%.3g" $)
+        box-text #(.. "[" (table.concat (icollect [_ v (ipairs $)] (g v)) " ") "]")]
+    (.. "the distance is " (g low) " at (" (table.concat (icollect [_ v (ipairs on)] (g v)) ", ")
+        (if on-face? ") on the box's face, so the shape crosses its bounds "
+            ") outside the box, so the shape lies beyond its bounds ")
+        (box-text bounds)
+        (if ?box (.. "; a box that holds it: " (box-text ?box))
+            (.. "; no box up to " custom.limits.bounds-growth
+                " times as large holds it (is the distance negative far from the shape?)")))))
+
 (fn check-custom! [ctx path o out]
-  "Translate custom node `o`'s distance function and measure its Lipschitz factor,
-into `out`: :custom (the texts), :params, :lipschitz (the factor used)."
+  "Translate custom node `o`'s distance function, check that its :bounds hold the
+shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params,
+:lipschitz (the factor used: the declared one when :trust-lipschitz)."
   (let [dpath (sub-path path :distance)
         ppath (sub-path path :params)
         given (or o.params {})]
+    (when (and out.trust-lipschitz (not out.lipschitz))
+      (fail ctx (sub-path path :trust-lipschitz)
+            "trusts a declared factor, but the node declares none: add :lipschitz k (the factor its distance is divided by), or leave :trust-lipschitz out"))
     (when (not= (type o.distance) :function)
       (fail ctx dpath (.. (if (= nil o.distance) "missing; a custom node needs " "must be ")
                           "a distance function like (fn [x y z] (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1))"
@@ -590,18 +608,26 @@ into `out`: :custom (the texts), :params, :lipschitz (the factor used)."
             ;; Nodes made by a loop often share the function and its values: measured
             ;; once per load.
             (set ctx.measures (or ctx.measures {}))
-            (case (let [mkey (.. glsl "\n" (table.concat (icollect [_ v (ipairs args)] (string.format "%.17g" v)) " ")
-                                 "\n" (table.concat (icollect [_ v (ipairs out.bounds)] (string.format "%.17g" v)) " "))]
-                    (when (not (. ctx.measures mkey))
-                      (tset ctx.measures mkey [((or ctx.measure custom.measure) desc.cpu out.bounds args t.cost)]))
-                    ((or table.unpack _G.unpack) (. ctx.measures mkey) 1 3))
-              (nil why at) (fail ctx dpath (string.format "%s at [%.3g %.3g %.3g] (sampled over its bounds grown by half: it must give a number everywhere there)"
-                                                          why (. at 1) (. at 2) (. at 3)) line)
-              (measured at) (case (custom.factor measured out.lipschitz at)
-                              (nil why) (fail ctx (sub-path path :lipschitz) why)
-                              k (do (set out.lipschitz k)
-                                    (set data.measured measured)
-                                    (set out.custom data)))))))))
+            (set ctx.bounds-checks (or ctx.bounds-checks {}))
+            (let [mkey (.. glsl "\n" (table.concat (icollect [_ v (ipairs args)] (string.format "%.17g" v)) " ")
+                           "\n" (table.concat (icollect [_ v (ipairs out.bounds)] (string.format "%.17g" v)) " "))]
+              (case (do (when (not (. ctx.measures mkey))
+                          (tset ctx.measures mkey [((or ctx.measure custom.measure) desc.cpu out.bounds args t.cost)]))
+                        ((or table.unpack _G.unpack) (. ctx.measures mkey) 1 3))
+                (nil why at) (fail ctx dpath (string.format "%s at [%.3g %.3g %.3g] (sampled over its bounds grown by half: it must give a number everywhere there)"
+                                                            why (. at 1) (. at 2) (. at 3)) line)
+                (measured at)
+                (do ;; The shape within its bounds (the distance is a number there: measured).
+                    (when (not (. ctx.bounds-checks mkey))
+                      (tset ctx.bounds-checks mkey [(custom.check-bounds desc.cpu out.bounds args t.cost)]))
+                    (case (. ctx.bounds-checks mkey)
+                      [low on on-face? ?box] (fail ctx (sub-path path :bounds)
+                                                   (bounds-message low on on-face? out.bounds ?box)))
+                    (case (custom.factor measured out.lipschitz at out.trust-lipschitz)
+                      (nil why) (fail ctx (sub-path path :lipschitz) why)
+                      k (do (set out.lipschitz k)
+                            (set data.measured measured)
+                            (set out.custom data)))))))))))
 
 (fn check-node [ctx path o depth counter]
   (when (not= (type o) :table)

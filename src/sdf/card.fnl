@@ -34,7 +34,7 @@
       (let [d (operations.lookup name)]
         (table.insert out (.. "  :" d.kind "  " (children-text d) "  "
                               d.class-doc "  " (params-text d)))))
-    (table.insert out "custom: {:kind :custom :distance (fn [x y z ...] ...) :bounds [hx hy hz] :params {...} :lipschitz k (optional)}, a distance function in Fennel (docs/scenes.md, Custom nodes)")
+    (table.insert out "custom: {:kind :custom :distance (fn [x y z ...] ...) :bounds [hx hy hz] :params {...} :lipschitz k (optional) :trust-lipschitz true (optional: use k below the measure)}, a distance function in Fennel (docs/scenes.md, Custom nodes)")
     (table.insert out "every node also takes :pos [x y z], :rotate [x y z] degrees, :scale s, :color [r g b], :mirror 0..1")
     out))
 

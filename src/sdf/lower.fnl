@@ -199,7 +199,7 @@ translate(rotate(scale(node)))."
     {: dout : mout
      :info (let [bounds (and desc.bounds (desc.bounds node))]
              {:kind node.kind :path node.path :class desc.class :lipschitz desc.lipschitz
-              : bounds :box (symmetric-box bounds) :children [] :even desc.even
+              :lipschitz-note desc.lipschitz-note : bounds :box (symmetric-box bounds) :children [] :even desc.even
               :symmetric (or desc.symmetric desc.even)
               :radius (when desc.bounding-radius (desc.bounding-radius node))})}))
 
@@ -968,7 +968,9 @@ each)."
     out))
 
 (fn class-label [info]
-  (.. (if (> info.lipschitz 1)
+  (.. (if info.lipschitz-note
+          (string.format "bound, Lipschitz %.3g (%s)" info.lipschitz info.lipschitz-note)
+          (> info.lipschitz 1)
           (string.format "bound, Lipschitz %.3g (steps divided by it)" info.lipschitz)
           (= info.class :exact) "exact"
           "bound")
