@@ -6,7 +6,16 @@
 // normal over the pixel's footprint turns away from the surface's own (a crease, a
 // corner, another object within the footprint); or, tested in render(), a second ray
 // in the pixel disagrees with the centre's.
+//
+// A finished picture (the player's still, --render, --record) also has the picture of
+// the centre rays alone (the player's full-resolution one; --render draws it first
+// with this shader, uPriorPass 1): a pixel whose centre ray's luma differs from a
+// neighbour's by more than kContrast gets the grid at once. That sees what the
+// pixel's own two rays cannot: an edge or a thin feature that crosses the pixel
+// between them (building edges in city, flutes in colonnade, tile joints in a mirror).
 // @slot constants
+uniform sampler2D uPrior;  // the centre rays' picture, read in pass 2
+uniform float uPriorPass;  // 0: no such picture; 1: draw it (centre rays only); 2: read it
 bool gCentre = false;        // renderSample is tracing the centre ray
 bool gNeedsSamples = false;  // and found an edge
 
@@ -37,10 +46,31 @@ bool needsSamples(vec3 rd, float t) {
 // test on the centre ray sees (an edge in a mirror, a shadow's edge, an object smaller
 // than the pixel) mostly makes the two differ, and then the pixel gets the grid too.
 // Where they agree, the pixel is their mean.
+bool priorEdge(vec2 pixel) {
+    // pixel is the pixel's centre, y down: so are the prior's texture coordinates.
+    vec2 texel = 1.0 / uResolution;
+    vec3 luma = vec3(0.2126, 0.7152, 0.0722);
+    float c = dot(texture(uPrior, pixel * texel).rgb, luma);
+    const vec2 around[8] = vec2[8](vec2(-1.0, -1.0), vec2(0.0, -1.0), vec2(1.0, -1.0),
+                                   vec2(-1.0, 0.0), vec2(1.0, 0.0),
+                                   vec2(-1.0, 1.0), vec2(0.0, 1.0), vec2(1.0, 1.0));
+    float m = 0.0;
+    for (int k = 0; k < 8; k++) {
+        m = max(m, abs(dot(texture(uPrior, (pixel + around[k]) * texel).rgb, luma) - c));
+    }
+    return m > kContrast;
+}
+
 vec3 render(vec2 pixel) {
+    if (uPriorPass > 1.5 && priorEdge(pixel)) {
+        return gridSamples(pixel);
+    }
     gCentre = true;
     vec3 centre = clamp(renderSample(pixel), 0.0, 1.0);
     gCentre = false;
+    if (uPriorPass > 0.5 && uPriorPass < 1.5) {
+        return centre;
+    }
     if (!gNeedsSamples) {
         vec3 second = clamp(renderSample(pixel + kSecond), 0.0, 1.0);
         vec3 luma = vec3(0.2126, 0.7152, 0.0722);

@@ -840,11 +840,12 @@ twin of a plan draws the same state), the camera and the picture's size."
     (string.format "%d %d %s %dx%d %.6g" state.generation memo-id
                    (adaptive.camera-key state.cam) ww wh state.scale)))
 
-(fn render-timed! [canvas scene plan ?rows]
-  "Draw into `canvas` (the rows `?rows` only, when given) and wait for the renderer to
-finish: the seconds it took, or nil when it failed (the error is shown)."
+(fn render-timed! [canvas scene plan ?rows ?extra]
+  "Draw into `canvas` (the rows `?rows` only, when given; `?extra` uniforms as
+frame.render-to-canvas! takes them) and wait for the renderer to finish: the
+seconds it took, or nil when it failed (the error is shown)."
   (let [start (love.timer.getTime)]
-    (case (frame.render-to-canvas! state.cache canvas scene plan state.cam ?rows)
+    (case (frame.render-to-canvas! state.cache canvas scene plan state.cam ?rows ?extra)
       (nil err) (do (set state.error err) nil)
       ;; Reading one pixel back waits for the renderer, so the time is the render's.
       _ (let [data (canvas:newImageData 1 1 0 0 1 1)]
@@ -891,11 +892,11 @@ other work leaves of the budget."
                 (math.max (* 0.25 progress.budget)
                           (- progress.budget (or state.adaptive.fixed 0)))))
 
-(fn draw-band! [p canvas scene plan]
-  "Draw the next band of schedule `p` into `canvas` with `plan`: the seconds it took,
-or nil when it failed (the error is shown)."
+(fn draw-band! [p canvas scene plan ?extra]
+  "Draw the next band of schedule `p` into `canvas` with `plan` (and `?extra`
+uniforms): the seconds it took, or nil when it failed (the error is shown)."
   (let [(y0 y1) (progress.rows p)]
-    (case (render-timed! canvas scene plan [y0 y1])
+    (case (render-timed! canvas scene plan [y0 y1] ?extra)
       seconds (do (progress.drawn! p y0 y1 seconds)
                   (set state.last-render {:shader plan.key :band? true :seconds seconds
                                           :pixels (* (canvas:getWidth) (- y1 y0))})
@@ -953,9 +954,27 @@ compile in the window's process would freeze it), a failed build."
                       (if (= :failed (warm.status state.warm still.key)) false still)
                       nil))))))
 
+(fn prior-copy! [canvas]
+  "A copy of `canvas` (the whole full-resolution picture: one ray through each
+pixel's centre) for the still to read (uniforms.prior), in a canvas kept for it."
+  (let [(w h) (canvas:getDimensions)]
+    (when (or (not state.prior-canvas) (not= w (state.prior-canvas:getWidth))
+              (not= h (state.prior-canvas:getHeight)))
+      (when state.prior-canvas (state.prior-canvas:release))
+      (set state.prior-canvas (love.graphics.newCanvas w h))
+      (state.prior-canvas:setFilter :nearest :nearest))
+    (love.graphics.push :all)
+    (love.graphics.setCanvas state.prior-canvas)
+    (love.graphics.setBlendMode :replace)
+    (love.graphics.setColor 1 1 1 1)
+    (love.graphics.draw canvas 0 0)
+    (love.graphics.pop)
+    state.prior-canvas))
+
 (fn still-step! [scene plan]
   "The full-resolution picture is whole and its state stays: one band of its
-anti-aliased still (see still-samples), once the still's shader is ready."
+anti-aliased still (see still-samples), once the still's shader is ready. The still
+reads the whole picture (its centre rays) to find the pixels that an edge crosses."
   (let [r state.refine
         canvas state.canvas]
     (when (= nil r.still)
@@ -963,12 +982,13 @@ anti-aliased still (see still-samples), once the still's shader is ready."
         false (set r.still false)
         still (do (when (not (adaptive.known? state.adaptive still.key)) (probe! scene still))
                   (set r.still {:plan still :start (love.timer.getTime)
+                                :prior (uniforms.prior 2 (prior-copy! canvas))
                                 :progress (band-schedule canvas still.key)}))))
     (case r.still
       {:plan still :progress p}
       (when (not (progress.complete? p))
         ;; A still that fails to draw is given up; the picture stays whole.
-        (when (not (draw-band! p canvas scene still))
+        (when (not (draw-band! p canvas scene still r.still.prior))
           (set r.still false))
         (when (and r.still (progress.complete? p))
           (say! (string.format "anti-aliased still: %dx%d in %.1f s" (canvas:getWidth)

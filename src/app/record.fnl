@@ -65,7 +65,8 @@ excepted), or a point 10 units in front of the camera when there is none."
                         (camera.from-scene scene))
                 path (string.format "%s/frame-%04d.png" o.out (+ i 1))]
             (case (if (stop.asked?) (values nil stop.message)
-                      plan (render.draw! cache canvas scene plan cam #(when (stop.asked?) :stop))
+                      plan (render.draw! cache canvas scene plan cam #(when (stop.asked?) :stop)
+                                         (= rays.quality :still))
                       (values nil perr))
               (nil e) (set err e)
               _ (case (frame.write-png canvas path {:protect [o.scene]})

@@ -14,6 +14,7 @@
 (local output (require :src.util.output))
 (local progress (require :src.app.progress))
 (local quality (require :src.app.quality))
+(local uniforms (require :src.render.uniforms))
 
 ;; Seconds a band may take (its rows are sized by the time a row took before), and
 ;; the bands a picture starts with before any is timed.
@@ -37,25 +38,37 @@ a message."
     (canvas:release)
     (if ok? true (values nil err))))
 
-(fn draw! [cache canvas scene plan cam ?on-band]
+(fn draw! [cache canvas scene plan cam ?on-band ?prior?]
   "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas` in bands from the
 top, each about band-seconds. `(?on-band covered seconds)` runs after each band:
 the share drawn (0 to 1) and the seconds since the first; when it returns :stop the
-drawing stops there. The seconds it took, or nil and a message."
-  (let [h (canvas:getHeight)
-        p (progress.new h (* first-bands band-seconds) band-seconds)
-        start (love.timer.getTime)]
+drawing stops there. With `?prior?` (an adaptive plan drawn as the player's still),
+the picture of the centre rays is drawn first, as the player has it, and the still
+reads it (uniforms.prior). The seconds it took, or nil and a message."
+  (let [(w h) (canvas:getDimensions)
+        start (love.timer.getTime)
+        prior (when ?prior? (love.graphics.newCanvas w h))]
     (var err nil)
-    (while (and (not err) (not (progress.complete? p)))
-      (let [(y0 y1) (progress.rows p)
-            t0 (love.timer.getTime)]
-        (case (frame.render-to-canvas! cache canvas scene plan cam [y0 y1])
-          (nil e) (set err e)
-          _ (do (wait-for! canvas)
-                (progress.drawn! p y0 y1 (- (love.timer.getTime) t0))
-                (when (and ?on-band
-                           (= :stop (?on-band (progress.covered p) (- (love.timer.getTime) start))))
-                  (set err stop.message))))))
+    (fn bands! [target extra share-from share]
+      (let [p (progress.new h (* first-bands band-seconds) band-seconds)]
+        (while (and (not err) (not (progress.complete? p)))
+          (let [(y0 y1) (progress.rows p)
+                t0 (love.timer.getTime)]
+            (case (frame.render-to-canvas! cache target scene plan cam [y0 y1] extra)
+              (nil e) (set err e)
+              _ (do (wait-for! target)
+                    (progress.drawn! p y0 y1 (- (love.timer.getTime) t0))
+                    (when (and ?on-band
+                               (= :stop (?on-band (+ share-from (* share (progress.covered p)))
+                                                  (- (love.timer.getTime) start))))
+                      (set err stop.message))))))))
+    (if prior
+        (do (prior:setFilter :nearest :nearest)
+            ;; The centre rays are one of the still's 2 to 17 a pixel: a tenth of the work.
+            (bands! prior (uniforms.prior 1) 0 0.1)
+            (bands! canvas (uniforms.prior 2 prior) 0.1 0.9)
+            (prior:release))
+        (bands! canvas nil 0 1))
     (if err (values nil err) (- (love.timer.getTime) start))))
 
 (fn reporter [what]
@@ -116,7 +129,7 @@ o.samples (see quality.resolve), its functions of time at o.time seconds (0). Pr
                 report (reporter (string.format "render %dx%d (%s)" w h rays.label))]
             (case (prepare! cache scene plan cam)
               (nil err) (values nil err)
-              _ (case (draw! cache canvas scene plan cam report)
+              _ (case (draw! cache canvas scene plan cam report (= rays.quality :still))
                   (nil err) (do (when (report) (status.done!))
                                 (values nil (if (= err stop.message)
                                                 (.. "--render: " err "; nothing written")

@@ -18,10 +18,11 @@ the bundled scenes inside the game folder (see files.read-user)."
 scene-mod.load-string takes them): scene, or nil and a message."
   (worker.load-file path read-text ?options))
 
-(fn render-to-canvas! [cache canvas scene plan cam ?rows]
+(fn render-to-canvas! [cache canvas scene plan cam ?rows ?extra]
   "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas`; only the rows
-[y0 y1) of `?rows` when given (the rest of the canvas is kept). Returns true, or nil
-and a message when the shader does not compile."
+[y0 y1) of `?rows` when given (the rest of the canvas is kept); `?extra` uniforms
+after the scene's (uniforms.prior's). Returns true, or nil and a message when the
+shader does not compile."
   (let [(shader err) (gpu.shader-for cache plan)]
     (if (not shader)
         (values nil err)
@@ -31,7 +32,9 @@ and a message when the shader does not compile."
           (case ?rows
             [y0 y1] (love.graphics.setScissor 0 y0 w (math.max 1 (- y1 y0)))
             _ (love.graphics.clear 0 0 0 1))
-          (gpu.draw! shader (uniforms.pack scene plan cam w h) w h)
+          (gpu.draw! shader (doto (uniforms.pack scene plan cam w h)
+                              (#(each [_ u (ipairs (or ?extra []))] (table.insert $ u))))
+                     w h)
           (love.graphics.pop)
           true))))
 

@@ -130,6 +130,8 @@ dropped."
     (when (shader:hasUniform u.name)
       (if (= u.type :texture)
           (shader:send u.name (float-image u.name u.texture))
+          (= u.type :image)
+          (shader:send u.name u.image)
           (shader:send u.name ((or table.unpack unpack) (love-values u)))))))
 
 (fn draw! [shader us width height]

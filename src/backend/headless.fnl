@@ -33,6 +33,7 @@
            :INFO_LOG_LENGTH 0x8B84
            :TRIANGLES 0x0004
            :PACK_ALIGNMENT 0x0D05
+           :UNPACK_ALIGNMENT 0x0CF5
            :CLAMP_READ_COLOR 0x891C
            :FALSE 0
            :MAX_FRAGMENT_UNIFORM_VECTORS 0x8DFD
@@ -278,6 +279,14 @@ program id, or nil + the compile/link log followed by the offending source lines
   (icollect [i u (ipairs (or uniforms []))]
     (if (= u.type :texture)
         (do (set units (+ units 1)) (prepare-texture u units))
+        ;; An image this module rendered (a picture of centre rays, uniforms.prior):
+        ;; uploaded as it is, row 0 first, so that a shader reading it at its y-down
+        ;; pixel coordinates finds each pixel where it was drawn.
+        (= u.type :image)
+        (let [{: width : height : pixels : float?} u.image]
+          (set units (+ units 1))
+          {:name u.name :texture? true :unit units : width : height :arr pixels
+           :format (if float? GL.RGBA32F GL.RGBA8) :kind (if float? GL.FLOAT GL.UNSIGNED_BYTE)})
     (let [kind (. uniform-kinds u.type)
           vals (or u.values [])]
       (assert (= (type u.name) :string) (.. "headless.render: uniform " i " has no :name"))
@@ -306,7 +315,9 @@ Returns the textures it made, to delete after the draw."
               (gl.glBindTexture GL.TEXTURE_2D (. tex 0))
               (gl.glTexParameteri GL.TEXTURE_2D GL.TEXTURE_MIN_FILTER GL.NEAREST)
               (gl.glTexParameteri GL.TEXTURE_2D GL.TEXTURE_MAG_FILTER GL.NEAREST)
-              (gl.glTexImage2D GL.TEXTURE_2D 0 GL.RGBA32F u.width u.height 0 GL.RGBA GL.FLOAT u.arr)
+              (gl.glPixelStorei GL.UNPACK_ALIGNMENT 1)
+              (gl.glTexImage2D GL.TEXTURE_2D 0 (or u.format GL.RGBA32F) u.width u.height 0 GL.RGBA
+                               (or u.kind GL.FLOAT) u.arr)
               (gl.glUniform1iv loc 1 (ffi.new "int[1]" u.unit))
               (gl.glActiveTexture GL.TEXTURE0)
               (table.insert made tex))

@@ -180,4 +180,13 @@ by name. Booleans are sent as 0 or 1 with :type :bool. A field's textures come a
     (table.sort out (fn [a b] (< a.name b.name)))
     out))
 
-{: pack : components : linear : tape-values}
+(fn prior [pass ?image]
+  "The uniforms of an adaptive plan's picture of centre rays (shaders/pipeline/
+adaptive.glsl): `pass` 1 draws it, 2 reads it from `?image` (the renderer's own
+image of it, sent as it is: {:name :type :image}). An adaptive plan drawn without
+these has none (pass 0), as the CPU reference draws it."
+  (if (= pass 2)
+      [{:name "uPriorPass" :type :float :values [2]} {:name "uPrior" :type :image :image ?image}]
+      [{:name "uPriorPass" :type :float :values [pass]}]))
+
+{: pack : prior : components : linear : tape-values}

@@ -58,4 +58,36 @@ feature explains the pixel. Returns {:x :y :by :off} like `find`'s."
         (when (and (> off threshold) (< (- hi lo) flat))
           {:x p.x :y p.y :by p.by : off})))))
 
-{: find : unsupported : rgba-reader : luma}
+(fn median-5x5 [width height lf x y]
+  ;; The median luma of the 5 x 5 pixels around (x, y), those inside the image.
+  (let [vs []]
+    (for [dy -2 2]
+      (for [dx -2 2]
+        (let [px (+ x dx) py (+ y dy)]
+          (when (and (>= px 0) (< px width) (>= py 0) (< py height))
+            (table.insert vs (lf px py))))))
+    (table.sort vs)
+    (. vs (+ 1 (math.floor (/ (length vs) 2))))))
+
+(fn specks [width height read read-fine threshold]
+  "Speck pixels of an image (read) against a supersampled render of the same view
+(read-fine): pixels whose luma is more than `threshold` off both the median of their
+5 x 5 neighbourhood and the supersampled pixel's. A speck no larger than a few pixels
+stands out from its median; the supersampled render says whether the true image has
+it (a sub-pixel glint does, averaged). Unlike `unsupported`, a speck needs not be a
+single pixel, nor its surroundings flat. Returns {:x :y :off :median} (off from the
+supersampled pixel), largest first."
+  (let [lf (fn [x y] (luma (read x y)))
+        out []]
+    (for [y 0 (- height 1)]
+      (for [x 0 (- width 1)]
+        (let [l (lf x y)
+              fine (luma (read-fine x y))]
+          (when (> (math.abs (- l fine)) threshold)
+            (let [m (median-5x5 width height lf x y)]
+              (when (> (math.abs (- l m)) threshold)
+                (table.insert out {: x : y :off (math.abs (- l fine)) :median m})))))))
+    (table.sort out (fn [a b] (> a.off b.off)))
+    out))
+
+{: find : unsupported : specks : rgba-reader : luma}

@@ -48,17 +48,27 @@ Options: :view, :render (fields overriding the scene's :render), :size [w h],
 (fn gpu-render [ctx prepared ?options]
   "Render the :core shader of the prepared scene; options :source (fn [text] text)
 and :uniforms (fn [list] list) alter the shader text or the uniforms first, :float?
-renders into a float target."
+renders into a float target, :prior? draws an adaptive plan as a finished picture
+does: its centre rays' picture first, then the picture that reads it
+(uniforms.prior)."
   (let [options (or ?options {})
         {:scene s :plan p : cam : width : height} prepared
         source ((or options.source #$) (codegen.shader p :core))
         us ((or options.uniforms #$) (uniforms.pack s p cam width height))
-        (program err) (headless.compile ctx source)]
+        (program err) (headless.compile ctx source)
+        draw (fn [extra]
+               (let [(image rerr) (headless.render ctx program
+                                                   {: width : height :float? options.float?
+                                                    :uniforms (doto (icollect [_ u (ipairs us)] u)
+                                                                (#(each [_ u (ipairs extra)]
+                                                                    (table.insert $ u))))})]
+                 (assert image rerr)
+                 image))]
     (assert program err)
-    (let [(image rerr) (headless.render ctx program {: width : height :uniforms us
-                                                     :float? options.float?})]
+    (let [image (if options.prior?
+                    (draw (uniforms.prior 2 (draw (uniforms.prior 1))))
+                    (draw []))]
       (headless.release ctx program)
-      (assert image rerr)
       image)))
 
 (fn compare-image [prepared image]
