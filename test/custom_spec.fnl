@@ -250,6 +250,53 @@ grid's side and each node's label."
                                        ", ")))
               (assert.are.same [] bad))))))))
 
+(describe "custom: math.hash on the GPU and the CPU"
+  (fn []
+    (os.execute "mkdir -p test/out")
+    ;; A slab |z| - 1 raised by 0.1 math.hash of the cell (floor of 1000 x, of
+    ;; 7 y, and of 3 z), cut to its bounds by a box; taken as 1-Lipschitz on trust
+    ;; (the hash jumps at the cells' walls, which the measure would read as slopes,
+    ;; and a divided distance would hide the hash). The points sit at the middles of
+    ;; the cells (no float32 rounding of a coordinate crosses a wall), at cells from
+    ;; -2950 to 2950 (floors far below zero, and remainders mod 289 of every kind).
+    ;; A hash that differs moves the distance by 0.1 / 289 = 3.5e-4 at least: 14
+    ;; times the probe's budget (2e-5 of 1 + |d|, |d| < 1.5); its last division by
+    ;; 289 rounds in float32 by 1e-8.
+    (it "gives the same values at 2000 points"
+      (fn []
+        (let [scene-path "test/out/custom-hash.fnl"
+              points-path "test/out/custom-hash-points.txt"
+              rand (lcg 37)
+              lines []]
+          (write-file scene-path "{:objects [{:kind :custom :bounds [3 3 1.5] :lipschitz 1 :trust-lipschitz true
+  :distance (fn [x y z]
+              (math.max (- (math.max (math.abs x) (math.abs y)) 3)
+                        (+ (- (math.abs z) 1) (* 0.1 (math.hash (* 1000 x) (* 7 y) (* 3 z))))))}]}\n")
+          (for [_ 1 2000]
+            (let [cell #(+ (math.floor (* $1 (- (* 2 (rand)) 1))) 0.5 (* 0.3 (- (* 2 (rand)) 1)))]
+              (table.insert lines (string.format "%.6f %.6f %.6f"
+                                                 (/ (cell 2950) 1000) (/ (cell 20) 7) (/ (cell 4) 3)))))
+          (write-file points-path (.. (table.concat lines "\n") "\n"))
+          (let [(code cpu-out) (run (.. "love . --probe " scene-path " < " points-path))
+                (gcode gpu-out) (run (.. "love . --probe " scene-path " --gpu < " points-path))
+                cpu (parse-lines cpu-out)
+                gpu (parse-lines gpu-out)]
+            (assert.are.equal 0 code cpu-out)
+            (assert.are.equal 0 gcode gpu-out)
+            (assert.are.equal 2000 (length cpu))
+            (assert.are.equal 2000 (length gpu))
+            (var worst 0)
+            (var spread {})
+            (each [i c (ipairs cpu)]
+              (let [err (/ (math.abs (- (. c 1) (. gpu i 1))) (+ 1 (math.abs (. c 1))))]
+                (set worst (math.max worst err))
+                (tset spread (string.format "%.3f" (. c 1)) true)))
+            (let [distinct (accumulate [n 0 _ (pairs spread)] (+ n 1))]
+              (print (string.format "\nmath.hash: worst relative distance error %.3g, %d distinct values" worst distinct))
+              ;; The hash varies: not one value everywhere.
+              (assert.is_true (> distinct 100) (tostring distinct)))
+            (assert.is_true (< worst 2e-5) (tostring worst))))))))
+
 (describe "custom: the main process's check of a worker's Lua text"
   (fn []
     (local custom (require :src.sdf.custom))

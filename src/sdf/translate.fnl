@@ -105,7 +105,17 @@
                 :eval #(let [t (math.min (math.max (/ (- $3 $1) (- $2 $1)) 0) 1)]
                          (* t t (- 3 (* 2 t))))}
    :round {:args "x" :eval #(math.floor (+ $1 0.5))}
-   :mod {:args "x y" :eval #(- $1 (* $2 (math.floor (/ $1 $2))))}})
+   :mod {:args "x y" :eval #(- $1 (* $2 (math.floor (/ $1 $2))))}
+   ;; A hash of the integer cell (floor x, floor y, floor z) in [0, 1): Ashima's
+   ;; permutation polynomial (34 v + 1) v mod 289, every value a whole number below
+   ;; 2^24, so float32 on the GPU computes it as exactly as Lua's doubles (see
+   ;; hash-parts); equal on both but for the last division by 289.
+   :hash {:args "x y z"
+          :eval #(let [m289 (fn [a] (- a (* 289 (math.floor (/ a 289)))))
+                       perm (fn [v] (m289 (* (+ (* 34 v) 1) v)))]
+                   (/ (perm (+ (perm (+ (perm (m289 (math.floor $1))) (m289 (math.floor $2))))
+                               (m289 (math.floor $3))))
+                      289))}})
 
 (each [name spec (pairs library)]
   (let [(_ spaces) (spec.args:gsub " " "")]
@@ -506,10 +516,29 @@ vector's components each so."
     {:g (.. "sign(" x.g ")") :l (.. "(" x.l " > 0 and 1 or (" x.l " < 0 and -1 or 0))")
      :t :float}))
 
+(fn hash-parts [st node x y z]
+  ;; math.hash of parts x y z (see library): each step a whole number below 2^24,
+  ;; exact in float32. GLSL's a / 289.0 may be off by an ulp (2.5 allowed), so the
+  ;; remainder is brought back into [0, 289) by one step either way; Lua's never
+  ;; needs it.
+  (fn m289 [a*]
+    (let [a (repeatable st node a*)
+          m (declare! st node {:g (.. "(" a.g " - (289.0 * floor(" a.g " / 289.0)))")
+                               :l (.. "(" a.l " - (289 * math.floor(" a.l " / 289)))") :t :float})]
+      (declare! st node {:g (.. "((" m.g " >= 289.0) ? (" m.g " - 289.0) : ((" m.g " < 0.0) ? (" m.g " + 289.0) : " m.g "))")
+                         :l (.. "(" m.l " >= 289 and (" m.l " - 289) or (" m.l " < 0 and (" m.l " + 289) or " m.l "))")
+                         :t :float})))
+  (fn perm [v]
+    (m289 {:g (.. "(((34.0 * " v.g ") + 1.0) * " v.g ")") :l (.. "(((34 * " v.l ") + 1) * " v.l ")") :t :float}))
+  (fn cell [a] (m289 {:g (.. "floor(" a.g ")") :l (.. "math.floor(" a.l ")") :t :float}))
+  (fn plus [a b] {:g (.. "(" a.g " + " b.g ")") :l (.. "(" a.l " + " b.l ")") :t :float})
+  (let [h (perm (plus (perm (plus (perm (cell x)) (cell y))) (cell z)))]
+    {:g (.. "(" h.g " / 289.0)") :l (.. "(" h.l " / 289)") :t :float}))
+
 (fn library-call [st node fname args]
   ;; GLSL's functions of `library`, written out alike in both languages; constant
   ;; arguments fold.
-  (let [costs {:clamp 2 :mix 3 :fract 1 :sign 2 :step 1 :smoothstep 7 :round 1 :mod 2}
+  (let [costs {:clamp 2 :mix 3 :fract 1 :sign 2 :step 1 :smoothstep 7 :round 1 :mod 2 :hash 50}
         g1 (glsl-number 1)]
     (cost! st node (. costs fname))
     (if (accumulate [all? true _ a (ipairs args)] (and all? (not= nil a.const)))
@@ -543,7 +572,8 @@ vector's components each so."
                    [{:g (.. "floor(" x.g " + 0.5)") :l (.. "math.floor(" x.l " + 0.5)") :t :float}])
           ;; As %: GLSL's mod, and Lua's % (a - floor(a / b) b in both).
           :mod (let [[x y] args]
-                 [{:g (.. "mod(" x.g ", " y.g ")") :l (.. "(" x.l " % " y.l ")") :t :float}])))))
+                 [{:g (.. "mod(" x.g ", " y.g ")") :l (.. "(" x.l " % " y.l ")") :t :float}])
+          :hash (let [[x y z] args] [(hash-parts st node x y z)])))))
 
 (fn scalar-math [st node fname args plain?]
   ;; One call of math's `fname` on numbers `args`: a part. `plain?`: args are the
