@@ -609,6 +609,14 @@ grid's side and each node's label."
           (assert.truthy (line:find "custom  bound, Lipschitz 2 %(declared and trusted: :trust%-lipschitz, measured 6%.[89]") line)
           (assert.truthy (line:find "steps may pass the surface" 1 true) line))))
 
+    (it "love . --tree says so through the app (the scene worker's answer keeps the field)"
+      (fn []
+        (os.execute "mkdir -p test/out")
+        (write-file "test/out/custom-trust.fnl" (scene ":lipschitz 2 :trust-lipschitz true"))
+        (let [(code out) (run "love . --tree test/out/custom-trust.fnl")]
+          (assert.are.equal 0 code out)
+          (assert.truthy (out:find "custom  bound, Lipschitz 2 %(declared and trusted: :trust%-lipschitz, measured 6%.[89]%d*, steps may pass the surface%)") out))))
+
     (it "is refused without a :lipschitz to trust"
       (fn []
         (let [(node msg) (load-one (scene ":trust-lipschitz true"))]
