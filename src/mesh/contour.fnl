@@ -20,6 +20,8 @@
 ;; Pure: runs under plain LuaJIT. The field is a table of batch functions (see mesh),
 ;; so the same mesher runs on the CPU evaluator and on the GPU.
 
+(local intersect (require :src.mesh.intersect))
+
 (local sqrt math.sqrt)
 (local floor math.floor)
 (local abs math.abs)
@@ -677,6 +679,62 @@ seen from outside."
             (each [_ v (ipairs [b c d b d a])] (table.insert triangles v)))))
     triangles))
 
+;; A vertex farther than this (in cells) from its crossings' mean is one the QEF
+;; placed at a sharp feature or clamped to its cell: the crossings that survive one
+;; vertex per patch at the mean in cells of several (see place-vertices!) are all
+;; between triangles with such a vertex (0.48 cells and more on flower at 48,
+;; platonic-shelf at 64 and custom at 96), and only those triangles are checked.
+(local off-mean 0.25)
+;; Rounds of untangle!: each moves the vertices of the pairs still crossing.
+(local untangle-rounds 4)
+
+(fn untangle! [state triangles]
+  "10. Triangles that still cross (src/mesh/intersect.fnl, by more than 1e-6
+cells): the vertices of both go to their crossings' mean, where the surface is
+as a marching cubes mesh has it, and the triangles of the vertices moved are
+checked again, for a few rounds. Checks only triangles with a vertex more than
+off-mean from its mean. Moves them in state.positions; counts the vertices moved
+in counts.untangled and the pairs left crossing in counts.crossing."
+  (let [{: positions : vertex-info : h : counts} state
+        nv (/ (length positions) 3)
+        nt (/ (length triangles) 3)
+        m {: positions : triangles}
+        off? (fn [v]
+               (let [b (* 3 (- v 1)) i (* 6 (- v 1))
+                     dx (- (. positions (+ b 1)) (. vertex-info (+ i 4)))
+                     dy (- (. positions (+ b 2)) (. vertex-info (+ i 5)))
+                     dz (- (. positions (+ b 3)) (. vertex-info (+ i 6)))]
+                 (> (+ (* dx dx) (* dy dy) (* dz dz)) (* off-mean off-mean h h))))
+        triangles-of (fn [vs]
+                       ;; The triangles with a vertex in the set vs (1-based).
+                       (let [out {}]
+                         (for [t 1 nt]
+                           (for [c 1 3]
+                             (when (. vs (. triangles (+ (* 3 (- t 1)) c)))
+                               (tset out t true))))
+                         out))
+        risky {}]
+    (for [v 1 nv] (when (off? v) (tset risky v true)))
+    (var only (triangles-of risky))
+    (var (rounds moved left) (values 0 0 0))
+    (while only
+      (let [r (intersect.self-intersections m {:min-length (* 1e-6 h) :max-list math.huge
+                                                :only only})
+            changed {}]
+        (set (only left rounds) (values nil r.pairs (+ rounds 1)))
+        (when (<= rounds untangle-rounds)
+          (each [_ [s t] (ipairs r.list)]
+            (each [_ tri (ipairs [s t])]
+              (for [c 1 3]
+                (let [v (. triangles (+ (* 3 tri) c))]
+                  (when (off? v)
+                    (tset changed v true)
+                    (set moved (+ moved 1))
+                    (for [q 1 3]
+                      (tset positions (+ (* 3 (- v 1)) q) (. vertex-info (+ (* 6 (- v 1)) 3 q)))))))))
+          (when (next changed) (set only (triangles-of changed))))))
+    (set (counts.untangled counts.crossing) (values moved left))))
+
 (fn mesh [field grid ?progress]
   "Contour `field` over `grid`. The field: {:distances (fn [flat n]) -> n signed
 distances at the points of the flat list x1 y1 z1 x2 ...; :step the gradient's
@@ -687,7 +745,7 @@ given, the most leaf blocks to sample: past it, once the octree has found them a
 before any corner is sampled, mesh raises {:leaves n :max-leaves m})}.
 `?progress` (fn [phase work estimate points]) hears of each batch of points and
 each step: the phase (:blocks, :corners, :crossings, :normals, :patches, :vertices,
-:projection, :faces), the work done so far (in field evaluations: see geometry-work),
+:projection, :untangle, :faces), the work done so far (in field evaluations: see geometry-work),
 an estimate of all the work (nil until the blocks are known; the grid's :after-work
 per vertex included) and the points evaluated.
 Returns {:positions [x y z ...] :triangles [a b c ...] (1-based vertex indices,
@@ -695,7 +753,8 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
 (leaf blocks sampled) :skipped (leaf blocks' worth of volume skipped) :cells
 (cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
 moved onto the surface) :collections (full collections of the Lua heap, see
-bound-heap!) :times (CPU seconds per step) :work :estimate}}."
+bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
+:crossing (pairs of triangles left crossing) :times (CPU seconds per step) :work :estimate}}."
   (let [state (new-state field grid ?progress)
         counts state.counts]
     (mark! state :blocks)
@@ -721,6 +780,9 @@ bound-heap!) :times (CPU seconds per step) :work :estimate}}."
     (project-vertices! state)
     (mark! state :faces)
     (let [triangles (make-triangles state)]
+      (worked! state :untangle (* 0.3 geometry-work state.crossings))
+      (mark! state :untangle)
+      (untangle! state triangles)
       (worked! state :faces (* 0.3 geometry-work state.crossings))
       (mark! state nil)
       {:positions state.positions : triangles
@@ -729,6 +791,7 @@ bound-heap!) :times (CPU seconds per step) :work :estimate}}."
                :moved counts.moved :times state.times
                :flipped (or counts.flipped 0)
                :collections (or counts.collections 0)
+               :untangled counts.untangled :crossing counts.crossing
                :work counts.work :estimate counts.estimate}})))
 
 {: mesh : patches : box-distance : leaf}

@@ -226,7 +226,8 @@ that meet along more than that vertex: a fold through the vertex) :tested (pairs
 whose boxes overlap, tested exactly) :list [[s t length] ...] (the first
 :max-list pairs, 0-based triangle indices)}. Pairs sharing an edge meet along it
 and are not tested. Options: :min-length (default 1e-9 of the mesh's size; pass
-e.g. 1e-6 cells), :max-list (default 100)."
+e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
+1-based triangles to test, each against every triangle; default all)."
   (let [options (or ?options {})
         positions m.positions
         tris m.triangles
@@ -259,46 +260,60 @@ e.g. 1e-6 cells), :max-list (default 100)."
             gy (+ 1 (floor (/ (- ghi-y glo-y) cell)))
             at (fn [v lo] (floor (/ (- v lo) cell)))
             key (fn [i j k] (+ i (* gx (+ j (* gy k)))))
-            buckets {}]
+            buckets {}
+            only options.only
+            listed? (fn [t] (or (not only) (. only t)))
+            test! (fn [s t]
+                    (let [shared (shared-vertices tris (- s 1) (- t 1))]
+                      (when (< shared 2)
+                        (set result.tested (+ result.tested 1))
+                        (let [p (triangle-points positions tris (- s 1))
+                              r (triangle-points positions tris (- t 1))
+                              (len kind) (pair-overlap p r)]
+                          (when (> len min-length)
+                            (if (= shared 1)
+                                (set result.folds (+ result.folds 1))
+                                (do
+                                  (set result.pairs (+ result.pairs 1))
+                                  (when (= kind :coplanar)
+                                    (set result.coplanar (+ result.coplanar 1)))
+                                  (when (< (length result.list) max-list)
+                                    (table.insert result.list [(- s 1) (- t 1) len]))
+                                  (when (> len result.longest)
+                                    (set result.longest len)
+                                    (set result.at [(. p 1) (. p 2) (. p 3)])))))))))]
+        ;; The grid holds the triangles to test (all, or those of :only); every
+        ;; triangle then meets those in the cells its box covers.
         (for [t 1 nt]
-          (let [b (. box t)]
-            (for [k (at (. b 3) glo-z) (at (. b 6) glo-z)]
-              (for [j (at (. b 2) glo-y) (at (. b 5) glo-y)]
-                (for [i (at (. b 1) glo-x) (at (. b 4) glo-x)]
-                  (let [q (key i j k)
-                        list (. buckets q)]
-                    (if list (table.insert list t) (tset buckets q [t]))))))))
-        (each [q list (pairs buckets)]
-          (for [a 1 (length list)]
-            (for [c (+ a 1) (length list)]
-              (let [s (. list a) t (. list c)
-                    bs (. box s) bt (. box t)]
-                ;; Boxes that overlap; tested only in the cell holding the low
-                ;; corner of their overlap, so each pair once.
-                (when (and (<= (max (. bs 1) (. bt 1)) (min (. bs 4) (. bt 4)))
-                           (<= (max (. bs 2) (. bt 2)) (min (. bs 5) (. bt 5)))
-                           (<= (max (. bs 3) (. bt 3)) (min (. bs 6) (. bt 6)))
-                           (= q (key (at (max (. bs 1) (. bt 1)) glo-x)
-                                     (at (max (. bs 2) (. bt 2)) glo-y)
-                                     (at (max (. bs 3) (. bt 3)) glo-z))))
-                  (let [shared (shared-vertices tris (- s 1) (- t 1))]
-                    (when (< shared 2)
-                      (set result.tested (+ result.tested 1))
-                      (let [p (triangle-points positions tris (- s 1))
-                            r (triangle-points positions tris (- t 1))
-                            (len kind) (pair-overlap p r)]
-                        (when (> len min-length)
-                          (if (= shared 1)
-                              (set result.folds (+ result.folds 1))
-                              (do
-                                (set result.pairs (+ result.pairs 1))
-                                (when (= kind :coplanar)
-                                  (set result.coplanar (+ result.coplanar 1)))
-                                (when (< (length result.list) max-list)
-                                  (table.insert result.list [(- s 1) (- t 1) len]))
-                                (when (> len result.longest)
-                                  (set result.longest len)
-                                  (set result.at [(. p 1) (. p 2) (. p 3)])))))))))))))))
+          (when (listed? t)
+            (let [b (. box t)]
+              (for [k (at (. b 3) glo-z) (at (. b 6) glo-z)]
+                (for [j (at (. b 2) glo-y) (at (. b 5) glo-y)]
+                  (for [i (at (. b 1) glo-x) (at (. b 4) glo-x)]
+                    (let [q (key i j k)
+                          list (. buckets q)]
+                      (if list (table.insert list t) (tset buckets q [t])))))))))
+        (for [t 1 nt]
+          (let [bt (. box t)
+                t-listed? (listed? t)]
+            (for [k (at (. bt 3) glo-z) (at (. bt 6) glo-z)]
+              (for [j (at (. bt 2) glo-y) (at (. bt 5) glo-y)]
+                (for [i (at (. bt 1) glo-x) (at (. bt 4) glo-x)]
+                  (let [q (key i j k)]
+                    (each [_ s (ipairs (or (. buckets q) []))]
+                      (let [bs (. box s)]
+                        ;; A pair of listed triangles is met from both sides:
+                        ;; taken from the later one's. Boxes that overlap, tested
+                        ;; only in the cell holding the low corner of their
+                        ;; overlap, so each pair once.
+                        (when (and (if t-listed? (< s t) (not= s t))
+                                   (<= (max (. bs 1) (. bt 1)) (min (. bs 4) (. bt 4)))
+                                   (<= (max (. bs 2) (. bt 2)) (min (. bs 5) (. bt 5)))
+                                   (<= (max (. bs 3) (. bt 3)) (min (. bs 6) (. bt 6)))
+                                   (= q (key (at (max (. bs 1) (. bt 1)) glo-x)
+                                             (at (max (. bs 2) (. bt 2)) glo-y)
+                                             (at (max (. bs 3) (. bt 3)) glo-z))))
+                          (test! (min s t) (max s t)))))))))))))
     result))
 
 {: self-intersections : pair-overlap}
