@@ -295,6 +295,39 @@ grid's side and each node's label."
               (print (string.format "\nmath.hash: worst relative distance error %.3g, %d distinct values" worst distinct))
               ;; The hash varies: not one value everywhere.
               (assert.is_true (> distinct 100) (tostring distinct)))
+            (assert.is_true (< worst 2e-5) (tostring worst))))))
+
+    ;; math.noise blends the hash of the 8 corners of a cell: continuous, so any
+    ;; point serves (a float32 coordinate that crosses a cell's wall moves the value
+    ;; by its rounding only), and the factor is measured. A corner's hash that
+    ;; differed would move the distance by 0.3 times its weight, 1e-3 and more but
+    ;; at the corners themselves.
+    (it "math.noise gives the same values at 2000 points"
+      (fn []
+        (let [scene-path "test/out/custom-noise.fnl"
+              points-path "test/out/custom-noise-points.txt"
+              rand (lcg 41)
+              lines []]
+          (write-file scene-path "{:objects [{:kind :custom :bounds [3 3 1.5]
+  :distance (fn [x y z]
+              (math.max (- (math.max (math.abs x) (math.abs y)) 3)
+                        (+ (- (math.abs z) 1) (* 0.3 (math.noise (* 3 x) (* 3 y) (* 3 z))))))}]}\n")
+          (for [_ 1 2000]
+            (table.insert lines (string.format "%.6f %.6f %.6f" (* 2.9 (- (* 2 (rand)) 1))
+                                               (* 2.9 (- (* 2 (rand)) 1)) (* 1.4 (- (* 2 (rand)) 1)))))
+          (write-file points-path (.. (table.concat lines "\n") "\n"))
+          (let [(code cpu-out) (run (.. "love . --probe " scene-path " < " points-path))
+                (gcode gpu-out) (run (.. "love . --probe " scene-path " --gpu < " points-path))
+                cpu (parse-lines cpu-out)
+                gpu (parse-lines gpu-out)]
+            (assert.are.equal 0 code cpu-out)
+            (assert.are.equal 0 gcode gpu-out)
+            (assert.are.equal 2000 (length cpu))
+            (assert.are.equal 2000 (length gpu))
+            (var worst 0)
+            (each [i c (ipairs cpu)]
+              (set worst (math.max worst (/ (math.abs (- (. c 1) (. gpu i 1))) (+ 1 (math.abs (. c 1)))))))
+            (print (string.format "\nmath.noise: worst relative distance error %.3g" worst))
             (assert.is_true (< worst 2e-5) (tostring worst))))))))
 
 (describe "custom: the main process's check of a worker's Lua text"

@@ -95,6 +95,13 @@
 ;; way at .5), clamp is min(max(x, lo), hi) (GLSL's is undefined for lo > hi), mod
 ;; is % (GLSL's mod, floored; not Lua 5.1's math.mod, an alias of fmod). :args names
 ;; the arguments for messages; :eval folds constant arguments.
+(fn hash-value [x y z]
+  ;; math.hash of numbers (see library and hash-cells).
+  (let [m289 (fn [a] (- a (* 289 (math.floor (/ a 289)))))
+        perm (fn [v] (m289 (* (+ (* 34 v) 1) v)))]
+    (/ (perm (+ (perm (+ (perm (m289 (math.floor x))) (m289 (math.floor y)))) (m289 (math.floor z))))
+       289)))
+
 (local library
   {:clamp {:args "x lo hi" :eval #(math.min (math.max $1 $2) $3)}
    :mix {:args "a b t" :eval #(+ (* $1 (- 1 $3)) (* $2 $3))}
@@ -110,12 +117,20 @@
    ;; permutation polynomial (34 v + 1) v mod 289, every value a whole number below
    ;; 2^24, so float32 on the GPU computes it as exactly as Lua's doubles (see
    ;; hash-parts); equal on both but for the last division by 289.
-   :hash {:args "x y z"
-          :eval #(let [m289 (fn [a] (- a (* 289 (math.floor (/ a 289)))))
-                       perm (fn [v] (m289 (* (+ (* 34 v) 1) v)))]
-                   (/ (perm (+ (perm (+ (perm (m289 (math.floor $1))) (m289 (math.floor $2))))
-                               (m289 (math.floor $3))))
-                      289))}})
+   :hash {:args "x y z" :eval #(hash-value $1 $2 $3)}
+   ;; Value noise: math.hash at the 8 corners of the cell, blended by smoothstep
+   ;; weights of the point's place in it (x - floor x ...): continuous, in [0, 1),
+   ;; its slope at most 1.5 per unit along each axis (see noise-parts).
+   :noise {:args "x y z"
+                 :eval #(let [h hash-value
+                              [ix iy iz] [(math.floor $1) (math.floor $2) (math.floor $3)]
+                              fade (fn [t] (* t t (- 3 (* 2 t))))
+                              [u v w] [(fade (- $1 ix)) (fade (- $2 iy)) (fade (- $3 iz))]
+                              mix (fn [a b t] (+ (* a (- 1 t)) (* b t)))
+                              at (fn [dx dy dz] (h (+ ix dx) (+ iy dy) (+ iz dz)))]
+                          (mix (mix (mix (at 0 0 0) (at 1 0 0) u) (mix (at 0 1 0) (at 1 1 0) u) v)
+                               (mix (mix (at 0 0 1) (at 1 0 1) u) (mix (at 0 1 1) (at 1 1 1) u) v)
+                               w))}})
 
 (each [name spec (pairs library)]
   (let [(_ spaces) (spec.args:gsub " " "")]
@@ -516,29 +531,64 @@ vector's components each so."
     {:g (.. "sign(" x.g ")") :l (.. "(" x.l " > 0 and 1 or (" x.l " < 0 and -1 or 0))")
      :t :float}))
 
-(fn hash-parts [st node x y z]
-  ;; math.hash of parts x y z (see library): each step a whole number below 2^24,
-  ;; exact in float32. GLSL's a / 289.0 may be off by an ulp (2.5 allowed), so the
-  ;; remainder is brought back into [0, 289) by one step either way; Lua's never
-  ;; needs it.
-  (fn m289 [a*]
-    (let [a (repeatable st node a*)
-          m (declare! st node {:g (.. "(" a.g " - (289.0 * floor(" a.g " / 289.0)))")
-                               :l (.. "(" a.l " - (289 * math.floor(" a.l " / 289)))") :t :float})]
-      (declare! st node {:g (.. "((" m.g " >= 289.0) ? (" m.g " - 289.0) : ((" m.g " < 0.0) ? (" m.g " + 289.0) : " m.g "))")
-                         :l (.. "(" m.l " >= 289 and (" m.l " - 289) or (" m.l " < 0 and (" m.l " + 289) or " m.l "))")
-                         :t :float})))
+(fn m289-part [st node a*]
+  ;; Part `a*` (a whole number below 2^24) mod 289, in [0, 289). GLSL's a / 289.0
+  ;; may be off by an ulp (2.5 allowed), so its remainder is brought back into
+  ;; [0, 289) by one step either way; Lua's never needs it.
+  (let [a (repeatable st node a*)
+        m (declare! st node {:g (.. "(" a.g " - (289.0 * floor(" a.g " / 289.0)))")
+                             :l (.. "(" a.l " - (289 * math.floor(" a.l " / 289)))") :t :float})]
+    (declare! st node {:g (.. "((" m.g " >= 289.0) ? (" m.g " - 289.0) : ((" m.g " < 0.0) ? (" m.g " + 289.0) : " m.g "))")
+                       :l (.. "(" m.l " >= 289 and (" m.l " - 289) or (" m.l " < 0 and (" m.l " + 289) or " m.l "))")
+                       :t :float})))
+
+(fn hash-cells [st node cx cy cz]
+  ;; math.hash of a cell given as parts already mod 289 (see library): each step a
+  ;; whole number below 2^24, exact in float32.
   (fn perm [v]
-    (m289 {:g (.. "(((34.0 * " v.g ") + 1.0) * " v.g ")") :l (.. "(((34 * " v.l ") + 1) * " v.l ")") :t :float}))
-  (fn cell [a] (m289 {:g (.. "floor(" a.g ")") :l (.. "math.floor(" a.l ")") :t :float}))
+    (m289-part st node {:g (.. "(((34.0 * " v.g ") + 1.0) * " v.g ")") :l (.. "(((34 * " v.l ") + 1) * " v.l ")")
+                        :t :float}))
   (fn plus [a b] {:g (.. "(" a.g " + " b.g ")") :l (.. "(" a.l " + " b.l ")") :t :float})
-  (let [h (perm (plus (perm (plus (perm (cell x)) (cell y))) (cell z)))]
+  (let [h (perm (plus (perm (plus (perm cx) cy)) cz))]
     {:g (.. "(" h.g " / 289.0)") :l (.. "(" h.l " / 289)") :t :float}))
+
+(fn hash-parts [st node x y z]
+  ;; math.hash of parts x y z: the hash of their cell (floor), mod 289.
+  (let [cell (fn [a] (m289-part st node {:g (.. "floor(" a.g ")") :l (.. "math.floor(" a.l ")") :t :float}))]
+    (hash-cells st node (cell x) (cell y) (cell z))))
+
+(fn noise-parts [st node x* y* z*]
+  ;; math.noise of parts x y z (see library): the cell's corner (floor), the
+  ;; smoothstep weights of the point's place in the cell, math.hash at the 8
+  ;; corners (each coordinate's cell and the next, mod 289, once), blended as
+  ;; GLSL's mix.
+  (let [[x y z] (icollect [_ a (ipairs [x* y* z*])] (repeatable st node a))
+        corner (icollect [_ a (ipairs [x y z])]
+                 (declare! st node {:g (.. "floor(" a.g ")") :l (.. "math.floor(" a.l ")") :t :float}))
+        weight (icollect [i a (ipairs [x y z])]
+                 (let [f (declare! st node {:g (.. "(" a.g " - " (. corner i :g) ")")
+                                            :l (.. "(" a.l " - " (. corner i :l) ")") :t :float})]
+                   (declare! st node {:g (.. "((" f.g " * " f.g ") * (3.0 - (2.0 * " f.g ")))")
+                                      :l (.. "((" f.l " * " f.l ") * (3 - (2 * " f.l ")))") :t :float})))
+        ;; Each corner's cells mod 289, and the next ones', once.
+        cells (icollect [_ c (ipairs corner)]
+                (let [lo (m289-part st node c)]
+                  [lo (m289-part st node {:g (.. "(" lo.g " + 1.0)") :l (.. "(" lo.l " + 1)") :t :float})]))
+        at (fn [dx dy dz]
+             (declare! st node (hash-cells st node (. cells 1 (+ dx 1)) (. cells 2 (+ dy 1))
+                                           (. cells 3 (+ dz 1)))))
+        mix (fn [a b t] {:g (.. "((" a.g " * (1.0 - " t.g ")) + (" b.g " * " t.g "))")
+                         :l (.. "((" a.l " * (1 - " t.l ")) + (" b.l " * " t.l "))") :t :float})
+        [u v w] weight]
+    (mix (mix (mix (at 0 0 0) (at 1 0 0) u) (mix (at 0 1 0) (at 1 1 0) u) v)
+         (mix (mix (at 0 0 1) (at 1 0 1) u) (mix (at 0 1 1) (at 1 1 1) u) v)
+         w)))
 
 (fn library-call [st node fname args]
   ;; GLSL's functions of `library`, written out alike in both languages; constant
   ;; arguments fold.
-  (let [costs {:clamp 2 :mix 3 :fract 1 :sign 2 :step 1 :smoothstep 7 :round 1 :mod 2 :hash 50}
+  (let [costs {:clamp 2 :mix 3 :fract 1 :sign 2 :step 1 :smoothstep 7 :round 1 :mod 2 :hash 50
+               :noise 450}
         g1 (glsl-number 1)]
     (cost! st node (. costs fname))
     (if (accumulate [all? true _ a (ipairs args)] (and all? (not= nil a.const)))
@@ -573,7 +623,8 @@ vector's components each so."
           ;; As %: GLSL's mod, and Lua's % (a - floor(a / b) b in both).
           :mod (let [[x y] args]
                  [{:g (.. "mod(" x.g ", " y.g ")") :l (.. "(" x.l " % " y.l ")") :t :float}])
-          :hash (let [[x y z] args] [(hash-parts st node x y z)])))))
+          :hash (let [[x y z] args] [(hash-parts st node x y z)])
+          :noise (let [[x y z] args] [(noise-parts st node x y z)])))))
 
 (fn scalar-math [st node fname args plain?]
   ;; One call of math's `fname` on numbers `args`: a part. `plain?`: args are the
