@@ -460,6 +460,18 @@ grid's side and each node's label."
           (assert.is_nil node)
           (assert.truthy (msg:find "on the box's face, so the shape crosses its bounds [1 1 1]; no box up to 64 times as large holds it" 1 true) msg))))
 
+    (it "says when the search for a box stopped at its budget (a costly function)"
+      (fn []
+        (let [custom (require :src.sdf.custom)
+              ops custom.limits.bounds-search-ops
+              ;; Room for the box's faces and its shells, not for the search.
+              _ (set custom.limits.bounds-search-ops 1)
+              (ok? node msg) (pcall load-one (scene torus "[0.5 0.5 0.1]"))]
+          (set custom.limits.bounds-search-ops ops)
+          (assert.is_true ok? (tostring node))
+          (assert.is_nil node)
+          (assert.truthy (msg:find "so the shape lies beyond its bounds [0.5 0.5 0.1]; the search for a box that holds it stopped at its budget (a costly function): grow :bounds until the loader takes them" 1 true) msg))))
+
     (it "still loads every scene of scenes/ with custom nodes"
       (fn []
         (let [load (require :src.scene.load)

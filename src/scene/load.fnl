@@ -537,7 +537,7 @@ shines from where the classic :light is (seen from the origin)."
             {:name :trust-lipschitz :type :boolean :optional? true}]
    :extra-fields [:distance :params]})
 
-(fn bounds-message [low on on-face? bounds ?box]
+(fn bounds-message [low on on-face? bounds ?box ?spent?]
   ;; Why a custom node's :bounds are refused: its distance `low` at `on`, on a face
   ;; of the box or outside it.
   (let [g #(string.format "%.3g" $)
@@ -547,6 +547,7 @@ shines from where the classic :light is (seen from the origin)."
             ") outside the box, so the shape lies beyond its bounds ")
         (box-text bounds)
         (if ?box (.. "; a box that holds it: " (box-text ?box))
+            ?spent? "; the search for a box that holds it stopped at its budget (a costly function): grow :bounds until the loader takes them"
             (.. "; no box up to " custom.limits.bounds-growth
                 " times as large holds it (is the distance negative far from the shape?)")))))
 
@@ -621,8 +622,8 @@ shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params
                     (when (not (. ctx.bounds-checks mkey))
                       (tset ctx.bounds-checks mkey [(custom.check-bounds desc.cpu out.bounds args t.cost)]))
                     (case (. ctx.bounds-checks mkey)
-                      [low on on-face? ?box] (fail ctx (sub-path path :bounds)
-                                                   (bounds-message low on on-face? out.bounds ?box)))
+                      [low on on-face? ?box ?spent?] (fail ctx (sub-path path :bounds)
+                                                           (bounds-message low on on-face? out.bounds ?box ?spent?)))
                     (case (custom.factor measured out.lipschitz at out.trust-lipschitz)
                       (nil why) (fail ctx (sub-path path :lipschitz) why)
                       k (do (set out.lipschitz k)

@@ -440,7 +440,7 @@ large, at half the grid (a shape around the box, a torus about a box in its hole
 touches none of its faces); else the lowest
 value found, its point, whether that point is on the box's own faces, and a box
 that holds the shape (nil when none up to limits.bounds-growth times as large is
-found): the renderer takes the box's distance outside it, so a shape that crosses
+found; then a fifth value, true when the search stopped at its budget instead): the renderer takes the box's distance outside it, so a shape that crosses
 its box is cut. Each face is sampled at a grid of limits.face-grid^2 points (fewer
 for a costly function, see limits.bounds-ops); the search takes at most
 limits.bounds-search-ops operations."
@@ -463,8 +463,7 @@ limits.bounds-search-ops operations."
     (var (low at on-face? box) (let [(l a _ r) (lowest bounds)] (reached! r) (values l a true nil)))
     ;; The shells beyond the box.
     (var s 1)
-    (while (and (>= low (- tolerance)) (> searches 0)
-                (<= (* s limits.bounds-step) limits.shell-growth))
+    (while (and (>= low (- tolerance)) (<= (* s limits.bounds-step) limits.shell-growth))
       (set s (* s limits.bounds-step))
       (let [(l a _ r) (lowest-on-faces d (scaled s) (math.ceil (* 0.5 m)) tolerance)]
         (reached! r)
@@ -498,7 +497,9 @@ limits.bounds-search-ops operations."
         ;; Rounded up to two digits, when that box holds it too.
         (let [rounded (icollect [_ v (ipairs box)] (round-up v))]
           (when (holds? rounded) (set box rounded))))
-      (values low at on-face? (when found? box)))))
+      ;; Without a box, whether the search stopped at its budget (a costly
+      ;; function) rather than at limits.bounds-growth.
+      (values low at on-face? (when found? box) (and (not found?) (<= searches 0))))))
 
 (fn point-text [p]
   (string.format "[%.3g %.3g %.3g]" (. p 1) (. p 2) (. p 3)))
