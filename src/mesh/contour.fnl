@@ -719,7 +719,7 @@ in counts.untangled and the pairs left crossing in counts.crossing."
     (var (rounds moved left) (values 0 0 0))
     (while only
       (let [r (intersect.self-intersections m {:min-length (* 1e-6 h) :max-list math.huge
-                                                :only only})
+                                                :only only :folds? false})
             changed {}]
         (set (only left rounds) (values nil r.pairs (+ rounds 1)))
         (when (<= rounds untangle-rounds)

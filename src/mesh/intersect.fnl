@@ -227,7 +227,8 @@ whose boxes overlap, tested exactly) :list [[s t length] ...] (the first
 :max-list pairs, 0-based triangle indices)}. Pairs sharing an edge meet along it
 and are not tested. Options: :min-length (default 1e-9 of the mesh's size; pass
 e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
-1-based triangles to test, each against every triangle; default all)."
+1-based triangles to test, each against every triangle; default all), :folds?
+(false: pairs sharing a vertex are not tested, and :folds stays 0)."
   (let [options (or ?options {})
         positions m.positions
         tris m.triangles
@@ -263,9 +264,10 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
             buckets {}
             only options.only
             listed? (fn [t] (or (not only) (. only t)))
+            folds? (not= false options.folds?)
             test! (fn [s t]
                     (let [shared (shared-vertices tris (- s 1) (- t 1))]
-                      (when (< shared 2)
+                      (when (< shared (if folds? 2 1))
                         (set result.tested (+ result.tested 1))
                         (let [p (triangle-points positions tris (- s 1))
                               r (triangle-points positions tris (- t 1))
