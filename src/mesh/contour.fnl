@@ -569,7 +569,8 @@ local edge -> the vertex of the edge's patch); empties the cells but for i j k."
           ;; lie beyond the other patch, whose triangles its own then cross (48
           ;; crossing pairs on flower at 128 cells, all in such cells). Each
           ;; goes to its crossings' mean instead, on its own side of the others,
-          ;; and stays there (see project-vertices!).
+          ;; and moves onto the surface only nearer that mean than the others'
+          ;; (see project-vertices!).
           (when (> (length order) 1)
             (each [_ q (ipairs placed)]
               (for [c 1 3] (tset q c (. q (+ c 3))))))
@@ -577,7 +578,8 @@ local edge -> the vertex of the edge's patch); empties the cells but for i j k."
           (each [n r (ipairs order)]
             (let [[x y z mx my mz] (. placed n)]
               (set vertex-count (+ vertex-count 1))
-              (when (> (length order) 1) (tset shared vertex-count true))
+              (when (> (length order) 1)
+                (tset shared vertex-count [(+ (- vertex-count n) 1) (+ (- vertex-count n) (length order))]))
               (each [_ v (ipairs [lx ly lz mx my mz])] (table.insert vertex-info v))
               (table.insert positions x) (table.insert positions y)
               (table.insert positions z)
@@ -598,8 +600,22 @@ state.counts.moved."
   (let [{: evaluate : counts : positions : vertex-info : shared-cell : h : step} state
         flat (icollect [_ v (ipairs positions)] v)
         ds (evaluate :projection flat)
-        bad (icollect [v d (ipairs ds)]
-              (when (and (> (abs d) (* off-surface h)) (not (. shared-cell v))) v))
+        bad (icollect [v d (ipairs ds)] (when (> (abs d) (* off-surface h)) v))
+        ;; A vertex of a cell with several patches (see place-vertices!) moves
+        ;; only to a point nearer its own crossings' mean than to the other
+        ;; patches': the nearest surface may be another patch's.
+        own-side? (fn [v x y z]
+                    (case (. shared-cell v)
+                      [first last]
+                      (let [mean-gap (fn [w]
+                                       (let [i (* 6 (- w 1))]
+                                         (+ (^ (- x (. vertex-info (+ i 4))) 2)
+                                            (^ (- y (. vertex-info (+ i 5))) 2)
+                                            (^ (- z (. vertex-info (+ i 6))) 2))))
+                            own (mean-gap v)]
+                        (faccumulate [ok? true w first last]
+                          (and ok? (or (= w v) (< own (mean-gap w))))))
+                      _ true))
         grad []]
     (each [_ v (ipairs bad)]
       (let [b (* 3 (- v 1))
@@ -628,8 +644,11 @@ state.counts.moved."
         (each [n v (ipairs bad)]
           (var best (abs (. ds v)))
           (for [c 0 1]
-            (let [at (+ (* 2 (- n 1)) c 1)]
-              (when (< (abs (. cds at)) best)
+            (let [at (+ (* 2 (- n 1)) c 1)
+                  k (* 3 (- at 1))]
+              (when (and (< (abs (. cds at)) best)
+                         (own-side? v (. candidates (+ k 1)) (. candidates (+ k 2))
+                                    (. candidates (+ k 3))))
                 (set best (abs (. cds at)))
                 (for [q 1 3]
                   (tset positions (+ (* 3 (- v 1)) q)
