@@ -709,8 +709,8 @@ seen from outside."
 
 (fn untangle! [state triangles]
   "10. Triangles that still cross (src/mesh/intersect.fnl, by more than 1e-6
-cells): the vertices of both go to their crossings' mean, where the surface is
-as a marching cubes mesh has it, and the triangles of the vertices moved are
+cells): the vertices of both go to their crossings' mean (where a mesher that
+keeps no sharp feature puts them), and the triangles of the vertices moved are
 checked again, for a few rounds. Checks only triangles with a vertex more than
 off-mean from its mean. Moves them in state.positions; counts the vertices moved
 in counts.untangled and the pairs left crossing in counts.crossing."
