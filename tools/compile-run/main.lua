@@ -1,0 +1,69 @@
+-- love tools/compile-run ROUNDS W H DUMP...: the compile time of each dump's shader
+-- (written by tools/compile-time.fnl or tools/ab-dump.fnl, in any checkout): newShader
+-- plus the first draw at W x H with its uniforms sent (llvmpipe finishes compiling at
+-- the first draw), each dump in turn, ROUNDS rounds, in one process. Each compile's
+-- text ends with a comment naming its round, so no cache can serve it; run it with
+-- MESA_SHADER_CACHE_DISABLE=true (tools/compile-time.fnl does), or Mesa's disk cache
+-- serves a text it has seen. Prints one line per dump: median, min and max ms.
+local comps = {float=1, int=1, bool=1, vec2=2, vec3=3, vec4=4}
+local function send(shader, us)
+  for _, u in ipairs(us) do
+    if shader:hasUniform(u.name) then
+      if u.texture then
+        local t = u.texture
+        local data = love.image.newImageData(t.width, t.height, "rgba32f")
+        local ffi = require("ffi")
+        local ptr = ffi.cast("float *", data:getFFIPointer())
+        for i = 0, 4 * t.width * t.height - 1 do ptr[i] = t.data[i + 1] or 0 end
+        local img = love.graphics.newImage(data)
+        img:setFilter("nearest", "nearest")
+        shader:send(u.name, img)
+      else
+        local n = comps[u.type]
+        local vals = {}
+        if u.type == "bool" then for i, v in ipairs(u.values) do vals[i] = v ~= 0 end
+        elseif n == 1 then vals = u.values
+        else for i = 1, #u.values, n do local t = {} for j = 0, n - 1 do t[j + 1] = u.values[i + j] end vals[#vals + 1] = t end end
+        shader:send(u.name, unpack(vals))
+      end
+    end
+  end
+end
+local function median(xs)
+  local s = {}
+  for i, x in ipairs(xs) do s[i] = x end
+  table.sort(s)
+  local n = #s
+  return n % 2 == 1 and s[(n + 1) / 2] or (s[n / 2] + s[n / 2 + 1]) / 2, s[1], s[n]
+end
+function love.load(args)
+  local rounds, w, h = tonumber(args[1]), tonumber(args[2]), tonumber(args[3])
+  local vs = {}
+  for i = 4, #args do
+    local d = dofile(args[i])
+    vs[#vs + 1] = {name = args[i], dump = d, canvas = love.graphics.newCanvas(w, h), times = {}}
+  end
+  local function compile(v, round)
+    local t0 = love.timer.getTime()
+    local shader = love.graphics.newShader(v.dump.source .. "\n// compile-run round " .. round .. "\n")
+    send(shader, v.dump.uniforms)
+    love.graphics.push("all")
+    love.graphics.setCanvas(v.canvas)
+    love.graphics.setShader(shader)
+    love.graphics.rectangle("fill", 0, 0, w, h)
+    love.graphics.pop()
+    v.canvas:newImageData(0, 1, 0, 0, 1, 1)
+    local ms = 1000 * (love.timer.getTime() - t0)
+    shader:release()
+    return ms
+  end
+  for r = 1, rounds do
+    for _, v in ipairs(vs) do v.times[#v.times + 1] = compile(v, r) end
+    io.stderr:write(string.format("round %d/%d\n", r, rounds))
+  end
+  for _, v in ipairs(vs) do
+    print(string.format("compile %s median %.0f ms (min %.0f, max %.0f)", v.name, median(v.times)))
+  end
+  love.event.quit(0)
+end
+function love.errorhandler(msg) io.stderr:write("error: ", tostring(msg), "\n", debug.traceback(), "\n") os.exit(1) end
