@@ -10,7 +10,7 @@ vec3 @{render}(vec2 pixel) {
     vec3 ro = vec3(0.0);
     vec3 rd = primaryRay(pixel);
     int steps;
-    float t = raymarch(ro, rd, steps);
+    // @slot primary
     // @slot adaptive
     // @slot view
 }

@@ -8,9 +8,7 @@ vec3 weight = vec3(1.0);
 vec3 origin = ro;
 vec3 dir = rd;
 // @slot bounce-loop
-    if (bounce > 0) {
-        t = raymarch(origin, dir, steps);
-    }
+    // @slot march
     if (t >= uDrawDist) {
         radiance += weight * sky(dir);
         break;

@@ -391,12 +391,23 @@ only when the plan has it."
            {:shadow (if plan.shadows? ["visible = visibility(origin, l, reach, uLightColors[i].w);"] [])
             :light (features.slot-lines l.features :light)})]))
 
+(fn primary-in-loop? [plan]
+  "Whether the primary ray is marched as turn 0 of the modern view's bounce loop: one
+call of raymarch, so one copy of the scene's march, where the primary march before
+the loop and the bounce's inside it were two (GLSL compilers inline every call: a
+copy costs its share of the compile, issue 42). The adaptive test reads the primary
+hit before the view, so that form keeps the march before the loop."
+  (and (= plan.view :shaded) (not= nil plan.lighting) (not plan.adaptive?)))
+
 (fn view-lines [plan]
   (case plan.view
     :shaded (if plan.lighting
                 (fill "shaders/views/modern.glsl"
                       {:bounce-loop [(.. "for (int bounce = 0; bounce <= "
                                          (if plan.reflections? "uReflections" "0") "; bounce++) {")]
+                       :march (if (primary-in-loop? plan)
+                                  ["t = raymarch(origin, dir, steps);"]
+                                  ["if (bounce > 0) {" "    t = raymarch(origin, dir, steps);" "}"])
                        :occlusion (features.slot-lines plan.lighting.features :occlusion)
                        :surface (features.slot-lines plan.lighting.features :surface)
                        :segment (features.slot-lines plan.lighting.features :segment)})
@@ -587,6 +598,9 @@ only when the plan has it."
     ;; render() averages N x N of them.
     (table.insert sections (fill "shaders/pipeline/render.glsl"
                                  {:render (if (> plan.samples 1) "renderSample" "render")
+                                  :primary [(if (primary-in-loop? plan)
+                                                "float t = 0.0;  // marched as turn 0 of the view's loop"
+                                                "float t = raymarch(ro, rd, steps);")]
                                   :view (view-lines plan)
                                   :adaptive (if plan.adaptive?
                                                 ["if (gCentre) {"

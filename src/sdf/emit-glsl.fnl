@@ -456,11 +456,22 @@ objects are numbered from it in tape order, an instance group's members one each
          "}"])))
 
 (fn object-terms [cx tape first]
-  "Lines for mapObject(): each tree object's distance alone, returned when gObject
-holds its number (numbered from `first` as color-terms does)."
+  "Lines for mapObject(): the distance of the object gObject numbers (numbered from
+`first` as color-terms does) alone, set in d; with no object found (`all`, gObject
+-1) every object's, folded into d as map() folds them. A tree object is written once
+for both cases, the whole scene's copy that mapObject called before is gone (GLSL
+compilers inline every call: each copy is its share of the compile, issue 42). An
+instance group or a field has two forms: its whole minimum, and one member's."
   (icollect [_ o (ipairs tape.objects)]
-    (if o.field (field-selected o first "return fieldObject")
-        (selected cx o first #[(emit-code $ [] o.code false) (.. "return " o.dout ";")]))))
+    (if o.field ["if (all) {" (indented (field-minimum "-1")) "}"
+                 (field-selected o first "d = fieldObject")]
+        o.instances ["if (all) {"
+                     (indented (object-block cx o 0 false open-block #[(.. "d = min(d, " o.dout ");")]))
+                     "}"
+                     (selected cx o first #[(emit-code $ [] o.code false) (.. "d = " o.dout ";")])]
+        [(object-block cx o first false
+                       #["take = all;" (.. "if (gObject == " $ ") take = true;") "if (take) {"]
+                       #[(.. "d = min(d, " o.dout ");")])])))
 
 (fn leaf-gradient [cx o action]
   ;; A leaf object's exact normal: its translations, then its primitive's gradient
