@@ -579,9 +579,16 @@ translator never writes."
       (values (and (. toks k) (tonumber (. toks k))) (+ k 1))))
 
 (fn loop-turns [start stop step]
-  (let [a (tonumber start) b (tonumber stop) c (tonumber step)]
-    (when (and a b c (not= c 0))
-      (math.max 0 (+ 1 (math.floor (/ (- b a) c)))))))
+  ;; The turns of a loop of whole bounds and step, its counter within
+  ;; translate.limits.loop-bound (past it, GLSL's int overflows and its float loses
+  ;; whole numbers: see translate); nil for any other loop.
+  (let [a (tonumber start) b (tonumber stop) c (tonumber step)
+        bound translate.limits.loop-bound
+        whole? #(and $ (= $ (math.floor $)) (<= (math.abs $) bound))]
+    (when (and (whole? a) (whole? b) (whole? c) (not= c 0))
+      (let [turns (math.max 0 (+ 1 (math.floor (/ (- b a) c))))
+            past (+ a (* c turns))]
+        (when (<= (math.abs past) bound) turns)))))
 
 (fn check-lua [text]
   "True when `text` is Lua of the translator's kind: generated names, math's

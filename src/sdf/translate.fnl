@@ -52,6 +52,11 @@
 
 (local limits
   {:loop-turns 64     ; one for loop's turns: a constant bound, unrolled or not
+   ;; A for loop's bounds, its step and its counter past the last turn (which the
+   ;; loop's test reads) within this in size, 2^24: the shader counts in an int of 32
+   ;; bits (a bound past 2^31 overflows, and i <= 2147483647 is always true: the loop
+   ;; never ends) and reads the counter as a float, whole numbers exact up to 2^24.
+   :loop-bound 16777216
    :cost 4000         ; operations per evaluation, loops counted by their turns
                       ; (scenes/custom.fnl: the gyroid shell cut by a sphere 25,
                       ; the six blended spheres' loop 150)
@@ -1141,6 +1146,10 @@ or set together."
                   (emit! st (.. b.part.g " = " p.g ";") (.. b.part.l " = " p.l))))
           []))))
 
+(fn whole-text [n]
+  ;; A whole number for a message: its digits, or %g past 1e15 (1e308 has 309).
+  (if (< (math.abs n) 1e15) (string.format "%d" n) (string.format "%g" n)))
+
 (fn capped-stop [st node stop-node step]
   ;; A stop of (math.min n K ...) (step > 0) or (math.max n K ...) (step < 0), K whole
   ;; constants: the bound K of the turns, and the rest's value, or nil.
@@ -1184,7 +1193,14 @@ or set together."
           last (+ start (* step (- turns 1)))]
       (when (or (= step 0) (> turns limits.loop-turns))
         (refuse st node (.. "a for loop may turn at most " limits.loop-turns " times, this one "
-                            (if (= step 0) "never ends" (.. "turns " turns " times")))))
+                            (if (= step 0) "never ends" (.. "turns " (whole-text turns) " times")))))
+      (let [reach (accumulate [far 0 _ v (ipairs [start stop step (+ last step)])]
+                    (if (> (math.abs v) (math.abs far)) v far))]
+        (when (> (math.abs reach) limits.loop-bound)
+          (refuse st node (.. "a for loop's counter must stay within -" limits.loop-bound " to "
+                              limits.loop-bound " (2^24: the shader counts in a 32-bit int, read as a float exact only so far), this one reaches "
+                              (whole-text reach)
+                              "; count from a small number and add the rest in the body, like (for [i 0 3] (let [k (+ i 1000)] ...))"))))
       (let [i (fresh! st "i")
             v (fresh! st "v")
             sc (new-scope st.scope)
