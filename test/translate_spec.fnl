@@ -464,9 +464,9 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
           (assert.are.near (/ 1 (* 1.1 3)) (. args 1) 1e-6)
           (assert.are.near (/ 2 (* 1.1 3)) (desc.cpu 1 0 0 (. args 1)) 1e-6))))
 
-    (it "animates a parameter given as a function of time"
+    (it "animates a parameter given as a function of time (its values declared: issue 43)"
       (fn []
-        (let [s (assert (load.load-string (scene-with "{:r (fn [t] (+ 1 t))}") "t.fnl"))]
+        (let [s (assert (load.load-string (scene-with "{:r (fn [t] (+ 1 t))} :ranges {:r [1 2]}") "t.fnl"))]
           (assert.is_true (load.animated? s))
           (assert.are.equal 1 (. s.objects 1 :tree :params :r))
           (assert.is_true (load.animate s 0.5))

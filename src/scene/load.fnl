@@ -355,7 +355,9 @@ verdict. Large scenes are mostly such values."
   (let [v (time-call ctx path f 0)]
     (when (= (type v) :function)
       (fail ctx path "a function of time must return a value, not another function"))
-    (let [checked (checker v)]
+    ;; The checker takes the time too (for its message; a check of a worker's value
+    ;; gives none).
+    (let [checked (checker v 0)]
       (table.insert ctx.animated {: path : f : checker :checker-ctx ctx})
       checked)))
 
@@ -535,7 +537,7 @@ shines from where the classic :light is (seen from the origin)."
              :missing "missing; a custom node needs :bounds [hx hy hz], the half extents of a box about its origin that holds the shape"}
             {:name :lipschitz :type :positive :optional? true}
             {:name :trust-lipschitz :type :boolean :optional? true}]
-   :extra-fields [:distance :params]})
+   :extra-fields [:distance :params :ranges]})
 
 (fn bounds-message [low on on-face? bounds ?box ?spent?]
   ;; Why a custom node's :bounds are refused: its distance `low` at `on`, on a face
@@ -550,6 +552,149 @@ shines from where the classic :light is (seen from the origin)."
             ?spent? "; the search for a box that holds it stopped at its budget (a costly function): grow :bounds until the loader takes them"
             (.. "; no box up to " custom.limits.bounds-growth
                 " times as large holds it (is the distance negative far from the shape?)")))))
+
+;;; Custom parameters that take a range of values. A function of time's range is
+;;; declared in :ranges; a slider's (param :r 1 {:min 0.5 :max 2}) written as the value
+;;; (or as a name bound to one) is its :min and :max. The factor and the bounds are
+;;; checked over the range, so no value the node takes was left out.
+
+(fn range-text [[lo hi]]
+  (.. "[" (describe-value lo) " " (describe-value hi) "]"))
+
+(fn check-ranges [ctx path given names]
+  "The custom node's :ranges `given` ({name [lo hi]}, names among `names`, its
+:params' names as a set), cleaned: {} when there are none."
+  (let [rpath (sub-path path :ranges)]
+    (if (= nil given) {}
+        (do (when (or (not= (type given) :table) (not= nil (. given 1)))
+              (fail ctx rpath (.. "must be a table of the values parameters take, like {:r [0.5 2]}, got "
+                                  (describe-value given))))
+            (collect [_ k (ipairs (doto (icollect [k (pairs given)] k) (table.sort key-before?)))]
+              (let [kpath (sub-path rpath k)
+                    r (. given k)]
+                (when (or (not= (type k) :string) (not (. names k)))
+                  (fail ctx (if (= (type k) :string) kpath rpath)
+                        (.. (if (= (type k) :string) "is" (.. "has " (describe-value k) ", which is"))
+                            " not a parameter in the node's :params; :ranges names parameters, like {:r [0.5 2]}")))
+                (when (not (and (= (type r) :table) (= 2 (accumulate [c 0 _ (pairs r)] (+ c 1)))
+                                (finite? (. r 1)) (finite? (. r 2))
+                                (coordinate? (. r 1)) (coordinate? (. r 2)) (<= (. r 1) (. r 2))))
+                  (fail ctx kpath (.. "must be two numbers [lo hi] from -1e7 to 1e7, lo at most hi, like [0.5 2], got "
+                                      (describe-value r))))
+                (values k [(. r 1) (. r 2)])))))))
+
+(fn in-range [ctx path v r ?function?]
+  "`v` when it lies in range `r` of parameter `path`; else a failure (for a
+function of time's value, at `?function?`, the time it was called at or true)."
+  (let [[lo hi] r]
+    (if (<= lo v hi) v
+        (= ?function? nil)
+        (fail ctx path (.. "is " (describe-value v) ", outside its declared range " (range-text r)))
+        (fail ctx path (.. "the function of time gave " (describe-value v)
+                           (if (= (type ?function?) :number) (.. " at t = " (time-text ?function?)) "")
+                           ", outside its declared range " (range-text r))))))
+
+(fn plain-table? [node]
+  (and (= (type node) :table) (not (fennel.list? node)) (not (fennel.sym? node))))
+
+(fn form-at [node path]
+  ;; The form at `path` in the literal `node` (nil where a step is not a literal).
+  (var node node)
+  (each [_ key (ipairs path) &until (= node nil)]
+    (set node (when (plain-table? node) (. node key))))
+  node)
+
+(fn index-forms [ctx]
+  ;; Once per load: the scene's table literals by the form of their :distance, and
+  ;; the forms bound to each name by local, var or let (for a slider given a name).
+  (when (not ctx.form-index)
+    (let [by-distance {}
+          bindings {}]
+      (fn bind! [name form]
+        (when (fennel.sym? name)
+          (let [k (tostring name)]
+            (when (not (. bindings k)) (tset bindings k []))
+            (table.insert (. bindings k) form))))
+      (fn walk [node depth]
+        (when (and (= (type node) :table) (not (fennel.sym? node)) (< depth 200))
+          (when (and (plain-table? node) (fennel.list? (. node :distance)))
+            (tset by-distance (. node :distance) node))
+          (when (and (fennel.list? node) (fennel.sym? (. node 1)))
+            (case (tostring (. node 1))
+              (where (or "local" "var")) (bind! (. node 2) (. node 3))
+              "let" (when (fennel.sequence? (. node 2))
+                      (for [i 1 (length (. node 2)) 2]
+                        (bind! (. node 2 i) (. node 2 (+ i 1)))))))
+          (each [k v (pairs node)]
+            (walk k (+ depth 1))
+            (walk v (+ depth 1)))))
+      (walk ctx.forms 0)
+      (set ctx.form-index {: by-distance : bindings})))
+  ctx.form-index)
+
+(fn param-call-name [form]
+  (when (and (fennel.list? form) (fennel.sym? (. form 1)) (= (tostring (. form 1)) "param")
+             (= (type (. form 2)) :string))
+    (. form 2)))
+
+(fn slider-range [ctx path o k v]
+  "The range [min max] of the slider that gives custom node `o`'s parameter `k` its
+value `v`: when the value is written as (param :name v {:min :max}), or as a name
+bound (by local, var or let, only so) to one; else nil. Only in the process that
+ran the scene (its sliders are known)."
+  (when (and ctx.sliders (next ctx.sliders) ctx.forms)
+    (let [index (index-forms ctx)
+          form (or (form-at ctx.ast (sub-path (sub-path path :params) k))
+                   (case (custom.find-form o.distance ctx.forms ctx.file)
+                     fn-form (form-at (. index.by-distance fn-form) [:params k])))
+          name (or (param-call-name form)
+                   (when (fennel.sym? form)
+                     (let [names (icollect [_ f (ipairs (or (. index.bindings (tostring form)) []))]
+                                   (or (param-call-name f) false))
+                           first (. names 1)]
+                       (when (and first (accumulate [same? true _ n (ipairs names)] (and same? (= n first))))
+                         first))))
+          p (and name (. ctx.sliders name))]
+      ;; The value the call gave: a name shadowed by another binding gives another.
+      (when (and p (= p.kind :number) (= p.value v))
+        [p.min p.max]))))
+
+;; Measures and bounds checks of custom nodes, kept across loads: the scene worker
+;; loads the whole scene again at every drag of a slider and every value edit, and
+;; a node measured over its slider's range measures the same at every value. Keyed
+;; by the function's Lua text, its bounds and the values it is checked at; a measure
+;; other than custom.measure (a test's, the answer check's: ctx.measure) has a
+;; cache of its own. At most `checks-kept` entries each, emptied when full.
+(local checks-kept 64)
+(local measure-caches (setmetatable {} {:__mode :k}))
+(local bounds-cache {:n 0 :entries {}})
+
+(fn remembered [ctx field cache key f]
+  ;; What `f` gives, computed once per `key`: kept in this load's ctx[field] (a scene
+  ;; of a thousand nodes from a loop shares them, however many) and in `cache`
+  ;; ({:n :entries}, kept across loads).
+  (when (not (. ctx field)) (tset ctx field {}))
+  (let [here (. ctx field)]
+    (when (not (. here key))
+      (when (not (. cache.entries key))
+        (when (>= cache.n checks-kept)
+          (set cache.entries {})
+          (set cache.n 0))
+        (set cache.n (+ cache.n 1))
+        (tset cache.entries key (f)))
+      (tset here key (. cache.entries key)))
+    (. here key)))
+
+(fn limits-text []
+  ;; The measure's and the bounds check's limits, in the key of what they found (a
+  ;; test changes them).
+  (table.concat (doto (icollect [k v (pairs custom.limits)] (.. k "=" (tostring v))) table.sort) " "))
+
+(fn values-text [at]
+  ;; "r = 2 and s = 0.3" for a sample's ranged values `at`, or nil when none.
+  (let [names (doto (icollect [n (pairs at)] n) table.sort)]
+    (when (> (length names) 0)
+      (table.concat (icollect [_ n (ipairs names)] (.. n " = " (describe-value (. at n)))) " and "))))
 
 (fn check-custom! [ctx path o out]
   "Translate custom node `o`'s distance function, check that its :bounds hold the
@@ -571,7 +716,21 @@ shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params
       (each [_ k (ipairs names)]
         (when (not= (type k) :string)
           (fail ctx ppath (.. "unexpected entry " (describe-value k) "; parameters are named, like {:radius 1}"))))
-      (set out.params (collect [_ k (ipairs names)] k (check ctx (sub-path ppath k) (. given k) :number))))
+      (set out.ranges (check-ranges ctx path o.ranges (collect [_ k (ipairs names)] k true)))
+      (set out.params
+           (collect [_ k (ipairs names)]
+             (let [kpath (sub-path ppath k)
+                   v (. given k)
+                   r (. out.ranges k)]
+               (values k (if (and (= (type v) :function) (not r))
+                             (fail ctx kpath (.. "a function of time; declare the values it takes, like :ranges {:"
+                                                 k " [0.5 2]}, so that the distance's factor holds for all of them"))
+                             (and r (= (type v) :function))
+                             (check-animated ctx kpath v :number
+                                             #(in-range ctx kpath (check ctx kpath $1 :number) r (or $2 true)))
+                             r (in-range ctx kpath (check ctx kpath v :number) r)
+                             (check ctx kpath v :number)))))))
+    (when (= nil (next out.ranges)) (set out.ranges nil))
     ;; ctx.capture and ctx.measure: the main process's check of a scene worker's answer
     ;; (src/scene/answer.fnl) gives the worker's texts and measure, checked, instead.
     (case ((or ctx.capture custom.capture) o.distance ctx.forms ctx.file)
@@ -604,31 +763,53 @@ shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params
                                        (if (and (= (type e) :table) e.reason) e.reason (tostring e))
                                        "): a bug in the translator; please report it with this file")
                                    line))
-                args (icollect [_ n (ipairs t.params)] (. out.params n))]
-            (table.insert args 1)
-            ;; Nodes made by a loop often share the function and its values: measured
-            ;; once per load.
-            (set ctx.measures (or ctx.measures {}))
-            (set ctx.bounds-checks (or ctx.bounds-checks {}))
-            (let [mkey (.. glsl "\n" (table.concat (icollect [_ v (ipairs args)] (string.format "%.17g" v)) " ")
-                           "\n" (table.concat (icollect [_ v (ipairs out.bounds)] (string.format "%.17g" v)) " "))]
-              (case (do (when (not (. ctx.measures mkey))
-                          (tset ctx.measures mkey [((or ctx.measure custom.measure) desc.cpu out.bounds args t.cost)]))
-                        ((or table.unpack _G.unpack) (. ctx.measures mkey) 1 3))
-                (nil why at) (fail ctx dpath (string.format "%s at [%.3g %.3g %.3g] (sampled over its bounds grown by half: it must give a number everywhere there)"
-                                                            why (. at 1) (. at 2) (. at 3)) line)
-                (measured at)
-                (do ;; The shape within its bounds (the distance is a number there: measured).
-                    (when (not (. ctx.bounds-checks mkey))
-                      (tset ctx.bounds-checks mkey [(custom.check-bounds desc.cpu out.bounds args t.cost)]))
-                    (case (. ctx.bounds-checks mkey)
-                      [low on on-face? ?box ?spent?] (fail ctx (sub-path path :bounds)
-                                                           (bounds-message low on on-face? out.bounds ?box ?spent?)))
-                    (case (custom.factor measured out.lipschitz at out.trust-lipschitz)
-                      (nil why) (fail ctx (sub-path path :lipschitz) why)
-                      k (do (set out.lipschitz k)
-                            (set data.measured measured)
-                            (set out.custom data)))))))))))
+                ;; The ranges: declared, else a slider's where one gives the value.
+                ranges (collect [_ n (ipairs t.params)]
+                         (values n (or (?. out.ranges n) (slider-range ctx path o n (. out.params n)))))
+                samples (custom.range-samples t.params out.params ranges)
+                cost (custom.sample-cost t.cost (length samples))
+                measure (or ctx.measure custom.measure)
+                key (.. (limits-text) "\n" t.lua "\n" (table.concat (icollect [_ v (ipairs out.bounds)] (string.format "%.17g" v)) " ")
+                        (table.concat (icollect [_ s (ipairs samples)]
+                                        (.. "\n" (table.concat (icollect [_ v (ipairs s.args)] (string.format "%.17g" v)) " ")))))
+                mcache (or (. measure-caches measure)
+                           (let [c {:n 0 :entries {}}] (tset measure-caches measure c) c))]
+            (each [_ s (ipairs samples)] (table.insert s.args 1))
+            ;; Each sample's measure, the largest taken: the factor holds for every
+            ;; value the node's parameters take. The first that is not a number stops.
+            (var (measured at) (values nil nil))
+            (each [_ r (ipairs (remembered ctx :measures mcache key
+                                           #(accumulate [done [] _ s (ipairs samples)
+                                                         &until (and (. done 1) (= nil (. done (length done) :m)))]
+                                              (let [(m where point) (measure desc.cpu out.bounds s.args cost)]
+                                                (doto done (table.insert {: m : where : point :at s.at}))))))]
+              (if (= r.m nil)
+                  (fail ctx dpath (string.format "%s at [%.3g %.3g %.3g]%s (sampled over its bounds grown by half: it must give a number everywhere there)"
+                                                 r.where (. r.point 1) (. r.point 2) (. r.point 3)
+                                                 (case (values-text r.at) text (.. ", with " text) _ ""))
+                        line)
+                  (when (or (= measured nil) (> r.m measured)) (set (measured at) (values r.m r.where)))))
+            ;; The shape within its bounds (the distance is a number there: measured)
+            ;; at each sample; a box that holds it at all of those that cross.
+            (let [crossings (remembered ctx :bounds-checks bounds-cache key
+                                        #(icollect [_ s (ipairs samples)]
+                                           (case [(custom.check-bounds desc.cpu out.bounds s.args cost)]
+                                             [low on on-face? ?box ?spent?] {: low : on : on-face? :box ?box :spent? ?spent? :at s.at})))]
+              ;; Said at the lowest value found.
+              (table.sort crossings #(< $1.low $2.low))
+              (case (. crossings 1)
+                first (let [boxes (icollect [_ c (ipairs crossings)] c.box)
+                            box (when (= (length boxes) (length crossings))
+                                  (fcollect [a 1 3] (accumulate [m 0 _ b (ipairs boxes)] (math.max m (. b a)))))]
+                        (fail ctx (sub-path path :bounds)
+                              (.. (case (values-text first.at) text (.. "with " text ", ") _ "")
+                                  (bounds-message first.low first.on first.on-face? out.bounds box
+                                                  (accumulate [spent? false _ c (ipairs crossings)] (or spent? c.spent?))))))))
+            (case (custom.factor measured out.lipschitz at out.trust-lipschitz)
+              (nil why) (fail ctx (sub-path path :lipschitz) why)
+              k (do (set out.lipschitz k)
+                    (set data.measured measured)
+                    (set out.custom data))))))))
 
 (fn check-node [ctx path o depth counter]
   (when (not= (type o) :table)
@@ -863,8 +1044,11 @@ a message; or false when it is code (load it with load-string, in the worker)."
         (not sites-ok?)
         (values nil (safe-message site-err))
         ;; Field lines come from the last form: the table the file evaluates to.
+        ;; :sliders: a custom node's parameter given by one is checked over its range.
+        ;; :measure: a test's count of the measures (src/sdf/custom.fnl's by default).
         (case (validated value {: file :source checked-source :ast (and forms (. forms (length forms)))
-                                : forms : env :animated [] :time-budget {:left frame-steps}})
+                                : forms : env :animated [] :time-budget {:left frame-steps}
+                                :sliders rec.by-name :measure (?. ?options :measure)})
           (nil msg) (values nil msg)
           result (do (when (> (length rec.list) 0)
                        (set result.params rec.list)
@@ -877,7 +1061,9 @@ Returns the scene (plain data, defaults filled in) or nil and a message
 'file:line: field: reason'. A file of plain data is read without the compiler (see
 read-data). `?options.overrides` maps parameter names to the values
 their (param ...) calls give instead of the file's; the scene's :params lists them
-(see src/scene/params.fnl) and its :source is the text, to load it again with others."
+(see src/scene/params.fnl) and its :source is the text, to load it again with others.
+`?options.measure` measures custom nodes' factors in place of custom.measure (a
+test's count of its calls)."
   (let [file (or ?file "scene")]
     (case (load-data source file)
       false (load-code source file ?options)
@@ -907,7 +1093,7 @@ reason' (a value out of range, a function that fails or runs too long)."
                            (each [_ a (ipairs (or scene.animated []))]
                              (set a.checker-ctx.time-budget budget))
                            (each [_ a (ipairs (or scene.animated []))]
-                             (let [v (a.checker (time-call (. a :checker-ctx) a.path a.f t))
+                             (let [v (a.checker (time-call (. a :checker-ctx) a.path a.f t) t)
                                    (target key) (target-of scene a.path)]
                                (tset target key v)))))]
     (if ok? true

@@ -48,7 +48,16 @@
    ;; Shapes around the box: the faces of boxes grown by :bounds-step up to
    ;; :shell-growth times, at half the grid.
    :shell-growth 4
-   :bounds-step 1.25 :bounds-growth 64 :bounds-halvings 8 :bounds-search-ops 3e7})
+   :bounds-step 1.25 :bounds-growth 64 :bounds-halvings 8 :bounds-search-ops 3e7
+   ;; A parameter that takes a range of values (a function of time's declared
+   ;; :ranges, a slider's :min and :max): the factor and the bounds are checked at
+   ;; :range-points values of one such parameter (its ends and evenly between); for
+   ;; several, at their corners (all of them up to :range-corners, else that many of
+   ;; a fixed seed, the all-low and all-high among them), the middle, and seeded
+   ;; combinations up to :range-samples in all. All the samples together take at most
+   ;; :range-share times the operations of one measure (and one bounds check): each
+   ;; is measured as if the function cost that much more (see measure's ?cost).
+   :range-points 5 :range-corners 8 :range-samples 12 :range-share 2})
 
 ;;; Finding the form of a closure
 
@@ -517,6 +526,55 @@ then it is used as declared."
       (<= measured limits.exact-slack) 1
       (* measured limits.margin)))
 
+;;; Parameters that take a range of values
+
+(fn range-samples [names given ranges]
+  "The parameters' values to check a custom node at: a list of {:args :at}, :args the
+arguments after x y z (in the order of `names`, the fn's parameters, from `given`
+by name, but for those with a range in `ranges` {name [lo hi]}) and :at the ranged
+ones' values by name. One sample of `values` when no parameter has a range; see
+limits.range-points, range-corners and range-samples for the others."
+  (let [ranged (icollect [_ n (ipairs names)] (when (. ranges n) n))
+        m (length ranged)
+        rand (lcg 4242)
+        points []
+        seen {}]
+    (fn add! [at]
+      ;; `at`: a value per ranged name, in the order of `ranged`.
+      (let [key (table.concat (icollect [_ v (ipairs at)] (string.format "%.17g" v)) " ")]
+        (when (not (. seen key))
+          (tset seen key true)
+          (table.insert points at))))
+    (fn at-fraction [i f]
+      (let [[lo hi] (. ranges (. ranged i))]
+        (if (>= f 1) hi (<= f 0) lo (+ lo (* f (- hi lo))))))
+    (if (= m 1)
+        (for [k 0 (- limits.range-points 1)]
+          (add! [(at-fraction 1 (/ k (- limits.range-points 1)))]))
+        (> m 1)
+        (do (if (<= (^ 2 m) limits.range-corners)
+                (for [c 0 (- (^ 2 m) 1)]
+                  (add! (fcollect [i 1 m] (at-fraction i (% (math.floor (/ c (^ 2 (- i 1)))) 2)))))
+                (do (add! (fcollect [i 1 m] (at-fraction i 0)))
+                    (add! (fcollect [i 1 m] (at-fraction i 1)))
+                    (for [_ 3 limits.range-corners]
+                      (add! (fcollect [i 1 m] (at-fraction i (if (< (rand) 0.5) 0 1)))))))
+            (add! (fcollect [i 1 m] (at-fraction i 0.5)))
+            (for [_ 1 (* 4 limits.range-samples) &until (>= (length points) limits.range-samples)]
+              (add! (fcollect [i 1 m] (at-fraction i (rand)))))))
+    (if (= m 0)
+        [{:args (icollect [_ n (ipairs names)] (. given n)) :at {}}]
+        (icollect [_ at (ipairs points)]
+          (let [by-name (collect [i n (ipairs ranged)] n (. at i))]
+            {:args (icollect [_ n (ipairs names)] (or (. by-name n) (. given n)))
+             :at by-name})))))
+
+(fn sample-cost [cost n]
+  "The cost per call to give measure and check-bounds for each of `n` samples of a
+function of `cost` operations per call: all of them together take about
+limits.range-share times one measure's operations."
+  (* (math.max 1 (or cost 1)) (math.max 1 (/ n limits.range-share))))
+
 ;;; The worker's side: from a closure to plain data
 
 (fn capture [f forms file]
@@ -774,4 +832,4 @@ descriptors of nodes with the same texts share their GLSL and their Lua function
                                    ", steps may pass the surface" ""))))))))
 
 {: capture : check-data : measure : check-bounds : factor : digest : descriptor : find-form : check-lua : check-glsl
- : limits}
+ : range-samples : sample-cost : limits}
