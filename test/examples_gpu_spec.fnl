@@ -122,6 +122,22 @@ at h = 0.98 to 1 is red 0.58 to 0.5, green and blue 0), and the picture."
                                   img.width img.height n))
             (assert.are.equal 0 n))))
 
+      (it "an example renders from another directory (love PROJECT --render examples/NAME.fnl)"
+        (fn []
+          ;; A scene path not found under the working directory is read from the
+          ;; project's own files (src/util/files.fnl's read-user): an empty folder
+          ;; of its own, so no examples/ there shadows the project's.
+          (let [out (.. app.root "/test/out/examples-elsewhere.png")
+                _ (os.remove out)
+                (code text) (app.sh (.. "d=$(mktemp -d); (cd \"$d\" && SDL_VIDEODRIVER=offscreen timeout "
+                                        app.hang-seconds " love " app.root
+                                        " --render examples/pebble-cairn.fnl --out " out
+                                        " --size 64x48 --samples 1); c=$?; rmdir \"$d\"; (exit $c)"))
+                img (png.read-file out)]
+            (assert.are.equal 0 code text)
+            (assert.truthy img text)
+            (assert.are.same [64 48] [img.width img.height]))))
+
       (it "the heat check sees rays out of steps: the Mandelbulb with a factor of 600 declared"
         (fn []
           ;; The check itself: each step divided by 600 (declared and trusted, so

@@ -2,7 +2,7 @@
 # `make dist`: dist/fennel-raymarcher.love, the game folder zipped with Fennel inside,
 # so `love dist/fennel-raymarcher.love [SCENE | --render SCENE --out X.png ...]` runs on
 # a machine that has only LÖVE. Scenes given by path are read from the working
-# directory; the bundled ones (scenes/...) from inside the archive.
+# directory; the bundled ones (scenes/..., examples/...) from inside the archive.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 name=fennel-raymarcher
@@ -16,7 +16,7 @@ if [ -z "$fennel_lua" ]; then
 fi
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
-cp -r main.fnl conf.lua src shaders scenes "$stage"/
+cp -r main.fnl conf.lua src shaders scenes examples "$stage"/
 # The compiled Lua (make dist builds it first): the archive starts without compiling.
 luajit tools/build-lua.lua --quiet
 mkdir -p "$stage/build" && cp -r build/lua "$stage/build/"
