@@ -29,6 +29,7 @@
     (local scene-path "scenes/machined-part.fnl")
     (local scene (assert (load.load-file scene-path)))
     (local volumes {})
+    (local counts {})
 
     (each [_ [label flag path] (ipairs [["the CPU evaluator" "" "test/out/mesh-machined.ply"]
                                         ["the GPU" " --gpu" "test/out/mesh-machined-gpu.ply"]])]
@@ -53,7 +54,8 @@
               (assert.is_truthy m.colors)
               ;; float32 positions and (on the GPU) distances: still within half a cell.
               (assert.is_true (<= worst (* 0.5 grid.h)) (tostring (/ worst grid.h)))
-              (table.insert volumes (check.volume m)))))))
+              (table.insert volumes (check.volume m))
+              (table.insert counts t.triangles))))))
 
     (it "gives the same volume on the GPU as on the CPU, within 0.5%"
       (fn []
@@ -61,6 +63,24 @@
         (assert.are.equal 2 (length volumes))
         (let [[a b] volumes]
           (assert.is_true (< (math.abs (- a b)) (* 0.005 a)) (.. a " " b)))))
+
+    (it "makes as many triangles on the GPU as on the CPU"
+      (fn []
+        ;; Both classify a grid point by the same rule, d below minus a thousandth
+        ;; of a cell (src/mesh/scene.fnl's surface-offset): a face on a grid plane
+        ;; (machined-part's base, platonic-shelf's boards at the region's bounds)
+        ;; has d = 0 there up to rounding, double on one and float32 on the other.
+        ;; Before: machined-part at 48 5572 and 5524, platonic-shelf at 32 1552 and
+        ;; 1420.
+        (assert.are.equal 2 (length counts))
+        (assert.are.equal (. counts 1) (. counts 2))
+        (let [shelf (icollect [_ flag (ipairs ["" " --gpu"])]
+                      (let [path (.. "test/out/mesh-shelf" (if (= flag "") "" "-gpu") ".stl")
+                            (code out err) (run (.. "--mesh scenes/platonic-shelf.fnl --out " path
+                                                    " --resolution 32" flag))]
+                        (assert.are.equal 0 code err)
+                        (tonumber (out:match ": (%d+) triangles"))))]
+          (assert.are.equal (. shelf 1) (. shelf 2)))))
 
     (it "cuts a ground plane by a given region, and says so"
       (fn []

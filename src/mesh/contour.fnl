@@ -21,6 +21,9 @@
 ;; so the same mesher runs on the CPU evaluator and on the GPU.
 
 (local intersect (require :src.mesh.intersect))
+;; Preallocated tables (LuaJIT's table.new): the big arrays of a mesh.
+(local table-new (let [(ok? new) (pcall require :table.new)]
+                   (if ok? (fn [n] (new n 0)) (fn [] []))))
 
 (local sqrt math.sqrt)
 (local floor math.floor)
@@ -91,6 +94,16 @@
                                       (edge-between (. cs k) (. cs (+ 1 (% k 4)))))}))))
     out))
 
+;; Each edge's corners, as two flat lists (the inner loops read no pair).
+(local edge-low (icollect [_ [a _] (ipairs edge-corners)] a))
+(local edge-high (icollect [_ [_ b] (ipairs edge-corners)] b))
+
+;; Where each local edge's cell stands in the quad of its crossing (see
+;; make-triangles): the slot, 1-4, of the four cells around the edge, counter-
+;; clockwise about its axis. Along x and z, local edge r = u + 2v of the cell's
+;; offset (-u, -v) from the edge; along y, r = v + 2u.
+(local edge-slot [3 4 2 1  3 2 4 1  3 4 2 1])
+
 ;;; Union-find over a cell's twelve edges.
 
 (fn find [parent e]
@@ -105,42 +118,57 @@
 ;; The faces of most cells: none (shared, never written).
 (local no-faces [])
 
+;; The patches of the cells without an ambiguous face, by their corners' signs
+;; (bit c set where corner c is inside): there the signs alone decide, and most
+;; cells are so (on a torus at 128 cells, every one).
+(local plain-patches {})
+
 (fn patches [v ?flipped]
   "The patches of a cell with corner values `v` (1-based by corner c + 1; inside is
 below 0): a table from each crossing edge (0-11) to its patch's representative, and
 a list of the cell's ambiguous faces (1-6) whose two segments belong to one patch.
-`?flipped` (a table of faces 1-6) reverses the asymptotic decider on those faces."
-  (let [parent {}]
-    (var joined nil)
-    (for [e 0 11]
-      (let [[a b] (. edge-corners (+ e 1))]
-        (when (not= (< (. v (+ a 1)) 0) (< (. v (+ b 1)) 0))
-          (tset parent e e))))
-    (each [fi f (ipairs faces)]
-      (let [[c0 c1 c2 c3] f.corners
-            [e01 e12 e23 e30] f.edges
-            n (+ (if (. parent e01) 1 0) (if (. parent e12) 1 0)
-                 (if (. parent e23) 1 0) (if (. parent e30) 1 0))]
-        (if (= n 2)
-            (let [ends (icollect [_ e (ipairs f.edges)] (when (. parent e) e))]
-              (join! parent (. ends 1) (. ends 2)))
-            (= n 4)
-            ;; Ambiguous: corners 0 and 2 have one sign, 1 and 3 the other. They are
-            ;; joined across the face when the bilinear interpolant's saddle has
-            ;; their sign; then the face's two segments cut off corners 1 and 3.
-            (let [a (. v (+ c0 1)) b (. v (+ c1 1)) c (. v (+ c2 1)) d (. v (+ c3 1))
-                  saddle (/ (- (* a c) (* b d)) (- (+ a c) b d))]
-              (if (not= (= (< saddle 0) (< a 0)) (not= nil (and ?flipped (. ?flipped fi))))
-                  (do (join! parent e01 e12) (join! parent e23 e30))
-                  (do (join! parent e30 e01) (join! parent e12 e23)))))))
-    ;; e01 and e23 are on different segments either way.
-    (each [fi f (ipairs faces)]
-      (let [[e01 e12 e23 e30] f.edges]
-        (when (and (. parent e01) (. parent e12) (. parent e23) (. parent e30)
-                   (= (find parent e01) (find parent e23)))
-          (when (not joined) (set joined []))
-          (table.insert joined fi))))
-    (values (collect [e _ (pairs parent)] e (find parent e)) (or joined no-faces))))
+`?flipped` (a table of faces 1-6) reverses the asymptotic decider on those faces.
+The tables returned may be shared between cells: not to be changed."
+  (let [mask (faccumulate [m 0 c 0 7] (if (< (. v (+ c 1)) 0) (+ m (^ 2 c)) m))
+        known (and (not ?flipped) (. plain-patches mask))]
+    (if known
+        (values known no-faces)
+        (let [parent {}]
+          (var joined nil)
+          (var ambiguous? false)
+          (for [e 0 11]
+            (let [[a b] (. edge-corners (+ e 1))]
+              (when (not= (< (. v (+ a 1)) 0) (< (. v (+ b 1)) 0))
+                (tset parent e e))))
+          (each [fi f (ipairs faces)]
+            (let [[c0 c1 c2 c3] f.corners
+                  [e01 e12 e23 e30] f.edges
+                  n (+ (if (. parent e01) 1 0) (if (. parent e12) 1 0)
+                       (if (. parent e23) 1 0) (if (. parent e30) 1 0))]
+              (if (= n 2)
+                  (let [ends (icollect [_ e (ipairs f.edges)] (when (. parent e) e))]
+                    (join! parent (. ends 1) (. ends 2)))
+                  (= n 4)
+                  ;; Ambiguous: corners 0 and 2 have one sign, 1 and 3 the other.
+                  ;; They are joined across the face when the bilinear
+                  ;; interpolant's saddle has their sign; then the face's two
+                  ;; segments cut off corners 1 and 3.
+                  (let [a (. v (+ c0 1)) b (. v (+ c1 1)) c (. v (+ c2 1)) d (. v (+ c3 1))
+                        saddle (/ (- (* a c) (* b d)) (- (+ a c) b d))]
+                    (set ambiguous? true)
+                    (if (not= (= (< saddle 0) (< a 0)) (not= nil (and ?flipped (. ?flipped fi))))
+                        (do (join! parent e01 e12) (join! parent e23 e30))
+                        (do (join! parent e30 e01) (join! parent e12 e23)))))))
+          ;; e01 and e23 are on different segments either way.
+          (each [fi f (ipairs faces)]
+            (let [[e01 e12 e23 e30] f.edges]
+              (when (and (. parent e01) (. parent e12) (. parent e23) (. parent e30)
+                         (= (find parent e01) (find parent e23)))
+                (when (not joined) (set joined []))
+                (table.insert joined fi))))
+          (let [rep (collect [e _ (pairs parent)] e (find parent e))]
+            (when (not ambiguous?) (tset plain-patches mask rep))
+            (values rep (or joined no-faces)))))))
 
 ;; Vertices keep this share of a cell inside their cell's walls, so that vertices of
 ;; neighbouring cells never meet: a surface lying on a cell wall (a box face on a grid
@@ -220,27 +248,40 @@ last one (counts.live-kb, KB)."
     (set counts.live-kb (collectgarbage :count))
     (set counts.collections (+ 1 (or counts.collections 0)))))
 
-(fn evaluator [field cut counts progress]
+(fn evaluator [field cut counts progress h]
   "A function from a phase name and a flat list of points x y z ... to their
-distances (the field cut by the box `cut`), in batches of batch-size points; each
-batch counts as work done (see mesh) and `progress` hears of it."
-  (fn [phase flat]
-    (let [n (/ (length flat) 3)
-          out []]
-      (for [start 0 (- n 1) batch-size]
-        (let [count (min batch-size (- n start))
-              chunk (fcollect [q (+ 1 (* 3 start)) (* 3 (+ start count))] (. flat q))
-              ds (field.distances chunk count)]
-          (for [k 1 count]
-            (let [j (* 3 (- k 1))
-                  d (. ds k)
-                  b (box-distance cut (. chunk (+ j 1)) (. chunk (+ j 2)) (. chunk (+ j 3)))]
-              (tset out (+ start k) (max d b))))
-          (set counts.points (+ counts.points count))
-          (set counts.work (+ counts.work count))
-          (bound-heap! counts)
-          (progress phase counts.work counts.estimate counts.points)))
-      out)))
+values (the field cut by the box `cut`, plus the field's :offset in cells of side
+`h`), in
+batches of batch-size points; each batch counts as work done (see mesh) and
+`progress` hears of it."
+  (let [[lx ly lz] cut.lo [hx hy hz] cut.hi
+        ;; The cut box's centre and half sides, once (box-distance per point).
+        mx (* 0.5 (+ lx hx)) my (* 0.5 (+ ly hy)) mz (* 0.5 (+ lz hz))
+        sx (* 0.5 (- hx lx)) sy (* 0.5 (- hy ly)) sz (* 0.5 (- hz lz))
+        offset (* (or field.offset 0) h)]
+    (fn [phase flat]
+      (let [n (/ (length flat) 3)
+            out (table-new n)]
+        (for [start 0 (- n 1) batch-size]
+          (let [count (min batch-size (- n start))
+                ;; One batch: the list itself, not a copy.
+                chunk (if (and (= start 0) (= count n)) flat
+                          (fcollect [q (+ 1 (* 3 start)) (* 3 (+ start count))] (. flat q)))
+                ds (field.distances chunk count)]
+            (for [k 1 count]
+              (let [j (* 3 (- k 1))
+                    d (. ds k)
+                    qx (- (abs (- (. chunk (+ j 1)) mx)) sx)
+                    qy (- (abs (- (. chunk (+ j 2)) my)) sy)
+                    qz (- (abs (- (. chunk (+ j 3)) mz)) sz)
+                    ox (max qx 0) oy (max qy 0) oz (max qz 0)
+                    b (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz))) (min (max qx qy qz) 0))]
+                (tset out (+ start k) (+ (max d b) offset))))
+            (set counts.points (+ counts.points count))
+            (set counts.work (+ counts.work count))
+            (bound-heap! counts)
+            (progress phase counts.work counts.estimate counts.points)))
+        out))))
 
 ;;; The mesher: one function per phase, in the order mesh calls them. What the
 ;;; phases share (the grid, the counts, the crossings, the cells, the vertices) is
@@ -258,7 +299,7 @@ of each step."
         [nx ny nz] grid.dims]
     {: progress : counts
      :after (+ geometry-work (or grid.after-work 0))
-     :evaluate (evaluator field grid.cut counts progress)
+     :evaluate (evaluator field grid.cut counts progress h)
      : ox : oy : oz : h : nx : ny : nz
      :step (* h (or field.step 1e-3))
      ;; Global keys of grid points: i + stride-x j + stride-y k.
@@ -325,23 +366,42 @@ k]) and state.skipped (leaf blocks' worth of volume skipped)."
 
 (fn sample-corners! [state]
   "2. The corners of the leaves, (leaf + 1)^3 each (clamped to the grid): their
-values in state.corner-values, leaf after leaf, x fastest. Makes the first estimate
-of the work."
-  (let [{: evaluate : counts : after : leaves : ox : oy : oz : h : nx : ny : nz} state
+values in state.corner-values, leaf after leaf, x fastest. A grid point shared by
+leaves (their faces, edges and corners) is evaluated once. Makes the first
+estimate of the work."
+  (let [{: evaluate : counts : after : leaves : ox : oy : oz : h : nx : ny : nz
+         : stride-x : stride-y} state
+        side (+ leaf 1)
+        ;; Per leaf corner, the index of its grid point among the distinct ones.
+        slots (table-new (* (length leaves) side side side))
+        index {}
         flat []]
+    (var (n distinct) (values 0 0))
     (each [_ [i j k] (ipairs leaves)]
       (for [c 0 leaf]
         (for [b 0 leaf]
           (for [a 0 leaf]
-            (table.insert flat (+ ox (* (min nx (+ i a)) h)))
-            (table.insert flat (+ oy (* (min ny (+ j b)) h)))
-            (table.insert flat (+ oz (* (min nz (+ k c)) h)))))))
+            (let [gi (min nx (+ i a)) gj (min ny (+ j b)) gk (min nz (+ k c))
+                  key (+ gi (* stride-x gj) (* stride-y gk))]
+              (var at (. index key))
+              (when (not at)
+                (set distinct (+ distinct 1))
+                (set at distinct)
+                (tset index key at)
+                (let [q (* 3 (- at 1))]
+                  (tset flat (+ q 1) (+ ox (* gi h)))
+                  (tset flat (+ q 2) (+ oy (* gj h)))
+                  (tset flat (+ q 3) (+ oz (* gk h)))))
+              (set n (+ n 1))
+              (tset slots n at))))))
     ;; The crossings and normals take about as many points again as the corners:
     ;; a leaf of 64 cells holds some 13 crossings where a surface crosses it (a
     ;; sphere at 32 cells), each taking 10 points (measured: 3990 crossings in 308
     ;; leaves); the estimate is made exact once the crossings are counted.
-    (set counts.estimate (+ counts.work (* (+ 2 (/ after 10)) (/ (length flat) 3))))
-    (set state.corner-values (evaluate :corners flat))
+    (set counts.estimate (+ counts.work (* (+ 1 (/ n distinct) (/ after 10)) distinct)))
+    (let [ds (evaluate :corners flat)]
+      (for [q 1 n] (tset slots q (. ds (. slots q))))
+      (set state.corner-values slots))
     ;; Kept until mesh returns, as when the phases were one function: the live heap
     ;; paces LuaJIT's collector, and dropping these here (and the edge index, see
     ;; find-cells!) made the later steps collect more often, 8% slower on a mesh
@@ -355,6 +415,7 @@ state.crossings (their count) and per crossing its low end (state.ex0, ey0, ez0)
 its axis (eaxis) and the values at its ends (ed0, ed1). Makes the estimate exact."
   (let [{: leaves : corner-values : counts : nx : ny : nz : stride-x : stride-y} state
         side (+ leaf 1)
+        s2 (* side side)
         ;; Crossing edges: global key -> index; their ends and values.
         edge-index {}
         ex0 [] ey0 [] ez0 [] ed0 [] ed1 [] eaxis []
@@ -365,21 +426,27 @@ its axis (eaxis) and the values at its ends (ed0, ed1). Makes the estimate exact
         (for [c 0 (- (min leaf (- nz k0)) 1)]
           (for [b 0 (- (min leaf (- ny j0)) 1)]
             (for [a 0 (- (min leaf (- nx i0)) 1)]
-              (let [v (fcollect [q 0 7]
-                        (let [(qx qy qz) (corner-bits q)]
-                          (. corner-values (+ base 1 (+ a qx) (* side (+ b qy))
-                                       (* side side (+ c qz))))))
-                    inside (accumulate [n 0 _ d (ipairs v)] (if (< d 0) (+ n 1) n))]
+              ;; The signs first: most cells of a leaf have no surface, and get
+              ;; no table.
+              (let [at (+ base 1 a (* side b) (* s2 c))
+                    v0 (. corner-values at) v1 (. corner-values (+ at 1))
+                    v2 (. corner-values (+ at side)) v3 (. corner-values (+ at side 1))
+                    v4 (. corner-values (+ at s2)) v5 (. corner-values (+ at s2 1))
+                    v6 (. corner-values (+ at s2 side)) v7 (. corner-values (+ at s2 side 1))
+                    inside (+ (if (< v0 0) 1 0) (if (< v1 0) 1 0) (if (< v2 0) 1 0)
+                              (if (< v3 0) 1 0) (if (< v4 0) 1 0) (if (< v5 0) 1 0)
+                              (if (< v6 0) 1 0) (if (< v7 0) 1 0))]
                 (when (and (> inside 0) (< inside 8))
                   (let [i (+ i0 a) j (+ j0 b) k (+ k0 c)
+                        v [v0 v1 v2 v3 v4 v5 v6 v7]
                         cell {: i : j : k : v :edges {}}]
                     (table.insert cells cell)
                     (for [e 0 11]
-                      (let [[ca cb] (. edge-corners (+ e 1))
-                            da (. v (+ ca 1)) db (. v (+ cb 1))]
+                      (let [ca (. edge-low (+ e 1))
+                            da (. v (+ ca 1)) db (. v (+ (. edge-high (+ e 1)) 1))]
                         (when (not= (< da 0) (< db 0))
-                          (let [(qx qy qz) (corner-bits ca)
-                                gi (+ i qx) gj (+ j qy) gk (+ k qz)
+                          (let [gi (+ i (% ca 2)) gj (+ j (% (floor (/ ca 2)) 2))
+                                gk (+ k (floor (/ ca 4)))
                                 axis (floor (/ e 4))
                                 key (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk))))]
                             (var idx (. edge-index key))
@@ -420,14 +487,21 @@ py, pz."
                           (+ oy (* h (+ (. ey0 e) (if (= axis 1) t 0))))
                           (+ oz (* h (+ (. ez0 e) (if (= axis 2) t 0)))))))
         ts (fcollect [e 1 crossings] (guess e))]
-    (for [s 1 refine-steps]
+    ;; The crossings still moving: one whose value is within `done` of zero has
+    ;; its point (a plane's, from the linear guess: most of a machined part's) and
+    ;; is evaluated no more.
+    (var active (fcollect [e 1 crossings] e))
+    (local done (* 1e-9 h))
+    (for [s 1 refine-steps &until (= 0 (length active))]
       (let [flat []]
-        (for [e 1 crossings]
-          (let [(x y z) (point e (. ts e))]
-            (table.insert flat x) (table.insert flat y) (table.insert flat z)))
-        (let [ds (evaluate :crossings flat)]
-          (for [e 1 crossings]
-            (let [t (. ts e) d (. ds e)]
+        (each [n e (ipairs active)]
+          (let [(x y z) (point e (. ts e)) q (* 3 (- n 1))]
+            (tset flat (+ q 1) x) (tset flat (+ q 2) y) (tset flat (+ q 3) z)))
+        (let [ds (evaluate :crossings flat)
+              still []]
+          (each [n e (ipairs active)]
+            (let [t (. ts e) d (. ds n)]
+              (when (> (abs d) done) (table.insert still e))
               (if (= (< d 0) (< (. fa e) 0))
                   (do (tset ta e t) (tset fa e d)
                       (when (= (. side-kept e) 1) (tset fb e (* 0.5 (. fb e))))
@@ -435,7 +509,8 @@ py, pz."
                   (do (tset tb e t) (tset fb e d)
                       (when (= (. side-kept e) -1) (tset fa e (* 0.5 (. fa e))))
                       (tset side-kept e -1)))
-              (tset ts e (if (= d 0) t (guess e))))))))
+              (tset ts e (if (= d 0) t (guess e)))))
+          (set active still))))
     (for [e 1 crossings]
       (let [(x y z) (point e (. ts e))]
         (tset px e x) (tset py e y) (tset pz e z)))
@@ -540,56 +615,76 @@ toward its crossings' mean (or, when that is the same point, apart along x)."
 (fn place-vertices! [state]
   "7. One vertex per patch of each cell (see qef-vertex and separate!). Leaves
 state.positions [x y z ...], state.vertex-info (per vertex its cell's low corner and
-its crossings' mean, six numbers) and state.cell-vertices (a cell's key -> its
-local edge -> the vertex of the edge's patch); empties the cells but for i j k."
-  (let [{: cells : px : py : pz : nrx : nry : nrz : ox : oy : oz : h : stride-x : stride-y} state
+its crossings' mean, six numbers) and state.quad-vertices (per crossing, the
+vertices of its four cells' patches through it, in the order of make-triangles);
+empties the cells but for i j k."
+  (let [{: cells : px : py : pz : nrx : nry : nrz : ox : oy : oz : h : eaxis : crossings} state
         positions []
         vertex-info []
         shared {}
-        cell-vertices {}]
+        quad-vertices (table-new (* 4 crossings))
+        ;; The vertex of local edge e, whose crossing is idx, in its quad.
+        put! (fn [e idx v]
+               (tset quad-vertices (+ (* 4 (- idx 1)) (. edge-slot (+ e 1))) v))
+        add! (fn [n x y z lx ly lz mx my mz]
+               ;; Vertex n: its position and info.
+               (let [b (* 3 (- n 1)) i (* 6 (- n 1))]
+                 (tset positions (+ b 1) x) (tset positions (+ b 2) y)
+                 (tset positions (+ b 3) z)
+                 (tset vertex-info (+ i 1) lx) (tset vertex-info (+ i 2) ly)
+                 (tset vertex-info (+ i 3) lz) (tset vertex-info (+ i 4) mx)
+                 (tset vertex-info (+ i 5) my) (tset vertex-info (+ i 6) mz)))]
     (var vertex-count 0)
     (each [_ cell (ipairs cells)]
       (let [rep cell.rep
-            groups {}
-            order []
-            local-vertex {}]
-        (for [e 0 11]
-          (let [r (. rep e)]
-            (when r
-              (when (not (. groups r))
-                (tset groups r [])
-                (table.insert order r))
-              (table.insert (. groups r) (. cell.edges e)))))
-        (let [lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
-              placed (icollect [_ r (ipairs order)]
-                       [(qef-vertex (. groups r) px py pz nrx nry nrz lx ly lz h)])]
-          ;; Two or more patches in one cell (a feature thinner than a cell, two
-          ;; objects close together): their tangent planes meet anywhere in the
-          ;; cell, and a vertex there, or pulled onto the nearest surface, may
-          ;; lie beyond the other patch, whose triangles its own then cross (48
-          ;; crossing pairs on flower at 128 cells, all in such cells). Each
-          ;; goes to its crossings' mean instead, on its own side of the others,
-          ;; and moves onto the surface only nearer that mean than the others'
-          ;; (see project-vertices!).
-          (when (> (length order) 1)
-            (each [_ q (ipairs placed)]
-              (for [c 1 3] (tset q c (. q (+ c 3))))))
-          (separate! placed lx ly lz h)
-          (each [n r (ipairs order)]
-            (let [[x y z mx my mz] (. placed n)]
+            edges cell.edges
+            lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
+            first (next rep)
+            r1 (. rep first)
+            one? (accumulate [one? true _ r (pairs rep)] (and one? (= r r1)))]
+        (if one?
+            ;; One patch (most cells): its vertex, with no grouping.
+            (let [ids (fcollect [e 0 11] (. edges e))
+                  (x y z mx my mz) (qef-vertex ids px py pz nrx nry nrz lx ly lz h)]
               (set vertex-count (+ vertex-count 1))
-              (when (> (length order) 1)
-                (tset shared vertex-count [(+ (- vertex-count n) 1) (+ (- vertex-count n) (length order))]))
-              (each [_ v (ipairs [lx ly lz mx my mz])] (table.insert vertex-info v))
-              (table.insert positions x) (table.insert positions y)
-              (table.insert positions z)
-              (tset local-vertex r vertex-count))))
-        (tset cell-vertices (+ cell.i (* stride-x cell.j) (* stride-y cell.k))
-              (collect [e r (pairs rep)] e (. local-vertex r)))
-        ;; Done with this cell but for its vertices: the rest may go.
+              (add! vertex-count x y z lx ly lz mx my mz)
+              (for [e 0 11]
+                (case (. edges e) idx (put! e idx vertex-count))))
+            (let [groups {}
+                  order []
+                  local-vertex {}]
+              (for [e 0 11]
+                (let [r (. rep e)]
+                  (when r
+                    (when (not (. groups r))
+                      (tset groups r [])
+                      (table.insert order r))
+                    (table.insert (. groups r) (. edges e)))))
+              (let [placed (icollect [_ r (ipairs order)]
+                             [(qef-vertex (. groups r) px py pz nrx nry nrz lx ly lz h)])]
+                ;; Two or more patches in one cell (a feature thinner than a cell,
+                ;; two objects close together): their tangent planes meet anywhere
+                ;; in the cell, and a vertex there, or pulled onto the nearest
+                ;; surface, may lie beyond the other patch, whose triangles its own
+                ;; then cross (48 crossing pairs on flower at 128 cells, all in such
+                ;; cells). Each goes to its crossings' mean instead, on its own side
+                ;; of the others, and moves onto the surface only nearer that mean
+                ;; than the others' (see project-vertices!).
+                (each [_ q (ipairs placed)]
+                  (for [c 1 3] (tset q c (. q (+ c 3)))))
+                (separate! placed lx ly lz h)
+                (each [n r (ipairs order)]
+                  (let [[x y z mx my mz] (. placed n)]
+                    (set vertex-count (+ vertex-count 1))
+                    (tset shared vertex-count [(+ (- vertex-count n) 1)
+                                               (+ (- vertex-count n) (length order))])
+                    (add! vertex-count x y z lx ly lz mx my mz)
+                    (tset local-vertex r vertex-count))))
+              (each [e idx (pairs edges)] (put! e idx (. local-vertex (. rep e))))))
+        ;; Done with this cell: the rest may go.
         (set (cell.v cell.edges cell.rep cell.joined cell.flips) nil)))
-    (set (state.positions state.vertex-info state.cell-vertices state.shared-cell)
-         (values positions vertex-info cell-vertices shared))))
+    (set (state.positions state.vertex-info state.quad-vertices state.shared-cell)
+         (values positions vertex-info quad-vertices shared))))
 
 (fn project-vertices! [state]
   "8. Vertices off the surface (see off-surface): each moved to the best of a
@@ -659,21 +754,16 @@ state.counts.moved."
   "9. A quad of the four cells around each crossing edge, split into two triangles
 along the diagonal that bends it least: the triangles [a b c ...], counter-clockwise
 seen from outside."
-  (let [{: crossings : positions : cell-vertices : ex0 : ey0 : ez0 : ed0 : eaxis
-         : stride-x : stride-y} state
-        triangles []
-        vertex-of (fn [i j k e]
-                    (let [vs (. cell-vertices (+ i (* stride-x j) (* stride-y k)))]
-                      (assert (and vs (. vs e))
-                              (string.format "mesh: crossing edge without cell (%d %d %d)" i j k))
-                      (. vs e)))
-        pos (fn [v] (let [b (* 3 (- v 1))]
-                      (values (. positions (+ b 1)) (. positions (+ b 2))
-                              (. positions (+ b 3)))))
+  (let [{: crossings : positions : quad-vertices : ex0 : ey0 : ez0 : ed0} state
+        triangles (table-new (* 6 crossings))
+        ;; The unit normal of triangle a b c (0 0 0 when degenerate).
         normal (fn [a b c]
-                 (let [(ax ay az) (pos a) (bx by bz) (pos b) (cx cy cz) (pos c)
-                       ux (- bx ax) uy (- by ay) uz (- bz az)
-                       vx (- cx ax) vy (- cy ay) vz (- cz az)
+                 (let [pa (* 3 (- a 1)) pb (* 3 (- b 1)) pc (* 3 (- c 1))
+                       ax (. positions (+ pa 1)) ay (. positions (+ pa 2)) az (. positions (+ pa 3))
+                       ux (- (. positions (+ pb 1)) ax) uy (- (. positions (+ pb 2)) ay)
+                       uz (- (. positions (+ pb 3)) az)
+                       vx (- (. positions (+ pc 1)) ax) vy (- (. positions (+ pc 2)) ay)
+                       vz (- (. positions (+ pc 3)) az)
                        x (- (* uy vz) (* uz vy)) y (- (* uz vx) (* ux vz))
                        z (- (* ux vy) (* uy vx))
                        l (sqrt (+ (* x x) (* y y) (* z z)))]
@@ -682,20 +772,22 @@ seen from outside."
                    (let [(x1 y1 z1) (normal a b c) (x2 y2 z2) (normal a c d)]
                      (+ (* x1 x2) (* y1 y2) (* z1 z2))))]
     (for [e 1 crossings]
-      (let [axis (. eaxis e) i (. ex0 e) j (. ey0 e) k (. ez0 e)
-            ;; The cells at offsets (du dv) in {-1 0}^2 along the two other
-            ;; axes u, v (u x v = the edge's axis), counter-clockwise.
-            quad (icollect [_ [du dv] (ipairs [[-1 -1] [0 -1] [0 0] [-1 0]])]
-                   (let [uu (- du) vv (- dv)]
-                     (case axis
-                       0 (vertex-of i (+ j du) (+ k dv) (+ uu (* 2 vv)))
-                       1 (vertex-of (+ i dv) j (+ k du) (+ 4 vv (* 2 uu)))
-                       _ (vertex-of (+ i du) (+ j dv) k (+ 8 uu (* 2 vv))))))
-            [a b c d] (if (< (. ed0 e) 0) quad
-                          [(. quad 4) (. quad 3) (. quad 2) (. quad 1)])]
+      ;; The vertices of the cells at offsets (du dv) in {-1 0}^2 along the two
+      ;; other axes u, v (u x v = the edge's axis), counter-clockwise:
+      ;; (-1 -1) (0 -1) (0 0) (-1 0) (see edge-slot).
+      (let [q (* 4 (- e 1))
+            q1 (. quad-vertices (+ q 1)) q2 (. quad-vertices (+ q 2))
+            q3 (. quad-vertices (+ q 3)) q4 (. quad-vertices (+ q 4))
+            _ (assert (and q1 q2 q3 q4)
+                      (string.format "mesh: crossing edge without cell (%d %d %d)"
+                                     (. ex0 e) (. ey0 e) (. ez0 e)))
+            (a b c d) (if (< (. ed0 e) 0) (values q1 q2 q3 q4) (values q4 q3 q2 q1))
+            t (* 6 (- e 1))]
         (if (>= (flatness a b c d) (flatness b c d a))
-            (each [_ v (ipairs [a b c a c d])] (table.insert triangles v))
-            (each [_ v (ipairs [b c d b d a])] (table.insert triangles v)))))
+            (do (tset triangles (+ t 1) a) (tset triangles (+ t 2) b) (tset triangles (+ t 3) c)
+                (tset triangles (+ t 4) a) (tset triangles (+ t 5) c) (tset triangles (+ t 6) d))
+            (do (tset triangles (+ t 1) b) (tset triangles (+ t 2) c) (tset triangles (+ t 3) d)
+                (tset triangles (+ t 4) b) (tset triangles (+ t 5) d) (tset triangles (+ t 6) a)))))
     triangles))
 
 ;; A vertex farther than this (in cells) from its crossings' mean is one the QEF
@@ -757,7 +849,9 @@ in counts.untangled and the pairs left crossing in counts.crossing."
 (fn mesh [field grid ?progress]
   "Contour `field` over `grid`. The field: {:distances (fn [flat n]) -> n signed
 distances at the points of the flat list x1 y1 z1 x2 ...; :step the gradient's
-difference step as a share of a cell}. The grid: {:lo [x y z] (its low corner) :h
+difference step as a share of a cell; :offset (default 0) a share of a cell
+added to every value: the level set meshed is the field's at minus that, see
+src/mesh/scene.fnl}. The grid: {:lo [x y z] (its low corner) :h
 (the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a box inside the grid
 by at least one cell: the field is cut by it, which closes the mesh) :max-leaves (if
 given, the most leaf blocks to sample: past it, once the octree has found them and

@@ -11,6 +11,7 @@
 (local uniforms (require :src.render.uniforms))
 (local gpu (require :src.backend.gpu))
 (local frame (require :src.backend.frame))
+(local mesh-scene (require :src.mesh.scene))
 
 (local row-length 1024)
 
@@ -67,6 +68,8 @@
                          cs))
              ;; float32 distances: a step of 1/20 cell keeps their rounding (about
              ;; 1e-7 of the coordinates) a small part of the difference.
-             :step 0.05})))))
+             :step 0.05
+             ;; The level set as the CPU's field meshes it (see its :offset).
+             :offset mesh-scene.surface-offset})))))
 
 {: gpu-field}

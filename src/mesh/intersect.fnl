@@ -201,13 +201,14 @@ coplanar and overlapping. Second value: :crossing, :coplanar or nil."
                           (let [c (coplanar-overlap p q nx ny nz scale)]
                             (values c (when (> c 0) :coplanar))))))))))))
 
-(fn triangle-points [positions tris t]
-  ;; Triangle t's (0-based) corners as [x y z x y z x y z].
-  (let [out []]
-    (for [c 1 3]
-      (let [b (* 3 (- (. tris (+ (* 3 t) c)) 1))]
-        (for [q 1 3] (table.insert out (. positions (+ b q))))))
-    out))
+(fn triangle-points [positions tris t out]
+  ;; Triangle t's (0-based) corners as [x y z x y z x y z], into `out` (reused
+  ;; from pair to pair: pair-overlap keeps neither).
+  (for [c 1 3]
+    (let [b (* 3 (- (. tris (+ (* 3 t) c)) 1))
+          o (* 3 (- c 1))]
+      (for [q 1 3] (tset out (+ o q) (. positions (+ b q))))))
+  out)
 
 (fn shared-vertices [tris s t]
   (var n 0)
@@ -241,16 +242,23 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
     (var (glo-x glo-y glo-z ghi-x ghi-y ghi-z) (values math.huge math.huge math.huge
                                                        (- math.huge) (- math.huge) (- math.huge)))
     (var side-sum 0)
+    ;; Each triangle's box as six numbers, read from the positions in place (no
+    ;; table per triangle: this runs over every triangle of a mesh).
     (for [t 0 (- nt 1)]
-      (let [p (triangle-points positions tris t)
-            b [(min (. p 1) (. p 4) (. p 7)) (min (. p 2) (. p 5) (. p 8))
-               (min (. p 3) (. p 6) (. p 9)) (max (. p 1) (. p 4) (. p 7))
-               (max (. p 2) (. p 5) (. p 8)) (max (. p 3) (. p 6) (. p 9))]]
-        (tset box (+ t 1) b)
-        (set side-sum (+ side-sum (max (- (. b 4) (. b 1)) (- (. b 5) (. b 2))
-                                       (- (. b 6) (. b 3)))))
-        (set (glo-x glo-y glo-z) (values (min glo-x (. b 1)) (min glo-y (. b 2)) (min glo-z (. b 3))))
-        (set (ghi-x ghi-y ghi-z) (values (max ghi-x (. b 4)) (max ghi-y (. b 5)) (max ghi-z (. b 6))))))
+      (let [a (* 3 (- (. tris (+ (* 3 t) 1)) 1))
+            b (* 3 (- (. tris (+ (* 3 t) 2)) 1))
+            c (* 3 (- (. tris (+ (* 3 t) 3)) 1))
+            x1 (. positions (+ a 1)) y1 (. positions (+ a 2)) z1 (. positions (+ a 3))
+            x2 (. positions (+ b 1)) y2 (. positions (+ b 2)) z2 (. positions (+ b 3))
+            x3 (. positions (+ c 1)) y3 (. positions (+ c 2)) z3 (. positions (+ c 3))
+            lx (min x1 x2 x3) ly (min y1 y2 y3) lz (min z1 z2 z3)
+            hx (max x1 x2 x3) hy (max y1 y2 y3) hz (max z1 z2 z3)
+            o (* 6 t)]
+        (tset box (+ o 1) lx) (tset box (+ o 2) ly) (tset box (+ o 3) lz)
+        (tset box (+ o 4) hx) (tset box (+ o 5) hy) (tset box (+ o 6) hz)
+        (set side-sum (+ side-sum (max (- hx lx) (- hy ly) (- hz lz))))
+        (set (glo-x glo-y glo-z) (values (min glo-x lx) (min glo-y ly) (min glo-z lz)))
+        (set (ghi-x ghi-y ghi-z) (values (max ghi-x hx) (max ghi-y hy) (max ghi-z hz)))))
     (when (> nt 1)
       (let [size (max (- ghi-x glo-x) (- ghi-y glo-y) (- ghi-z glo-z))
             min-length (or options.min-length (* 1e-9 size))
@@ -265,12 +273,13 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
             only options.only
             listed? (fn [t] (or (not only) (. only t)))
             folds? (not= false options.folds?)
+            p-points [] r-points []
             test! (fn [s t]
                     (let [shared (shared-vertices tris (- s 1) (- t 1))]
                       (when (< shared (if folds? 2 1))
                         (set result.tested (+ result.tested 1))
-                        (let [p (triangle-points positions tris (- s 1))
-                              r (triangle-points positions tris (- t 1))
+                        (let [p (triangle-points positions tris (- s 1) p-points)
+                              r (triangle-points positions tris (- t 1) r-points)
                               (len kind) (pair-overlap p r)]
                           (when (> len min-length)
                             (if (= shared 1)
@@ -288,34 +297,38 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
         ;; triangle then meets those in the cells its box covers.
         (for [t 1 nt]
           (when (listed? t)
-            (let [b (. box t)]
-              (for [k (at (. b 3) glo-z) (at (. b 6) glo-z)]
-                (for [j (at (. b 2) glo-y) (at (. b 5) glo-y)]
-                  (for [i (at (. b 1) glo-x) (at (. b 4) glo-x)]
+            (let [o (* 6 (- t 1))]
+              (for [k (at (. box (+ o 3)) glo-z) (at (. box (+ o 6)) glo-z)]
+                (for [j (at (. box (+ o 2)) glo-y) (at (. box (+ o 5)) glo-y)]
+                  (for [i (at (. box (+ o 1)) glo-x) (at (. box (+ o 4)) glo-x)]
                     (let [q (key i j k)
                           list (. buckets q)]
                       (if list (table.insert list t) (tset buckets q [t])))))))))
         (for [t 1 nt]
-          (let [bt (. box t)
+          (let [ot (* 6 (- t 1))
+                tlx (. box (+ ot 1)) tly (. box (+ ot 2)) tlz (. box (+ ot 3))
+                thx (. box (+ ot 4)) thy (. box (+ ot 5)) thz (. box (+ ot 6))
                 t-listed? (listed? t)]
-            (for [k (at (. bt 3) glo-z) (at (. bt 6) glo-z)]
-              (for [j (at (. bt 2) glo-y) (at (. bt 5) glo-y)]
-                (for [i (at (. bt 1) glo-x) (at (. bt 4) glo-x)]
+            (for [k (at tlz glo-z) (at thz glo-z)]
+              (for [j (at tly glo-y) (at thy glo-y)]
+                (for [i (at tlx glo-x) (at thx glo-x)]
                   (let [q (key i j k)]
-                    (each [_ s (ipairs (or (. buckets q) []))]
-                      (let [bs (. box s)]
-                        ;; A pair of listed triangles is met from both sides:
-                        ;; taken from the later one's. Boxes that overlap, tested
-                        ;; only in the cell holding the low corner of their
-                        ;; overlap, so each pair once.
-                        (when (and (if t-listed? (< s t) (not= s t))
-                                   (<= (max (. bs 1) (. bt 1)) (min (. bs 4) (. bt 4)))
-                                   (<= (max (. bs 2) (. bt 2)) (min (. bs 5) (. bt 5)))
-                                   (<= (max (. bs 3) (. bt 3)) (min (. bs 6) (. bt 6)))
-                                   (= q (key (at (max (. bs 1) (. bt 1)) glo-x)
-                                             (at (max (. bs 2) (. bt 2)) glo-y)
-                                             (at (max (. bs 3) (. bt 3)) glo-z))))
-                          (test! (min s t) (max s t)))))))))))))
+                    (case (. buckets q)
+                      list
+                      (each [_ s (ipairs list)]
+                        (let [os (* 6 (- s 1))
+                              lx (max (. box (+ os 1)) tlx) ly (max (. box (+ os 2)) tly)
+                              lz (max (. box (+ os 3)) tlz)]
+                          ;; A pair of listed triangles is met from both sides:
+                          ;; taken from the later one's. Boxes that overlap, tested
+                          ;; only in the cell holding the low corner of their
+                          ;; overlap, so each pair once.
+                          (when (and (if t-listed? (< s t) (not= s t))
+                                     (<= lx (min (. box (+ os 4)) thx))
+                                     (<= ly (min (. box (+ os 5)) thy))
+                                     (<= lz (min (. box (+ os 6)) thz))
+                                     (= q (key (at lx glo-x) (at ly glo-y) (at lz glo-z))))
+                            (test! (min s t) (max s t))))))))))))))
     result))
 
 {: self-intersections : pair-overlap}

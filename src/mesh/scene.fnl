@@ -164,6 +164,20 @@ the cut on every side, so its boundary is outside."
      :lo (fcollect [i 1 3] (- (. cut.lo i) (* 2 h)))
      :dims (fcollect [i 1 3] (+ 4 (math.ceil (- (/ (- (. cut.hi i) (. cut.lo i)) h) 1e-9))))}))
 
+;; The level set meshed, in cells: the field's at minus this (contour.mesh's
+;; :offset; the GPU's field, src/mesh/gpu.fnl, takes the same). A grid point is
+;; inside where d < -offset. A face on a grid plane (the region's bounds are, and
+;; the cut's) has d = 0 at its grid points up to rounding, and which way that
+;; rounding went put the point in or out: double on the CPU, float32 on the GPU
+;; (coordinates and arithmetic), so the two meshes of one scene differed
+;; (platonic-shelf at 128: 36540 and 35492 triangles, a board's front face on a
+;; grid plane; machined-part at 64: 9348 and 9284, the CPU's reproduced by
+;; rounding its points to float32). Float32's rounding is some 1e-7 of a
+;; coordinate, 1e-5 of a cell at 128 cells across a scene near the origin; a
+;; thousandth of a cell puts those points outside on both. The surface moves
+;; inward by as much, a tenth of the sharp-feature tests' 0.01 cell.
+(local surface-offset 1e-3)
+
 (fn cpu-field [scene]
   "The CPU evaluator (src/reference.fnl, double precision) of `scene` as a
 field for contour.mesh, with :colors (fn [flat n]) -> r g b ... per point (the
@@ -187,8 +201,9 @@ material's colour there) and :distance (fn [x y z]) -> d; or nil and a message."
                    out))
        :distance map
        ;; Double precision: a small step keeps creases sharp.
-       :step 1e-4})))
+       :step 1e-4
+       :offset surface-offset})))
 
-{: select-objects : grid-for : cpu-field
+{: select-objects : grid-for : cpu-field : surface-offset
  :parse-region options.parse-region :parse-resolution options.parse-resolution
  :default-resolution options.default-resolution}
