@@ -12,7 +12,7 @@
 (local {: prepare : gpu-render : compare-image : passes? : describe-failures : report-line}
        (require :test.support.gpu-check))
 
-(local files ["examples/mandelbulb.fnl" "examples/gyroid-shell.fnl" "examples/pillar-grid.fnl"
+(local files ["examples/mandelbulb.fnl" "examples/mandelbox.fnl" "examples/gyroid-shell.fnl" "examples/pillar-grid.fnl"
               "examples/smooth-blend.fnl" "examples/pebble-cairn.fnl" "examples/twisted-box.fnl"
               "examples/chain-links.fnl"])
 

@@ -1,8 +1,9 @@
 ;; tier: fast
 ;; The example scenes of examples/ written as a Shadertoy author writes them (issue 44):
-;; a Mandelbulb (&until on escape), a gyroid shell, repeated pillars (mod), a smooth
-;; blend (smin as a helper), a cairn of IQ's ellipsoids (arrays of the file), a
-;; twisted column and a bent bar (a rotation helper giving a vector), a chain of links.
+;; a Mandelbulb (&until on escape), a Mandelbox (folds by clamp), a gyroid shell,
+;; repeated pillars (mod), a smooth blend (smin as a helper), a cairn of IQ's
+;; ellipsoids (arrays of the file), a twisted column and a bent bar (a rotation
+;; helper giving a vector), a chain of links.
 ;; Each loads through the app's loader, and each custom node's translated Lua gives
 ;; what an independent implementation written here in plain scalar math gives; the
 ;; Mandelbulb draws whole with the default step budget (no CPU reference ray runs out
@@ -54,6 +55,23 @@
       (set r (math.max (len3 zx zy zz) 1e-9)))
     (set i (+ i 1)))
   (* 0.5 (math.log r) (/ r dr)))
+
+(fn mandelbox [x y z scale]
+  ;; Ten turns of a box fold (each component reflected past -1 and 1), a sphere fold
+  ;; (times 4 inside radius 0.5, inverted between 0.5 and 1), the scale, plus the
+  ;; point; the estimate |z| / |dr|.
+  (var (zx zy zz) (values x y z))
+  (var dr 1)
+  (for [_ 1 10]
+    (let [fold #(- (* 2 (clamp $ -1 1)) $)
+          fx (fold zx) fy (fold zy) fz (fold zz)
+          r2 (+ (* fx fx) (* fy fy) (* fz fz))
+          k (if (< r2 0.25) 4 (< r2 1) (/ 1 r2) 1)]
+      (set zx (+ (* fx k scale) x))
+      (set zy (+ (* fy k scale) y))
+      (set zz (+ (* fz k scale) z))
+      (set dr (+ (* dr k (math.abs scale)) 1))))
+  (/ (len3 zx zy zz) (math.abs dr)))
 
 (fn gyroid-shell [x y z scale thickness]
   (let [sx (* x scale) sy (* y scale) sz (* z scale)
@@ -126,6 +144,7 @@
 ;; scene's objects, with their parameters as in the file.
 (local examples
   [{:file "examples/mandelbulb.fnl" :nodes [mandelbulb]}
+   {:file "examples/mandelbox.fnl" :nodes [#(mandelbox $1 $2 $3 -2.5)]}
    {:file "examples/gyroid-shell.fnl" :nodes [#(gyroid-shell $1 $2 $3 5 0.04)]}
    {:file "examples/pillar-grid.fnl" :nodes [#(pillar-grid $1 $2 $3 1.2)]}
    {:file "examples/smooth-blend.fnl" :nodes [#(smooth-blend $1 $2 $3 0.35)]}
