@@ -211,6 +211,186 @@ exact in doubles) and its length: equal texts, equal digests."
 (fn finite-number? [v]
   (and (= v v) (< (math.abs v) math.huge)))
 
+;; The measure's state, one table `m` passed along: the function and its arguments,
+;; the grown bounds (hx hy hz), the steps (h0, the differences' first; hmin, their
+;; least), the calls made and allowed (evaluations, phase-end), the steepest slope
+;; found and where (worst, at), the first point of a value that is not a number
+;; (bad), the seeds of the refinement (steep, near, dips) and the random source.
+
+(fn evaluate [m x y z]
+  (set m.evaluations (+ m.evaluations 1))
+  (let [v (m.cpu x y z (m.unpack m.args))]
+    (when (and (not m.bad) (not (finite-number? v))) (set m.bad [x y z]))
+    v))
+
+(fn within? [m x y z]
+  (and (<= (math.abs x) m.hx) (<= (math.abs y) m.hy) (<= (math.abs z) m.hz)))
+
+(fn slope [m x y z h]
+  ;; The central differences' gradient at a point outside (value > 0), its length
+  ;; and components; the step is halved while the stencil reaches inside (the slope
+  ;; in there limits no step), up to 4 times; nil if it still does. The steepest
+  ;; is kept in m.worst, its point in m.at.
+  (var (g gx gy gz) nil)
+  (var step h)
+  (for [_ 1 5 &until (or g m.bad)]
+    (let [xp (evaluate m (+ x step) y z) xm (evaluate m (- x step) y z)
+          yp (evaluate m x (+ y step) z) ym (evaluate m x (- y step) z)
+          zp (evaluate m x y (+ z step)) zm (evaluate m x y (- z step))]
+      (if (and (> xp 0) (> xm 0) (> yp 0) (> ym 0) (> zp 0) (> zm 0))
+          (do (set gx (/ (- xp xm) (* 2 step)))
+              (set gy (/ (- yp ym) (* 2 step)))
+              (set gz (/ (- zp zm) (* 2 step)))
+              (set g (math.sqrt (+ (* gx gx) (* gy gy) (* gz gz)))))
+          (set step (* 0.5 step)))))
+  (when (and g (not m.bad) (not (finite-number? g))) (set m.bad [x y z]))
+  (when (and g (not m.bad) (> g m.worst)) (set m.worst g) (set m.at [x y z]))
+  (values g gx gy gz))
+
+(fn keep! [list key item seeds]
+  ;; `item` into `list`, kept sorted by `key` (least first), at most `seeds` long.
+  (when (or (< (length list) seeds) (< key (. list (length list) :key)))
+    (set item.key key)
+    (var i (length list))
+    (while (and (> i 0) (> (. list i :key) key)) (set i (- i 1)))
+    (table.insert list (+ i 1) item)
+    (when (> (length list) seeds) (table.remove list))))
+
+(fn sample [m x y z]
+  ;; The value at a point; where it is outside, its slope, and the point kept
+  ;; among the steepest and among those nearest the surface (value over slope).
+  (when (not m.bad)
+    (let [v (evaluate m x y z)]
+      (when (and (not m.bad) (> v 0))
+        (let [g (slope m x y z m.h0)]
+          (when (and g (not m.bad))
+            (keep! m.steep (- g) {: x : y : z : v : g} m.seeds)
+            (keep! m.near (/ v (math.max g 1e-12)) {: x : y : z : v : g} m.seeds))))
+      v)))
+
+(fn grid-coord [m i half]
+  (* half (- (/ (* 2 (+ i 0.5)) m.n) 1)))
+
+(fn sample-grid [m]
+  ;; The samples at the centres of an n^3 grid: their values, i + n j + n^2 k + 1.
+  (let [n m.n
+        grid []]
+    (for [i 0 (- n 1)]
+      (for [j 0 (- n 1)]
+        (for [k 0 (- n 1)]
+          (tset grid (+ 1 i (* n j) (* n n k))
+                (or (sample m (grid-coord m i m.hx) (grid-coord m j m.hy) (grid-coord m k m.hz)) 0)))))
+    grid))
+
+(fn grid-dips [m grid]
+  ;; A positive value below all its grid neighbours': the field dips toward a
+  ;; surface that no sample saw (an exact distance has no such dip outside).
+  (let [n m.n
+        dips []]
+    (when (not m.bad)
+      (for [i 0 (- n 1)]
+        (for [j 0 (- n 1)]
+          (for [k 0 (- n 1)]
+            (let [v (. grid (+ 1 i (* n j) (* n n k)))]
+              (when (and (> v 0)
+                         (accumulate [low? true _ [di dj dk] (ipairs [[-1 0 0] [1 0 0] [0 -1 0] [0 1 0] [0 0 -1] [0 0 1]])]
+                           (let [a (+ i di) b (+ j dj) c (+ k dk)]
+                             (and low? (or (< a 0) (>= a n) (< b 0) (>= b n) (< c 0) (>= c n)
+                                           (<= v (. grid (+ 1 a (* n b) (* n n c)))))))))
+                (keep! dips v {:x (grid-coord m i m.hx) :y (grid-coord m j m.hy) :z (grid-coord m k m.hz) : v}
+                       m.seeds)))))))
+    dips))
+
+(fn spent? [m] (or m.bad (>= m.evaluations m.phase-end)))
+
+(fn directions [m]
+  ;; limits.directions random unit vectors (a thin valley of the slope is followed
+  ;; by the one nearest its way).
+  (fcollect [_ 1 limits.directions]
+    (let [a (* 2 math.pi (m.rand)) u (- (* 2 (m.rand)) 1) s (math.sqrt (- 1 (* u u)))]
+      [(* s (math.cos a)) (* s (math.sin a)) u])))
+
+(fn outside-toward [m x y z cx cy cz]
+  ;; The point (cx cy cz) when it is outside and within the grown bounds; else the
+  ;; last point outside on the way to it from (x y z), by halvings (so that a step
+  ;; into the surface slides along it), and the bracket's length; nil when none is.
+  (when (and (within? m cx cy cz) (not (spent? m)))
+    (if (> (evaluate m cx cy cz) 0) (values cx cy cz)
+        (do (var (ox oy oz) (values x y z))
+            (var (ix iy iz) (values cx cy cz))
+            (for [_ 1 limits.slide-halvings &until (spent? m)]
+              (let [mx (* 0.5 (+ ox ix)) my (* 0.5 (+ oy iy)) mz (* 0.5 (+ oz iz))]
+                (if (> (evaluate m mx my mz) 0) (set (ox oy oz) (values mx my mz))
+                    (set (ix iy iz) (values mx my mz)))))
+            (when (not (and (= ox x) (= oy y) (= oz z)))
+              ;; Within the bracket's length of the surface: the step's most.
+              (values ox oy oz (math.max (math.abs (- ix ox)) (math.abs (- iy oy)) (math.abs (- iz oz)))))))))
+
+(fn climb [m s]
+  ;; From a steep point, steps of a shrinking size toward a steeper one outside,
+  ;; the differences' step a quarter of the climb's.
+  (var (x y z g) (values s.x s.y s.z s.g))
+  (local r0 (/ m.scale m.n))
+  (var r r0)
+  (var turns 0)
+  (while (and (not (spent? m)) (> r (* 4 m.hmin)) (< turns limits.climb-steps))
+    (set turns (+ turns 1))
+    (let [h (math.max m.hmin (math.min m.h0 (* 0.25 r)))]
+      (var best nil)
+      (each [_ [ux uy uz] (ipairs (directions m))]
+        (let [(cx cy cz near) (outside-toward m x y z (+ x (* r ux)) (+ y (* r uy)) (+ z (* r uz)))]
+          (when (and cx (not (spent? m)))
+            (let [cg (slope m cx cy cz (math.max m.hmin (math.min h (or near h))))]
+              (when (and cg (> cg (* (or (?. best 4) g) (+ 1 limits.climb-gain))))
+                (set best [cx cy cz cg]))))))
+      (if best
+          (do (set (x y z g) (m.unpack best))
+              (set r (math.min r0 (* 2 r))))
+          (do (set r (* 0.5 r))
+              ;; The point's own slope at the finer step.
+              (set g (or (slope m x y z (math.max m.hmin (math.min m.h0 (* 0.25 r)))) g)))))))
+
+(fn bisect! [m x y z cx cy cz]
+  ;; Between a point outside (x y z) and one inside (cx cy cz): halvings, each point
+  ;; outside sampled with a step a quarter of the bracket's.
+  (var (ox oy oz) (values x y z))
+  (var (ix iy iz) (values cx cy cz))
+  (for [_ 1 limits.bisections &until (spent? m)]
+    (let [mx (* 0.5 (+ ox ix)) my (* 0.5 (+ oy iy)) mz (* 0.5 (+ oz iz))
+          mv (evaluate m mx my mz)
+          span (math.sqrt (+ (* (- ix ox) (- ix ox)) (* (- iy oy) (- iy oy))
+                             (* (- iz oz) (- iz oz))))]
+      (if (> mv 0)
+          (do (slope m mx my mz (math.max m.hmin (math.min m.h0 (* 0.25 span))))
+              (set (ox oy oz) (values mx my mz)))
+          (set (ix iy iz) (values mx my mz))))))
+
+(fn walk [m s]
+  ;; Down the field by its value over its slope, halved until the value falls;
+  ;; where it crosses the surface, a bisection (bisect!).
+  (var (x y z v) (values s.x s.y s.z s.v))
+  (var h m.h0)
+  (var done? false)
+  (for [_ 1 limits.walk-steps &until (or done? (spent? m))]
+    (let [(g gx gy gz) (slope m x y z h)]
+      (if (or (not g) (< g 1e-9))
+          (set done? true)
+          (let [ux (/ (- gx) g) uy (/ (- gy) g) uz (/ (- gz) g)]
+            (var len (/ v g))
+            (var found nil)
+            (for [_ 1 24 &until (or found (spent? m) (< len m.hmin))]
+              (let [nx (+ x (* len ux)) ny (+ y (* len uy)) nz (+ z (* len uz))
+                    nv (when (within? m nx ny nz) (evaluate m nx ny nz))]
+                (if (and nv (< nv v)) (set found [nx ny nz nv]) (set len (* 0.5 len)))))
+            (case found
+              nil (set done? true)
+              [nx ny nz nv]
+              (if (> nv 0)
+                  (do (set (x y z v) (values nx ny nz nv))
+                      (set h (math.max m.hmin (math.min m.h0 (* 0.25 (/ nv g))))))
+                  (do (bisect! m x y z nx ny nz)
+                      (set done? true)))))))))
+
 (fn measure [cpu bounds args ?cost]
   "The largest gradient length of `cpu` (fn [x y z ...args]) outside its shape (where
 it is positive: only there does the factor limit a ray's step) within `bounds` (half
@@ -223,182 +403,28 @@ operations per call, to take fewer points for a costly function (see
 limits.measure-ops and limits.refine-ops). Its third value: the calls it made."
   (let [[hx hy hz] (icollect [_ b (ipairs bounds)] (* b limits.grow))
         scale (math.max hx hy hz)
-        h0 (* 1e-4 scale)
-        hmin (* limits.min-step scale)
-        unpack (or table.unpack _G.unpack)
+        cost (math.max 1 (or ?cost 1))
         full (+ (^ limits.grid 3) limits.random)
-        points (math.min full (/ limits.measure-ops (* 7 (math.max 1 (or ?cost 1)))))
+        points (math.min full (/ limits.measure-ops (* 7 cost)))
         n (math.max limits.min-grid
                     (math.min limits.grid (math.floor (^ (* 0.5 points) (/ 1 3)))))
-        random (math.floor (* limits.random (/ (^ n 3) (^ limits.grid 3))))
-        rand (lcg 12345)
-        seeds limits.refine-seeds]
-    (var evaluations 0)
-    (var budget math.huge)
-    (var worst 0)
-    (var at [0 0 0])
-    (var bad nil)
-    (fn d [x y z]
-      (set evaluations (+ evaluations 1))
-      (let [v (cpu x y z (unpack args))]
-        (when (and (not bad) (not (finite-number? v))) (set bad [x y z]))
-        v))
-    (fn within? [x y z]
-      (and (<= (math.abs x) hx) (<= (math.abs y) hy) (<= (math.abs z) hz)))
-    (fn slope [x y z h]
-      ;; The central differences' gradient at a point outside (value > 0), its
-      ;; length and components; the step is halved while the stencil reaches inside
-      ;; (the slope in there limits no step), up to 4 times; nil if it still does.
-      (var (g gx gy gz) nil)
-      (var step h)
-      (for [_ 1 5 &until (or g bad)]
-        (let [xp (d (+ x step) y z) xm (d (- x step) y z)
-              yp (d x (+ y step) z) ym (d x (- y step) z)
-              zp (d x y (+ z step)) zm (d x y (- z step))]
-          (if (and (> xp 0) (> xm 0) (> yp 0) (> ym 0) (> zp 0) (> zm 0))
-              (do (set gx (/ (- xp xm) (* 2 step)))
-                  (set gy (/ (- yp ym) (* 2 step)))
-                  (set gz (/ (- zp zm) (* 2 step)))
-                  (set g (math.sqrt (+ (* gx gx) (* gy gy) (* gz gz)))))
-              (set step (* 0.5 step)))))
-      (when (and g (not bad) (not (finite-number? g))) (set bad [x y z]))
-      (when (and g (not bad) (> g worst)) (set worst g) (set at [x y z]))
-      (values g gx gy gz))
-    ;; The steepest samples and those nearest the surface (smallest value over
-    ;; slope), kept sorted, at most `seeds` each.
-    (local steep [])
-    (local near [])
-    (fn keep! [list key item]
-      (when (or (< (length list) seeds) (< key (. list (length list) :key)))
-        (set item.key key)
-        (var i (length list))
-        (while (and (> i 0) (> (. list i :key) key)) (set i (- i 1)))
-        (table.insert list (+ i 1) item)
-        (when (> (length list) seeds) (table.remove list))))
-    (fn sample [x y z]
-      (when (not bad)
-        (let [v (d x y z)]
-          (when (and (not bad) (> v 0))
-            (let [g (slope x y z h0)]
-              (when (and g (not bad))
-                (keep! steep (- g) {: x : y : z : v : g})
-                (keep! near (/ v (math.max g 1e-12)) {: x : y : z : v : g}))))
-          v)))
-    ;; The grid, its values kept for its local minima.
-    (local grid [])
-    (fn coord [i half] (* half (- (/ (* 2 (+ i 0.5)) n) 1)))
-    (for [i 0 (- n 1)]
-      (for [j 0 (- n 1)]
-        (for [k 0 (- n 1)]
-          (tset grid (+ 1 i (* n j) (* n n k)) (or (sample (coord i hx) (coord j hy) (coord k hz)) 0)))))
-    (for [_ 1 random]
-      (sample (* hx (- (* 2 (rand)) 1)) (* hy (- (* 2 (rand)) 1)) (* hz (- (* 2 (rand)) 1))))
-    (set budget (+ evaluations (/ limits.refine-ops (math.max 1 (or ?cost 1)))))
-    ;; A positive value below all its grid neighbours': the field dips toward a
-    ;; surface that no sample saw (an exact distance has no such dip outside).
-    (local dips [])
-    (when (not bad)
-      (for [i 0 (- n 1)]
-        (for [j 0 (- n 1)]
-          (for [k 0 (- n 1)]
-            (let [v (. grid (+ 1 i (* n j) (* n n k)))]
-              (when (and (> v 0)
-                         (accumulate [low? true _ [di dj dk] (ipairs [[-1 0 0] [1 0 0] [0 -1 0] [0 1 0] [0 0 -1] [0 0 1]])]
-                           (let [a (+ i di) b (+ j dj) c (+ k dk)]
-                             (and low? (or (< a 0) (>= a n) (< b 0) (>= b n) (< c 0) (>= c n)
-                                           (<= v (. grid (+ 1 a (* n b) (* n n c)))))))))
-                (keep! dips v {:x (coord i hx) :y (coord j hy) :z (coord k hz) : v})))))))
-    (var phase-end budget)
-    (fn spent? [] (or bad (>= evaluations phase-end)))
-    (fn directions []
-      ;; limits.directions random unit vectors (a thin valley of the slope is
-      ;; followed by the one nearest its way).
-      (fcollect [_ 1 limits.directions]
-        (let [a (* 2 math.pi (rand)) u (- (* 2 (rand)) 1) s (math.sqrt (- 1 (* u u)))]
-          [(* s (math.cos a)) (* s (math.sin a)) u])))
-    (fn outside-toward [x y z cx cy cz]
-      ;; The point (cx cy cz) when it is outside and within the grown bounds; else
-      ;; the last point outside on the way to it from (x y z), outside, by halvings
-      ;; (so that a step into the surface slides along it); nil when none is.
-      (when (and (within? cx cy cz) (not (spent?)))
-        (if (> (d cx cy cz) 0) (values cx cy cz)
-            (do (var (ox oy oz) (values x y z))
-                (var (ix iy iz) (values cx cy cz))
-                (for [_ 1 limits.slide-halvings &until (spent?)]
-                  (let [mx (* 0.5 (+ ox ix)) my (* 0.5 (+ oy iy)) mz (* 0.5 (+ oz iz))]
-                    (if (> (d mx my mz) 0) (set (ox oy oz) (values mx my mz))
-                        (set (ix iy iz) (values mx my mz)))))
-                (when (not (and (= ox x) (= oy y) (= oz z)))
-                  ;; Within the bracket's length of the surface: the step's most.
-                  (values ox oy oz (math.max (math.abs (- ix ox)) (math.abs (- iy oy)) (math.abs (- iz oz)))))))))
-    ;; The climb: from a steep point, steps of a shrinking size toward a steeper one
-    ;; outside, the differences' step a quarter of the climb's.
-    (fn climb [s]
-      (var (x y z g) (values s.x s.y s.z s.g))
-      (local r0 (/ scale n))
-      (var r r0)
-      (var turns 0)
-      (while (and (not (spent?)) (> r (* 4 hmin)) (< turns limits.climb-steps))
-        (set turns (+ turns 1))
-        (let [h (math.max hmin (math.min h0 (* 0.25 r)))]
-          (var best nil)
-          (each [_ [ux uy uz] (ipairs (directions))]
-            (let [(cx cy cz near) (outside-toward x y z (+ x (* r ux)) (+ y (* r uy)) (+ z (* r uz)))]
-              (when (and cx (not (spent?)))
-                (let [cg (slope cx cy cz (math.max hmin (math.min h (or near h))))]
-                  (when (and cg (> cg (* (or (?. best 4) g) (+ 1 limits.climb-gain))))
-                    (set best [cx cy cz cg]))))))
-          (if best
-              (do (set (x y z g) (unpack best))
-                  (set r (math.min r0 (* 2 r))))
-              (do (set r (* 0.5 r))
-                  ;; The point's own slope at the finer step.
-                  (set g (or (slope x y z (math.max hmin (math.min h0 (* 0.25 r)))) g)))))))
-    ;; The walk: down the field by its value over its slope, halved until the value
-    ;; falls; where it crosses the surface, a bisection, each point outside sampled
-    ;; with a step a quarter of the bracket's.
-    (fn walk [s]
-      (var (x y z v) (values s.x s.y s.z s.v))
-      (var h h0)
-      (var done? false)
-      (for [_ 1 limits.walk-steps &until (or done? (spent?))]
-        (let [(g gx gy gz) (slope x y z h)]
-          (if (or (not g) (< g 1e-9))
-              (set done? true)
-              (let [ux (/ (- gx) g) uy (/ (- gy) g) uz (/ (- gz) g)]
-                (var len (/ v g))
-                (var found nil)
-                (for [_ 1 24 &until (or found (spent?) (< len hmin))]
-                  (let [nx (+ x (* len ux)) ny (+ y (* len uy)) nz (+ z (* len uz))
-                        nv (when (within? nx ny nz) (d nx ny nz))]
-                    (if (and nv (< nv v)) (set found [nx ny nz nv]) (set len (* 0.5 len)))))
-                (case found
-                  nil (set done? true)
-                  [nx ny nz nv]
-                  (if (> nv 0)
-                      (do (set (x y z v) (values nx ny nz nv))
-                          (set h (math.max hmin (math.min h0 (* 0.25 (/ nv g))))))
-                      ;; Crossed: bisect between the last point outside and this one.
-                      (do (var (ox oy oz) (values x y z))
-                          (var (ix iy iz) (values nx ny nz))
-                          (for [_ 1 limits.bisections &until (spent?)]
-                            (let [mx (* 0.5 (+ ox ix)) my (* 0.5 (+ oy iy)) mz (* 0.5 (+ oz iz))
-                                  mv (d mx my mz)
-                                  span (math.sqrt (+ (* (- ix ox) (- ix ox)) (* (- iy oy) (- iy oy))
-                                                     (* (- iz oz) (- iz oz))))]
-                              (if (> mv 0)
-                                  (do (slope mx my mz (math.max hmin (math.min h0 (* 0.25 span))))
-                                      (set (ox oy oz) (values mx my mz)))
-                                  (set (ix iy iz) (values mx my mz)))))
-                          (set done? true)))))))))
-    ;; The walks take half the refinement's evaluations at most, the climbs the rest.
-    (set phase-end (+ evaluations (* 0.5 (- budget evaluations))))
-    (each [_ s (ipairs dips)] (when (not (spent?)) (walk s)))
-    (each [_ s (ipairs near)] (when (not (spent?)) (walk s)))
-    (set phase-end budget)
-    (each [_ s (ipairs steep)] (when (not (spent?)) (climb s)))
-    (if bad (values nil "gives a value that is not a finite number" bad)
-        (values worst at evaluations))))
+        m {: cpu : args :unpack (or table.unpack _G.unpack) : hx : hy : hz : scale : n
+           :h0 (* 1e-4 scale) :hmin (* limits.min-step scale)
+           :evaluations 0 :phase-end math.huge :worst 0 :at [0 0 0] :bad nil
+           :steep [] :near [] :seeds limits.refine-seeds :rand (lcg 12345)}
+        grid (sample-grid m)]
+    (for [_ 1 (math.floor (* limits.random (/ (^ n 3) (^ limits.grid 3))))]
+      (sample m (* hx (- (* 2 (m.rand)) 1)) (* hy (- (* 2 (m.rand)) 1)) (* hz (- (* 2 (m.rand)) 1))))
+    (let [budget (+ m.evaluations (/ limits.refine-ops cost))
+          dips (grid-dips m grid)]
+      ;; The walks take half the refinement's evaluations at most, the climbs the rest.
+      (set m.phase-end (+ m.evaluations (* 0.5 (- budget m.evaluations))))
+      (each [_ s (ipairs dips)] (when (not (spent? m)) (walk m s)))
+      (each [_ s (ipairs m.near)] (when (not (spent? m)) (walk m s)))
+      (set m.phase-end budget)
+      (each [_ s (ipairs m.steep)] (when (not (spent? m)) (climb m s))))
+    (if m.bad (values nil "gives a value that is not a finite number" m.bad)
+        (values m.worst m.at m.evaluations))))
 
 ;;; The bounds: the renderer takes the box's distance outside it
 
