@@ -72,6 +72,90 @@
   "The line of byte `pos` of `source` (1 for the first)."
   (let [(_ n) (: (ssub source 1 (- pos 1)) :gsub "\n" "")] (+ n 1)))
 
+(fn read-string [source pos]
+  ;; At the opening quote at `pos`: the string, escapes read, and the position after
+  ;; its closing quote.
+  (let [parts []]
+    (var from (+ pos 1))
+    (var after nil)
+    (while (not after)
+      (let [p (sfind source "[\"\\]" from)]
+        (if (= p nil) (not-data "an unterminated string" pos)
+            (= (sbyte source p) double-quote)
+            (do (insert parts (ssub source from (- p 1)))
+                (set after (+ p 1)))
+            (let [c (sbyte source (+ p 1))
+                  e (and c (. escapes c))]
+              (insert parts (ssub source from (- p 1)))
+              (if e (do (insert parts e) (set from (+ p 2)))
+                  (and c (<= 48 c 57))
+                  (let [(digits next) (smatch source "^(%d%d?%d?)()" (+ p 1))
+                        code (tonumber digits)]
+                    (when (> code 255) (not-data "a string escape past \\255" p))
+                    (insert parts (schar code))
+                    (set from next))
+                  (not-data "a string escape this reader leaves to Fennel" p))))))
+    (values (if (= 1 (length parts)) (. parts 1) (concat parts)) after)))
+
+(fn read-plain-number [source pos]
+  ;; At `pos`: a number of at most 15 digits with an optional minus sign and point
+  ;; and nothing else, read byte by byte, and the position after it; else nil (the
+  ;; token is read whole). Exact: the digits as a whole number (below 2^53) divided
+  ;; by a power of ten (exact up to 1e22) is one correctly rounded division, as
+  ;; tonumber's result is.
+  (var i pos)
+  (var c (sbyte source i))
+  (var mantissa 0)
+  (var digits 0)
+  (var fraction 0)
+  (let [negative? (= c 45)]
+    (when negative? (set i (+ i 1)) (set c (sbyte source i)))
+    (while (and c (<= 48 c 57))
+      (set mantissa (+ (* mantissa 10) (- c 48)))
+      (set digits (+ digits 1))
+      (set i (+ i 1))
+      (set c (sbyte source i)))
+    (when (= c 46)
+      (set i (+ i 1))
+      (set c (sbyte source i))
+      (while (and c (<= 48 c 57))
+        (set mantissa (+ (* mantissa 10) (- c 48)))
+        (set digits (+ digits 1))
+        (set fraction (+ fraction 1))
+        (set i (+ i 1))
+        (set c (sbyte source i))))
+    (when (and (< 0 digits 16) (or (= c nil) (. number-end c)))
+      (let [x (if (= fraction 0) mantissa (/ mantissa (. powers (+ fraction 1))))]
+        (values (if negative? (- x) x) i)))))
+
+(fn read-token [source pos c]
+  ;; A whole token at `pos` (its first byte `c`): true, false or a number tonumber
+  ;; reads, and the position after it.
+  (case (smatch source token-pattern pos)
+    (tok after)
+    (values (if (= tok "true") true
+                (= tok "false") false
+                ;; Plain decimal numbers only: no hex, no underscores, no .inf.
+                (and (smatch tok "^[-+]?%.?%d") (not (sfind tok "[^%d%.eE+-]")))
+                (case (tonumber tok)
+                  x x
+                  _ (not-data (.. "the token " tok) pos))
+                (not-data (if (= tok "nil") "nil" (.. "the symbol " tok)) pos))
+            after)
+    _ (not-data (.. "the character " (schar c)) pos)))
+
+(fn read-atom [source pos]
+  ;; A number, a :keyword, true or false at `pos`, and the position after it.
+  (let [c (sbyte source pos)]
+    (if (= c colon)
+        (do (var i (+ pos 1))
+            (while (not (. symbol-end (or (sbyte source i) 0)))
+              (set i (+ i 1)))
+            (when (= i (+ pos 1)) (not-data "a colon that is not a keyword" pos))
+            (values (ssub source (+ pos 1) (- i 1)) i))
+        (let [(x after) (when (or (= c 45) (= c 46) (<= 48 c 57)) (read-plain-number source pos))]
+          (if (= x nil) (read-token source pos c) (values x after))))))
+
 (fn read [source ?options]
   "The value of `source` when it is one plain data table literal (see this file's
 header): the value, read as Fennel reads it. Else nil and one of
@@ -126,92 +210,6 @@ out, and 1.9 million `{:kind :sphere}` peaked at 1.1 GB to say there were too ma
         (refused (.. "the file's data takes more than " options.max-memory-mb
                      " MB of memory") pos))
       t)
-
-    (fn read-string []
-      ;; At the opening quote: the string, escapes read.
-      (let [start pos
-            parts []]
-        (var from (+ pos 1))
-        (var done? false)
-        (while (not done?)
-          (let [p (sfind source "[\"\\]" from)]
-            (if (= p nil) (not-data "an unterminated string" start)
-                (= (sbyte source p) double-quote)
-                (do (insert parts (ssub source from (- p 1)))
-                    (set pos (+ p 1))
-                    (set done? true))
-                (let [c (sbyte source (+ p 1))
-                      e (and c (. escapes c))]
-                  (insert parts (ssub source from (- p 1)))
-                  (if e (do (insert parts e) (set from (+ p 2)))
-                      (and c (<= 48 c 57))
-                      (let [(digits after) (smatch source "^(%d%d?%d?)()" (+ p 1))
-                            code (tonumber digits)]
-                        (when (> code 255) (not-data "a string escape past \\255" p))
-                        (insert parts (schar code))
-                        (set from after))
-                      (not-data "a string escape this reader leaves to Fennel" p))))))
-        (if (= 1 (length parts)) (. parts 1) (concat parts))))
-
-    (fn read-plain-number []
-      ;; At `pos`: a number of at most 15 digits with an optional minus sign and
-      ;; point and nothing else, read byte by byte; else nil (the token is read whole).
-      ;; Exact: the digits as a whole number (below 2^53) divided by a power of ten
-      ;; (exact up to 1e22) is one correctly rounded division, as tonumber's result is.
-      (var i pos)
-      (var c (sbyte source i))
-      (var mantissa 0)
-      (var digits 0)
-      (var fraction 0)
-      (let [negative? (= c 45)]
-        (when negative? (set i (+ i 1)) (set c (sbyte source i)))
-        (while (and c (<= 48 c 57))
-          (set mantissa (+ (* mantissa 10) (- c 48)))
-          (set digits (+ digits 1))
-          (set i (+ i 1))
-          (set c (sbyte source i)))
-        (when (= c 46)
-          (set i (+ i 1))
-          (set c (sbyte source i))
-          (while (and c (<= 48 c 57))
-            (set mantissa (+ (* mantissa 10) (- c 48)))
-            (set digits (+ digits 1))
-            (set fraction (+ fraction 1))
-            (set i (+ i 1))
-            (set c (sbyte source i))))
-        (when (and (< 0 digits 16) (or (= c nil) (. number-end c)))
-          (set pos i)
-          (let [x (if (= fraction 0) mantissa (/ mantissa (. powers (+ fraction 1))))]
-            (if negative? (- x) x)))))
-
-    (fn read-token [start c]
-      ;; A whole token: true, false or a number tonumber reads.
-      (case (smatch source token-pattern pos)
-        (tok after)
-        (do (set pos after)
-            (if (= tok "true") true
-                (= tok "false") false
-                ;; Plain decimal numbers only: no hex, no underscores, no .inf.
-                (and (smatch tok "^[-+]?%.?%d") (not (sfind tok "[^%d%.eE+-]")))
-                (case (tonumber tok)
-                  x x
-                  _ (not-data (.. "the token " tok) start))
-                (not-data (if (= tok "nil") "nil" (.. "the symbol " tok)) start)))
-        _ (not-data (.. "the character " (schar c)) start)))
-
-    (fn read-atom []
-      ;; A number, a :keyword, true or false.
-      (let [start pos
-            c (sbyte source pos)]
-        (if (= c colon)
-            (do (var i (+ pos 1))
-                (while (not (. symbol-end (or (sbyte source i) 0)))
-                  (set i (+ i 1)))
-                (when (= i (+ pos 1)) (not-data "a colon that is not a keyword" start))
-                (set pos i)
-                (ssub source (+ start 1) (- i 1)))
-            (let [x (when (or (= c 45) (= c 46) (<= 48 c 57)) (read-plain-number))]
-              (if (= x nil) (read-token start c) x)))))
 
     (var read-value nil)
 
@@ -281,9 +279,9 @@ out, and 1.9 million `{:kind :sphere}` peaked at 1.1 GB to say there were too ma
                                  (not-data "a key given twice" start))
                                (tset t k (. items (+ i 1)))))
                            (counted! (with-source t start start-line (- pos 1))))))
-                 (= c double-quote) (read-string)
+                 (= c double-quote) (let [(v after) (read-string source pos)] (set pos after) v)
                  (= c open-paren) (not-data "a list (...): code" pos)
-                 (read-atom)))))
+                 (let [(v after) (read-atom source pos)] (set pos after) v)))))
 
     (let [(ok? result) (pcall (fn []
                                 (skip)
