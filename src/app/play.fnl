@@ -965,6 +965,9 @@ pixel's centre) for the still to read (uniforms.prior), in a canvas kept for it.
       (state.prior-canvas:setFilter :nearest :nearest))
     (love.graphics.push :all)
     (love.graphics.setCanvas state.prior-canvas)
+    ;; A plain copy, whatever was set before: no shader, no scissor, no blending.
+    (love.graphics.setShader)
+    (love.graphics.setScissor)
     (love.graphics.setBlendMode :replace)
     (love.graphics.setColor 1 1 1 1)
     (love.graphics.draw canvas 0 0)
