@@ -61,6 +61,15 @@ function love.load(args)
     for _, v in ipairs(vs) do v.times[#v.times + 1] = compile(v, r) end
     io.stderr:write(string.format("round %d/%d\n", r, rounds))
   end
+  -- COMPILE_TIMES=1: each dump's times in the order compiled, before the medians (the
+  -- ratio of two dumps round by round is steadier on a shared machine than theirs).
+  if os.getenv("COMPILE_TIMES") then
+    for _, v in ipairs(vs) do
+      local ts = {}
+      for i, t in ipairs(v.times) do ts[i] = string.format("%.0f", t) end
+      print("times " .. v.name .. " " .. table.concat(ts, " "))
+    end
+  end
   for _, v in ipairs(vs) do
     print(string.format("compile %s median %.0f ms (min %.0f, max %.0f)", v.name, median(v.times)))
   end
