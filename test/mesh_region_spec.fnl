@@ -82,12 +82,13 @@
 
     (it "refuses a resolution whose surface would take too much memory, before sampling it"
       (fn []
-        ;; A unit box at 512 cells: 196,236 leaf blocks, 6.3 GB and 140 s; refused
-        ;; once the octree has counted them, with a resolution that fits.
+        ;; A unit box at 512 cells: 98,306 leaf blocks (196,236 and 6.3 GB before
+        ;; the octree went down to half leaves); refused once the octree has
+        ;; counted them, with a resolution that fits.
         (let [box (scene-of "{:kind :box :size [1 1 1]}")
               (r err) (export.build box {:quiet? true :resolution 512})]
           (assert.is_nil r)
-          (assert.are.equal "the surface at 512 cells fills 196236 blocks of 4x4x4 cells, more than the 65536 one mesh may have (memory follows them, about 2 GB at that many); give --resolution 264 or less"
+          (assert.are.equal "the surface at 512 cells fills 98306 blocks of 4x4x4 cells, more than the 65536 one mesh may have (memory follows them, about 2 GB at that many); give --resolution 376 or less"
                             err))
         ;; The mesher's own limit: raised before any corner is sampled.
         (let [contour (require :src.mesh.contour)

@@ -8,10 +8,10 @@
 (local max-resolution 512)
 (local default-resolution 128)
 ;; The most leaf blocks (4x4x4 cells the mesher samples) one mesh may have. Memory
-;; follows them, about 30 KB each at the peak (a unit box: 12,204 at 128 cells, 361 MB;
-;; 48,972 at 256, 1.5 GB; 196,000 at 512 took 6.3 GB and 140 s; machined-part 7,663
-;; at 256, 320 MB): this keeps the main process near 2 GB. At 128 cells a whole grid
-;; has 36,000, so the default is never refused.
+;; follows them, about 35 KB each at the peak (a unit box: 24,578 at 256 cells, 944 MB;
+;; 98,306 at 512; before the octree went down to half leaves, 48,972 at 256 took 1.7
+;; GB, 196,000 at 512 6.3 GB and 140 s): this keeps the main process near 2 GB. At 128
+;; cells a whole grid has 36,000, so the default is never refused.
 (local max-leaves 65536)
 
 (fn parse-region [s]
