@@ -68,7 +68,7 @@ timed ones (\"melt@3\": scenes/melt.fnl at t = 3 s)."
   ;; player's anti-aliased still).
   (let [(scene t) (let [(base at) (name:match "^(.-)@([%d.]+)$")]
                     (if base (values base at) (values name nil)))
-        cmd (string.format "SDL_VIDEODRIVER=offscreen timeout 120 love . --render %s --out %s --size %dx%d --samples 1%s 2>&1; echo \"exit:$?\""
+        cmd (string.format "SDL_VIDEODRIVER=offscreen timeout 600 love . --render %s --out %s --size %dx%d --samples 1%s 2>&1; echo \"exit:$?\""
                            (shell-quote (.. "scenes/" scene ".fnl")) (shell-quote out)
                            (. size 1) (. size 2) (if t (.. " --time " t) ""))
         text (with-open [p (io.popen cmd)] (p:read :*a))]
