@@ -104,10 +104,9 @@ compiled `rounds` times in turn: id -> median."
           (made.canvas:release))))
     (collect [id ts (pairs times)] id (median ts))))
 
-(fn report [o]
-  "`make bench`: the seed scene with the article's settings and with the defaults next
-to an analytic ray tracer of it (the floor), each lever's gain before and after, the
-showcase scenes, and our pixel rate next to the article's CPU program."
+(fn bench-specs []
+  "The variants `make bench` times: {:id :label :scene-path or :scene-source :size
+:plan-options :render :source-path :target :scaling?}."
   (let [fhd [1920 1080]
         hd [1280 720]
         small [256 224]
@@ -168,7 +167,14 @@ showcase scenes, and our pixel rate next to the article's CPU program."
         _ (table.insert scaling {:id :scaling-100-uniforms :label "100 spheres without a field, 640x360"
                                  :scene-source (scaling-scene 100) :size [640 360]
                                  :plan-options {:field? false :grids? false}})
-        _ (each [_ spec (ipairs scaling)] (set spec.scaling? true) (table.insert specs spec))
+        _ (each [_ spec (ipairs scaling)] (set spec.scaling? true) (table.insert specs spec))]
+    specs))
+
+(fn report [o]
+  "`make bench`: the seed scene with the article's settings and with the defaults next
+to an analytic ray tracer of it (the floor), each lever's gain before and after, the
+showcase scenes, and our pixel rate next to the article's CPU program."
+  (let [specs (bench-specs)
         v {}
         variants []
         scaling-variants []]
