@@ -152,10 +152,15 @@
                 (assert.are.equal value (. (tree-of s) :params :r))
                 (assert.are.near (* 2 custom.limits.margin) (. (tree-of s) :lipschitz) 1e-4)))))))
 
-    (it "is not taken for a value only computed from a slider (measured at its value, as before)"
+    (it "is not taken for a value only computed from a slider: measured at each value a drag gives it"
       (fn []
-        (let [s (assert (load.load-string (scene "{:r (* 1 (param :r 1 {:min 0.5 :max 2}))}") "t.fnl"))]
-          (assert.are.equal 1 (. (tree-of s) :lipschitz)))))
+        (let [source (scene "{:r (* 2 (param :r 0.5 {:min 0.25 :max 2}))}")]
+          ;; r = 1: the unit sphere's exact distance.
+          (assert.are.equal 1 (. (tree-of (assert (load.load-string source "t.fnl"))) :lipschitz))
+          ;; A drag to 1.5 loads again (as the player's does), measuring r = 3 there.
+          (let [s (assert (load.load-string source "t.fnl" {:overrides {:r {:value 1.5 :base 0.5}}}))]
+            (assert.are.equal 3 (. (tree-of s) :params :r))
+            (assert.are.near (* 3 custom.limits.margin) (. (tree-of s) :lipschitz) 1e-4)))))
 
     (it "is measured once: a drag's load (another value) calls no measure, a value edit does"
       (fn []

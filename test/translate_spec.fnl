@@ -213,6 +213,41 @@ translation (GLSL's atan(y, x)): the reference gets 5.3's."
           (assert.are.equal 3 ((translate.compile-lua plain.lua) 4 0 0))
           (assert.truthy (plain.glsl:find "float sdCustom(vec3 p) {" 1 true) plain.glsl))))
 
+    (it "writes a chained comparison's middle operand once: its text grows with the links, not doubles"
+      (fn []
+        ;; Each link's if is the middle operand of the next link's chain. Written out
+        ;; twice, 13 links wrote 297 KB of GLSL and 16 were refused as a translator bug.
+        (fn nested [n]
+          (var e "x")
+          (for [_ 1 n] (set e (.. "(if (< y " e " z) x y)")))
+          (.. "(fn [x y z] (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1 (* 0.001 " e ")))"))
+        (let [t10 (assert (translate.translate (parse (nested 10))))
+              t40 (assert (translate.translate (parse (nested 40))))
+              f (translate.compile-lua t40.lua)
+              fennel-f (fennel.eval (nested 40))]
+          ;; Linear: 30 more links add about as much again as the first 10 wrote.
+          (assert.is_true (< (length t40.glsl) (* 5 (length t10.glsl)))
+                          (.. (length t10.glsl) " and " (length t40.glsl) " bytes"))
+          (each [_ [x y z] (ipairs [[0.3 -0.2 0.5] [-0.7 0.1 0.05] [0.2 0.9 -0.4]])]
+            (assert.are.equal (fennel-f x y z) (f x y z 1)))
+          (let [(ok? out) (glslang (.. "#version 120\n" t40.glsl
+                                       "\nvoid main() { gl_FragColor = vec4(sdCustom(gl_FragCoord.xyz, 1.0)); }\n"))]
+            (assert.is_true ok? out)))))
+
+    (it "refuses a function whose GLSL text is over its budget, saying so (not as a translator bug)"
+      (fn []
+        (let [saved translate.limits.text
+              source "(fn [x y z] (let [a [[1 2 3] [4 5 6] [7 8 9] [1 3 5]]] (var t 0) (for [i 1 4] (set t (+ t (. (. a i) 1) (. (. a (+ 1 (% i 4))) 2)))) (- x t)))"
+              whole (assert (translate.translate (parse source)))]
+          ;; Its translation is some KB; half of it as the budget.
+          (set translate.limits.text (math.floor (/ (length whole.glsl) 2)))
+          (let [(ok? t msg line) (pcall translate.translate (parse source))]
+            (set translate.limits.text saved)
+            (assert.is_true ok? (tostring t))
+            (assert.is_nil t)
+            (assert.are.equal 1 line)
+            (assert.truthy (msg:find "^its translation is %d+ KB of GLSL, more than %d+ KB") msg)))))
+
     (it "inlines the numbers and math functions named outside the function"
       (fn []
         (let [t (assert (translate.translate (parse "(fn [x y z] (- (sqrt (* x x)) big-r))")

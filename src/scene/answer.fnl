@@ -33,6 +33,13 @@
 ;; parameter's name and the field (the loader's deepest: a custom node's :params).
 (local max-path (+ 6 (* 2 max-depth)))
 (local max-names 64)   ; a custom function's parameters (the loader's have far fewer)
+;; The check of a custom node's measured factor: custom.measure as if the function
+;; cost this many times more (an 8^3 grid, a thirtieth of the refinement: a few ms
+;; where the worker's takes 10 to 60), at each value the worker measured. Its samples
+;; are not the worker's, so it may find a steeper place the worker's missed: only a
+;; slope above the worker's factor (at least 1) by `spot-tolerance` is a forgery.
+(local spot-thinning 30)
+(local spot-tolerance 1.5)
 
 (local type type)
 (local pairs pairs)
@@ -214,7 +221,19 @@ was refused: FIELD: reason'. Takes the answer's tables apart."
              data (case (translation data)
                     (nil why) (values nil why 0)
                     t (do (set current data) t)))))
-    (set ctx.measure (fn [] (values current.measured [0 0 0])))
+    ;; The worker's measured factor, checked here by a thinner measure of the same
+    ;; function (see spot-thinning): a factor forged low would let the shader's
+    ;; steps pass the surface.
+    (var forged-factor nil)
+    (set ctx.measure
+         (fn [cpu bounds args cost]
+           (when (= nil forged-factor)
+             (case (custom.measure cpu bounds args (* spot-thinning (math.max 1 (or cost 1))))
+               (spot [x y z]) (when (> spot (* spot-tolerance (math.max 1 current.measured)))
+                                (set forged-factor
+                                     (string.format "a custom node: its measured factor %.3g is below the slope %.3g found here at [%.3g %.3g %.3g] (refused)"
+                                                    current.measured spot x y z)))))
+           (values current.measured [0 0 0])))
     (if (not= (type scene) :table) (values nil (refused file "the scene is not a table"))
         (not= scene.file file) (values nil (refused file "file: not the file that was sent"))
         (not= (type scene.name) :string) (values nil (refused file "name: missing"))
@@ -231,6 +250,7 @@ was refused: FIELD: reason'. Takes the answer's tables apart."
                 (where why (= (type why) :string)) (values nil (refused file why))
                 _ (case (load.validated scene ctx)
                     (nil msg) (values nil (reword file msg))
+                    (where _ forged-factor) (values nil (refused file forged-factor))
                     out (let [animated (or out.animated [])
                               (plist perr) (if (= nil given-params) []
                                                (checked-params file given-params))]

@@ -201,7 +201,10 @@ translate(rotate(scale(node)))."
              {:kind node.kind :path node.path :class desc.class :lipschitz desc.lipschitz
               :lipschitz-note desc.lipschitz-note : bounds :box (symmetric-box bounds) :children [] :even desc.even
               :symmetric (or desc.symmetric desc.even)
-              :radius (when desc.bounding-radius (desc.bounding-radius node))})}))
+              :radius (when desc.bounding-radius (desc.bounding-radius node))
+              ;; A custom node's function: written once for all its uses, at its
+              ;; cost (the plan's budget of written nodes counts it).
+              :custom (when node.custom {:key node.custom.key :cost node.custom.cost})})}))
 
 (fn box-of [node desc info children]
   "The box {:lo :hi} holding `node` in its own frame, tighter than its symmetric

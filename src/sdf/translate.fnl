@@ -57,6 +57,10 @@
    ;; bits (a bound past 2^31 overflows, and i <= 2147483647 is always true: the loop
    ;; never ends) and reads the counter as a float, whole numbers exact up to 2^24.
    :loop-bound 16777216
+   ;; The GLSL text of one function (helpers included), a backstop for what the
+   ;; cost does not see: text that grows faster than the operations counted.
+   ;; examples/ and scenes/custom.fnl write at most 5 KB.
+   :text 65536
    :cost 4000         ; operations per evaluation, loops counted by their turns
                       ; (scenes/custom.fnl: the gyroid shell cut by a sphere 25,
                       ; the six blended spheres' loop 150)
@@ -490,6 +494,14 @@ was when bound. A vector or an array, component by component."
     (when (and (> (length args) 2) (or (= op "not=") (= op "~=")))
       (refuse st node (.. "(" op " a b) takes two arguments")))
     (cost! st node (- (length args) 1))
+    ;; A middle operand of a chain is read by two comparisons: held in a local (a name
+    ;; or a constant stays as it is), so that its text is written once. Written out
+    ;; twice, an operand that holds a chain doubles at each link: 13 nested links of a
+    ;; 400-byte file wrote 297 KB of GLSL.
+    (for [i 2 (- (length args) 1)]
+      (let [a (. args i)]
+        (when (not (or a.const (a.g:match "^[%w_]+$")))
+          (tset args i (declare! st node a)))))
     (let [pairs* (fcollect [i 1 (- (length args) 1)]
                    (let [a (. args i) b (. args (+ i 1))]
                      {:g (.. "(" a.g " " g-op " " b.g ")") :l (.. "(" a.l " " l-op " " b.l ")")
@@ -1637,6 +1649,10 @@ those vectors (a0, a1, ...; the Lua function still takes them one by one)."
                    (flatten [{:l (.. "return function(" (table.concat all-args ", ") ")") :block main
                               :l-close "end"}]
                             :l 0 lua-lines))
+                 (let [size (accumulate [n 0 _ l (ipairs glsl)] (+ n (length l) 1))]
+                   (when (> size limits.text)
+                     (refuse st form (string.format "its translation is %d KB of GLSL, more than %d KB; the shader would take long to compile: write the function shorter (a value used in several places bound once with let)"
+                                                    (math.ceil (/ size 1024)) (/ limits.text 1024)))))
                  {:glsl (table.concat glsl "\n") :lua (table.concat lua-lines "\n")
                   :params (fcollect [i 4 (length names)] (. names i)) :cost st.cost
                   :glsl-name name})))))]
