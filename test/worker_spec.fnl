@@ -221,6 +221,27 @@
           (assert.are.same [] info.missing)
           (assert.are.equal 7 (length info.applied)))))
 
+    (it "ends after a large answer without functions of time, and keeps one with them"
+      (fn []
+        ;; 100,000 spheres send 13 MB; 300,000 send about 40 MB, past the 32 MB after
+        ;; which the worker, which keeps the memory it grew to, is ended.
+        (let [f (assert (io.open "test/fixtures/spheres-100000.fnl"))
+              big (-> (f:read :*a)
+                      (: :gsub "%(local side 316%)" "(local side 548)")
+                      (: :gsub "%[i 0 99999%]" "[i 0 299999]"))]
+          (f:close)
+          (let [s (assert (worker.load-source big "spheres-300000.fnl"))]
+            (assert.are.equal 300000 (length s.objects))
+            (assert.is_nil (worker.info) "the worker still runs"))
+          ;; The same with a function of time: its worker stays to run it.
+          (let [animated (big:gsub ":radius %(%+ 0%.1 %(%* 0%.3 %(rnd%)%)%)"
+                                   ":radius (if (= i 0) (fn [t] (+ 0.2 (* 0.1 (math.sin t)))) (+ 0.1 (* 0.3 (rnd))))"
+                                   1)
+                s (assert (worker.load-source animated "spheres-300000.fnl"))]
+            (assert.truthy s.animated "the scene has its function of time")
+            (assert.truthy (worker.info) "the worker was ended")
+            (assert (worker.animate s 1))))))
+
     (it "times: a value edit's round trip and a loop of 100,000 objects (printed, not judged)"
       (fn []
         (let [f (assert (io.open "test/fixtures/spheres-100000.fnl"))

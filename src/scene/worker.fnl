@@ -115,7 +115,7 @@ nil: wait without calling anything."
   ;; The worker's next answer within budget `b` (see receive-waiting!): a table, or
   ;; nil and :timeout, :stalled, :waiting, :closed, :cancelled or a message.
   (case (receive-waiting! w b ?until)
-    data (case (wire.decode data)
+    data (case (do (set w.answer-bytes (length data)) (wire.decode data))
            (nil err) (values nil err)
            value (if (= (type value) :table) value
                      (values nil "malformed data: the answer is not a table")))
@@ -198,6 +198,10 @@ nil when none is running."
     (io.stderr:write "note: the scene worker cannot run here; scene files run inside the sandbox in this process\n"))
   (scene-mod.load-string source file ?options))
 
+;; An answer this large (bytes; 100,000 spheres send 13 MB) ends a worker that holds
+;; no functions of time once it is read (see load-code).
+(local big-answer (* 32 1024 1024))
+
 (fn load-code [source file ?options]
   ;; Scene `source` evaluated in the worker (see load-source).
   (case (start)
@@ -218,6 +222,14 @@ nil when none is running."
                                   (nil msg) (values nil (refuse! w msg))
                                   scene (do (set w.scene scene)
                                             (tset requests scene request)
+                                            ;; A large scene without functions of time
+                                            ;; needs nothing more of this worker, which
+                                            ;; keeps the memory it grew to (540 MB after
+                                            ;; 1,000,000 spheres): ended, the next load
+                                            ;; starts another.
+                                            (when (and (> w.answer-bytes big-answer)
+                                                       (not (scene-mod.animated? scene)))
+                                              (kill!))
                                             scene))))))))))
 
 (fn load-source [source file ?options]
