@@ -13,6 +13,15 @@
 (local compare (require :src.verify.compare))
 (local field (require :src.render.field))
 (local {: marched-mix} (require :test.support.scenes))
+(local ffi (require :ffi))
+
+(fn f32 [x]
+  ;; `x` rounded to float32, as a float texture holds it.
+  (. (ffi.new "float[1]" x) 0))
+
+(fn shapes-of [fd]
+  ;; The field's round boxes as a list of [cx cy cz hx hy hz r] (see field.shape-at).
+  (fcollect [i 1 fd.count] [(field.shape-at fd i)]))
 
 (fn scattered [n ?extra ?render ?spheres-only?]
   ;; A scene of n spheres and boxes (alternating; only spheres when asked)
@@ -134,7 +143,7 @@
               fd (. (assert (plan.scene->plan s)) :field)
               [lx ly lz] fd.lo]
           (var checked 0)
-          (each [i [cx cy cz ax ay az r] (ipairs fd.shapes)]
+          (each [i [cx cy cz ax ay az r] (ipairs (shapes-of fd))]
             ;; The box's corners and centre, field-local.
             (each [_ [sx sy sz] (ipairs [[0 0 0] [-1 -1 -1] [1 1 1] [-1 1 -1] [1 -1 1]])]
               (let [(_ _ _ k) (field.cell-of fd (+ cx (* sx (+ ax r))) (+ cy (* sy (+ ay r)))
@@ -166,7 +175,7 @@
     (it "skip one object when asked, as mapOthers does"
       (fn []
         (let [fd (. (assert (plan.scene->plan (scattered 200))) :field)
-              [cx cy cz] (. fd.shapes 5)
+              (cx cy cz) (field.shape-at fd 5)
               [lx ly lz] fd.lo
               (x y z) (values (+ lx cx) (+ ly cy) (+ lz cz))]
           (assert.are.equal 5 (select 2 (field.distance fd x y z)))
@@ -192,29 +201,35 @@
           (assert.are.equal tex (field.textures fd))   ; made once
           (each [_ t (ipairs [tex.cells tex.records tex.objects])]
             (assert.are.equal field.texture-width t.width)
-            (assert.is_true (<= (length t.data) (* 4 t.width t.height))))
-          (assert.are.equal (* 4 (length fd.cell-start)) (length tex.cells.data))
-          (assert.are.equal (* 8 (length fd.records)) (length tex.records.data))
-          (assert.are.equal (* 12 fd.count) (length tex.objects.data))
-          ;; Record 1 is object (. fd.records 1), stored 0-based.
-          (assert.are.equal (- (. fd.records 1) 1) (. tex.records.data 8))
-          ;; Object 2 is a box: no radius, half extents; its colour.
-          (let [o (. fd.objects 2)]
-            (assert.are.equal :box o.kind)
-            (assert.are.equal 0 (. tex.objects.data (+ 12 4)))
-            (assert.are.equal (* 0.5 (. o.size 2)) (. tex.objects.data (+ 12 6)))
-            (assert.are.same o.color [(. tex.objects.data (+ 12 9)) (. tex.objects.data (+ 12 10))
-                                      (. tex.objects.data (+ 12 11))])))))
+            (assert.is_true (<= t.count (* 4 t.width t.height))))
+          (assert.are.equal (* 4 (length fd.cell-start)) tex.cells.count)
+          (assert.are.equal (* 8 (length fd.records)) tex.records.count)
+          (assert.are.equal (* 12 fd.count) tex.objects.count)
+          ;; Float32, as the GPU reads them; past :count, zeros to the texture's end.
+          (let [records (field.texture-values tex.records)
+                objects (field.texture-values tex.objects)]
+            ;; Record 1 is object (. fd.records 1), stored 0-based.
+            (assert.are.equal (- (. fd.records 1) 1) (. records 8))
+            ;; Object 2 is a box: no radius, half extents; its colour.
+            (let [o (. fd.objects 2)]
+              (assert.are.equal :box o.kind)
+              (assert.are.equal 0 (. objects (+ 12 4)))
+              (assert.are.equal (f32 (* 0.5 (. o.size 2))) (. objects (+ 12 6)))
+              (assert.are.same (icollect [_ c (ipairs o.color)] (f32 c))
+                               [(. objects (+ 12 9)) (. objects (+ 12 10)) (. objects (+ 12 11))])))
+          (let [last (* 4 tex.objects.width tex.objects.height)]
+            (assert.are.equal 0 (. tex.objects.floats (- last 1)))))))
 
     (it "give a field of spheres a walk texture: a cell's one sphere, where its list starts, or its clearances"
       (fn []
         (let [fd (. (assert (plan.scene->plan (scattered 400 nil nil true))) :field)
               walk fd.walk
               cells (length walk.start)
-              data (. (field.textures fd) :walk :data)
+              data (field.texture-values (. (field.textures fd) :walk))
               texel (fn [i] [(. data (+ (* 4 i) 1)) (. data (+ (* 4 i) 2))
                              (. data (+ (* 4 i) 3)) (. data (+ (* 4 i) 4))])
-              sphere (fn [i] (let [[cx cy cz _ _ _ r] (. fd.shapes i)] [cx cy cz r]))
+              ;; float32 in the texture, as the shader reads it.
+              sphere (fn [i] (let [(cx cy cz _ _ _ r) (field.shape-at fd i)] [(f32 cx) (f32 cy) (f32 cz) (f32 r)]))
               seen {:empty 0 :one 0 :several 0}]
           (assert.is_true fd.walk?)
           (assert.is_true (>= fd.turns fd.crossings))
@@ -248,7 +263,7 @@
           ;; sphere still in each cell its box meets.
           (for [k 1 cells]
             (assert.is_true (<= (. walk.count k) (. fd.cell-count k))))
-          (each [i [cx cy cz _ _ _ r] (ipairs fd.shapes)]
+          (each [i [cx cy cz _ _ _ r] (ipairs (shapes-of fd))]
             (each [_ [sx sy sz] (ipairs [[0 0 0] [-1 -1 -1] [1 1 1] [-1 1 -1] [1 -1 1]])]
               (let [(_ _ _ k) (field.cell-of fd (+ cx (* sx r)) (+ cy (* sy r)) (+ cz (* sz r)))
                     first (. walk.start k)]
@@ -267,21 +282,40 @@
       (fn []
         (let [s (scattered 100)
               before (field.textures (. (assert (plan.scene->plan s)) :field))]
-          ;; One box's colour: one texel of the objects texture (object 2's third).
-          (tset (. s.objects 3) :color [0.1 0.2 0.3])
-          (let [after (field.textures (. (assert (plan.scene->plan s)) :field))]
-            (assert.are.same [[0 5 5]] (field.changed-spans before.objects.data after.objects.data
-                                                            field.texture-width))
-            (assert.are.same [] (field.changed-spans before.cells.data after.cells.data
-                                                     field.texture-width))
-            (assert.are.same [] (field.changed-spans before.records.data after.records.data
-                                                     field.texture-width))))
+          ;; One box's colour: one texel of the objects texture (object 2's third). A
+          ;; value edit loads the scene again: a new list of objects.
+          (let [edited (doto (collect [k v (pairs s)] k v)
+                         (tset :objects (icollect [i o (ipairs s.objects)]
+                                          (if (= i 3) (doto (collect [k v (pairs o)] k v) (tset :color [0.1 0.2 0.3]))
+                                              o))))
+                after (field.textures (. (assert (plan.scene->plan edited)) :field))]
+            (assert.are.same [[0 5 5]] (field.changed-spans before.objects after.objects))
+            (assert.are.same [] (field.changed-spans before.cells after.cells))
+            (assert.are.same [] (field.changed-spans before.records after.records))))
         ;; Two rows of 2 texels: a change in each row gives one span per row; lengths
         ;; that differ mean a new texture.
-        (let [a (fcollect [_ 1 16] 0)
-              b (fcollect [i 1 16] (if (or (= i 2) (= i 13) (= i 16)) 1 0))]
-          (assert.are.same [[0 0 0] [1 1 1]] (field.changed-spans a b 2))
-          (assert.is_nil (field.changed-spans a [0 0 0 0] 2)))))
+        (let [a {:width 2 :data (fcollect [_ 1 16] 0)}
+              b {:width 2 :data (fcollect [i 1 16] (if (or (= i 2) (= i 13) (= i 16)) 1 0))}]
+          (assert.are.same [[0 0 0] [1 1 1]] (field.changed-spans a b))
+          (assert.is_nil (field.changed-spans a {:width 2 :data [0 0 0 0]})))))
+
+    (it "are built once for the plans of one scene, but for one whose values change in place"
+      (fn []
+        (let [s (scattered 100)
+              a (assert (plan.scene->plan s))
+              b (assert (plan.scene->plan s {:fold? true}))]
+          ;; The player's plan, its folded twin: one field, one set of textures.
+          (assert.are.equal a.field b.field)
+          ;; Other options, another field.
+          (assert.are_not.equal a.field (. (assert (plan.scene->plan s {:field-cells 8})) :field))
+          ;; Functions of time set their values in the scene itself each frame.
+          (set s.animated [{:path [:objects 3 :color]}])
+          (let [c (assert (plan.scene->plan s))]
+            (tset (. s.objects 3) :color [0.1 0.2 0.3])
+            (let [d (assert (plan.scene->plan s))]
+              (assert.are_not.equal c.field d.field)
+              (assert.are.same [[0 5 5]] (field.changed-spans (. (field.textures c.field) :objects)
+                                                              (. (field.textures d.field) :objects))))))))
 
     (it "send the grid's corner camera-relative and its textures as texture uniforms"
       (fn []
@@ -348,7 +382,7 @@
         (let [s (scattered 300 nil nil true)
               fd (assert (field.build (field.members s.objects) {:cells-per-object 40}))
               [nx ny nz] fd.dims
-              data (. (field.textures fd) :walk :data)
+              data (field.texture-values (. (field.textures fd) :walk))
               occupied? (fn [x y z]
                           (and (>= x 0) (< x nx) (>= y 0) (< y ny) (>= z 0) (< z nz)
                                (> (. fd.walk.count (+ 1 x (* nx (+ y (* ny z))))) 0)))
@@ -399,13 +433,21 @@
               origins (points 300)
               targets (points 300 11)]
           (each [_ per-object (ipairs [2 16 64])]
-            (let [fd (assert (field.build members {:cells-per-object per-object}))]
+            (let [fd (assert (field.build members {:cells-per-object per-object}))
+                  ;; The walk reads its spheres as float32, as the shader does: brute
+                  ;; force over the same spheres rounded so (a grazing ray's entry
+                  ;; moves by far more than the rounding: 1.3e-5 at 17.8 units).
+                  rounded (doto (collect [k v (pairs fd)] k v)
+                            (tset :shapes (let [n (* 7 fd.count)
+                                                a (ffi.new "double[?]" n)]
+                                            (for [j 0 (- n 1)] (tset a j (f32 (. fd.shapes j))))
+                                            a)))]
               (assert.is_true fd.walk?)
               (var hits 0)
               (each [i origin (ipairs origins)]
                 (let [(ox oy oz dx dy dz plane) (ray-toward origin (. targets i) draw)
                       t-past (math.min plane draw)
-                      expected (math.min (field.brute-entry fd ox oy oz dx dy dz draw) t-past)
+                      expected (math.min (field.brute-entry rounded ox oy oz dx dy dz draw) t-past)
                       t (field.walk fd ox oy oz dx dy dz t-past 1e9)]
                   (when (< expected t-past) (set hits (+ hits 1)))
                   (assert.is_true (< (math.abs (- t expected)) 1e-9)
@@ -620,7 +662,7 @@
           (for [i 1 fd.count]
             (when (. fd.marched i)
               (for [_ 1 12]
-                (let [[cx cy cz _ _ _ r] (. fd.shapes i)
+                (let [(cx cy cz _ _ _ r) (field.shape-at fd i)
                       (ux uy uz) (unit (- (rnd) 0.5) (- (rnd) 0.5) (- (rnd) 0.5))
                       far (+ 10 (* 30 (rnd)))
                       ;; from far away toward a point within the bounding sphere

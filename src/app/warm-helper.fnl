@@ -30,6 +30,10 @@ before the shader: [[name w h] ...]."
   ;; finds it.
   (pick-values 1 (source:gsub "//warm%-texture [^\n]*\n" "")))
 
+(fn same-kind [n]
+  "The smallest side that is a power of two when `n` is one, and not when it is not."
+  (if (= n (^ 2 (math.floor (+ 0.5 (/ (math.log n) (math.log 2)))))) 1 3))
+
 (fn read-file [path]
   (case (io.open path :rb)
     f (let [t (f:read :*a)] (f:close) t)))
@@ -40,12 +44,15 @@ before the shader: [[name w h] ...]."
     (false err) (values nil (.. "the shader did not compile:\n" (tostring err)))
     (true shader)
     (let [canvas (love.graphics.newCanvas 8 8)
-          ;; A field's textures as the player makes them: rgba32f, sampled nearest,
-          ;; of the same size (gpu.float-image). The driver's code for the shader
-          ;; depends on the format, the sampler and whether each side is a power of two.
+          ;; A field's textures as the player makes them: rgba32f, sampled nearest
+          ;; (gpu.float-image), each side a power of two where the player's is. The
+          ;; driver's code for the shader depends on the format, the sampler and
+          ;; whether each side is a power of two (llvmpipe's key holds those flags,
+          ;; not the sizes), so each side is 1 or 3: at their own sizes, 1,000,000
+          ;; spheres' textures took the helper to 510 MB.
           images (icollect [_ [name w h] (ipairs (textures source))]
                    (when (shader:hasUniform name)
-                     (let [data (love.image.newImageData w h :rgba32f)
+                     (let [data (love.image.newImageData (same-kind w) (same-kind h) :rgba32f)
                            image (love.graphics.newImage data)]
                        (data:release)
                        (image:setFilter :nearest :nearest)

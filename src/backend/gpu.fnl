@@ -86,15 +86,19 @@ whether it was compiled now, or nil and a message."
 (local images (setmetatable {} {:__mode :k}))
 (local last-images {})
 
-(fn fill-floats! [data vs offset count]
-  ;; `count` floats of `vs` from `offset` (0-based; missing ones 0) into `data`.
+(fn fill-floats! [data tex offset count]
+  ;; `count` floats of texture `tex` from `offset` (0-based; missing ones 0) into
+  ;; `data`: copied from its float32 :floats, or converted from its Lua list :data.
   (let [ffi (require :ffi)
         ptr (ffi.cast "float *" (data:getFFIPointer))]
-    (for [i 0 (- count 1)] (tset ptr i (or (. vs (+ offset i 1)) 0)))))
+    (if tex.floats
+        (ffi.copy ptr (+ tex.floats offset) (* 4 count))
+        (let [vs tex.data]
+          (for [i 0 (- count 1)] (tset ptr i (or (. vs (+ offset i 1)) 0)))))))
 
 (fn new-float-image [tex]
   (let [data (love.image.newImageData tex.width tex.height :rgba32f)]
-    (fill-floats! data tex.data 0 (* 4 tex.width tex.height))
+    (fill-floats! data tex 0 (* 4 tex.width tex.height))
     (let [image (love.graphics.newImage data)]
       (image:setFilter :nearest :nearest)
       (data:release)
@@ -106,13 +110,13 @@ cached; else the last image of `name` with the changed texels replaced when the
 sizes match; else a new one."
   (or (. images tex)
       (let [last (. last-images name)
-            spans (when (and last (= last.texture.width tex.width) (= last.texture.height tex.height))
-                    (field.changed-spans last.texture.data tex.data tex.width))
+            spans (when (and last (= last.texture.height tex.height))
+                    (field.changed-spans last.texture tex))
             image (if spans
                       (do (each [_ [row first final] (ipairs spans)]
                             (let [n (+ 1 (- final first))
                                   data (love.image.newImageData n 1 :rgba32f)]
-                              (fill-floats! data tex.data (* 4 (+ first (* row tex.width))) (* 4 n))
+                              (fill-floats! data tex (* 4 (+ first (* row tex.width))) (* 4 n))
                               (last.image:replacePixels data nil nil first row)
                               (data:release)))
                           ;; The old table no longer describes the image.

@@ -265,13 +265,16 @@ program id, or nil + the compile/link log followed by the offending source lines
 (fn prepare-texture [u unit]
   ;; A float texture uniform (a field's): its texels as a C float array, drawn from
   ;; texture unit `unit`.
-  (let [{: width : height : data} u.texture
-        n (* width height 4)
-        arr (ffi.new "float[?]" n)]
-    (assert (<= (length data) n)
-            (.. "headless.render: texture " u.name " has more values than its size holds"))
-    (for [j 1 (length data)] (tset arr (- j 1) (. data j)))
-    {:name u.name :texture? true : unit : width : height : arr}))
+  (let [{: width : height : data : floats} u.texture
+        n (* width height 4)]
+    (if floats
+        ;; Already float32 of the texture's size (field.textures).
+        {:name u.name :texture? true : unit : width : height :arr floats}
+        (let [arr (ffi.new "float[?]" n)]
+          (assert (<= (length data) n)
+                  (.. "headless.render: texture " u.name " has more values than its size holds"))
+          (for [j 1 (length data)] (tset arr (- j 1) (. data j)))
+          {:name u.name :texture? true : unit : width : height : arr}))))
 
 (fn prepare-uniforms [uniforms]
   "Check uniform specs and pack their values into C arrays before any GL work."

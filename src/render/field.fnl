@@ -21,6 +21,7 @@
 ;; computed in double.
 
 (local large-radius (. (require :src.sdf.large-sphere) :radius))
+(local ffi (require :ffi))
 (local lower (require :src.sdf.lower))
 (local primitives (require :src.sdf.primitives))
 
@@ -94,6 +95,15 @@ there are fewer than min-objects of them."
 ;; centre x y z, half extents x y z, radius: the round box the field draws.
 (local shape lower.field-shape)
 
+(fn shape-at [field i]
+  "Object `i`'s (1-based) round box in the field: cx cy cz hx hy hz r, field-local
+(seven doubles an object in :shapes, 56 MB for 1,000,000 where a table each took
+130)."
+  (let [s field.shapes
+        at (* 7 (- i 1))]
+    (values (. s at) (. s (+ at 1)) (. s (+ at 2)) (. s (+ at 3)) (. s (+ at 4))
+            (. s (+ at 5)) (. s (+ at 6)))))
+
 ;; Steps a ray may take sphere-tracing one marched member, from where it enters its
 ;; bounding sphere; a ray still short of the hit test then misses it. (At most a few
 ;; on the benchmark's tori and capsules but along a grazing ray; 32 of the primitive's
@@ -149,35 +159,59 @@ a b c, d e f, g h k does (v + 2 q x (q x v + w v), with q = x y z)."
         dim (fn [e] (max 1 (min max-cells-per-axis (math.ceil (/ e side)))))]
     [(dim ex) (dim ey) (dim ez)]))
 
-(fn list-cells [[nx ny nz] ranges]
+(fn list-cells [[nx ny nz] ranges n]
   ;; The cells' lists, laid out cell after cell, objects in each in scene order:
-  ;; `ranges` gives each object's cells (x0 x1 y0 y1 z0 z1, 0-based). Returns
-  ;; {:start :count (per cell 1-based; a list's first slot is 0-based) :records}.
+  ;; `ranges` gives the `n` objects' cells (see cover!: x0 x1 y0 y1 z0 z1, 0-based,
+  ;; six to an object from 0). Returns {:start :count (per cell 1-based; a list's
+  ;; first slot is 0-based) :records}. (Two passes over the same cells: written out
+  ;; twice, as a closure made per object would keep LuaJIT from compiling the loop.)
   (let [cells (* nx ny nz)
         cell-count (fcollect [_ 1 cells] 0)
         cell-start []
         fill []
         records []]
-    (each [_ [x0 x1 y0 y1 z0 z1] (ipairs ranges)]
-      (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
-        (let [k (+ 1 x (* nx (+ y (* ny z))))]
-          (tset cell-count k (+ (. cell-count k) 1)))))))
+    (for [i 1 n]
+      (let [at (* 6 (- i 1))]
+        (for [z (. ranges (+ at 4)) (. ranges (+ at 5))]
+          (for [y (. ranges (+ at 2)) (. ranges (+ at 3))]
+            (for [x (. ranges at) (. ranges (+ at 1))]
+              (let [k (+ 1 x (* nx (+ y (* ny z))))]
+                (tset cell-count k (+ (. cell-count k) 1))))))))
     (var at 0)
     (for [k 1 cells]
       (tset cell-start k at)
       (tset fill k at)
       (set at (+ at (. cell-count k))))
-    (each [i [x0 x1 y0 y1 z0 z1] (ipairs ranges)]
-      (for [z z0 z1] (for [y y0 y1] (for [x x0 x1]
-        (let [k (+ 1 x (* nx (+ y (* ny z))))
-              slot (. fill k)]
-          (tset records (+ slot 1) i)
-          (tset fill k (+ slot 1)))))))
+    (for [i 1 n]
+      (let [at (* 6 (- i 1))]
+        (for [z (. ranges (+ at 4)) (. ranges (+ at 5))]
+          (for [y (. ranges (+ at 2)) (. ranges (+ at 3))]
+            (for [x (. ranges at) (. ranges (+ at 1))]
+              (let [k (+ 1 x (* nx (+ y (* ny z))))
+                    slot (. fill k)]
+                (tset records (+ slot 1) i)
+                (tset fill k (+ slot 1))))))))
     {:start cell-start :count cell-count : records}))
+
+(fn put-span! [ranges at c a r grow s d]
+  ;; The cells from c - a - r - grow to c + a + r + grow along one axis (cells `s`
+  ;; wide, `d` of them) into ranges[at] and ranges[at + 1].
+  (tset ranges at (max 0 (min (- d 1) (floor (/ (- c a r grow) s)))))
+  (tset ranges (+ at 1) (max 0 (min (- d 1) (floor (/ (+ c a r grow) s))))))
+
+(fn cover! [ranges i cx cy cz ax ay az r [sx sy sz] [nx ny nz] grow]
+  ;; Object `i`'s cells (its box, centre cx cy cz and half extents ax ay az grown by
+  ;; r and `grow`; cells `s` wide, `n` to an axis) into `ranges` at 6 (i - 1):
+  ;; x0 x1 y0 y1 z0 z1. An int32 array: six numbers an object (1,000,000 spheres'
+  ;; two lists of ranges took 400 MB as tables).
+  (let [at (* 6 (- i 1))]
+    (put-span! ranges at cx ax r grow sx nx)
+    (put-span! ranges (+ at 2) cy ay r grow sy ny)
+    (put-span! ranges (+ at 4) cz az r grow sz nz)))
 
 (fn lists [field ranges]
   ;; The field with its cells' lists (list-cells) as :cell-start :cell-count :records.
-  (let [{: start : count : records} (list-cells field.dims ranges)]
+  (let [{: start : count : records} (list-cells field.dims ranges field.count)]
     (doto field
       (tset :cell-start start)
       (tset :cell-count count)
@@ -243,7 +277,7 @@ a b c, d e f, g h k does (v + 2 q x (q x v + w v), with q = x y z)."
   ;; when they fit in one: :walk (its lists, from `walk-ranges`), :walk? and :turns,
   ;; the walk's turns at most (a turn crosses a cell or meets a sphere of a list).
   (when (and (not field.kinds.boxes?) (= 0 (length field.kinds.marched)))
-    (let [walk (list-cells field.dims walk-ranges)
+    (let [walk (list-cells field.dims walk-ranges field.count)
           cells (length walk.start)
           ;; (each list's texels: its spheres and, from bound-from on, the sphere
           ;; about them)
@@ -266,7 +300,7 @@ occlusion radius), :wide? (soft shadows: a quarter cell's reach), :cells-per-obj
 (the grid's resolution; the benchmark's). Returns {:count :objects :lo [x y z] (world) :dims [nx ny nz]
 :cell [sx sy sz] :size [x y z] :reach :crossings (cells a ray can cross, at most)
 :cell-start :cell-count (per cell, 0-based) :records (object numbers, 1-based, per
-cell in order) :shapes (per object: cx cy cz hx hy hz r, field-local; a marched
+cell in order) :shapes (seven doubles an object, see shape-at: cx cy cz hx hy hz r, field-local; a marched
 member's bounding sphere) :colors :kinds (lower.fnl's field-kinds) :marched (per
 marched member: {:kind (its number, from 1) :desc :args :rows})
 :textures {:cells :records :objects}}; each texture {:width :height :data (flat
@@ -274,7 +308,7 @@ RGBA floats)}; or nil and a message when the grid's lists would not fit in a
 texture."
   (let [options (or ?options {})
         n (length objects)
-        shapes []]
+        shapes (ffi.new "double[?]" (* 7 n))]
     ;; Bounding box of every object's box.
     (var (lx ly lz hx hy hz) (values math.huge math.huge math.huge (- math.huge) (- math.huge) (- math.huge)))
     (each [_ o (ipairs objects)]
@@ -294,8 +328,8 @@ texture."
           [ox oy oz] lo
           [sx sy sz] cell
           walk-reach (min reach (* walk-reach-fraction smallest))
-          ranges []
-          walk-ranges []
+          ranges (ffi.new "int32_t[?]" (* 6 n))
+          walk-ranges (ffi.new "int32_t[?]" (* 6 n))
           colors []
           ;; Which kinds it holds (only their code is compiled in), and per marched
           ;; member its kind's number (from 1), primitive, numbers and rotation.
@@ -306,27 +340,25 @@ texture."
       ;; covers.
       (each [i o (ipairs objects)]
         (let [(cx cy cz ax ay az r) (shape o)
-              cx (- cx ox) cy (- cy oy) cz (- cz oz)
-              span (fn [c a s d grow]
-                     (values (max 0 (min (- d 1) (floor (/ (- c a r grow) s))))
-                             (max 0 (min (- d 1) (floor (/ (+ c a r grow) s))))))
-              cover (fn [grow]
-                      (let [(x0 x1) (span cx ax sx nx grow)
-                            (y0 y1) (span cy ay sy ny grow)
-                            (z0 z1) (span cz az sz nz grow)]
-                        [x0 x1 y0 y1 z0 z1]))]
-          (tset shapes i [cx cy cz ax ay az r])
+              cx (- cx ox) cy (- cy oy) cz (- cz oz)]
+          (let [at (* 7 (- i 1))]
+            (tset shapes at cx) (tset shapes (+ at 1) cy) (tset shapes (+ at 2) cz)
+            (tset shapes (+ at 3) ax) (tset shapes (+ at 4) ay) (tset shapes (+ at 5) az)
+            (tset shapes (+ at 6) r))
           (if o.tree
               (let [{: desc : args : rows : color} (lower.field-marched o)]
                 (tset marched i {:kind (. kind-number desc.kind) : desc : args : rows})
                 (tset colors i color))
               (tset colors i o.color))
-          (tset ranges i (cover reach))
-          (tset walk-ranges i (cover walk-reach))))
+          (cover! ranges i cx cy cz ax ay az r cell [nx ny nz] reach)
+          (cover! walk-ranges i cx cy cz ax ay az r cell [nx ny nz] walk-reach)))
       ;; Every object is listed in each cell it covers: a texture holds at most
       ;; max-records of those (two texels each).
-      (let [total (accumulate [sum 0 _ [x0 x1 y0 y1 z0 z1] (ipairs ranges)]
-                    (+ sum (* (+ 1 (- x1 x0)) (+ 1 (- y1 y0)) (+ 1 (- z1 z0)))))]
+      (let [total (faccumulate [sum 0 i 0 (- n 1)]
+                    (let [at (* 6 i)]
+                      (+ sum (* (+ 1 (- (. ranges (+ at 1)) (. ranges at)))
+                                (+ 1 (- (. ranges (+ at 3)) (. ranges (+ at 2))))
+                                (+ 1 (- (. ranges (+ at 5)) (. ranges (+ at 4))))))))]
         (if (> total max-records)
             (values nil (string.format (.. "objects: the field's grid lists its %d spheres and boxes %d times"
                                            " (each in every cell it covers), more than the %d a texture"
@@ -342,6 +374,16 @@ texture."
 
 (local tiny-radius 1e-30)
 
+(fn float-texture [texels count]
+  ;; A texture of `texels` RGBA texels whose first `count` floats are written next:
+  ;; {:width :height :floats (float[4 * width * height], 0-based, the rest 0) :count}.
+  ;; float32, as the GPU reads them (1,000,000 spheres' textures took 518 MB as Lua
+  ;; numbers, tables of doubles grown by doubling).
+  (let [t (texture texels nil)]
+    (set t.floats (ffi.new "float[?]" (* 4 t.width t.height)))
+    (set t.count count)
+    t))
+
 (fn walk-texture [field]
   ;; A field of spheres only: the texture its walk reads (march.glsl's step-spheres),
   ;; the cells then every list, a texel each. A cell listing one sphere holds it
@@ -354,14 +396,21 @@ texture."
   ;; that lists a sphere, one per sphere in a cell that lists several (but one for
   ;; all when the ray misses the sphere about them), and one per jump across empty
   ;; cells.
-  (let [walk []
-        {: start : count : records} field.walk
+  (let [{: start : count : records} field.walk
         cells (length start)
+        ;; Its size: the cells, then each list of two or more (its sphere about them
+        ;; first when it has bound-from or more).
+        one? (fn [k] (and (= (. count k) 1)
+                          (> (select 7 (shape-at field (. records (+ (. start k) 1)))) tiny-radius)))
+        texels (accumulate [n cells k c (ipairs count)]
+                 (+ n (if (or (= c 0) (one? k)) 0 (>= c bound-from) (+ c 1) c)))
+        tex (float-texture texels (* 4 texels))
+        walk tex.floats
         clear (clearances field.dims count)
         put (fn [texel a b c d]
               (let [at (* 4 texel)]
-                (tset walk (+ at 1) a) (tset walk (+ at 2) b)
-                (tset walk (+ at 3) c) (tset walk (+ at 4) d)))]
+                (tset walk at a) (tset walk (+ at 1) b)
+                (tset walk (+ at 2) c) (tset walk (+ at 3) d)))]
     ;; The cells, then the lists in their cells' order. A list's sphere about its
     ;; spheres: centre the mean of theirs, radius the farthest one's reach from it,
     ;; grown by a ten-thousandth of that and of the centre's distance from the
@@ -371,25 +420,36 @@ texture."
       (let [first (. start k)
             n (. count k)]
         (if (= n 0) (put (- k 1) (. clear 1 k) (. clear 2 k) (. clear 3 k) 0)
-            (and (= n 1) (> (. field.shapes (. records (+ first 1)) 7) tiny-radius))
-            (let [[cx cy cz _ _ _ r] (. field.shapes (. records (+ first 1)))]
+            (one? k)
+            (let [(cx cy cz _ _ _ r) (shape-at field (. records (+ first 1)))]
               (put (- k 1) cx cy cz r))
-            (let [shapes (fcollect [j 1 n] (. field.shapes (. records (+ first j))))
+            ;; (The spheres by number: a table of each one's values, {(shape-at ...)},
+            ;; is a bytecode LuaJIT does not compile, and this loop ran 70 times slower.)
+            (let [listed (fcollect [j 1 n] (. records (+ first j)))
                   bounded? (>= n bound-from)]
               (put (- k 1) at (if bounded? (+ n 1) n) 0 -1)
               (when bounded?
                 (var (mx my mz) (values 0 0 0))
-                (each [_ [cx cy cz] (ipairs shapes)]
-                  (set (mx my mz) (values (+ mx (/ cx n)) (+ my (/ cy n)) (+ mz (/ cz n)))))
-                (let [reach (accumulate [m 0 _ [cx cy cz _ _ _ r] (ipairs shapes)]
-                              (max m (+ r (sqrt (+ (* (- cx mx) (- cx mx)) (* (- cy my) (- cy my))
-                                                   (* (- cz mz) (- cz mz)))))))]
+                (each [_ i (ipairs listed)]
+                  (let [(cx cy cz) (shape-at field i)]
+                    (set (mx my mz) (values (+ mx (/ cx n)) (+ my (/ cy n)) (+ mz (/ cz n))))))
+                (let [reach (accumulate [m 0 _ i (ipairs listed)]
+                              (let [(cx cy cz _ _ _ r) (shape-at field i)]
+                                (max m (+ r (sqrt (+ (* (- cx mx) (- cx mx)) (* (- cy my) (- cy my))
+                                                     (* (- cz mz) (- cz mz))))))))]
                   (put at mx my mz (- (+ reach (* 1e-4 (+ reach (max (abs mx) (abs my) (abs mz)))))))
                   (set at (+ at 1))))
-              (each [_ [cx cy cz _ _ _ r] (ipairs shapes)]
-                (put at cx cy cz r)
+              (each [_ i (ipairs listed)]
+                (let [(cx cy cz _ _ _ r) (shape-at field i)]
+                  (put at cx cy cz r))
                 (set at (+ at 1)))))))
-    (texture at walk)))
+    (assert (= at texels) "field: the walk texture's size")
+    tex))
+
+(fn texture-values [tex]
+  "The floats of texture `tex` as a list (1-based): its :data, or the first :count of
+its :floats."
+  (or tex.data (fcollect [i 0 (- tex.count 1)] (. tex.floats i))))
 
 (fn textures [field]
   "The field's float textures (made once, then kept in the field):
@@ -402,42 +462,46 @@ texture."
   :objects  per object (object-texels): its record's two texels, its colour;
             with marched members also a marched member's rotation (quaternion)
             and its packed numbers (arg-texels)
-Each {:width :height :data} with data flat RGBA floats, row after row."
+Each {:width :height} and its floats row after row, float32 in :floats (see
+float-texture, texture-values)."
   (when (not field.textures)
-    (let [cells [] records [] objects []]
+    (let [stride (object-texels field)
+          cells-tex (float-texture (length field.cell-start) (* 4 (length field.cell-start)))
+          records-tex (float-texture (* 2 (length field.records)) (* 8 (length field.records)))
+          objects-tex (float-texture (* stride field.count) (* 4 stride field.count))
+          cells cells-tex.floats
+          records records-tex.floats
+          objects objects-tex.floats]
       (each [k start (ipairs field.cell-start)]
         (let [at (* 4 (- k 1))]
-          (tset cells (+ at 1) start)
-          (tset cells (+ at 2) (. field.cell-count k))
-          (tset cells (+ at 3) 0)
-          (tset cells (+ at 4) 0)))
+          (tset cells at start)
+          (tset cells (+ at 1) (. field.cell-count k))))
       (each [j i (ipairs field.records)]
-        (let [[cx cy cz ax ay az r] (. field.shapes i)
+        (let [(cx cy cz ax ay az r) (shape-at field i)
               m (. field.marched i)
               at (* 8 (- j 1))]
-          (tset records (+ at 1) cx) (tset records (+ at 2) cy) (tset records (+ at 3) cz)
-          (tset records (+ at 4) r)
-          (tset records (+ at 5) (if m (- m.kind) ax)) (tset records (+ at 6) ay)
-          (tset records (+ at 7) az)
-          (tset records (+ at 8) (- i 1))))
-      (let [stride (object-texels field)]
-        (each [i [cx cy cz ax ay az r] (ipairs field.shapes)]
-          (let [[cr cg cb] (. field.colors i)
-                m (. field.marched i)
-                at (* 4 stride (- i 1))]
-            (each [j v (ipairs [cx cy cz r (if m (- m.kind) ax) ay az (- i 1) cr cg cb 0])]
-              (tset objects (+ at j) v))
-            (when (> stride 3)
-              (let [(qx qy qz qw) (quaternion (if m m.rows [1 0 0 0 1 0 0 0 1]))
-                    args (if m m.args [])]
-                (each [j v (ipairs [qx qy qz qw])]
-                  (tset objects (+ at 12 j) v))
-                (for [j 1 (* 4 (- stride 4))]
-                  (tset objects (+ at 16 j) (or (. args j) 0))))))))
-      (set field.textures
-           {:cells (texture (length field.cell-start) cells)
-            :records (texture (* 2 (length field.records)) records)
-            :objects (texture (* (object-texels field) field.count) objects)})
+          (tset records at cx) (tset records (+ at 1) cy) (tset records (+ at 2) cz)
+          (tset records (+ at 3) r)
+          (tset records (+ at 4) (if m (- m.kind) ax)) (tset records (+ at 5) ay)
+          (tset records (+ at 6) az)
+          (tset records (+ at 7) (- i 1))))
+      (for [i 1 field.count]
+        (let [(cx cy cz ax ay az r) (shape-at field i)
+              [cr cg cb] (. field.colors i)
+              m (. field.marched i)
+              at (* 4 stride (- i 1))]
+          (tset objects at cx) (tset objects (+ at 1) cy) (tset objects (+ at 2) cz)
+          (tset objects (+ at 3) r) (tset objects (+ at 4) (if m (- m.kind) ax))
+          (tset objects (+ at 5) ay) (tset objects (+ at 6) az) (tset objects (+ at 7) (- i 1))
+          (tset objects (+ at 8) cr) (tset objects (+ at 9) cg) (tset objects (+ at 10) cb)
+          (when (> stride 3)
+            (let [(qx qy qz qw) (quaternion (if m m.rows [1 0 0 0 1 0 0 0 1]))
+                  args (if m m.args [])]
+              (tset objects (+ at 12) qx) (tset objects (+ at 13) qy)
+              (tset objects (+ at 14) qz) (tset objects (+ at 15) qw)
+              (for [j 1 (* 4 (- stride 4))]
+                (tset objects (+ at 15 j) (or (. args j) 0)))))))
+      (set field.textures {:cells cells-tex :records records-tex :objects objects-tex})
       (when field.walk?
         (set field.textures.walk (walk-texture field)))))
   field.textures)
@@ -455,7 +519,7 @@ Each {:width :height :data} with data flat RGBA floats, row after row."
 
 (fn member-distance [field i qx qy qz]
   "fieldMemberDistance: the field's object `i` (1-based) at field-local (qx qy qz)."
-  (let [[cx cy cz ax ay az r] (. field.shapes i)
+  (let [(cx cy cz ax ay az r) (shape-at field i)
         m (. field.marched i)]
     (if m (marched-distance m qx qy qz cx cy cz)
         (rounded-box qx qy qz cx cy cz ax ay az r))))
@@ -516,7 +580,7 @@ a step is under the hit test, at most marched-turns steps and no farther than th
 sphere's exit. `hit` gives the hit test: {:t0 (the distance travelled to q)
 :threshold (fn [distance from the camera]) :start-limit (fn [d at the ray's
 start])}, a march's: a secondary ray's own start is no hit."
-  (let [[cx cy cz _ _ _ r] (. field.shapes i)
+  (let [(cx cy cz _ _ _ r) (shape-at field i)
         m (. field.marched i)
         ox (- qx cx) oy (- qy cy) oz (- qz cz)
         b (+ (* ox dx) (* oy dy) (* oz dz))
@@ -550,8 +614,7 @@ start])}, a march's: a secondary ray's own start is no hit."
 i) first enters an object listed in cell `k` (1-based), or `far`. The lists are
 the field's, or `?lists` ({:start :count :records}, the walk's). `?hit`, a
 march's hit test (see marched-entry), is needed when the field has marched members."
-  (let [shapes field.shapes
-        marched field.marched
+  (let [marched field.marched
         records (if ?lists ?lists.records field.records)
         start (. (if ?lists ?lists.start field.cell-start) k)
         count (. (if ?lists ?lists.count field.cell-count) k)]
@@ -560,7 +623,7 @@ march's hit test (see marched-entry), is needed when the field has marched membe
       (let [i (. records j)]
         (set t (min t (if (. marched i)
                           (marched-entry field i qx qy qz dx dy dz far ?hit)
-                          (let [[cx cy cz ax ay az r] (. shapes i)]
+                          (let [(cx cy cz ax ay az r) (shape-at field i)]
                             (entry qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far)))))))
     t))
 
@@ -606,25 +669,34 @@ nearest object (ties to the earlier)."
         (when (< di d) (set d di) (set best i)))))
   (values d best))
 
-(fn changed-spans [old new width]
-  "Where two flat RGBA lists of a texture `width` texels wide differ: a list of
-[row first-texel last-texel] (0-based), one per row that changed, from its first
-changed texel to its last; nil when their lengths differ (the texture is new).
-A value edit then uploads only the texels it touched."
-  (when (= (length old) (length new))
-    (let [out []
-          per-row (* 4 width)]
-      (for [row 0 (- (math.ceil (/ (length new) per-row)) 1)]
-        (var first nil)
-        (var last nil)
-        (let [base (* row per-row)]
-          (for [i (+ base 1) (math.min (length new) (+ base per-row))]
-            (when (not= (. old i) (. new i))
-              (let [texel (math.floor (/ (- i base 1) 4))]
-                (when (not first) (set first texel))
-                (set last texel)))))
-        (when first (table.insert out [row first last])))
-      out)))
+(fn float-reader [tex]
+  ;; A texture's floats, 1-based, and how many: from :data or :floats.
+  (if tex.floats
+      (let [f tex.floats] (values (fn [i] (. f (- i 1))) tex.count))
+      (let [d tex.data] (values (fn [i] (. d i)) (length d)))))
+
+(fn changed-spans [old new]
+  "Where two textures of one width differ (`old` and `new`, {:width} and their floats,
+see textures): a list of [row first-texel last-texel] (0-based), one per row that
+changed, from its first changed texel to its last; nil when their sizes or widths
+differ (the texture is new). A value edit then uploads only the texels it touched."
+  (let [(old-at old-n) (float-reader old)
+        (new-at n) (float-reader new)]
+    (when (and (= old-n n) (= old.width new.width))
+      (let [out []
+            per-row (* 4 new.width)]
+        (for [row 0 (- (math.ceil (/ n per-row)) 1)]
+          (var first nil)
+          (var last nil)
+          (let [base (* row per-row)]
+            (for [i (+ base 1) (math.min n (+ base per-row))]
+              (when (not= (old-at i) (new-at i))
+                (let [texel (math.floor (/ (- i base 1) 4))]
+                  (when (not first) (set first texel))
+                  (set last texel)))))
+          (when first (table.insert out [row first last])))
+        out))))
+
 (fn walk [field ox oy oz dx dy dz t-past max-steps]
   "The walk of a field of spheres only (march.glsl's step-spheres) on the CPU,
 reading the walk texture as the shader does (its cells' spheres, lists and
@@ -633,14 +705,15 @@ from world (ox oy oz) along the unit vector (dx dy dz) first enters a sphere of 
 field of spheres only (field.walk?) before `t-past` (the nearest plane or the
 ray's end), else `t-past`; with the cells it met that list something (the
 shader's steps). After `max-steps` of those: :out and where it stopped."
-  (let [data (. (textures field) :walk :data)
+  (let [data (. (textures field) :walk :floats)
         ;; Where the ray's octant's clearance is in an empty cell's texel.
         octant (let [(ix iy iz) (reciprocal dx dy dz)]
                  (+ (if (< ix 0) 1 0) (if (< iy 0) 2 0) (if (< iz 0) 4 0)))
         channel (+ 1 (floor (/ octant 3)))
         scale (^ 256 (- (% octant 3)))
+        ;; float32, as the shader reads them.
         texel (fn [i] (let [at (* 4 i)]
-                        (values (. data (+ at 1)) (. data (+ at 2)) (. data (+ at 3)) (. data (+ at 4)))))
+                        (values (. data at) (. data (+ at 1)) (. data (+ at 2)) (. data (+ at 3)))))
         [lx ly lz] field.lo
         [wx wy wz] field.size
         [sx sy sz] field.cell
@@ -717,13 +790,14 @@ member's by marched-entry, with the hit test `?hit`), or `far`."
         qx (- ox lx) qy (- oy ly) qz (- oz lz)
         (ix iy iz) (reciprocal dx dy dz)]
     (var t far)
-    (each [i [cx cy cz ax ay az r] (ipairs field.shapes)]
+    (for [i 1 field.count]
       (set t (min t (if (. field.marched i)
                         (marched-entry field i qx qy qz dx dy dz far ?hit)
-                        (entry qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far)))))
+                        (let [(cx cy cz ax ay az r) (shape-at field i)]
+                          (entry qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far))))))
     t))
 
 {: member? : members : brute-entry : marched-entry : marched-turns : object-texels
  : arg-texels : quaternion
  : member-distance : walk : reciprocal : tiny : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
- : distance : brute-distance : rounded-box : min-objects : texture-width}
+ : distance : brute-distance : rounded-box : min-objects : texture-width : texture-values : shape-at}

@@ -248,6 +248,35 @@ shader of `plan` holds, and how its soft shadows march."
      ;; reached the light by then counts as lit.
      :shadow-steps 128}))
 
+;; The fields built for a scene's objects (its list, which a load or a value edit
+;; makes anew), by their options: the player's plans of one scene (the one on screen,
+;; its folded twin, its still's) share one field, its textures and their images (three
+;; copies of 1,000,000 spheres' field took the player to 2.8 GB). Not for a scene with
+;; functions of time, whose values change in place each frame. Weak: a field goes
+;; with its scene.
+(local fields (setmetatable {} {:__mode :k}))
+(local collect-after 100000)
+
+(fn built-field [scene members options]
+  ;; field.build of `members` (of `scene`'s objects) with `options`, once per list of
+  ;; objects and options when the scene has no functions of time; nil and a message
+  ;; as field.build gives them.
+  (let [key (string.format "%s %s %s" (tostring options.reach-at-least) (tostring options.wide?)
+                           (tostring options.cells-per-object))
+        by-options (if (< 0 (length (or scene.animated []))) {}
+                       (or (. fields scene.objects)
+                           (let [t {}] (tset fields scene.objects t) t)))]
+    (case (. by-options key)
+      fd fd
+      _ (case (field.build members options)
+          fd (do (tset by-options key fd)
+                 ;; What the build left behind is collected at once for a large
+                 ;; field, before textures and a shader come on top: LuaJIT's
+                 ;; collector took its time over 600 MB of it (1,000,000 spheres).
+                 (when (>= fd.count collect-after) (collectgarbage))
+                 fd)
+          (nil err) (values nil err)))))
+
 (fn scene->plan [scene ?options]
   "Lower `scene` into a plan. Options:
   :view           :shaded (default), :normals, :glow or :heat
@@ -290,11 +319,13 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
         members (when (and (not uber?) (not= false options.field?) (not= false options.bounds?)
                            scene.render.bounds)
                   (field.members scene.objects))
-        in-field (collect [_ o (ipairs (or members []))] o true)
         ;; Every object is lowered into the tape: the field's members as its first
-        ;; object (a strategy: see lower.fnl), the others each or in groups.
+        ;; object (a strategy: see lower.fnl), the others each or in groups. (A
+        ;; member is what field.member? says, asked again: a set of a million members
+        ;; was 60 MB of garbage for each of the player's plans.)
         (tape lower-error) (lower.lower (icollect [_ o (ipairs scene.objects)]
-                                          (when (not (. in-field o)) (lower.node-of o)))
+                                          (when (not (and members (field.member? o)))
+                                            (lower.node-of o)))
                                         {:modern? (not= nil scene.lighting)
                                          :field members
                                          :far-field? options.far-field?
@@ -349,12 +380,13 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
       (set plan.lighting (lighting-plan scene plan options)))
     (var field-error nil)
     (when members
-      (case (field.build members {:reach-at-least (when plan.lighting
-                                                    (accumulate [r nil _ name (ipairs plan.lighting.features)]
-                                                      (let [d (features.lookup name)]
-                                                        (if d.reach (math.max (or r 0) (d.reach scene.lighting)) r))))
-                                  :wide? (and plan.lighting plan.lighting.soft?)
-                                  :cells-per-object options.field-cells})
+      (case (built-field scene members
+                         {:reach-at-least (when plan.lighting
+                                            (accumulate [r nil _ name (ipairs plan.lighting.features)]
+                                              (let [d (features.lookup name)]
+                                                (if d.reach (math.max (or r 0) (d.reach scene.lighting)) r))))
+                          :wide? (and plan.lighting plan.lighting.soft?)
+                          :cells-per-object options.field-cells})
         fd (set plan.field fd)
         (nil err) (set field-error (.. scene.file ": " err))))
     ;; Soft shadow rays march the finite objects only over their bounding spheres'

@@ -38,7 +38,9 @@
 
 (local state {:worker nil    ; {:child :info :scene :request :in-flight}
               :argv nil      ; how to start it (see `command`)
-              :said-fallback? false})
+              :said-fallback? false
+              ;; a large answer's decoded copy to collect once its load has returned
+              :collect? false})
 
 (fn game-root []
   ;; The folder of this checkout, from this file's path (plain LuaJIT runs from it).
@@ -202,6 +204,22 @@ nil when none is running."
 ;; no functions of time once it is read (see load-code).
 (local big-answer (* 32 1024 1024))
 
+(fn checked-answer [w value file source]
+  ;; The scene of answer `value` checked as the loader checks a file, and rebuilt by
+  ;; it (src/scene/answer.fnl), or nil and a message. After a large answer (past
+  ;; big-answer bytes) what is garbage goes at once, before the next copy is built:
+  ;; the answer's text before the check, the decoded answer after it (1,000,000
+  ;; spheres: 140 and 450 MB, the latter by load-source); and a worker without functions of time to run, which
+  ;; keeps the memory it grew to (530 MB), is ended: the next load starts another.
+  (let [big? (> w.answer-bytes big-answer)]
+    (when big?
+      (when (or (not= (type value.animated) :table) (= nil (next value.animated)))
+        (kill!))
+      (collectgarbage))
+    ;; The decoded answer is collected once load-code has returned (its frame holds it).
+    (set state.collect? big?)
+    (answer-check.check-scene value file source)))
+
 (fn load-code [source file ?options]
   ;; Scene `source` evaluated in the worker (see load-source).
   (case (start)
@@ -218,18 +236,10 @@ nil when none is running."
                                 (values nil (failure w "the answer is not a scene" file "" 0))
                                 (= value.ok false) (values nil (worker-message value.message))
                                 ;; Checked as the loader checks a file, and rebuilt by it.
-                                (case (answer-check.check-scene value file source)
+                                (case (checked-answer w value file source)
                                   (nil msg) (values nil (refuse! w msg))
                                   scene (do (set w.scene scene)
                                             (tset requests scene request)
-                                            ;; A large scene without functions of time
-                                            ;; needs nothing more of this worker, which
-                                            ;; keeps the memory it grew to (540 MB after
-                                            ;; 1,000,000 spheres): ended, the next load
-                                            ;; starts another.
-                                            (when (and (> w.answer-bytes big-answer)
-                                                       (not (scene-mod.animated? scene)))
-                                              (kill!))
                                             scene))))))))))
 
 (fn load-source [source file ?options]
@@ -243,7 +253,11 @@ a message. A scene the worker had to stop is refused with a message that says wh
       (case (scene-mod.load-data source file)
         (nil msg) (values nil msg)
         (where scene scene) (do (case state.worker w (settle! w)) scene)
-        _ (load-code source file ?options))))
+        _ (let [(scene err) (load-code source file ?options)]
+            (when state.collect?
+              (set state.collect? false)
+              (collectgarbage))
+            (values scene err)))))
 
 (fn load-file [path ?read ?options]
   "Read the scene file at `path` (with `?read`, default scene-mod.read-capped) and load

@@ -214,14 +214,26 @@ nil and :timeout or :closed."
       (set child.need (frame-size (head:sub 1 32)))))
   (if (= child.need false) false
       (and child.need (>= child.have child.need))
-      (let [all (table.concat child.parts)
-            need child.need
-            nl (all:find "\n" 1 true)
-            rest (all:sub (+ need 1))]
-        (set child.parts [rest])
-        (set child.have (length rest))
-        (set child.need nil)
-        (all:sub (+ nl 1) need))
+      ;; The payload (after the length's line, up to `need`) and what follows it, each
+      ;; joined once from the parts: joining them all first, then cutting the payload
+      ;; out of that, held three copies of a 140 MB answer at once.
+      (let [need child.need
+            nl (: (. child.parts 1) :find "\n" 1 true)
+            payload []
+            rest []]
+        (var pos 0)
+        (each [_ part (ipairs child.parts)]
+          (let [stop (+ pos (length part))
+                lo (math.max (+ pos 1) (+ nl 1))
+                hi (math.min stop need)]
+            (when (<= lo hi) (table.insert payload (part:sub (- lo pos) (- hi pos))))
+            (when (> stop need) (table.insert rest (part:sub (- (math.max (+ pos 1) (+ need 1)) pos))))
+            (set pos stop)))
+        (let [rest (table.concat rest)]
+          (set child.parts [rest])
+          (set child.have (length rest))
+          (set child.need nil)
+          (table.concat payload)))
       nil))
 
 (fn receive! [child deadline]

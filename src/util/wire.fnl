@@ -59,6 +59,12 @@
 
 ;;; Encoding
 
+(fn release! [...]
+  "Empty each table given: scratch tables a closure of encode or decode holds, which a
+JIT trace may keep alive after the call."
+  (each [_ t (ipairs [...])]
+    (each [k (pairs t)] (tset t k nil))))
+
 (fn key-before? [a b]
   ;; Strings before numbers, each ascending.
   (let [ta (type a)]
@@ -79,13 +85,10 @@
 (fn key-text [k]
   (if (= (type k) :number) (.. "the key " (tostring k)) (.. "a " (type k) " key")))
 
-(fn encode [value ?limits]
-  "The bytes of `value` (strings, numbers, booleans and tables of them) in the wire
-format, deterministic (map keys sorted). A table is a list when its keys are exactly
-1..(length t) and there is at least one; an empty table is an empty list; any other
-table is a map, with string or integer keys. `?limits`: :max-depth (default 100).
-Returns the string, or nil and 'cannot send a <type> at <path>', 'cannot send <key>
-at <path>' or 'nested deeper than <max-depth> at <path>' (path: keys joined by dots)."
+(fn encode-parts [value ?limits]
+  "The bytes of `value` in the wire format (see encode) as a list of strings whose
+concatenation they are, and their total length: a sender writes them one after
+another without the copy that joins them (a 140 MB answer was held three times)."
   (let [max-depth (or (and ?limits (. ?limits :max-depth)) limits.max-depth)
         strings []
         index {}
@@ -187,10 +190,27 @@ at <path>' or 'nested deeper than <max-depth> at <path>' (path: keys joined by d
             (set err (.. "cannot send a " t " at " (path-text path depth))))))
 
     (walk value 0)
-    (if err
-        (values nil err)
-        (.. "SDW1 " ns " " nn " " no "\n" (concat strings)
-            (ffi.string nums (* 8 nn)) (ffi.string ops no)))))
+    (let [result (when (not err)
+                   [(.. "SDW1 " ns " " nn " " no "\n" (concat strings))
+                    (ffi.string nums (* 8 nn)) (ffi.string ops no)])]
+      ;; The closures above may outlive this call in a JIT trace that took them as
+      ;; constants (LuaJIT anchors a trace's constants): what they hold goes now, or
+      ;; the number buffer (64 MB for 1,000,000 spheres) stayed until the trace did.
+      (release! strings index path)
+      (set (nums ops) (values nil nil))
+      (if err (values nil err)
+          (values result (accumulate [n 0 _ part (ipairs result)] (+ n (length part))))))))
+
+(fn encode [value ?limits]
+  "The bytes of `value` (strings, numbers, booleans and tables of them) in the wire
+format, deterministic (map keys sorted). A table is a list when its keys are exactly
+1..(length t) and there is at least one; an empty table is an empty list; any other
+table is a map, with string or integer keys. `?limits`: :max-depth (default 100).
+Returns the string, or nil and 'cannot send a <type> at <path>', 'cannot send <key>
+at <path>' or 'nested deeper than <max-depth> at <path>' (path: keys joined by dots)."
+  (case (encode-parts value ?limits)
+    parts (concat parts)
+    (nil err) (values nil err)))
 
 ;;; Decoding
 
@@ -301,11 +321,16 @@ at <path>' or 'nested deeper than <max-depth> at <path>' (path: keys joined by d
             (set err (.. "unknown op byte " c " at op " (- i ops-at -1)
                          " (byte " i ")"))))
       (set i (+ i 1)))
-    (if err (malformed err)
-        (not done?) (malformed (if (= depth 0) "no value in the ops"
-                                   (.. depth " lists or maps left open at the end")))
-        (< ni nn) (malformed (.. (- nn ni) " of the " nn " numbers left unused"))
-        root)))
+    (let [value root]
+      ;; As in encode: a trace may keep `put` and so its upvalues; `root` held the
+      ;; whole decoded value (450 MB for 1,000,000 spheres) after the app dropped it.
+      (set root nil)
+      (release! stack maps counts keys)
+      (if err (malformed err)
+          (not done?) (malformed (if (= depth 0) "no value in the ops"
+                                     (.. depth " lists or maps left open at the end")))
+          (< ni nn) (malformed (.. (- nn ni) " of the " nn " numbers left unused"))
+          value))))
 
 (fn decode* [s ?limits]
   (let [max-depth (or (and ?limits (. ?limits :max-depth)) limits.max-depth)
@@ -360,4 +385,4 @@ at <path>' or 'nested deeper than <max-depth> at <path>' (path: keys joined by d
   "`s` preceded by its byte length and a newline, for a stream of messages."
   (.. (length s) "\n" s))
 
-{: encode : decode : frame : limits}
+{: encode : encode-parts : decode : frame : limits}
