@@ -11,12 +11,15 @@ root=$!
 peak=0
 detail=""
 descendants() {
-  # Every process whose ancestry leads to $1, from the parent ids in /proc/*/stat.
-  local want=" $1 " found=1 pid ppid
+  # Every process whose ancestry leads to $1, from the parent ids in /proc/*/stat
+  # (pid (name) state ppid ...: the name may hold spaces and parentheses).
+  local want=" $1 " found=1 pid ppid line
   while [ $found -eq 1 ]; do
     found=0
     for stat in /proc/[0-9]*/stat; do
-      { read -r pid _ _ ppid _ < "$stat"; } 2>/dev/null || continue
+      { read -r line < "$stat"; } 2>/dev/null || continue
+      pid=${line%% *}
+      read -r _ ppid _ <<< "${line##*) }"
       case "$want" in *" $pid "*) continue ;; esac
       case "$want" in *" $ppid "*) want="$want$pid "; found=1 ;; esac
     done

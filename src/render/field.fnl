@@ -303,9 +303,8 @@ occlusion radius), :wide? (soft shadows: a quarter cell's reach), :cells-per-obj
 cell in order) :shapes (seven doubles an object, see shape-at: cx cy cz hx hy hz r, field-local; a marched
 member's bounding sphere) :colors :kinds (lower.fnl's field-kinds) :marched (per
 marched member: {:kind (its number, from 1) :desc :args :rows})
-:textures {:cells :records :objects}}; each texture {:width :height :data (flat
-RGBA floats)}; or nil and a message when the grid's lists would not fit in a
-texture."
+:textures (made on first use: see textures)}; or nil and a message when the grid's
+lists would not fit in a texture."
   (let [options (or ?options {})
         n (length objects)
         shapes (ffi.new "double[?]" (* 7 n))]

@@ -40,6 +40,31 @@
 ;; slope above the worker's factor (at least 1) by `spot-tolerance` is a forgery.
 (local spot-thinning 30)
 (local spot-tolerance 1.5)
+;; Its verdicts by function, bounds and factor, kept across loads (at most spot-kept,
+;; then cleared): a slider's drag loads again at every move, with the factor the
+;; worker measured over the slider's whole range, and checking it at every value took
+;; scenes/custom.fnl's drag from 11 to 56 ms of the app's CPU. A factor checked once
+;; is checked; another one for the same function is checked anew.
+(local spot-verdicts {:n 0 :entries {}})
+(local spot-kept 64)
+
+(fn spot-check [data cpu bounds args cost]
+  "nil when the worker's measured factor of custom `data` holds at `args` by the
+thinner measure (see spot-thinning), or held at the values it was first checked
+at; else the refusal's reason."
+  (let [key (.. data.lua "\n" (table.concat bounds " ") "\n" (string.format "%.17g" data.measured))
+        kept (. spot-verdicts.entries key)]
+    (if (not= nil kept) (or kept nil)
+        (let [verdict (case (custom.measure cpu bounds args (* spot-thinning (math.max 1 (or cost 1))))
+                        (spot [x y z]) (when (> spot (* spot-tolerance (math.max 1 data.measured)))
+                                         (string.format "a custom node: its measured factor %.3g is below the slope %.3g found here at [%.3g %.3g %.3g] (refused)"
+                                                        data.measured spot x y z)))]
+          (when (>= spot-verdicts.n spot-kept)
+            (set spot-verdicts.entries {})
+            (set spot-verdicts.n 0))
+          (tset spot-verdicts.entries key (or verdict false))
+          (set spot-verdicts.n (+ spot-verdicts.n 1))
+          verdict))))
 
 (local type type)
 (local pairs pairs)
@@ -228,11 +253,7 @@ was refused: FIELD: reason'. Takes the answer's tables apart."
     (set ctx.measure
          (fn [cpu bounds args cost]
            (when (= nil forged-factor)
-             (case (custom.measure cpu bounds args (* spot-thinning (math.max 1 (or cost 1))))
-               (spot [x y z]) (when (> spot (* spot-tolerance (math.max 1 current.measured)))
-                                (set forged-factor
-                                     (string.format "a custom node: its measured factor %.3g is below the slope %.3g found here at [%.3g %.3g %.3g] (refused)"
-                                                    current.measured spot x y z)))))
+             (set forged-factor (spot-check current cpu bounds args cost)))
            (values current.measured [0 0 0])))
     (if (not= (type scene) :table) (values nil (refused file "the scene is not a table"))
         (not= scene.file file) (values nil (refused file "file: not the file that was sent"))

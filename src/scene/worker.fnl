@@ -208,9 +208,9 @@ nil when none is running."
   ;; The scene of answer `value` checked as the loader checks a file, and rebuilt by
   ;; it (src/scene/answer.fnl), or nil and a message. After a large answer (past
   ;; big-answer bytes) what is garbage goes at once, before the next copy is built:
-  ;; the answer's text before the check, the decoded answer after it (1,000,000
-  ;; spheres: 140 and 450 MB, the latter by load-source); and a worker without functions of time to run, which
-  ;; keeps the memory it grew to (530 MB), is ended: the next load starts another.
+  ;; the answer's text before the check, the decoded answer after it, in load-source
+  ;; (1,000,000 spheres: 140 and 450 MB). A worker without functions of time to run,
+  ;; which keeps the memory it grew to (530 MB), is ended: the next load starts another.
   (let [big? (> w.answer-bytes big-answer)]
     (when big?
       (when (or (not= (type value.animated) :table) (= nil (next value.animated)))
