@@ -129,7 +129,7 @@
              (for [i 1 64] (set d (+ d (* 0.015625 (math.sqrt (+ (* x x) (* y y) (* z z) (* k 0.001 i)))))))
              (- d r))}]}" "t.fnl" {: measure}))
               cost (. (tree-of s) :custom :cost)
-              budget (* custom.limits.range-share (+ custom.limits.measure-ops custom.limits.refine-ops))]
+              budget (* custom.limits.range-share (+ custom.limits.measure-ops custom.limits.refine-ops custom.limits.jump-ops))]
           (print (string.format "\nranged measure: %d calls, %d evaluations of %d operations (%.3g of a budget of %.3g)"
                                 count.calls count.evaluations cost (* count.evaluations cost) budget))
           (assert.are.equal custom.limits.range-samples count.calls)

@@ -628,6 +628,72 @@ grid's side and each node's label."
           (assert.is_true (> value 0))
           (assert.is_true (<= evaluations budget) (.. evaluations " evaluations")))))))
 
+(describe "custom: a distance that jumps outside the shape is refused"
+  (fn []
+    ;; A ball of radius 0.5 whose distance is raised by `size` where x > 0.3: a ray
+    ;; from there steps by the raised value, past the ball's surface beyond x = 0.3;
+    ;; no factor covers it (the central differences straddle the wall at one sample
+    ;; in thousands). Its samples' values there are 0.51 and up.
+    (fn jumping [size ?fields ?wall]
+      (string.format "{:objects [{:kind :custom :bounds [0.6 0.6 0.6] %s
+ :distance (fn [x y z] (let [d (- (math.sqrt (+ (* x x) (* y y) (* z z))) 0.5)] (if (> x %s) (+ d %s) d)))}]}"
+                     (or ?fields "") (or ?wall 0.3) size))
+
+    (fn jump-at [msg]
+      ;; The point and the two values a refusal names.
+      (let [(low high x y z) (msg:match "jumps from ([-%d.e]+) to ([-%d.e]+) at %[([-%d.e]+) ([-%d.e]+) ([-%d.e]+)%]")]
+        (values (tonumber low) (tonumber high) (tonumber x) (tonumber y) (tonumber z))))
+
+    (it "refuses a jump of 0.2, at the wall, with the values on both sides and the fix"
+      (fn []
+        (let [(node msg) (load-one (jumping 0.2))]
+          (assert.is_nil node)
+          (assert.truthy (msg:find "^t.fnl:2: objects%[1%]%.distance: jumps from ") msg)
+          (assert.truthy (msg:find "or add :lipschitz 1 :trust-lipschitz true" 1 true) msg)
+          (let [(low high x y z) (jump-at msg)]
+            (assert.is_true (< (math.abs (- x 0.3)) 1e-3) msg)
+            ;; The two sides of the wall at that point, as the message rounds them.
+            (let [d (- (math.sqrt (+ (* x x) (* y y) (* z z))) 0.5)]
+              (assert.is_true (< (math.abs (- low d)) 0.01) msg)
+              (assert.is_true (< (math.abs (- high (+ d 0.2))) 0.01) msg))))))
+
+    (it "refuses a jump of 0.02 (a tenth of the grid's step: found by its pair standing out on its line)"
+      (fn []
+        (let [(node msg) (load-one (jumping 0.02 nil 0.27))]
+          (assert.is_nil node)
+          (let [(_ _ x) (jump-at msg)]
+            (assert.is_true (< (math.abs (- x 0.27)) 1e-3) msg)))))
+
+    (it "refuses spheres of two radii in alternate repeated cells, five of them (the distance jumps at the cells' walls)"
+      (fn []
+        (let [(node msg) (load-one "{:objects [{:kind :custom :bounds [2.3 0.5 0.5]
+ :distance (fn [x y z] (let [c (math.clamp (math.floor (+ x 0.5)) -2 2) cx (- x c) r (+ 0.2 (* 0.1 (math.mod c 2)))]
+                         (- (math.sqrt (+ (* cx cx) (* y y) (* z z))) r)))}]}")]
+          (assert.is_nil node)
+          (let [(low high x) (jump-at msg)]
+            ;; A wall at a half: x - 0.5 a whole number.
+            (assert.is_true (< (math.abs (- (- x 0.5) (math.floor (+ (- x 0.5) 0.5)))) 1e-3) msg)
+            (assert.is_true (< (math.abs (- (- high low) 0.1)) 0.01) msg)))))
+
+    (it "takes the same spheres of one radius (symmetric in the cell: no jump), and the exact box's kinks"
+      (fn []
+        (assert.are.equal 1 (. (assert (load-one "{:objects [{:kind :custom :bounds [2.3 0.5 0.5]
+ :distance (fn [x y z] (let [cx (- x (math.clamp (math.floor (+ x 0.5)) -2 2))] (- (math.sqrt (+ (* cx cx) (* y y) (* z z))) 0.25)))}]}")) :lipschitz))
+        (assert.are.equal 1 (. (assert (load-one "{:objects [{:kind :custom :bounds [0.4 0.3 0.2]
+ :distance (fn [x y z] (let [qx (- (math.abs x) 0.4) qy (- (math.abs y) 0.3) qz (- (math.abs z) 0.2)]
+   (+ (math.sqrt (+ (* (math.max qx 0) (math.max qx 0)) (* (math.max qy 0) (math.max qy 0)) (* (math.max qz 0) (math.max qz 0))))
+      (math.min (math.max qx qy qz) 0))))}]}")) :lipschitz))))
+
+    (it "takes a jump inside the shape (it limits no step) and one below the hit distance (1e-4 of the bounds)"
+      (fn []
+        (assert.truthy (load-one "{:objects [{:kind :custom :bounds [0.6 0.6 0.6]
+ :distance (fn [x y z] (let [d (- (math.sqrt (+ (* x x) (* y y) (* z z))) 0.5)] (if (< d -0.1) (- d 0.3) d)))}]}"))
+        (assert.truthy (load-one (jumping 1e-5)))))
+
+    (it "draws it as it is with :lipschitz 1 :trust-lipschitz true"
+      (fn []
+        (assert.are.equal 1 (. (assert (load-one (jumping 0.2 ":lipschitz 1 :trust-lipschitz true"))) :lipschitz))))))
+
 (describe "custom: a declared factor below the measure, trusted"
   (fn []
     (local gyroid "(fn [x y z] (math.max (- (math.abs (+ (* (math.sin (* 4 x)) (math.cos (* 4 y))) (* (math.sin (* 4 y)) (math.cos (* 4 z))) (* (math.sin (* 4 z)) (math.cos (* 4 x))))) 0.2) (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1)))")

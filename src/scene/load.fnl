@@ -696,6 +696,12 @@ ran the scene (its sliders are known)."
     (when (> (length names) 0)
       (table.concat (icollect [_ n (ipairs names)] (.. n " = " (describe-value (. at n)))) " and "))))
 
+(fn jump-message [jump ?values]
+  ;; The refusal of a distance that jumps outside its shape (custom.measure's jump).
+  (let [[x y z] jump.at]
+    (string.format "jumps from %.3g to %.3g at [%.3g %.3g %.3g]%s, outside the shape: a ray steps past a surface by the jump, which no :lipschitz covers; make it continuous there (math.mix in place of an if), or add :lipschitz 1 :trust-lipschitz true"
+                   jump.low jump.high x y z (case ?values text (.. " with " text) _ ""))))
+
 (fn check-custom! [ctx path o out]
   "Translate custom node `o`'s distance function, check that its :bounds hold the
 shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params,
@@ -781,14 +787,16 @@ shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params
             (each [_ r (ipairs (remembered ctx :measures mcache key
                                            #(accumulate [done [] _ s (ipairs samples)
                                                          &until (and (. done 1) (= nil (. done (length done) :m)))]
-                                              (let [(m where point) (measure desc.cpu out.bounds s.args cost)]
-                                                (doto done (table.insert {: m : where : point :at s.at}))))))]
+                                              (let [(m where point jump) (measure desc.cpu out.bounds s.args cost)]
+                                                (doto done (table.insert {: m : where : point : jump :at s.at}))))))]
               (if (= r.m nil)
                   (fail ctx dpath (string.format "%s at [%.3g %.3g %.3g]%s (sampled over its bounds grown by half: it must give a number everywhere there)"
                                                  r.where (. r.point 1) (. r.point 2) (. r.point 3)
                                                  (case (values-text r.at) text (.. ", with " text) _ ""))
                         line)
-                  (when (or (= measured nil) (> r.m measured)) (set (measured at) (values r.m r.where)))))
+                  (when (or (= measured nil) (> r.m measured)) (set (measured at) (values r.m r.where))))
+              (when (and r.jump (not out.trust-lipschitz))
+                (fail ctx dpath (jump-message r.jump (values-text r.at)) line)))
             ;; The shape within its bounds (the distance is a number there: measured)
             ;; at each sample; a box that holds it at all of those that cross.
             (let [crossings (remembered ctx :bounds-checks bounds-cache key

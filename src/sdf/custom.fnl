@@ -30,6 +30,22 @@
    ;; A costly function gets fewer points, so that no estimate takes more than
    ;; about this many operations (0.1 to 0.3 s here); never fewer than an 8^3 grid.
    :measure-ops 3e7 :min-grid 8
+   ;; A jump: the grid's :jump-pairs neighbours (both outside) whose difference
+   ;; stands out most above their line's next pairs', and the random pairs below,
+   ;; are halved toward the half that differs more, up to
+   ;; :jump-halvings times or below :min-step: a slope's difference halves with the
+   ;; segment, a jump's stays. A difference that kept :jump-keep of itself over each
+   ;; of the last :jump-run halvings, and is above :jump-least times the bounds (a
+   ;; ray's overstep below that is under the marcher's hit distance), is a jump.
+   ;; Random pairs too: :jump-random at each of :jump-scales distances, those whose
+   ;; difference per unit passes :jump-slack times the slope measured.
+   :jump-pairs 32 :jump-halvings 40 :jump-keep 0.9 :jump-run 8 :jump-least 1e-4
+   :jump-random 512 :jump-scales 8 :jump-slack 1.2
+   ;; And segments of :jump-across times the bounds across the steepest points.
+   :jump-across 2e-3
+   ;; All of it within :jump-ops operations (the halvings of 115 segments and the
+   ;; random pairs take 13,000 calls of the function).
+   :jump-ops 3e6
    ;; A measured factor at most this is taken as 1: central differences across a
    ;; kink of an exact distance read below 1, and rounding adds ~1e-6.
    :exact-slack 1.01
@@ -391,6 +407,121 @@ exact in doubles) and its length: equal texts, equal digests."
                   (do (bisect! m x y z nx ny nz)
                       (set done? true)))))))))
 
+;; Jumps: a distance that is not continuous outside the shape lets a ray step by
+;; the larger side's value across the jump, past a surface; no factor covers it.
+
+(fn pair-jump [m ax ay az av bx by bz bv]
+  ;; Halvings of the segment between two points outside, each toward the half whose
+  ;; ends differ more (see limits.jump-*). A jump: {:size :at :low :high}. A slope
+  ;; (the difference halved with the segment): nil, the slope at the bracket's
+  ;; middle kept by `slope`. Nil too where a halving reaches inside the shape (a
+  ;; jump at the surface moves the hit, no step past it).
+  (var (ax ay az av bx by bz bv) (values ax ay az av bx by bz bv))
+  (var len (math.sqrt (+ (* (- bx ax) (- bx ax)) (* (- by ay) (- by ay)) (* (- bz az) (- bz az)))))
+  (var (run inside? turns) (values 0 false 0))
+  (while (and (not inside?) (not (spent? m)) (< turns limits.jump-halvings) (> len m.hmin))
+    (set turns (+ turns 1))
+    (let [before (math.abs (- av bv))
+          mx (* 0.5 (+ ax bx)) my (* 0.5 (+ ay by)) mz (* 0.5 (+ az bz))
+          mv (evaluate m mx my mz)]
+      (if (not (> mv 0)) (set inside? true)
+          (>= (math.abs (- av mv)) (math.abs (- mv bv)))
+          (set (bx by bz bv) (values mx my mz mv))
+          (set (ax ay az av) (values mx my mz mv)))
+      (set len (* 0.5 len))
+      (set run (if (>= (math.abs (- av bv)) (* limits.jump-keep before)) (+ run 1) 0))))
+  (let [size (math.abs (- av bv))
+        mx (* 0.5 (+ ax bx)) my (* 0.5 (+ ay by)) mz (* 0.5 (+ az bz))]
+    (if (or inside? m.bad) nil
+        (and (>= run limits.jump-run) (> size (* limits.jump-least m.scale)))
+        {: size :at [mx my mz] :low (math.min av bv) :high (math.max av bv)}
+        (do (slope m mx my mz (math.max m.hmin len)) nil))))
+
+(fn grid-pairs [m grid pairs]
+  ;; Into `pairs`: the limits.jump-pairs pairs of the grid's neighbours, both
+  ;; outside, whose difference stands out most above those of the pairs before and
+  ;; after them on the same line (a slope's differences change little from one pair
+  ;; to the next; a jump's pair carries the jump beside them).
+  (let [n m.n
+        found []]
+    (fn at [i j k]
+      (when (and (>= i 0) (< i n) (>= j 0) (< j n) (>= k 0) (< k n))
+        (let [v (. grid (+ 1 i (* n j) (* n n k)))]
+          (when (> v 0) v))))
+    (fn difference [i j k di dj dk]
+      (let [v (at i j k) w (at (+ i di) (+ j dj) (+ k dk))]
+        (if (and v w) (math.abs (- v w)) 0)))
+    (for [i 0 (- n 1)]
+      (for [j 0 (- n 1)]
+        (for [k 0 (- n 1)]
+          (each [_ [di dj dk] (ipairs [[1 0 0] [0 1 0] [0 0 1]])]
+            (let [v (at i j k) w (at (+ i di) (+ j dj) (+ k dk))]
+              (when (and v w)
+                (let [excess (- (math.abs (- v w))
+                                (math.max (difference (- i di) (- j dj) (- k dk) di dj dk)
+                                          (difference (+ i di) (+ j dj) (+ k dk) di dj dk)))]
+                  (when (> excess 0)
+                    (keep! found (- excess)
+                           {:a [(grid-coord m i m.hx) (grid-coord m j m.hy) (grid-coord m k m.hz) v]
+                            :b [(grid-coord m (+ i di) m.hx) (grid-coord m (+ j dj) m.hy) (grid-coord m (+ k dk) m.hz) w]}
+                           limits.jump-pairs)))))))))
+    (each [_ p (ipairs found)] (table.insert pairs p))))
+
+(fn random-pairs [m pairs]
+  ;; Into `pairs`: the limits.jump-pairs pairs of random points outside, at
+  ;; distances from a quarter of the bounds' largest half extent down by halvings
+  ;; (limits.jump-scales of them, limits.jump-random pairs each, fewer for a costly
+  ;; function), whose difference per unit passes the slope measured so far by
+  ;; limits.jump-slack: a jump that the grid's pairs do not single out (its
+  ;; difference beside a slope's over the grid's step) passes a slope of 1 over
+  ;; a distance below its size.
+  (let [count (math.max 1 (math.floor (* limits.jump-random (/ (^ m.n 3) (^ limits.grid 3)))))
+        least (* limits.jump-slack (math.max 1 m.worst))
+        found []]
+    (for [k 2 (+ 1 limits.jump-scales) &until (spent? m)]
+      (let [d (/ m.scale (^ 2 k))]
+        (for [_ 1 count &until (spent? m)]
+          (let [x (* m.hx (- (* 2 (m.rand)) 1)) y (* m.hy (- (* 2 (m.rand)) 1)) z (* m.hz (- (* 2 (m.rand)) 1))
+                a (* 2 math.pi (m.rand)) u (- (* 2 (m.rand)) 1) r (math.sqrt (- 1 (* u u)))
+                bx (+ x (* d r (math.cos a))) by (+ y (* d r (math.sin a))) bz (+ z (* d u))]
+            (when (within? m bx by bz)
+              (let [v (evaluate m x y z)
+                    w (when (> v 0) (evaluate m bx by bz))
+                    q (when (and w (> w 0)) (/ (math.abs (- v w)) d))]
+                (when (and q (> q least))
+                  (keep! found (- q) {:a [x y z v] :b [bx by bz w]} limits.jump-pairs))))))))
+    (each [_ p (ipairs found)] (table.insert pairs p))))
+
+(fn steep-pairs [m pairs]
+  ;; Into `pairs`: a segment along each axis across the steepest point found and
+  ;; the steepest samples, limits.jump-across times the bounds long (past the
+  ;; differences' steps): a jump that a stencil straddled reads as a slope of its
+  ;; size over the step, which would raise the factor by thousands instead.
+  (let [r (* 0.5 limits.jump-across m.scale)]
+    (each [_ [x y z] (ipairs (doto (icollect [_ s (ipairs m.steep)] [s.x s.y s.z]) (table.insert 1 m.at)))]
+      (each [_ [ux uy uz] (ipairs [[r 0 0] [0 r 0] [0 0 r]])]
+        (let [ax (- x ux) ay (- y uy) az (- z uz) bx (+ x ux) by (+ y uy) bz (+ z uz)]
+          (when (and (within? m ax ay az) (within? m bx by bz) (not (spent? m)))
+            (let [v (evaluate m ax ay az) w (evaluate m bx by bz)]
+              (when (and (> v 0) (> w 0))
+                (table.insert pairs {:a [ax ay az v] :b [bx by bz w]})))))))))
+
+(fn largest-jump [m pairs]
+  ;; The largest jump (pair-jump) between the ends of `pairs`, or nil.
+  (accumulate [worst nil _ {:a [ax ay az av] :b [bx by bz bv]} (ipairs pairs) &until (spent? m)]
+    (let [found (pair-jump m ax ay az av bx by bz bv)]
+      (if (and found (or (= worst nil) (> found.size worst.size))) found worst))))
+
+(fn find-jump [m grid]
+  ;; The largest jump across the steepest points (steep-pairs), else between the
+  ;; grid's pairs and the random ones (grid-pairs, random-pairs); nil when none.
+  (let [steep [] others []]
+    (steep-pairs m steep)
+    (or (largest-jump m steep)
+        (do (grid-pairs m grid others)
+            (random-pairs m others)
+            (largest-jump m others)))))
+
 (fn measure [cpu bounds args ?cost]
   "The largest gradient length of `cpu` (fn [x y z ...args]) outside its shape (where
 it is positive: only there does the factor limit a ray's step) within `bounds` (half
@@ -398,9 +529,12 @@ extents) grown by limits.grow, and the point; or nil, a message and the point wh
 it is not finite. Central differences at a grid's centres and random points, then
 refined: a climb of the slope from the steepest samples, and a walk to the surface
 from the samples nearest it and from the grid's positive local minima (a thin
-feature between the samples), with steps small beside the feature. `?cost`:
+feature between the samples), with steps small beside the feature; then the
+search for a jump between the grid's neighbours (see limits.jump-*). `?cost`:
 operations per call, to take fewer points for a costly function (see
-limits.measure-ops and limits.refine-ops). Its third value: the calls it made."
+limits.measure-ops and limits.refine-ops). Its third value: the calls it made;
+its fourth: the largest jump found outside the shape, {:size :at :low :high}, or
+nil."
   (let [[hx hy hz] (icollect [_ b (ipairs bounds)] (* b limits.grow))
         scale (math.max hx hy hz)
         cost (math.max 1 (or ?cost 1))
@@ -422,9 +556,17 @@ limits.measure-ops and limits.refine-ops). Its third value: the calls it made."
       (each [_ s (ipairs dips)] (when (not (spent? m)) (walk m s)))
       (each [_ s (ipairs m.near)] (when (not (spent? m)) (walk m s)))
       (set m.phase-end budget)
-      (each [_ s (ipairs m.steep)] (when (not (spent? m)) (climb m s))))
+      (each [_ s (ipairs m.steep)] (when (not (spent? m)) (climb m s)))
+      ;; The jumps get their own evaluations (13,000 at most, :jump-ops operations
+      ;; at most): a refinement that spent its budget must not hide one.
+      (set m.phase-end (+ m.evaluations
+                          (math.min (/ limits.jump-ops cost)
+                                    (+ (* (+ (* 3 (+ 1 limits.refine-seeds)) (* 2 limits.jump-pairs))
+                                          (+ 2 limits.jump-halvings))
+                                       (* 2 limits.jump-scales limits.jump-random)))))
+      (set m.jump (find-jump m grid)))
     (if m.bad (values nil "gives a value that is not a finite number" m.bad)
-        (values m.worst m.at m.evaluations))))
+        (values m.worst m.at m.evaluations m.jump))))
 
 ;;; The bounds: the renderer takes the box's distance outside it
 
