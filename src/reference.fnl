@@ -22,7 +22,7 @@
 
 (local public-closures
   [:map :map-color :march :normal :lightness :trace :normal-delta :crease?
-   :needs-samples? :map-finite :planes-hit :soft-span
+   :needs-samples? :map-finite :map-estimate :map-finite-estimate :planes-hit :soft-span
    :threshold :start-limit :distance-from-camera])
 
 (fn merge [into from]
@@ -65,6 +65,9 @@ Positions are in world coordinates."
     (set parts.soft-span (when (?. plan :lighting :soft-bounded?)
                            (fn [ox oy oz dx dy dz grow]
                              (bounds.span parts.bound-spheres ox oy oz dx dy dz draw grow))))
+    ;; Whether the field read as an estimate differs from the steps' (see
+    ;; :estimates? in src/sdf/lower.fnl): the soft shadows read it twice then.
+    (set parts.estimates? (= true (?. plan :tape :estimates?)))
     (set parts.march (march.marcher ctx parts))
     (merge parts (normals.normals ctx parts))
     (set parts.lightness (shading.lighter ctx parts))

@@ -733,3 +733,109 @@ grid's side and each node's label."
         (let [(node msg) (load-one (scene ":trust-lipschitz true"))]
           (assert.is_nil node)
           (assert.truthy (msg:find "t.fnl:1: objects[1].trust-lipschitz: trusts a declared factor, but the node declares none" 1 true) msg))))))
+
+;; A factor declared above the measure (an exact ball declared 4-Lipschitz): the
+;; rays step by the distance over 4, as declared, but a soft shadow's penumbra and
+;; ambient occlusion read the field as an estimate of the distance, divided by the
+;; measured factor (1). Divided by 4 there, the ball's box cast a dark square shadow
+;; and the ball darkened itself (the issue's "false dark shadow disc" at 22).
+(local declared-scene
+  "{:camera {:pos [6 -6 4] :yaw 135 :pitch 22 :fov 50}
+ :lighting {:lights [{:kind :sun :direction [-0.5 -0.3 0.8] :color [1 1 1] :intensity 3 :softness 0.1}]
+            :ambient 0.3}
+ :objects
+ [{:kind :plane :height 0 :color [0.7 0.7 0.7]}
+  {:kind :custom :bounds [1 1 1] :pos [0 0 1.2] %s :color [0.8 0.3 0.2]
+   :distance (fn [x y z] (- (math.sqrt (+ (* x x) (* y y) (* z z))) 1))}]}")
+
+(describe "custom: a factor declared above the measure"
+  (fn []
+    (local load (require :src.scene.load))
+    (local plan-mod (require :src.render.plan))
+    (local reference (require :src.reference))
+    (local camera (require :src.render.camera))
+    (local emit-lua (require :src.sdf.emit-lua))
+
+    (fn planned [fields ?estimates-off?]
+      (let [s (assert (load.load-string (string.format declared-scene fields) "t.fnl"))
+            p (assert (plan-mod.scene->plan s))]
+        ;; The mechanism switched off: the estimate read as the steps' field.
+        (when ?estimates-off? (set p.tape.estimates? false))
+        (values s p)))
+
+    (fn ground-pixels [fields ?estimates-off?]
+      ;; The reference's colours at 96 x 54, by pixel, and the plane's pixels.
+      (let [(s p) (planned fields ?estimates-off?)
+            cam (camera.from-scene s)
+            pixels (fcollect [i 0 (- (* 96 54) 1)] [(% i 96) (math.floor (/ i 96))])]
+        (reference.render-pixels s p cam 96 54 pixels)))
+
+    (fn ground-difference [a b]
+      ;; The largest channel difference over the pixels where both hit the plane
+      ;; (the shadow and its penumbra), and how many differ by more than 0.02.
+      (var (worst n) (values 0 0))
+      (each [i r (ipairs a)]
+        (when (and (= r.object 1) (= (. b i :object) 1))
+          (let [d (accumulate [m 0 k v (ipairs r.color)] (math.max m (math.abs (- v (. b i :color k)))))]
+            (set worst (math.max worst d))
+            (when (> d 0.02) (set n (+ n 1))))))
+      (values worst n))
+
+    (it "steps by the declared factor and reads estimates by the measured one, and --tree says so"
+      (fn []
+        (let [(_ p) (planned ":lipschitz 4")
+              tape (emit-lua.compile p.tape)
+              lines ((. (require :src.sdf.lower) :describe) p.tape)
+              line (. (icollect [_ l (ipairs lines)] (when (l:find "custom" 1 true) l)) 1)]
+          (assert.is_true p.tape.estimates?)
+          ;; Tape object 2: the ball, inside its bounds' box (the far field outside
+          ;; is the box's), sqrt(3) 0.8 - 1 from its surface.
+          (let [d (- (* (math.sqrt 3) 0.8) 1)]
+            (assert.are.near (/ d 4) ((. tape.distance 2) 0.8 0.8 2) 1e-9)
+            (assert.are.near d ((. tape.estimate 2) 0.8 0.8 2) 1e-9))
+          (assert.truthy (line:find "Lipschitz 4 (declared, steps divided by it; measured 1, so soft shadows and occlusion read it divided by 1)" 1 true) line)
+          ;; Without a declaration: no estimates, the same function.
+          (let [(_ q) (planned "")
+                t2 (emit-lua.compile q.tape)]
+            (assert.is_falsy q.tape.estimates?)
+            (assert.are.equal t2.distance t2.estimate)))))
+
+    (it "casts the shadow of the ball, not of its box: the ground as without the declaration"
+      (fn []
+        (let [plain (ground-pixels "")
+              (worst n) (ground-difference plain (ground-pixels ":lipschitz 4"))
+              (off-worst off-n) (ground-difference plain (ground-pixels ":lipschitz 4" true))]
+          (print (string.format "\ndeclared 4: ground differs by at most %.3g (%d pixels over 0.02); read as steps, %.3g (%d)"
+                                worst n off-worst off-n))
+          ;; Measured 0.044: the penumbra's chord over steps of d / 4 is nearer the
+          ;; truth than over steps of d, and differs by that much; the box's shadow
+          ;; differs by 0.45.
+          (assert.is_true (< worst 0.1) (tostring worst))
+          (assert.is_true (> off-worst 0.3) (tostring off-worst)))))
+
+    (let [headless (require :src.backend.headless)
+          (ctx why) (headless.context)
+          {: prepare : gpu-render : compare-image : passes? : describe-failures : report-line}
+          (require :test.support.gpu-check)]
+      (if (not ctx)
+          (it "GPU against the reference" (fn [] (pending (.. "OSMesa is not available: " (tostring why)))))
+          (do
+            (os.execute "mkdir -p test/out")
+            (write-file "test/out/custom-declared.fnl" (string.format declared-scene ":lipschitz 4"))
+            (let [prepared (prepare "test/out/custom-declared.fnl")
+                  ;; lighting_spec's budget for scenes/lighting.fnl.
+                  budget {:over 2 :max 40}]
+              (it "reads the estimates on the GPU as the reference does, and fails without them"
+                (fn []
+                  (let [st (compare-image prepared (gpu-render ctx prepared))]
+                    (print (report-line "declared factor" st))
+                    (assert.is_true (passes? st budget) (describe-failures "declared factor" st budget)))
+                  (var replaced 0)
+                  (let [st (compare-image prepared
+                                          (gpu-render ctx prepared
+                                                      {:source (fn [text]
+                                                                 (let [(out n) (text:gsub "gEstimate = true;" "")]
+                                                                   (set replaced n)
+                                                                   out))}))]
+                    (assert.is_true (>= replaced 2) (tostring replaced))
+                    (assert.is_false (passes? st budget) (report-line "without estimates" st)))))))))))

@@ -16,3 +16,8 @@ uniform float uDrawDist;
 // from it is kept as a loop: a call inside it is compiled once, not once per turn
 // (normals: four to six scene evaluations each).
 int gZero = 0;
+
+// True while the field is read as an estimate of the distance (a soft shadow's
+// penumbra, occlusion) rather than stepped by: an argument the tape marks so takes its
+// estimate's value then (a custom node declared steeper than it measured).
+bool gEstimate = false;

@@ -136,19 +136,27 @@ table of
                along the ray ?dx ?dy ?dz in a march, grids skip far members)
   :map-finite  the same over the objects a bounded march steps by (no half-space,
                no field)
+  :map-estimate, :map-finite-estimate
+               map and map-finite read as estimates of the distance (a soft
+               shadow's penumbra, occlusion; see :estimates? in lower.fnl)
   :planes-hit  (fn [ox oy oz dx dy dz]) -> where the ray meets the first half-space
   :map-color   (fn [x y z]) -> distance, index into plan.objects or nil, r g b,
                mirror, roughness, emission
   :near-count  (fn [x y z reach]) -> how many objects come within reach
   :others-map  (fn [i]) -> the distance to every object but plan.objects[i]
   :object-map  (fn [i]) -> the distance of plan.objects[i] alone"
-  (let [{: plan : draw : tape-distance : tape-gradient : tape-material : modern?} ctx
+  (let [{: plan : draw : tape-distance : tape-gradient : tape-material : modern? : tape-estimate} ctx
         runs (runs plan)
         tape-min (tape-min-fn runs tape-distance draw)
+        estimate-min (if (= tape-estimate tape-distance) tape-min
+                         (tape-min-fn runs tape-estimate draw))
         half-space (half-spaces plan)
         planes (fcollect [i 1 (length tape-distance)] (when (. half-space i) i))]
     {:map (fn [x y z ?dx ?dy ?dz] (tape-min draw x y z false nil ?dx ?dy ?dz))
      :map-finite (fn [x y z ?dx ?dy ?dz] (tape-min draw x y z true nil ?dx ?dy ?dz))
+     ;; The same read as estimates of the distance (gEstimate in the shader).
+     :map-estimate (fn [x y z] (estimate-min draw x y z false nil))
+     :map-finite-estimate (fn [x y z] (estimate-min draw x y z true nil))
      :planes-hit (planes-hit-fn planes tape-distance tape-gradient draw)
      :map-color (map-color-fn runs tape-material draw modern?)
      :near-count (near-count-fn runs tape-distance)

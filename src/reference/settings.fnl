@@ -9,7 +9,7 @@ the options): the scene and plan, the camera position :cam [x y z], :pixel-angle
 :counts, the render settings (:draw :eps :max-steps :relaxation :hit-test
 :normal-method), the view (:view :shaded? :shadows? :glow? :reflections :modern?),
 the field :fd (plan.field or nil), the compiled tape's :tape-distance,
-:tape-material and :tape-gradient (lists by tape number) and :tally (fn [key n]),
+:tape-material, :tape-gradient and :tape-estimate (lists by tape number) and :tally (fn [key n]),
 which adds n to the counts' key when there are counts."
   (let [options (or ?options {})
         counts options.counts
@@ -38,6 +38,7 @@ which adds n to the counts' key when there are counts."
      :tape-distance tape.distance
      :tape-material tape.material
      :tape-gradient tape.gradient
+     :tape-estimate tape.estimate
      :tally (fn [key n]
               (when counts (tset counts key (+ (or (. counts key) 0) n))))}))
 

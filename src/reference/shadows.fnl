@@ -15,10 +15,14 @@
       ;; over the span of the bounding spheres grown by the penumbra (codegen's
       ;; soft-span-lines), the planes met in closed form.
       (let [t0 (T.distance-from-camera ox oy oz)
-            f (if T.soft-span T.map-finite map)]
+            f (if T.soft-span T.map-finite map)
+            ;; The penumbra's reading of the field (gEstimate): the same function
+            ;; without estimates.
+            fe (if (not T.estimates?) f T.soft-span T.map-finite-estimate T.map-estimate)]
         (var seen 1)
         (var t 0)
         (var h-prev 1e10)
+        (var he-prev 1e10)
         ;; As the marches: a hit must come nearer than start-limit of the start's
         ;; distance.
         (var start-half 1e10)
@@ -35,19 +39,23 @@
                 (set limit (min reach exit))
                 (when (>= t limit) (set result -1)))))
         (for [_ 1 shadow-steps &until result]
-          (let [h (f (+ ox (* lx t)) (+ oy (* ly t)) (+ oz (* lz t)))]
+          (let [h (f (+ ox (* lx t)) (+ oy (* ly t)) (+ oz (* lz t)))
+                he (if (= fe f) h (fe (+ ox (* lx t)) (+ oy (* ly t)) (+ oz (* lz t))))]
             (when (and first? (= t 0)) (set start-half (T.start-limit h)))
             (set first? false)
             (if (< h (min (threshold (+ t0 t)) start-half))
                 (set result 0)
-                (let [y (/ (* h h) (* 2 h-prev))
-                      closest (sqrt (max (- (* h h) (* y y)) 0))]
+                (let [y (if (= fe f) (/ (* he he) (* 2 he-prev))
+                            ;; The chord of spheres he-prev and he, h-prev apart.
+                            (/ (+ (- (* h-prev h-prev) (* he-prev he-prev)) (* he he)) (* 2 h-prev)))
+                      closest (sqrt (max (- (* he he) (* y y)) 0))]
                   ;; At or behind the origin the closest approach is the surface
                   ;; the ray leaves (shadow-soft.glsl): no darkening.
                   (let [along (- t y)]
                     (when (> along 0)
                       (set seen (min seen (/ closest (* softness along))))))
                   (set h-prev h)
+                  (set he-prev he)
                   (set t (+ t h))
                   (when (>= t limit) (set result -1))))))
         (if (= result 0) 0

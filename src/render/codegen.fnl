@@ -383,9 +383,14 @@ only when the plan has it."
                                           "}"]
                                          [])
                         :soft-span (if (soft-bounded? plan) soft-span-lines [])
-                        :soft-map [(if (soft-bounded? plan)
-                                       "float h = mapFinite(o + l * t);"
-                                       "float h = map(o + l * t);")]})
+                        :soft-map (let [read (if (soft-bounded? plan) "mapFinite(o + l * t);" "map(o + l * t);")]
+                                    (if plan.tape.estimates?
+                                        [(.. "float h = " read) "gEstimate = true;"
+                                         (.. "float he = " read) "gEstimate = false;"]
+                                        [(.. "float h = " read) "float he = h;"]))
+                        :soft-along [(if plan.tape.estimates?
+                                         "float y = (hPrev * hPrev - hePrev * hePrev + he * he) / (2.0 * hPrev);"
+                                         "float y = he * he / (2.0 * hePrev);")]})
          (fill "shaders/shading/modern/shadow-hard.glsl" {:shadow-march [march]}))
      (fill "shaders/shading/modern/lights.glsl"
            {:shadow (if plan.shadows? ["visible = visibility(origin, l, reach, uLightColors[i].w);"] [])

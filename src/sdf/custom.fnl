@@ -939,6 +939,26 @@ else why not."
 (local cache {})
 (var cached 0)
 
+(fn estimate-factor [node]
+  ;; The factor of node's distance read as an estimate (see descriptor), when below
+  ;; the one its steps take: the measure's (`factor` of it), nil otherwise.
+  (let [measured (?. node :custom :measured)
+        k (or node.lipschitz 1)]
+    (when (and (= (type measured) :number) (finite-number? measured) (>= measured 0))
+      (let [e (factor measured)]
+        (when (< e k) e)))))
+
+(fn estimate! [desc node]
+  ;; `desc` (a copy of the cached descriptor) with the estimate's scale after its
+  ;; own, when the node has one (estimate-factor); its kind says so, as the key must.
+  (case (estimate-factor node)
+    e (let [pack desc.pack]
+        (set desc.kind (.. desc.kind ":estimate"))
+        (set desc.args (doto (icollect [_ a (ipairs desc.args)] a)
+                         (table.insert {:name :estimate :type :float :estimate? true})))
+        (set desc.arg-size (+ desc.arg-size 1))
+        (set desc.pack (fn [o] (doto (pack o) (table.insert (/ 1 e))))))))
+
 (fn descriptor [node]
   "The primitive-like descriptor (see src/sdf/primitives.fnl) of custom node `node`
 (validated data: :custom {:glsl :lua :glsl-name :key :params}, :params, :bounds,
@@ -987,17 +1007,25 @@ descriptors of nodes with the same texts share their GLSL and their Lua function
                  :cpu (translate.compile-lua c.lua)
                  :bounds (fn [o] o.bounds)})))
       ;; The node's own factor, for --tree: the function divides by it already, and
-      ;; nothing reads a primitive's factor to divide again.
+      ;; nothing reads a primitive's factor to divide again. A node declared steeper
+      ;; than it measured takes the measure's factor where the field is read as an
+      ;; estimate of the distance (a soft shadow's penumbra, occlusion: the declared
+      ;; factor would darken them as if the surface were that much nearer) and the
+      ;; declared one where a ray steps: its scale is followed by an :estimate? one.
       (doto (collect [k v (pairs (. cache key))] k v)
+        (estimate! node)
         (tset :lipschitz (or node.lipschitz 1))
         ;; A declared factor taken on trust (:trust-lipschitz), said as such with
         ;; what the loader measured.
         (tset :lipschitz-note
-              (when (and node.trust-lipschitz node.lipschitz)
-                (string.format "declared and trusted: :trust-lipschitz, measured %.3g%s"
-                               (or (?. c :measured) 0)
-                               (if (> (or (?. c :measured) 0) (* node.lipschitz limits.declared-slack))
-                                   ", steps may pass the surface" ""))))))))
+              (if (and node.trust-lipschitz node.lipschitz)
+                  (string.format "declared and trusted: :trust-lipschitz, measured %.3g%s"
+                                 (or (?. c :measured) 0)
+                                 (if (> (or (?. c :measured) 0) (* node.lipschitz limits.declared-slack))
+                                     ", steps may pass the surface" ""))
+                  (case (estimate-factor node)
+                    e (string.format "declared, steps divided by it; measured %.3g, so soft shadows and occlusion read it divided by %.3g"
+                                     c.measured e))))))))
 
 {: capture : check-data : measure : check-bounds : factor : digest : descriptor : find-form : check-lua : check-glsl
  : range-samples : sample-cost : limits}

@@ -69,7 +69,16 @@ row -> true."
         (.. (row-expr cx ref.row) "." (table.concat s)))))
 
 (fn args-list [cx args]
-  (icollect [_ a (ipairs args)] (arg-expr cx a)))
+  ;; An argument followed by one marked :estimate? (see :estimates? in lower.fnl)
+  ;; is that one's value where the field is read as an estimate (gEstimate).
+  (let [out []]
+    (each [i a (ipairs args)]
+      (let [nxt (. args (+ i 1))]
+        (if a.estimate? nil
+            (?. nxt :estimate?)
+            (table.insert out (.. "(gEstimate ? " (arg-expr cx nxt) " : " (arg-expr cx a) ")"))
+            (table.insert out (arg-expr cx a)))))
+    out))
 
 (fn reg [cx name]
   ;; p0 is map()'s own point; a group whose bank is in a texture reads its rows

@@ -36,10 +36,15 @@
       (.. "S[" n "]")))
 
 (fn arg-values [e args]
+  ;; An argument followed by one marked :estimate? (see :estimates? in lower.fnl)
+  ;; is that one's value in an estimate's function (e.estimate?).
   (let [out []]
-    (each [_ a (ipairs args)]
-      (for [k 1 a.size]
-        (table.insert out (slot e (+ (* a.row 4) a.offset k)))))
+    (each [i a (ipairs args)]
+      (let [nxt (. args (+ i 1))
+            a (if (and e.estimate? (?. nxt :estimate?)) nxt a)]
+        (when (not (. args i :estimate?))
+          (for [k 1 a.size]
+            (table.insert out (slot e (+ (* a.row 4) a.offset k)))))))
     out))
 
 (fn point [e name]
@@ -255,19 +260,24 @@
 per object number (an instance group's members one each, in order): {:distance
 [(fn [x y z]) -> d] :material [(fn [x y z]) -> d r g b mirror (and with
 :material-size 8: roughness emission and two spare)] :gradient [(fn [x y z]) -> nx ny
-nz, or false where the object has no exact normal] :source text}."
+nz, or false where the object has no exact normal] :estimate [(fn [x y z]) -> d read
+as an estimate of the distance: see :estimates? in lower.fnl; the :distance list
+itself without them] :source text}."
   (let [sources []
         banks {:tape (flat-rows tape.rows) :instances (flat-rows tape.instances.rows)}
-        out {:distance [] :material [] :gradient []}]
-    (each [_ what (ipairs [:distance :material :gradient])]
+        out {:distance [] :material [] :gradient [] :estimate []}]
+    (each [_ what (ipairs (if tape.estimates? [:distance :material :gradient :estimate]
+                              [:distance :material :gradient]))]
       (each [_ o (ipairs tape.objects)]
         (let [group o.instances
               e (doto (new-emitter (> (count-registers (or o.code []) (or tape.material-size 4)) max-locals)
                                    tape.material-size (not= nil group))
-                  (tset :instances banks.instances))
+                  (tset :instances banks.instances)
+                  (tset :estimate? (= what :estimate)))
               into (. out what)]
           (if o.field
-              (each [_ f (ipairs (field-evaluators o.field what tape.material-size))]
+              (each [_ f (ipairs (field-evaluators o.field (if (= what :estimate) :distance what)
+                                                   tape.material-size))]
                 (table.insert into f))
               (and (= what :gradient) (not (?. o :leaf :prim :desc :gradient)))
               (for [_ 1 (if group group.count 1)] (table.insert into false))
@@ -285,6 +295,9 @@ nz, or false where the object has no exact normal] :source text}."
                       (chunk banks.instances e.fns into group.base group.stride group.count)
                       (chunk banks.tape e.fns into))))))))
     (set out.source (table.concat sources "\n"))
+    ;; Without estimates (tape.estimates?), the field read as an estimate is the
+    ;; distance itself.
+    (when (not tape.estimates?) (set out.estimate out.distance))
     out))
 
 {: compile}

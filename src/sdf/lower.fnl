@@ -14,6 +14,10 @@
 ;;   :used     descriptor names the code calls (the GLSL holds only those)
 ;;   :key      the structure: equal keys mean the same generated code
 ;;   :mirrors? whether any material is less than a full mirror
+;;   :estimates? whether an argument takes another value where the field is read as
+;;             an estimate of the distance (a soft shadow's penumbra, occlusion) than
+;;             where a march steps by it: the argument after one marked :estimate?
+;;             (a custom node declared steeper than it measured; src/sdf/custom.fnl)
 ;; Instructions (registers: p points, d distances, m materials, numbered per tape):
 ;;   {:op :prim :desc D :args A :pin p :dout d}      d = D(p, args)
 ;;   {:op :point :desc D :args A :pin p :pout p2}    p2 = D(p, args)
@@ -132,7 +136,8 @@ offset 0, where the camera is taken off it; see `hand-in`)."
         (for [k 1 n]
           (tset (. st.rows (+ row 1)) (+ offset k) (. vals i))
           (set i (+ i 1)))
-        (table.insert refs {: row : offset :size n :type a.type})
+        (table.insert refs {: row : offset :size n :type a.type :estimate? a.estimate?})
+        (when a.estimate? (set st.estimates? true))
         (set offset (+ offset n))))
     (assert (= (- i 1) (length vals))
             (.. (tostring desc.kind) ": packed " (length vals) " numbers for "
@@ -334,9 +339,11 @@ changed."
           (set st.counter (math.max st.counter bst.counter))
           (set st.counter (+ st.counter 1))
           (each [_ name (ipairs bst.used-list)] (use! st name (. bst.used name)))
+          (when bst.estimates? (set st.estimates? true))
           (use! st form.glsl-name form)
           (each [_ a (ipairs aside)]
             (when a.cst.mirrors? (set st.mirrors? true))
+            (when a.cst.estimates? (set st.estimates? true))
             (each [_ row (ipairs a.cst.rows)] (table.insert st.blends.bank.rows row)))
           (let [ins {:op :blend :desc form : args : pin : dout : mout :count (length aside)
                      : base :stride (length first.cst.rows)
@@ -889,6 +896,7 @@ as a field: the first tape object (see Strategies above)."
               used-list []
               key []]
           (var mirrors? false)
+          (var estimates? false)
           (var id 0)
           (when field
             (table.insert out field)
@@ -899,6 +907,7 @@ as a field: the first tape object (see Strategies above)."
                                                   (.. "," k))))))
           (each [_ {: st : o :key k} (ipairs lowered)]
             (when st.mirrors? (set mirrors? true))
+            (when st.estimates? (set estimates? true))
             (each [_ name (ipairs st.used-list)]
               (when (not (. used name))
                 (tset used name (. st.used name))
@@ -943,7 +952,7 @@ as a field: the first tape object (see Strategies above)."
             {:objects out :count id :rows tape-bank.rows :relative tape-bank.relative
              :inner tape-bank.inner :derived tape-bank.derived :instances group-bank
              :blends blends.list
-             : mirrors?
+             : mirrors? : estimates?
              :material-size (if options.modern? 8 4)
              :used (icollect [_ name (ipairs used-list)] {: name :desc (. used name)})
              :key (table.concat key " ")})))))

@@ -10,6 +10,7 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
     float seen = 1.0;
     float t = 0.0;
     float hPrev = 10000000000.0;
+    float hePrev = hPrev;
     // As the marches (march.glsl): a hit must come nearer than startLimit of the
     // start's distance, so the ray's own start is never one.
     float startHalf = 10000000000.0;
@@ -20,8 +21,11 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
         if (h < min(hitThreshold(t0 + t), startHalf)) {
             return 0.0;
         }
-        float y = h * h / (2.0 * hPrev);
-        float closest = sqrt(max(h * h - y * y, 0.0));
+        // The penumbra reads the field as an estimate (he: see gEstimate); where
+        // that is not the step (hPrev), the two spheres' chord is taken at its own
+        // place: the slot writes the form for it.
+        // @slot soft-along
+        float closest = sqrt(max(he * he - y * y, 0.0));
         // The closest approach lies at t - y along the ray. At or behind the origin it
         // is the surface the ray leaves (a ray along the normal has y = t + the start
         // offset, and closest 0 up to rounding): no occluder, so no darkening.
@@ -30,6 +34,7 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
             seen = min(seen, closest / (softness * along));
         }
         hPrev = h;
+        hePrev = he;
         t += h;
         if (t >= reach) {
             break;

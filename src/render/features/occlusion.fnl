@@ -21,7 +21,8 @@
           (var total 0)
           (for [i 1 5]
             (let [h (/ (* l.ao-radius i) 5)
-                  d (T.map (+ px (* nx h)) (+ py (* ny h)) (+ pz (* nz h)))]
+                  ;; Read as an estimate of the distance (gEstimate in the chunk).
+                  d (T.map-estimate (+ px (* nx h)) (+ py (* ny h)) (+ pz (* nz h)))]
               (set occ (+ occ (* weight (clamp01 (/ (- h d) h)))))
               (set total (+ total weight))
               (set weight (* weight 0.5))))
