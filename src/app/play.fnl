@@ -162,6 +162,24 @@ first picture of the scene can be sized to come at once."
         (adaptive.rendered! state.adaptive plan.key (* w h) (- (love.timer.getTime) start)))
       (canvas:release))))
 
+;; The collector after a load. LuaJIT starts a cycle once the heap has doubled since
+;; the last one ended (a pause of 200%): with a million spheres' scene live (800 MB),
+;; the idle player's garbage (0.7 MB a second: the HUD's text, the frame's tables)
+;; grew the process by 800 MB more before one ran. A large heap is collected once the
+;; scene is in, and the next cycle starts after collector-slack more, not after
+;; the heap's size again; a small scene keeps the default pause.
+(local collector-large (* 256 1024))   ; KB of heap
+(local collector-slack (* 128 1024))   ; KB of garbage between cycles, at least
+(local default-pause 200)
+
+(fn settle-collector! []
+  (if (> (collectgarbage :count) collector-large)
+      (do (collectgarbage)
+          (let [live (collectgarbage :count)]
+            (collectgarbage :setpause
+                            (math.floor (math.min default-pause (* 100 (/ (+ live collector-slack) live)))))))
+      (collectgarbage :setpause default-pause)))
+
 (fn load-unprotected! [path fresh? ?since ?now]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
 file, not an edit) resets the camera and the player's settings; an edit keeps them,
@@ -247,7 +265,8 @@ the helper is done, `?since` the time of the first try."
                   (say! (string.format "%s %s in %.0f ms (%s)" (if fresh? "loaded" "reloaded")
                                        path ms (if (not compiled?) "uniforms only"
                                                    ?since "shader compiled by a helper process"
-                                                   "shader compiled"))))))))))
+                                                   "shader compiled")))
+                  (settle-collector!))))))))
 
 (fn load! [path fresh? ?since ?now]
   "Load the scene at `path` (see load-unprotected!); a failure inside the loader

@@ -91,8 +91,8 @@ whether it was compiled now, or nil and a message."
   ;; `data`: copied from its float32 :floats, or converted from its Lua list :data.
   (let [ffi (require :ffi)
         ptr (ffi.cast "float *" (data:getFFIPointer))]
-    (if tex.floats
-        (ffi.copy ptr (+ tex.floats offset) (* 4 count))
+    (if (or tex.floats tex.field)
+        (ffi.copy ptr (+ (field.floats-of tex) offset) (* 4 count))
         (let [vs tex.data]
           (for [i 0 (- count 1)] (tset ptr i (or (. vs (+ offset i 1)) 0)))))))
 
@@ -125,6 +125,9 @@ sizes match; else a new one."
                       (new-float-image tex))]
         (tset images tex image)
         (tset last-images name {:texture tex : image})
+        ;; LÖVE keeps a copy and the driver another: a large static field's
+        ;; floats may go (the next value edit uploads the whole texture).
+        (field.release-floats! tex)
         image)))
 
 (fn send! [shader us]

@@ -265,7 +265,8 @@ program id, or nil + the compile/link log followed by the offending source lines
 (fn prepare-texture [u unit]
   ;; A float texture uniform (a field's): its texels as a C float array, drawn from
   ;; texture unit `unit`.
-  (let [{: width : height : data : floats} u.texture
+  (let [{: width : height : data} u.texture
+        floats (when (= nil data) ((. (require :src.render.field) :floats-of) u.texture))
         n (* width height 4)]
     (if floats
         ;; Already float32 of the texture's size (field.textures).

@@ -22,6 +22,7 @@
 
 (local large-radius (. (require :src.sdf.large-sphere) :radius))
 (local ffi (require :ffi))
+(pcall ffi.cdef "void *calloc(size_t nmemb, size_t size); void free(void *ptr);")
 (local lower (require :src.sdf.lower))
 (local primitives (require :src.sdf.primitives))
 
@@ -373,13 +374,22 @@ lists would not fit in a texture."
 
 (local tiny-radius 1e-30)
 
+;; A field of this many objects or more, without functions of time, may let its
+;; textures' floats go once uploaded (release-floats!).
+(local release-from 100000)
+
 (fn float-texture [texels count]
   ;; A texture of `texels` RGBA texels whose first `count` floats are written next:
   ;; {:width :height :floats (float[4 * width * height], 0-based, the rest 0) :count}.
   ;; float32, as the GPU reads them (1,000,000 spheres' textures took 518 MB as Lua
   ;; numbers, tables of doubles grown by doubling).
-  (let [t (texture texels nil)]
-    (set t.floats (ffi.new "float[?]" (* 4 t.width t.height)))
+  ;; Their memory is C's (calloc, freed by the collector or at once by
+  ;; release-floats!): LuaJIT's own would wait for a collection to go, and a large
+  ;; field's textures are let go just when the scene's memory peaks.
+  (let [t (texture texels nil)
+        n (* 4 t.width t.height)]
+    (set t.floats (ffi.gc (ffi.cast "float *" (assert (ffi.C.calloc n 4) "field: out of memory for a texture"))
+                          ffi.C.free))
     (set t.count count)
     t))
 
@@ -445,10 +455,46 @@ lists would not fit in a texture."
     (assert (= at texels) "field: the walk texture's size")
     tex))
 
-(fn texture-values [tex]
-  "The floats of texture `tex` as a list (1-based): its :data, or the first :count of
-its :floats."
-  (or tex.data (fcollect [i 0 (- tex.count 1)] (. tex.floats i))))
+(fn make-textures [field]
+  ;; The textures of `field` (see textures), made anew.
+  (let [stride (object-texels field)
+        cells-tex (float-texture (length field.cell-start) (* 4 (length field.cell-start)))
+        records-tex (float-texture (* 2 (length field.records)) (* 8 (length field.records)))
+        objects-tex (float-texture (* stride field.count) (* 4 stride field.count))
+        cells cells-tex.floats
+        records records-tex.floats
+        objects objects-tex.floats]
+    (each [k start (ipairs field.cell-start)]
+      (let [at (* 4 (- k 1))]
+        (tset cells at start)
+        (tset cells (+ at 1) (. field.cell-count k))))
+    (each [j i (ipairs field.records)]
+      (let [(cx cy cz ax ay az r) (shape-at field i)
+            m (. field.marched i)
+            at (* 8 (- j 1))]
+        (tset records at cx) (tset records (+ at 1) cy) (tset records (+ at 2) cz)
+        (tset records (+ at 3) r)
+        (tset records (+ at 4) (if m (- m.kind) ax)) (tset records (+ at 5) ay)
+        (tset records (+ at 6) az)
+        (tset records (+ at 7) (- i 1))))
+    (for [i 1 field.count]
+      (let [(cx cy cz ax ay az r) (shape-at field i)
+            [cr cg cb] (. field.colors i)
+            m (. field.marched i)
+            at (* 4 stride (- i 1))]
+        (tset objects at cx) (tset objects (+ at 1) cy) (tset objects (+ at 2) cz)
+        (tset objects (+ at 3) r) (tset objects (+ at 4) (if m (- m.kind) ax))
+        (tset objects (+ at 5) ay) (tset objects (+ at 6) az) (tset objects (+ at 7) (- i 1))
+        (tset objects (+ at 8) cr) (tset objects (+ at 9) cg) (tset objects (+ at 10) cb)
+        (when (> stride 3)
+          (let [(qx qy qz qw) (quaternion (if m m.rows [1 0 0 0 1 0 0 0 1]))
+                args (if m m.args [])]
+            (tset objects (+ at 12) qx) (tset objects (+ at 13) qy)
+            (tset objects (+ at 14) qz) (tset objects (+ at 15) qw)
+            (for [j 1 (* 4 (- stride 4))]
+              (tset objects (+ at 15 j) (or (. args j) 0)))))))
+    {:cells cells-tex :records records-tex :objects objects-tex
+     :walk (when field.walk? (walk-texture field))}))
 
 (fn textures [field]
   "The field's float textures (made once, then kept in the field):
@@ -464,46 +510,36 @@ its :floats."
 Each {:width :height} and its floats row after row, float32 in :floats (see
 float-texture, texture-values)."
   (when (not field.textures)
-    (let [stride (object-texels field)
-          cells-tex (float-texture (length field.cell-start) (* 4 (length field.cell-start)))
-          records-tex (float-texture (* 2 (length field.records)) (* 8 (length field.records)))
-          objects-tex (float-texture (* stride field.count) (* 4 stride field.count))
-          cells cells-tex.floats
-          records records-tex.floats
-          objects objects-tex.floats]
-      (each [k start (ipairs field.cell-start)]
-        (let [at (* 4 (- k 1))]
-          (tset cells at start)
-          (tset cells (+ at 1) (. field.cell-count k))))
-      (each [j i (ipairs field.records)]
-        (let [(cx cy cz ax ay az r) (shape-at field i)
-              m (. field.marched i)
-              at (* 8 (- j 1))]
-          (tset records at cx) (tset records (+ at 1) cy) (tset records (+ at 2) cz)
-          (tset records (+ at 3) r)
-          (tset records (+ at 4) (if m (- m.kind) ax)) (tset records (+ at 5) ay)
-          (tset records (+ at 6) az)
-          (tset records (+ at 7) (- i 1))))
-      (for [i 1 field.count]
-        (let [(cx cy cz ax ay az r) (shape-at field i)
-              [cr cg cb] (. field.colors i)
-              m (. field.marched i)
-              at (* 4 stride (- i 1))]
-          (tset objects at cx) (tset objects (+ at 1) cy) (tset objects (+ at 2) cz)
-          (tset objects (+ at 3) r) (tset objects (+ at 4) (if m (- m.kind) ax))
-          (tset objects (+ at 5) ay) (tset objects (+ at 6) az) (tset objects (+ at 7) (- i 1))
-          (tset objects (+ at 8) cr) (tset objects (+ at 9) cg) (tset objects (+ at 10) cb)
-          (when (> stride 3)
-            (let [(qx qy qz qw) (quaternion (if m m.rows [1 0 0 0 1 0 0 0 1]))
-                  args (if m m.args [])]
-              (tset objects (+ at 12) qx) (tset objects (+ at 13) qy)
-              (tset objects (+ at 14) qz) (tset objects (+ at 15) qw)
-              (for [j 1 (* 4 (- stride 4))]
-                (tset objects (+ at 15 j) (or (. args j) 0)))))))
-      (set field.textures {:cells cells-tex :records records-tex :objects objects-tex})
-      (when field.walk?
-        (set field.textures.walk (walk-texture field)))))
+    (set field.textures (make-textures field))
+    (each [_ t (pairs field.textures)]
+      ;; A texture of a large field without functions of time may let its floats
+      ;; go once a backend has its own copy (release-floats!); floats-of makes
+      ;; them again.
+      (set t.field field)
+      (set t.release? (and field.static? (>= field.count release-from)))))
   field.textures)
+
+(fn release-floats! [tex]
+  "Let the floats of texture `tex` (a field's, see textures) go when its :release?
+says it may (a large field without functions of time, whose texture a backend has
+copied): 150 MB for 1,000,000 spheres, held a third time beside LÖVE's copy and the
+driver's. floats-of makes them again when something reads them."
+  (when (and tex.release? tex.floats)
+    (ffi.C.free (ffi.gc tex.floats nil))
+    (set tex.floats nil)))
+
+(fn floats-of [tex]
+  "The float32 :floats of field texture `tex`, made again (into the tables a backend
+knows, which key its images) if release-floats! let them go."
+  (when (and (= nil tex.floats) tex.field)
+    (each [k t (pairs (make-textures tex.field))]
+      (set (. tex.field.textures k :floats) t.floats)))
+  tex.floats)
+
+(fn texture-values [tex]
+  "The floats of texture `tex` as a list (1-based): its :data, or the first :count of
+its :floats."
+  (or tex.data (let [floats (floats-of tex)] (fcollect [i 0 (- tex.count 1)] (. floats i)))))
 
 ;;; Queries (the CPU side of shaders/pipeline/field.glsl), in world coordinates.
 
@@ -669,8 +705,10 @@ nearest object (ties to the earlier)."
   (values d best))
 
 (fn float-reader [tex]
-  ;; A texture's floats, 1-based, and how many: from :data or :floats.
-  (if tex.floats
+  ;; A texture's floats, 1-based, and how many: from :data or :floats (nil when
+  ;; they were let go: release-floats!).
+  (if (and (= nil tex.data) (= nil tex.floats)) nil
+      tex.floats
       (let [f tex.floats] (values (fn [i] (. f (- i 1))) tex.count))
       (let [d tex.data] (values (fn [i] (. d i)) (length d)))))
 
@@ -681,7 +719,7 @@ changed, from its first changed texel to its last; nil when their sizes or width
 differ (the texture is new). A value edit then uploads only the texels it touched."
   (let [(old-at old-n) (float-reader old)
         (new-at n) (float-reader new)]
-    (when (and (= old-n n) (= old.width new.width))
+    (when (and old-at new-at (= old-n n) (= old.width new.width))
       (let [out []
             per-row (* 4 new.width)]
         (for [row 0 (- (math.ceil (/ n per-row)) 1)]
@@ -704,7 +742,7 @@ from world (ox oy oz) along the unit vector (dx dy dz) first enters a sphere of 
 field of spheres only (field.walk?) before `t-past` (the nearest plane or the
 ray's end), else `t-past`; with the cells it met that list something (the
 shader's steps). After `max-steps` of those: :out and where it stopped."
-  (let [data (. (textures field) :walk :floats)
+  (let [data (floats-of (. (textures field) :walk))
         ;; Where the ray's octant's clearance is in an empty cell's texel.
         octant (let [(ix iy iz) (reciprocal dx dy dz)]
                  (+ (if (< ix 0) 1 0) (if (< iy 0) 2 0) (if (< iz 0) 4 0)))
@@ -798,5 +836,5 @@ member's by marched-entry, with the hit test `?hit`), or `far`."
 
 {: member? : members : brute-entry : marched-entry : marched-turns : object-texels
  : arg-texels : quaternion
- : member-distance : walk : reciprocal : tiny : changed-spans : build : textures : object-distance : cell-distance : cell-of : list-entry
+ : member-distance : walk : reciprocal : tiny : changed-spans : build : textures : release-floats! : floats-of : object-distance : cell-distance : cell-of : list-entry
  : distance : brute-distance : rounded-box : min-objects : texture-width : texture-values : shape-at}

@@ -270,6 +270,9 @@ shader of `plan` holds, and how its soft shadows march."
       fd fd
       _ (case (field.build members options)
           fd (do (tset by-options key fd)
+                 ;; No function of time changes its values in place: its textures'
+                 ;; floats may go once a backend has them (field.release-floats!).
+                 (set fd.static? (= 0 (length (or scene.animated []))))
                  ;; What the build left behind is collected at once for a large
                  ;; field, before textures and a shader come on top: LuaJIT's
                  ;; collector took its time over 600 MB of it (1,000,000 spheres).
