@@ -47,3 +47,27 @@ that file; its exit code and stderr."
           (assert.truthy (err:find "error: --record: stopped (SIGINT or SIGTERM); the frames written before are kept" 1 true) err)
           (assert.is_true (exists? "test/out/stop/rec/frame-0001.png"))
           (assert.is_false (exists? "test/out/stop/rec/frame-2000.png")))))))
+
+;; ^C in the player's terminal: SIGINT, which SDL turns into a quit event. The player's
+;; compile helpers used to run under os.execute (C's system()), which ignores SIGINT
+;; in the whole process while its command runs: with a helper alive, ^C did nothing.
+;; The player is started with SIGINT at its default (a shell gives a background job
+;; SIGINT ignored; env resets it), sent SIGINT once its still is drawn (its helpers
+;; are alive then), and must be gone within 30 s (a KILL after that shows as 137).
+(describe "SIGINT stops the player"
+  (fn []
+    (it "while its compile helpers run"
+      (fn []
+        (os.execute "mkdir -p test/out/stop")
+        (let [log "test/out/stop/player.log"
+              out (sh (.. "SDL_VIDEODRIVER=offscreen env --default-signal=INT love . scenes/seed.fnl > " log " 2>&1 & p=$!; "
+                          "for i in $(seq 1 3000); do grep -q 'anti-aliased still' " log " && break; sleep 0.1; done; "
+                          "sleep 1; grep -c warm-server /proc/[0-9]*/cmdline 2>/dev/null | grep -c ':[1-9]'; "
+                          "kill -INT $p; (sleep 30; kill -KILL $p) >/dev/null 2>&1 & w=$!; "
+                          "wait $p; echo \"rc=$?\"; kill $w 2>/dev/null"))
+              text (sh (.. "cat " log))]
+          (assert.truthy (text:find "anti-aliased still" 1 true) text)
+          ;; Its helpers were alive when the signal came (the grep counts processes
+          ;; whose command line names --warm-server: the helpers and their shells).
+          (assert.is_true (>= (tonumber (out:match "^(%d+)")) 1) out)
+          (assert.are.equal "0" (out:match "rc=(%d+)") out))))))

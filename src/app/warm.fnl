@@ -12,7 +12,7 @@
 ;; PID`, started with the first request), so an edit does not pay LÖVE's start (about
 ;; 0.3 s). It takes jobs as files in DIR: the player writes job-N.glsl, the helper
 ;; answers job-N.done ("ok" or "failed"); both appear whole (written, then renamed). It
-;; quits when process PID (the player) is gone. A LÖVE thread waits on it (os.execute),
+;; quits when process PID (the player) is gone. A LÖVE thread waits on it (waitpid),
 ;; so the player knows when it has died: its job fails, and the next request starts a
 ;; new one.
 ;;
@@ -29,12 +29,38 @@
 (local max-settled 64)
 (local max-failures 3)
 
-;; The helper runs under a LÖVE thread (os.execute blocks it, not the player), which
-;; says on its channel when the helper has quit.
+;; The helper runs under a LÖVE thread (the wait blocks it, not the player), which
+;; says on its channel when the helper has quit. The thread starts the shell with
+;; posix_spawn and waits in waitpid: os.execute (C's system()) ignores SIGINT and
+;; SIGQUIT in the whole process while its command runs, so the player could not be
+;; stopped by ^C while a helper lived; and a read from io.popen holds its stream's
+;; lock, which LuaJIT's next io.popen in the player waits for (it flushes every
+;; stream first): the player froze.
 (local thread-code "
 local command, channel = ...
-local status = os.execute(command)
-channel:push(status == 0 or status == true)
+local ffi = require('ffi')
+pcall(ffi.cdef, [[
+int posix_spawnp(int *pid, const char *file, const void *file_actions,
+                 const void *attrp, char *const argv[], char *const envp[]);
+int waitpid(int pid, int *status, int options);
+extern char **environ;
+]])
+local pid = ffi.new('int[1]')
+local keep = {'sh', '-c', command}
+local argv = ffi.new('char *[4]')
+local strings = {}
+for i, a in ipairs(keep) do
+  strings[i] = ffi.new('char[?]', #a + 1, a)
+  argv[i - 1] = strings[i]
+end
+local ok = false
+if ffi.C.posix_spawnp(pid, 'sh', nil, nil, argv, ffi.C.environ) == 0 then
+  local status = ffi.new('int[1]')
+  local r
+  repeat r = ffi.C.waitpid(pid[0], status, 0) until r ~= -1 or ffi.errno() ~= 4
+  ok = r == pid[0] and status[0] == 0
+end
+channel:push(ok)
 ")
 
 (fn shell-quote [s]
