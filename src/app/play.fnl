@@ -163,22 +163,40 @@ first picture of the scene can be sized to come at once."
       (canvas:release))))
 
 ;; The collector after a load. LuaJIT starts a cycle once the heap has doubled since
-;; the last one ended (a pause of 200%): with a million spheres' scene live (800 MB),
-;; the idle player's garbage (0.7 MB a second: the HUD's text, the frame's tables)
-;; grew the process by 800 MB more before one ran. A large heap is collected once the
-;; scene is in, and the next cycle starts after collector-slack more, not after
-;; the heap's size again; a small scene keeps the default pause.
+;; the last one ended (a pause of 200%), and a cycle does twice the work of what is
+;; allocated meanwhile (a step multiplier of 200%): with a million spheres' scene
+;; live (800 MB), the idle player's garbage (0.7 MB a second: the HUD's text, the
+;; frame's tables) grew the process by 800 MB before a cycle started, and 400 MB
+;; more before it ended. A large heap is collected once the scene is in, the next
+;; cycle starts after collector-slack more and ends within a tenth of the heap's
+;; size (large-stepmul); a load goes back to the defaults (its allocations, a GB for
+;; those spheres, would otherwise run cycle after cycle over what lives).
 (local collector-large (* 256 1024))   ; KB of heap
 (local collector-slack (* 128 1024))   ; KB of garbage between cycles, at least
 (local default-pause 200)
+(local default-stepmul 200)
+(local large-stepmul 1000)
+
+(fn default-collector! []
+  (collectgarbage :setpause default-pause)
+  (collectgarbage :setstepmul default-stepmul))
+
+(fn pause-for [heap]
+  ;; The collector's pause (percent) that starts a cycle after collector-slack more
+  ;; than `heap` KB.
+  (math.floor (math.min default-pause (* 100 (/ (+ heap collector-slack) heap)))))
 
 (fn settle-collector! []
-  (if (> (collectgarbage :count) collector-large)
-      (do (collectgarbage)
-          (let [live (collectgarbage :count)]
-            (collectgarbage :setpause
-                            (math.floor (math.min default-pause (* 100 (/ (+ live collector-slack) live)))))))
-      (collectgarbage :setpause default-pause)))
+  ;; A cycle's end sets the next one's start from the pause it finds (lj_gc), so the
+  ;; pause goes first: taken from the heap before the collection (garbage and all,
+  ;; so a little less slack), then from what lives, for the cycles after.
+  (let [heap (collectgarbage :count)]
+    (if (> heap collector-large)
+        (do (collectgarbage :setpause (pause-for heap))
+            (collectgarbage :setstepmul large-stepmul)
+            (collectgarbage)
+            (collectgarbage :setpause (pause-for (collectgarbage :count))))
+        (default-collector!))))
 
 (fn load-unprotected! [path fresh? ?since ?now]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
@@ -191,6 +209,8 @@ stayed the same for a moment (watch.retry!). A shader that a helper process is
 compiling leaves the load pending (state.pending); update loads the file again once
 the helper is done, `?since` the time of the first try."
   (set state.retry-fresh? nil)
+  ;; The collector's defaults while loading (see settle-collector!).
+  (default-collector!)
   (let [start (or ?since (love.timer.getTime))
         _ (set state.opening {: path : start})
         info (file-info path)
