@@ -46,10 +46,10 @@ int waitpid(int pid, int *status, int options);
 extern char **environ;
 ]])
 local pid = ffi.new('int[1]')
-local keep = {'sh', '-c', command}
+local args = {'sh', '-c', command}
 local argv = ffi.new('char *[4]')
-local strings = {}
-for i, a in ipairs(keep) do
+local strings = {}  -- the C strings argv points at, kept alive
+for i, a in ipairs(args) do
   strings[i] = ffi.new('char[?]', #a + 1, a)
   argv[i - 1] = strings[i]
 end

@@ -1,5 +1,6 @@
 ;; Offscreen OpenGL 3.3 core rendering through OSMesa and LuaJIT FFI, so tests can run generated GLSL without LÖVE or a display.
 (local ffi (require :ffi))
+(local field (require :src.render.field))
 
 ;; From Mesa's include/GL/osmesa.h.
 (local OSMESA_RGBA 0x1908)
@@ -266,7 +267,7 @@ program id, or nil + the compile/link log followed by the offending source lines
   ;; A float texture uniform (a field's): its texels as a C float array, drawn from
   ;; texture unit `unit`.
   (let [{: width : height : data} u.texture
-        floats (when (= nil data) ((. (require :src.render.field) :floats-of) u.texture))
+        floats (when (= nil data) (field.floats-of u.texture))
         n (* width height 4)]
     (if floats
         ;; Already float32 of the texture's size (field.textures).

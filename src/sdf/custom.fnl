@@ -319,12 +319,19 @@ exact in doubles) and its length: equal texts, equal digests."
 
 (fn spent? [m] (or m.bad (>= m.evaluations m.phase-end)))
 
+(fn random-point [m]
+  ;; A random point of the grown bounds.
+  (values (* m.hx (- (* 2 (m.rand)) 1)) (* m.hy (- (* 2 (m.rand)) 1)) (* m.hz (- (* 2 (m.rand)) 1))))
+
+(fn random-direction [m]
+  ;; A random unit vector.
+  (let [a (* 2 math.pi (m.rand)) u (- (* 2 (m.rand)) 1) s (math.sqrt (- 1 (* u u)))]
+    (values (* s (math.cos a)) (* s (math.sin a)) u)))
+
 (fn directions [m]
   ;; limits.directions random unit vectors (a thin valley of the slope is followed
   ;; by the one nearest its way).
-  (fcollect [_ 1 limits.directions]
-    (let [a (* 2 math.pi (m.rand)) u (- (* 2 (m.rand)) 1) s (math.sqrt (- 1 (* u u)))]
-      [(* s (math.cos a)) (* s (math.sin a)) u])))
+  (fcollect [_ 1 limits.directions] [(random-direction m)]))
 
 (fn outside-toward [m x y z cx cy cz]
   ;; The point (cx cy cz) when it is outside and within the grown bounds; else the
@@ -481,9 +488,9 @@ exact in doubles) and its length: equal texts, equal digests."
     (for [k 2 (+ 1 limits.jump-scales) &until (spent? m)]
       (let [d (/ m.scale (^ 2 k))]
         (for [_ 1 count &until (spent? m)]
-          (let [x (* m.hx (- (* 2 (m.rand)) 1)) y (* m.hy (- (* 2 (m.rand)) 1)) z (* m.hz (- (* 2 (m.rand)) 1))
-                a (* 2 math.pi (m.rand)) u (- (* 2 (m.rand)) 1) r (math.sqrt (- 1 (* u u)))
-                bx (+ x (* d r (math.cos a))) by (+ y (* d r (math.sin a))) bz (+ z (* d u))]
+          (let [(x y z) (random-point m)
+                (ux uy uz) (random-direction m)
+                bx (+ x (* d ux)) by (+ y (* d uy)) bz (+ z (* d uz))]
             (when (within? m bx by bz)
               (let [v (evaluate m x y z)
                     w (when (> v 0) (evaluate m bx by bz))
@@ -548,7 +555,7 @@ nil."
            :steep [] :near [] :seeds limits.refine-seeds :rand (lcg 12345)}
         grid (sample-grid m)]
     (for [_ 1 (math.floor (* limits.random (/ (^ n 3) (^ limits.grid 3))))]
-      (sample m (* hx (- (* 2 (m.rand)) 1)) (* hy (- (* 2 (m.rand)) 1)) (* hz (- (* 2 (m.rand)) 1))))
+      (sample m (random-point m)))
     (let [budget (+ m.evaluations (/ limits.refine-ops cost))
           dips (grid-dips m grid)]
       ;; The walks take half the refinement's evaluations at most, the climbs the rest.
