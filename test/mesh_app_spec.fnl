@@ -82,6 +82,21 @@
                         (tonumber (out:match ": (%d+) triangles"))))]
           (assert.are.equal (. shelf 1) (. shelf 2)))))
 
+    (it "writes an adaptive mesh with --adaptive, and says how many triangles it kept"
+      (fn []
+        (let [path "test/out/mesh-adaptive.ply"
+              (code out err) (run (.. "--mesh scenes/machined-part.fnl --out " path
+                                      " --resolution 48 --adaptive 0.02"))
+              kept (tonumber (out:match "adaptive within 0.02: (%d+) of the grid's"))
+              grid (tonumber (out:match "of the grid's (%d+) triangles"))]
+          (assert.are.equal 0 code err)
+          (assert.truthy (err:find "mesh: simplify, " 1 true) err)
+          (assert.is_true (< kept (* 0.5 grid)) out)
+          (let [m (read-mesh path)]
+            (assert.are.equal kept (/ (length m.triangles) 3))
+            (assert.is_true (. (check.topology m) :manifold?))
+            (assert.is_truthy m.colors)))))
+
     (it "cuts a ground plane by a given region, and says so"
       (fn []
         (let [path "test/out/mesh-region.stl"
@@ -139,6 +154,10 @@
                          "(is the region clear of every object?)"]
                         ["--render scenes/seed.fnl --out x.png --resolution 64"
                          "error: --resolution only goes with --mesh"]
+                        ["--render scenes/seed.fnl --out x.png --adaptive 0.1"
+                         "error: --adaptive only goes with --mesh"]
+                        ["--mesh scenes/seed.fnl --out x.stl --adaptive 0"
+                         "error: --adaptive must be a distance above 0 in the scene's units"]
                         ["--mesh scenes/seed.fnl --out /nonexistent-folder/x.stl"
                          "error: --out /nonexistent-folder/x.stl: "]
                         ["--mesh test/fixtures/mesh-plane-only.fnl --out test/out/x.stl"

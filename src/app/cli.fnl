@@ -21,8 +21,9 @@
                       [--quality Q] [--samples N]   frames DIR/frame-0001.png ..., each a still
        love . --export-shader SCENE --out FILE.glsl   a Shadertoy shader with the values baked in
        love . --mesh SCENE --out FILE.stl|.ply|.obj [--resolution N] [--region x0,y0,z0,x1,y1,z1] [--gpu]
-                                             a mesh of the scene's finite objects (N cells along
-                                             the longest side, 128), or of all of them cut by a box
+                      [--adaptive E]         a mesh of the scene's finite objects (N cells along
+                                             the longest side, 128), or of all of them cut by a box;
+                                             --adaptive: triangles merged while within E of the surface
        love . --print-shader SCENE [--view VIEW] [--target love|core]
        love . --bench SCENE [--size WxH] [--frames N]   median ms per frame
        love . --probe SCENE [--gpu]          distance and material at points `x y z` read from stdin
@@ -53,7 +54,7 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
 
 (local value-flags {:--out :out :--size :size :--frames :frames :--view :view :--time :time
                     :--target :target :--shot :shot :--cycles :cycles :--fps :fps
-                    :--target-fps :target-fps :--resolution :resolution :--region :region
+                    :--target-fps :target-fps :--resolution :resolution :--region :region :--adaptive :adaptive
                     :--samples :samples :--quality :quality})
 (local mode-flags {:--render :render :--print-shader :print-shader :--bench :bench
                    :--probe :probe :--tree :tree :--export-shader :export-shader
@@ -100,8 +101,9 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
       (and (= o.mode :mesh) (not (let [e (: (or (o.out:match "%.(%w+)$") "") :lower)]
                                    (or (= e "stl") (= e "ply") (= e "obj")))))
       (values nil (.. "--out must name a .stl, .ply or .obj file, got " o.out))
-      (and (or o.resolution o.region) (not= o.mode :mesh))
-      (values nil (.. (if o.resolution "--resolution" "--region") " only goes with --mesh"))
+      (and (or o.resolution o.region o.adaptive) (not= o.mode :mesh))
+      (values nil (.. (if o.resolution "--resolution" o.region "--region" "--adaptive")
+                      " only goes with --mesh"))
       (and o.out (not= o.mode :export-shader) (not= o.mode :record) (not= o.mode :mesh)
            (not (o.out:match "%.png$")))
       (values nil (.. "--out must name a .png file, got " o.out))
@@ -136,7 +138,7 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
 {:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:input-check|:probe|:tree|:kinds|:help
  |:help-dev|:export-shader|:record|:edit-latency|:mesh
  :scene :out :size [w h] :frames n :view v :target t :gpu? (probe or mesh on the GPU)
- :resolution n :region {:lo :hi} (--mesh) :quality \"draft\"|\"still\"|\"final\" :samples n
+ :resolution n :region {:lo :hi} :adaptive e (--mesh) :quality \"draft\"|\"still\"|\"final\" :samples n
  (--render, --record; absent when not given) :time t (--render)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]
     (var i 1)
@@ -188,6 +190,10 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
     (when (and (not err) o.resolution)
       (case (mesh-options.parse-resolution o.resolution)
         n (set o.resolution n)
+        (nil e) (set err e)))
+    (when (and (not err) o.adaptive)
+      (case (mesh-options.parse-adaptive o.adaptive)
+        e (set o.adaptive e)
         (nil e) (set err e)))
     (when (and (not err) o.region)
       (case (mesh-options.parse-region o.region)

@@ -1,5 +1,5 @@
 ;; `love . --mesh SCENE --out FILE.stl|FILE.ply|FILE.obj [--resolution N] [--region
-;; x0,y0,z0,x1,y1,z1] [--gpu]`: the scene's objects as a closed mesh file, sampled by
+;; x0,y0,z0,x1,y1,z1] [--gpu] [--adaptive E]`: the scene's objects as a closed mesh file, sampled by
 ;; the CPU evaluator or, with --gpu, by the generated GLSL. Progress on stderr; one line
 ;; on stdout saying what was written and what was left out or cut.
 
@@ -10,10 +10,14 @@
 
 (fn summary [path result]
   "The line printed after a mesh is written."
-  (let [m result.mesh]
-    (string.format "wrote %s: %d triangles, %d vertices, cells of %.4g (%dx%dx%d grid), %.1f s; %s"
+  (let [m result.mesh
+        a result.stats.adaptive]
+    (string.format "wrote %s: %d triangles, %d vertices, cells of %.4g (%dx%dx%d grid)%s, %.1f s; %s"
                    path (/ (length m.triangles) 3) (/ (length m.positions) 3) result.grid.h
                    (. result.grid.dims 1) (. result.grid.dims 2) (. result.grid.dims 3)
+                   (if a (string.format ", adaptive within %.4g: %d of the grid's %d triangles"
+                                        a.error a.after a.before)
+                       "")
                    result.seconds result.message)))
 
 (fn run [o]
@@ -25,6 +29,7 @@
           (nil err) (values nil err)
           scene
           (case (export.build scene {:resolution o.resolution :region o.region
+                                     :adaptive o.adaptive
                                      :clock love.timer.getTime :stop? stop.asked?
                                      :stop-message (.. stop.message "; nothing written")
                                      :field (when o.gpu? (. (require :src.mesh.gpu) :gpu-field))})

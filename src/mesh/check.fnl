@@ -112,10 +112,41 @@ where it is."
         (when (> d worst) (set (worst at) (values d v)))))
     (values worst at)))
 
+(fn triangles-distance [m values-of spacing]
+  "The largest |value| of the field `values-of` (fn [flat] -> values at the points
+x y z ...) over mesh `m`'s triangles, each read at the points of a barycentric grid
+at most `spacing` apart (at least 4 divisions a side, corners included), and the
+point [x y z] where it is."
+  (let [p m.positions tris m.triangles]
+    (var (worst at) (values 0 nil))
+    (fn measure! [flat]
+      (each [i d (ipairs (values-of flat))]
+        (when (> (math.abs d) worst)
+          (set (worst at) (values (math.abs d) [(. flat (- (* 3 i) 2)) (. flat (- (* 3 i) 1))
+                                                (. flat (* 3 i))])))))
+    (var flat [])
+    (for [t 1 (length tris) 3]
+      (let [a (* 3 (- (. tris t) 1)) b (* 3 (- (. tris (+ t 1)) 1)) c (* 3 (- (. tris (+ t 2)) 1))
+            side (fn [i j] (sqrt (+ (^ (- (. p (+ i 1)) (. p (+ j 1))) 2)
+                                    (^ (- (. p (+ i 2)) (. p (+ j 2))) 2)
+                                    (^ (- (. p (+ i 3)) (. p (+ j 3))) 2))))
+            k (math.max 4 (math.ceil (/ (math.max (side a b) (side b c) (side c a)) spacing)))]
+        (for [i 0 k]
+          (for [j 0 (- k i)]
+            (let [wa (/ i k) wb (/ j k) wc (/ (- k i j) k)]
+              (for [q 1 3]
+                (table.insert flat (+ (* wa (. p (+ a q))) (* wb (. p (+ b q)))
+                                      (* wc (. p (+ c q)))))))))
+        (when (> (length flat) 98304)
+          (measure! flat)
+          (set flat []))))
+    (measure! flat)
+    (values worst at)))
+
 (fn describe [t]
   "One line about topology `t`."
   (string.format "%d triangles, %d vertices: %d boundary edges, %d non-manifold edges, %d misoriented, %d degenerate triangles, %d pinched vertices, Euler characteristic %d"
                  t.triangles t.vertices t.boundary t.non-manifold t.misoriented t.degenerate
                  t.pinched t.euler))
 
-{: topology : volume : area : surface-distance : describe}
+{: topology : volume : area : surface-distance : triangles-distance : describe}

@@ -984,4 +984,4 @@ bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
                :untangled counts.untangled :crossing counts.crossing
                :work counts.work :estimate counts.estimate}})))
 
-{: mesh : patches : box-distance : leaf}
+{: mesh : patches : box-distance : leaf :cut-field evaluator}

@@ -39,5 +39,12 @@ max-resolution), or nil and a message."
         (values nil (string.format "--resolution must be a whole number from %d to %d, got %s"
                                    min-resolution max-resolution s)))))
 
-{: parse-region : parse-resolution : default-resolution : min-resolution : max-resolution
+(fn parse-adaptive [s]
+  "The largest distance from the surface in `s` for --adaptive (a positive, finite
+number in the scene's units), or nil and a message."
+  (let [e (tonumber s)]
+    (if (and e (> e 0) (< e math.huge)) e
+        (values nil (.. "--adaptive must be a distance above 0 in the scene's units (the most a merged triangle may stray from the surface, e.g. 0.01), got " s)))))
+
+{: parse-region : parse-resolution : parse-adaptive : default-resolution : min-resolution : max-resolution
  : max-leaves}
