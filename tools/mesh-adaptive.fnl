@@ -2,7 +2,7 @@
 ;; surface (issue 46):
 ;;   luajit tools/fnl.lua tools/mesh-adaptive.fnl SCENE N [SHARE ...]
 ;; meshes SCENE at N cells, measures the uniform mesh's largest distance from the
-;; field's surface over its triangles (read a quarter cell apart), then meshes it with
+;; field's surface over its triangles (read a tenth of a cell apart), then meshes it with
 ;; --adaptive at that distance times each SHARE (default 1 and 0.5) and prints, for
 ;; each mesh: triangles, their share of the uniform mesh's, the largest distance in
 ;; cells, closed and 2-manifold, crossing pairs (and folds at a vertex), CPU seconds.
@@ -23,7 +23,7 @@
   (let [grid r.grid
         field (assert (mesh-scene.cpu-field (. (mesh-scene.select-objects scene) :scene)))
         values-of (contour.cut-field field grid.cut {:points 0 :work 0} (fn []) grid.h)
-        worst (check.triangles-distance r.mesh (fn [flat] (values-of :check flat)) (* 0.25 grid.h))
+        worst (check.triangles-distance r.mesh (fn [flat] (values-of :check flat)) (* 0.1 grid.h))
         topo (check.topology r.mesh)
         x (intersect.self-intersections r.mesh {:min-length (* 1e-6 grid.h)})
         nt (/ (length r.mesh.triangles) 3)]

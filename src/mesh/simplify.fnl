@@ -293,16 +293,21 @@ which is left with fewer than three triangles."
   "Whether every changed triangle (u read as v) is within the error of the surface
 at points about sample-spacing cells apart: inside each triangle (a barycentric
 grid, at least its centre) and along each edge the collapse makes (v to a former
-neighbour of u alone; the other edges keep their ends). The corners are the
-mesher's vertices, on the surface already."
+neighbour of u alone; the other edges keep their ends), and at its corners (the
+mesher's vertices, whose distances were read once: one it placed farther than the
+error, at a sharp feature it clamped, keeps its triangles as they are)."
   (let [p s.p
         flat []
-        token (do (set s.mark (+ s.mark 1)) s.mark)]
+        token (do (set s.mark (+ s.mark 1)) s.mark)
+        e s.e
+        off s.off]
     ;; v's neighbours before the collapse: their edges to v do not change.
     (each [_ w (ipairs (neighbours s v))] (tset s.around w token))
-    (each [_ t (ipairs changed)]
+    (var near? true)
+    (each [_ t (ipairs changed) &until (not near?)]
       (let [a (corner s t 1 u v) b (corner s t 2 u v) c (corner s t 3 u v)
             k (max 3 (divisions p a b s.h) (divisions p b c s.h) (divisions p c a s.h))]
+        (set near? (and (<= (. off a) e) (<= (. off b) e) (<= (. off c) e)))
         (for [i 1 (- k 2)]
           (for [j 1 (- k i 1)]
             (add-point! flat p a b c (/ i k) (/ j k) (/ (- k i j) k))))
@@ -312,11 +317,11 @@ mesher's vertices, on the surface already."
             (let [m (divisions p v w s.h)]
               (for [i 1 (- m 1)]
                 (add-point! flat p v w v (/ i m) (- 1 (/ i m)) 0)))))))
-    (let [ds (s.values-of flat)
-          e s.e]
-      (set s.stats.points (+ s.stats.points (length ds)))
-      (accumulate [ok? true _ d (ipairs ds) &until (not ok?)]
-        (<= (abs d) e)))))
+    (and near?
+         (let [ds (s.values-of flat)]
+           (set s.stats.points (+ s.stats.points (length ds)))
+           (accumulate [ok? true _ d (ipairs ds) &until (not ok?)]
+             (<= (abs d) e))))))
 
 (fn apart-along? [tp op shared-t shared-o tol ax ay az]
 ;; See separated?: whether axis a parts the two triangles.
@@ -377,63 +382,85 @@ shared-o: its index 1-3 in each, or 0). Then they meet at most in that corner."
                                     (- (* ex ny) (* ey nx)))))))
     found?))
 
+(fn shared-corners [s t u v o ou ov]
+  "How many corners triangles t and o (each with its u read as v: ou ov for o) share,
+and the index (1-3) in each of the last one found."
+  (var (shared st so) (values 0 0 0))
+  (for [i 1 3]
+    (for [j 1 3]
+      (when (= (corner s t i u v) (corner s o j ou ov))
+        (set (shared st so) (values (+ shared 1) i j)))))
+  (values shared st so))
+
+(fn meet? [s tp t u v o ou ov op tol]
+  ;; Whether t and o cross or fold onto each other: not when they share an edge (they
+  ;; meet along it) or a separating axis parts them; else by the exact test.
+  (let [(shared st so) (shared-corners s t u v o ou ov)]
+    (and (< shared 2)
+         (not (separated? tp op st so 1e-9))
+         (> (intersect.pair-overlap tp op) tol))))
+
 (fn crosses-none? [s u v changed removed]
-  "Whether no changed triangle (u read as v) crosses or folds onto a triangle near
-it that it shares no edge with."
-  (let [a-points [] b-points []
-        tol (* 1e-6 s.h)]
-    (accumulate [ok? true n t (ipairs changed) &until (not ok?)]
-      ;; Each triangle near t is tested once for t (it may be in several cells).
-      (let [mark (do (set s.mark (+ s.mark 1)) s.mark)]
-        (each [_ r (ipairs removed)] (tset s.seen (+ r 1) mark))
-        (each [_ c (ipairs changed)] (tset s.seen (+ c 1) mark))
-        (let [(lx ly lz hx hy hz) (triangle-box s t u v)
-              (i0 i1) (hash-range s lx hx) (j0 j1) (hash-range s ly hy)
-              (k0 k1) (hash-range s lz hz)
-              tp (points-of s t u v a-points)]
-          ;; The changed triangles against each other: they all hold v, so only
-          ;; a fold (more than v in common) counts.
-          (var clear? true)
-          (for [m (+ n 1) (length changed) &until (not clear?)]
-            (let [o (. changed m)
-                  shared (faccumulate [c 0 i 1 3]
-                           (+ c (faccumulate [c2 0 j 1 3]
-                                  (if (= (corner s t i u v) (corner s o j u v)) (+ c2 1) c2))))]
-              (when (and (< shared 2)
-                         (> (intersect.pair-overlap tp (points-of s o u v b-points)) tol))
-                (set clear? false))))
-          (for [k k0 k1 &until (not clear?)]
-            (for [j j0 j1 &until (not clear?)]
-              (for [i i0 i1 &until (not clear?)]
-                (let [list (or (. s.buckets (cell-key i j k)) none)]
-                  (var at 1)
-                  (while (and clear? (<= at (length list)))
-                    (let [o (. list at)]
-                      (if (not (live-entry? s o i j k))
-                          ;; Dropped: the last entry takes its place.
-                          (let [n (length list)]
-                            (tset list at (. list n))
-                            (tset list n nil))
-                          (do (set at (+ at 1))
-                  (when (not= mark (. s.seen (+ o 1)))
-                    (tset s.seen (+ o 1) mark)
-                    (let [bx s.boxes ob (* 6 o)]
-                      (when (and (<= (max lx (. bx (+ ob 1))) (min hx (. bx (+ ob 4))))
-                                 (<= (max ly (. bx (+ ob 2))) (min hy (. bx (+ ob 5))))
-                                 (<= (max lz (. bx (+ ob 3))) (min hz (. bx (+ ob 6)))))
-                        (var (shared st so) (values 0 0 0))
-                        (for [i 1 3]
-                          (for [j 1 3]
-                            (when (= (corner s t i u v) (. s.tris (+ (* 3 o) j)))
-                              (set (shared st so) (values (+ shared 1) i j)))))
-                        ;; Sharing an edge, they meet along it; sharing a corner,
-                        ;; they may still fold over each other.
-                        (let [op (points-of s o 0 0 b-points)]
-                          (when (and (< shared 2)
-                                     (not (separated? tp op st so 1e-9))
-                                     (> (intersect.pair-overlap tp op) tol))
-                            (set clear? false))))))))))))))
-          clear?)))))
+  "Whether no changed triangle (u read as v) crosses or folds onto another triangle
+that it shares no edge with: the changed ones among themselves, then every triangle
+hashed in the cells of their joint box, met once, against each changed one whose
+box it overlaps."
+  (let [tol (* 1e-6 s.h)
+        n (length changed)
+        corners []
+        boxes []]
+    (var (lx ly lz hx hy hz) (values math.huge math.huge math.huge
+                                     (- math.huge) (- math.huge) (- math.huge)))
+    (each [m t (ipairs changed)]
+      (tset corners m (points-of s t u v []))
+      (let [(ax ay az bx by bz) (triangle-box s t u v)]
+        (tset boxes m [ax ay az bx by bz])
+        (set (lx ly lz) (values (min lx ax) (min ly ay) (min lz az)))
+        (set (hx hy hz) (values (max hx bx) (max hy by) (max hz bz)))))
+    (var clear? true)
+    ;; The changed triangles against each other: they all hold v, so only a fold
+    ;; (more than v in common) counts.
+    (for [a 1 n &until (not clear?)]
+      (for [b (+ a 1) n &until (not clear?)]
+        (when (meet? s (. corners a) (. changed a) u v (. changed b) u v (. corners b) tol)
+          (set clear? false))))
+    (let [mark (do (set s.mark (+ s.mark 1)) s.mark)
+          (i0 i1) (hash-range s lx hx) (j0 j1) (hash-range s ly hy) (k0 k1) (hash-range s lz hz)
+          op []
+          bx s.boxes]
+      (each [_ r (ipairs removed)] (tset s.seen (+ r 1) mark))
+      (each [_ c (ipairs changed)] (tset s.seen (+ c 1) mark))
+      (for [k k0 k1 &until (not clear?)]
+        (for [j j0 j1 &until (not clear?)]
+          (for [i i0 i1 &until (not clear?)]
+            (let [list (or (. s.buckets (cell-key i j k)) none)]
+              (var at 1)
+              (while (and clear? (<= at (length list)))
+                (let [o (. list at)]
+                  (if (not (live-entry? s o i j k))
+                      ;; Dropped: the last entry takes its place.
+                      (let [last (length list)]
+                        (tset list at (. list last))
+                        (tset list last nil))
+                      (do
+                        (set at (+ at 1))
+                        (when (not= mark (. s.seen (+ o 1)))
+                          (tset s.seen (+ o 1) mark)
+                          (let [ob (* 6 o)
+                                olx (. bx (+ ob 1)) oly (. bx (+ ob 2)) olz (. bx (+ ob 3))
+                                ohx (. bx (+ ob 4)) ohy (. bx (+ ob 5)) ohz (. bx (+ ob 6))]
+                            (var filled? false)
+                            (for [m 1 n &until (not clear?)]
+                              (let [[ax ay az bx2 by2 bz2] (. boxes m)]
+                                (when (and (<= (max ax olx) (min bx2 ohx))
+                                           (<= (max ay oly) (min by2 ohy))
+                                           (<= (max az olz) (min bz2 ohz)))
+                                  (when (not filled?)
+                                    (points-of s o 0 0 op)
+                                    (set filled? true))
+                                  (when (meet? s (. corners m) (. changed m) u v o 0 0 op tol)
+                                    (set clear? false)))))))))))))))
+      clear?)))
 
 ;;; Collapsing.
 
@@ -524,6 +551,9 @@ and the collapses refused, by test: :colour :manifold :folded :far :crossed}."
         s (new-state {:positions m.positions :triangles tris} m.colors error h values-of)
         progress (or ?progress (fn []))]
     (progress 0 s.nt)
+    ;; Each vertex's distance from the surface, once.
+    (set s.off (icollect [_ d (ipairs (values-of m.positions))] (abs d)))
+    (set s.stats.points (+ s.stats.points s.nv))
     (for [t 0 (- s.nt 1)] (hash-insert! s t))
     (for [u 1 s.nv]
       (each [_ w (ipairs (neighbours s u))] (consider! s u w)))
