@@ -881,7 +881,8 @@ seen from outside."
 cells): the vertices of both go to their crossings' mean (where a mesher that
 keeps no sharp feature puts them), and the triangles of the vertices moved are
 checked again, for a few rounds. Checks only triangles with a vertex more than
-off-mean from its mean. Moves them in state.positions; counts the vertices moved
+off-mean from its mean. A pair sharing a corner that overlaps beyond it (a fold)
+moves all its vertices so; a crossing pair those that are off. Moves them in state.positions; counts the vertices moved
 in counts.untangled and the pairs left crossing in counts.crossing."
   (let [{: positions : vertex-info : h : counts} state
         nv (/ (length positions) 3)
@@ -907,15 +908,20 @@ in counts.untangled and the pairs left crossing in counts.crossing."
     (var (rounds moved left) (values 0 0 0))
     (while only
       (let [r (intersect.self-intersections m {:min-length (* 1e-6 h) :max-list math.huge
-                                                :only only :folds? false})
+                                                :only only})
             changed {}]
-        (set (only left rounds) (values nil r.pairs (+ rounds 1)))
+        (set (only left rounds) (values nil (+ r.pairs r.folds) (+ rounds 1)))
         (when (<= rounds untangle-rounds)
-          (each [_ [s t] (ipairs r.list)]
+          (each [_ [s t fold?] (ipairs (icollect [_ [a b] (ipairs r.fold-list)
+                                                  &into (icollect [_ p (ipairs r.list)] p)]
+                                          [a b true]))]
             (each [_ tri (ipairs [s t])]
               (for [c 1 3]
                 (let [v (. triangles (+ (* 3 tri) c))]
-                  (when (off? v)
+                  ;; A fold at a shared vertex: its triangles' vertices were where
+                  ;; the QEF put a sharp feature (near their means, not off);
+                  ;; at the means the sheet is smooth there.
+                  (when (or fold? (off? v))
                     (tset changed v true)
                     (set moved (+ moved 1))
                     (for [q 1 3]

@@ -238,7 +238,8 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
         ;; Each triangle's box, and the mean of their largest sides: the grid's
         ;; cell (a triangle then spans a few cells at most).
         box []
-        result {:pairs 0 :coplanar 0 :folds 0 :tested 0 :longest 0 :at nil :list []}]
+        result {:pairs 0 :coplanar 0 :folds 0 :tested 0 :longest 0 :at nil :list []
+                :fold-list []}]
     (var (glo-x glo-y glo-z ghi-x ghi-y ghi-z) (values math.huge math.huge math.huge
                                                        (- math.huge) (- math.huge) (- math.huge)))
     (var side-sum 0)
@@ -283,7 +284,9 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
                               (len kind) (pair-overlap p r)]
                           (when (> len min-length)
                             (if (= shared 1)
-                                (set result.folds (+ result.folds 1))
+                                (do (set result.folds (+ result.folds 1))
+                                    (when (< (length result.fold-list) max-list)
+                                      (table.insert result.fold-list [(- s 1) (- t 1) len])))
                                 (do
                                   (set result.pairs (+ result.pairs 1))
                                   (when (= kind :coplanar)

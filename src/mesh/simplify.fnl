@@ -30,9 +30,12 @@
 ;; within a thin slab of the surface).
 (local min-turn-cos 0.5)
 ;; The shape of a triangle, 4 sqrt(3) area / (sum of squared sides): 1 for an
-;; equilateral one, 0.1 for angles of 5, 5 and 170 degrees. A collapse may not make
-;; a triangle worse than this (nor worse than the worst it replaces, if that is).
-(local min-quality 0.1)
+;; equilateral one, 0.4 for angles of 20, 20 and 140 degrees or of 12, 84 and 84, 0.1
+;; for 5, 5 and 170. A collapse may not make a triangle worse than this (nor worse than
+;; the worst it replaces, if that is). At 0.1, machined-part at 128 cells kept 3,162
+;; triangles, 29.7% of them with an angle under 10 degrees (the uniform mesh: 0.9%);
+;; at 0.4, 5,034 and 1.1%.
+(local min-quality 0.4)
 ;; Points tested on a changed triangle: a barycentric grid of k x k sub-triangles,
 ;; k its longest side in steps of this many cells (at least 3: the edges' thirds and
 ;; the centre), at most max-divisions.
