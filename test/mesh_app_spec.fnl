@@ -85,9 +85,10 @@
     (it "writes an adaptive mesh with --adaptive, and says how many triangles it kept"
       (fn []
         (let [path "test/out/mesh-adaptive.ply"
+              ;; A quarter of a cell at 48 (0.19): 1,734 of 5,388 triangles kept.
               (code out err) (run (.. "--mesh scenes/machined-part.fnl --out " path
-                                      " --resolution 48 --adaptive 0.02"))
-              kept (tonumber (out:match "adaptive within 0.02: (%d+) of the grid's"))
+                                      " --resolution 48 --adaptive 0.05"))
+              kept (tonumber (out:match "adaptive within 0.05: (%d+) of the grid's"))
               grid (tonumber (out:match "of the grid's (%d+) triangles"))]
           (assert.are.equal 0 code err)
           (assert.truthy (err:find "mesh: simplify, " 1 true) err)
