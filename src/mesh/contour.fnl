@@ -882,8 +882,9 @@ cells): the vertices of both go to their crossings' mean (where a mesher that
 keeps no sharp feature puts them), and the triangles of the vertices moved are
 checked again, for a few rounds. Checks only triangles with a vertex more than
 off-mean from its mean. A pair sharing a corner that overlaps beyond it (a fold)
-moves all its vertices so; a crossing pair those that are off. Moves them in state.positions; counts the vertices moved
-in counts.untangled and the pairs left crossing in counts.crossing."
+moves all its vertices so; a crossing pair those that are off. Moves them in
+state.positions; counts the vertices moved in counts.untangled and the pairs left
+crossing or folded in counts.crossing."
   (let [{: positions : vertex-info : h : counts} state
         nv (/ (length positions) 3)
         nt (/ (length triangles) 3)
@@ -950,7 +951,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
 (cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
 moved onto the surface) :collections (full collections of the Lua heap, see
 bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
-:crossing (pairs of triangles left crossing) :times (CPU seconds per step) :work :estimate}}."
+:crossing (pairs of triangles left crossing or folded) :times (CPU seconds per step) :work :estimate}}."
   (let [state (new-state field grid ?progress)
         counts state.counts]
     (mark! state :blocks)

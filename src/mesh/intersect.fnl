@@ -223,7 +223,8 @@ coplanar and overlapping. Second value: :crossing, :coplanar or nil."
 whose common part, see pair-overlap, is longer than :min-length) :coplanar (those
 of them that overlap in a plane) :longest (the longest common part of those) :at
 [x y z] (a point of that longest one's triangles) :folds (pairs sharing one vertex
-that meet along more than that vertex: a fold through the vertex) :tested (pairs
+that meet along more than that vertex: a fold through the vertex) :fold-list [[s t
+length] ...] (the first :max-list folds, as :list) :tested (pairs
 whose boxes overlap, tested exactly) :list [[s t length] ...] (the first
 :max-list pairs, 0-based triangle indices)}. Pairs sharing an edge meet along it
 and are not tested. Options: :min-length (default 1e-9 of the mesh's size; pass
