@@ -179,8 +179,10 @@ The tables returned may be shared between cells: not to be changed."
 (local inset 1e-3)
 
 (fn clamp-cell [v lo h]
+  ;; (min and max, not branches: LuaJIT could not compile the side traces those
+  ;; took in the vertex loop, "register coalescing too complex".)
   (let [a (+ lo (* inset h)) b (- (+ lo h) (* inset h))]
-    (if (< v a) a (> v b) b v)))
+    (min b (max a v))))
 
 ;;; The QEF: the point nearest (in the least-squares sense) to the crossings' tangent
 ;;; planes, pulled slightly toward their mean.

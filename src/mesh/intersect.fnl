@@ -129,6 +129,29 @@ direction l/ll is `s`."
         (bx by bz) (point-at cq lx ly lz ll s)]
     (sqrt (+ (* (- ax bx) (- ax bx)) (* (- ay by) (- ay by)) (* (- az bz) (- az bz))))))
 
+(fn snap [d tol]
+  ;; Zero for a distance within rounding of a plane.
+  (if (< (abs d) tol) 0 d))
+
+(fn plane-distance [nx ny nz ln ox oy oz x y z]
+  ;; The signed distance of x y z from the plane through o of normal n (length ln).
+  (/ (dot nx ny nz (- x ox) (- y oy) (- z oz)) ln))
+
+(fn one-side? [a b c]
+  ;; Whether a triangle whose corners are a b c from a plane meets it in a point at
+  ;; most: all on one side, save one corner on the plane (a pair sharing a vertex).
+  (let [pos (+ (if (> a 0) 1 0) (if (> b 0) 1 0) (if (> c 0) 1 0))
+        neg (+ (if (< a 0) 1 0) (if (< b 0) 1 0) (if (< c 0) 1 0))]
+    (or (and (= neg 0) (>= pos 2)) (and (= pos 0) (>= neg 2)))))
+
+(fn cut-range [pts lx ly lz ll]
+  ;; The parameters along the unit direction l/ll that the cut `pts` spans.
+  (var (lo hi) (values math.huge (- math.huge)))
+  (for [b 0 (- (length pts) 1) 3]
+    (let [s (/ (dot lx ly lz (. pts (+ b 1)) (. pts (+ b 2)) (. pts (+ b 3))) ll)]
+      (set (lo hi) (values (min lo s) (max hi s)))))
+  (values lo hi))
+
 (fn pair-overlap [p q]
   "The length of what triangles `p` and `q` (each [x y z x y z x y z]) have in
 common: 0 when apart or touching at a point, the length of their common segment
@@ -152,41 +175,31 @@ coplanar and overlapping. Second value: :crossing, :coplanar or nil."
         ;; (check.topology counts them); it crosses nothing here.
         (values 0 nil)
         (let [tol (* on-plane scale)
-              snap (fn [d] (if (< (abs d) tol) 0 d))
-              ;; Distances of q's vertices from p's plane, and p's from q's.
-              dq (fcollect [k 0 2]
-                   (snap (/ (dot nx ny nz (- (. q (+ 1 (* 3 k))) p1x)
-                                 (- (. q (+ 2 (* 3 k))) p1y) (- (. q (+ 3 (* 3 k))) p1z))
-                            ln)))
-              dp (fcollect [k 0 2]
-                   (snap (/ (dot mx my mz (- (. p (+ 1 (* 3 k))) q1x)
-                                 (- (. p (+ 2 (* 3 k))) q1y) (- (. p (+ 3 (* 3 k))) q1z))
-                            lm)))
-              one-side? (fn [d] (or (and (> (. d 1) 0) (> (. d 2) 0) (> (. d 3) 0))
-                                    (and (< (. d 1) 0) (< (. d 2) 0) (< (. d 3) 0))))]
-          (if (or (one-side? dq) (one-side? dp))
+              ;; Distances of q's vertices from p's plane, and p's from q's (in
+              ;; locals, and no closure: most pairs end at the next test, and this
+              ;; runs for every pair whose boxes overlap).
+              dq1 (snap (plane-distance nx ny nz ln p1x p1y p1z q1x q1y q1z) tol)
+              dq2 (snap (plane-distance nx ny nz ln p1x p1y p1z q2x q2y q2z) tol)
+              dq3 (snap (plane-distance nx ny nz ln p1x p1y p1z q3x q3y q3z) tol)
+              dp1 (snap (plane-distance mx my mz lm q1x q1y q1z p1x p1y p1z) tol)
+              dp2 (snap (plane-distance mx my mz lm q1x q1y q1z p2x p2y p2z) tol)
+              dp3 (snap (plane-distance mx my mz lm q1x q1y q1z p3x p3y p3z) tol)]
+          (if (or (one-side? dq1 dq2 dq3) (one-side? dp1 dp2 dp3))
               (values 0 nil)
-              (and (= 0 (. dq 1)) (= 0 (. dq 2)) (= 0 (. dq 3)))
+              (and (= 0 dq1) (= 0 dq2) (= 0 dq3))
               (let [d (coplanar-overlap p q nx ny nz scale)]
                 (values d (when (> d 0) :coplanar)))
               ;; Each triangle's cut by the other's plane lies on the line where
               ;; the planes meet, of direction n x m: the overlap of the two cuts
               ;; along it is what they share.
-              (let [cp (plane-cut p dp)
-                    cq (plane-cut q dq)
+              (let [cp (plane-cut p [dp1 dp2 dp3])
+                    cq (plane-cut q [dq1 dq2 dq3])
                     (lx ly lz) (cross nx ny nz mx my mz)
-                    ll (sqrt (dot lx ly lz lx ly lz))
-                    range (fn [pts]
-                            (var (lo hi) (values math.huge (- math.huge)))
-                            (for [b 0 (- (length pts) 1) 3]
-                              (let [s (/ (dot lx ly lz (. pts (+ b 1)) (. pts (+ b 2))
-                                              (. pts (+ b 3)))
-                                         ll)]
-                                (set (lo hi) (values (min lo s) (max hi s)))))
-                            (values lo hi))]
+                    ll (sqrt (dot lx ly lz lx ly lz))]
                 (if (or (= 0 (length cp)) (= 0 (length cq)) (= ll 0))
                     (values 0 nil)
-                    (let [(a0 a1) (range cp) (b0 b1) (range cq)
+                    (let [(a0 a1) (cut-range cp lx ly lz ll)
+                          (b0 b1) (cut-range cq lx ly lz ll)
                           s0 (max a0 b0) s1 (min a1 b1)
                           d (- s1 s0)]
                       (if (<= d 0) (values 0 nil)

@@ -46,7 +46,10 @@ first)."
     (each [_ r (ipairs runs)]
       (when (not (and finite? (or r.half-space? r.field)))
         (if r.field
-            (let [df (field.distance r.field x y z (when skip (+ 1 (- skip r.first))))]
+            ;; (No closure in this loop, nor in map-color-fn's: LuaJIT traces no
+            ;; function that makes one, and these run per point in a mesh.)
+            (let [own (and skip (+ 1 (- skip r.first)))
+                  df (field.distance r.field x y z own)]
               (when (< df d) (set d df)))
             r.grid
             (let [(start count bound) (grid.query r.grid x y z ?dx ?dy ?dz draw)
@@ -93,23 +96,31 @@ first)."
             (< v 0) (math.min t (/ (- s) v))
             t)))))
 
-(fn map-color-fn [runs tape-material draw modern?]
+(local black [0 0 0])
+
+(fn visit [material i x y z d best r g b mirror rough emit modern?]
+  ;; map-color-fn's state after tape object `i` at x y z: it wins when strictly nearer.
+  ;; (Each `if` bound first: one as the last of `values` would be a closure.)
+  (let [(di mr mg mb ma mk me) ((. material i) x y z)
+        hit-rough (if modern? mk rough)
+        hit-emit (if modern? me emit)]
+    (if (< di d)
+        (values di i mr mg mb ma hit-rough hit-emit)
+        (values d best r g b mirror rough emit))))
+
+(fn map-color-fn [runs tape-distance tape-material draw modern?]
   (fn [x y z]
-    ;; Strictly smaller wins, so ties go to the earlier object in plan order.
+    ;; Strictly smaller wins, so ties go to the earlier object in plan order. An
+    ;; object's material is read only where its distance (the same code without the
+    ;; material, or a bound below it) is below the nearest so far: one that is not
+    ;; could not win, and a material costs several distances (the colours of a mesh's
+    ;; vertices took 13 microseconds each on machined-part reading them all).
     ;; Returns the distance, the index into plan.objects (or nil) and the colour and
     ;; mirror amount of the material found.
     ;; In the modern model also its roughness and emission (a field's objects:
     ;; matte, 0.5 and none; the classic model's are full mirrors).
-    (var d draw)
-    (var best nil)
+    (var (d best) (values draw nil))
     (var (r g b mirror rough emit) (values 0 0 0 (if modern? 0 1) 0.5 0))
-    (fn visit [i]
-      (let [(di mr mg mb ma mk me) ((. tape-material i) x y z)]
-        (when (< di d)
-          (set d di)
-          (set best i)
-          (set (r g b mirror) (values mr mg mb ma))
-          (when modern? (set (rough emit) (values mk me))))))
     ;; A grid's bound lowers d, not the colour (as emit-glsl's looped).
     (each [_ run (ipairs runs)]
       (if run.field
@@ -118,15 +129,21 @@ first)."
           (let [(df fb) (field.distance run.field x y z)]
             (when (< df d)
               (set d df)
-              (set best (when fb (+ run.first fb -1)))
-              (let [[cr cg cb] (if fb (. run.field.colors fb) [0 0 0])]
+              (set best (and fb (+ run.first fb -1)))
+              (let [colour (if fb (. run.field.colors fb) black)
+                    [cr cg cb] colour]
                 (set (r g b) (values cr cg cb)))))
           run.grid
           (let [(start count bound) (grid.query run.grid x y z)]
             (when (< bound d) (set d bound))
             (for [s (+ start 1) (+ start count)]
-              (visit (+ run.first (. run.grid.records s)))))
-          (for [i run.first run.last] (visit i))))
+              (set (d best r g b mirror rough emit)
+                   (visit tape-material (+ run.first (. run.grid.records s)) x y z
+                          d best r g b mirror rough emit modern?))))
+          (for [i run.first run.last]
+            (when (< ((. tape-distance i) x y z) d)
+              (set (d best r g b mirror rough emit)
+                   (visit tape-material i x y z d best r g b mirror rough emit modern?))))))
     (values d best r g b mirror rough emit)))
 
 (fn evaluators [ctx]
@@ -158,7 +175,7 @@ table of
      :map-estimate (fn [x y z] (estimate-min draw x y z false nil))
      :map-finite-estimate (fn [x y z] (estimate-min draw x y z true nil))
      :planes-hit (planes-hit-fn planes tape-distance tape-gradient draw)
-     :map-color (map-color-fn runs tape-material draw modern?)
+     :map-color (map-color-fn runs tape-distance tape-material draw modern?)
      :near-count (near-count-fn runs tape-distance)
      ;; A field's objects through its grid, as the shader's (skipping i's number).
      :others-map (fn [i] (fn [x y z] (tape-min draw x y z false i)))

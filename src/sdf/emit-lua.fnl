@@ -189,20 +189,19 @@
      (fn [e code materials? indent]
        (each [_ ins (ipairs code)] (emit-instr e ins materials? indent))))
 
-(fn count-registers [code per]
-  ;; Locals per instruction, at most: a material's components (or a point and a
-  ;; distance, fewer).
-  (accumulate [n 0 _ ins (ipairs code)]
-    (+ n per (if ins.body (count-registers ins.body per) 0)
-       (if ins.members (count-registers ins.members.code per) 0)
-       (if ins.near? (count-registers ins.near?.code per) 0))))
+(fn local-count [lines]
+  ;; The locals `lines` declare (`local a, b = ...` counts two), inner blocks' too.
+  (accumulate [n 0 _ l (ipairs lines)]
+    (case (l:match "^%s*local ([^=]*) =")
+      names (+ n 1 (select 2 (names:gsub "," "")))
+      _ n)))
 
 (fn function-lines [e o what]
   ;; The function of object `o` that returns its distance (:distance), that and its
   ;; material (:material), or its exact normal (:gradient, a leaf's; see lower.fnl).
   ;; (dx dy dz: a march's ray direction, or nil; see :blend.)
+  (when e.table-mode? (e.line 0 "local R = {}"))
   (e.line 0 "FN[#FN + 1] = function(x, y, z, dx, dy, dz)")
-  (when e.table-mode? (e.line 1 "local R = {}"))
   (if (= what :gradient)
       (let [{: points : prim} o.leaf]
         (emit-code e points false 1)
@@ -270,30 +269,33 @@ itself without them] :source text}."
                               [:distance :material :gradient]))]
       (each [_ o (ipairs tape.objects)]
         (let [group o.instances
-              e (doto (new-emitter (> (count-registers (or o.code []) (or tape.material-size 4)) max-locals)
-                                   tape.material-size (not= nil group))
-                  (tset :instances banks.instances)
-                  (tset :estimate? (= what :estimate)))
-              into (. out what)]
+              into (. out what)
+              emit (fn [table-mode?]
+                     (let [e (doto (new-emitter table-mode? tape.material-size (not= nil group))
+                               (tset :instances banks.instances)
+                               (tset :estimate? (= what :estimate)))]
+                       (e.line 0 "local S, F, FN, first, stride, count = ...")
+                       (when group
+                         (e.line 0 "for member = 0, count - 1 do")
+                         (e.line 0 "local B = (first + member * stride) * 4"))
+                       (function-lines e o what)
+                       (when group (e.line 0 "end"))
+                       e))]
           (if o.field
               (each [_ f (ipairs (field-evaluators o.field (if (= what :estimate) :distance what)
                                                    tape.material-size))]
                 (table.insert into f))
               (and (= what :gradient) (not (?. o :leaf :prim :desc :gradient)))
               (for [_ 1 (if group group.count 1)] (table.insert into false))
-              (do
-                (e.line 0 "local S, F, FN, first, stride, count = ...")
-                (when group
-                  (e.line 0 "for member = 0, count - 1 do")
-                  (e.line 0 "local B = (first + member * stride) * 4"))
-                (function-lines e o what)
-                (when group (e.line 0 "end"))
-                (let [source (table.concat e.lines "\n")
-                      chunk (assert ((or _G.loadstring load) source (.. "=tape:" o.info.path)))]
-                  (table.insert sources source)
-                  (if group
-                      (chunk banks.instances e.fns into group.base group.stride group.count)
-                      (chunk banks.tape e.fns into))))))))
+              ;; Locals while they fit; a table holds them in a function with more.
+              (let [e (let [e (emit false)]
+                        (if (or (= what :material) (> (local-count e.lines) max-locals)) (emit true) e))
+                    source (table.concat e.lines "\n")
+                    chunk (assert ((or _G.loadstring load) source (.. "=tape:" o.info.path)))]
+                (table.insert sources source)
+                (if group
+                    (chunk banks.instances e.fns into group.base group.stride group.count)
+                    (chunk banks.tape e.fns into)))))))
     (set out.source (table.concat sources "\n"))
     ;; Without estimates (tape.estimates?), the field read as an estimate is the
     ;; distance itself.
