@@ -482,7 +482,10 @@ edges and corners) is evaluated once. Makes the first estimate of the work."
 
 (fn find-cells! [state]
   "3. Cells with surface, and their crossing edges (each edge once). Leaves
-state.cells ({:i :j :k :v (corner values) :edges (local edge -> crossing index)}),
+state.cell-count and, per cell c (1-based), its grid cell in state.cell-i, cell-j,
+cell-k, its corner values at 8 (c - 1) + corner + 1 of state.cell-v and its local
+edges' crossings at 12 (c - 1) + edge + 1 of state.cell-edges (0: no crossing): flat
+arrays, no table per cell (a city at 256 cells has 170,000 of them). Leaves
 state.crossings (their count) and per crossing its low end (state.ex0, ey0, ez0),
 its axis (eaxis) and the values at its ends (ed0, ed1). Makes the estimate exact."
   (let [{: leaves : leaf-halves : corner-values : counts : nx : ny : nz : stride-x : stride-y} state
@@ -491,16 +494,16 @@ its axis (eaxis) and the values at its ends (ed0, ed1). Makes the estimate exact
         ;; Crossing edges: global key -> index; their ends and values.
         edge-index {}
         ex0 [] ey0 [] ez0 [] ed0 [] ed1 [] eaxis []
-        cells []]
-    (var crossings 0)
+        cell-i [] cell-j [] cell-k [] cell-v [] cell-edges []]
+    (var (crossings cells) (values 0 0))
     (each [l [i0 j0 k0] (ipairs leaves)]
       (let [base (* (- l 1) side side side)]
         (let [visit (cells-of (. leaf-halves l))]
           (for [q 1 (length visit) 3]
             (let [a (. visit q) b (. visit (+ q 1)) c (. visit (+ q 2))]
-              ;; The signs first: most cells of a leaf have no surface, and get
-              ;; no table. A half clear of the surface has no values; cells past
-              ;; the grid's end none either.
+              ;; The signs first: most cells of a leaf have no surface. A half
+              ;; clear of the surface has no values; cells past the grid's end
+              ;; none either.
               (when (and (< (+ i0 a) nx) (< (+ j0 b) ny) (< (+ k0 c) nz))
                (let [at (+ base 1 a (* side b) (* s2 c))
                     v0 (. corner-values at) v1 (. corner-values (+ at 1))
@@ -512,31 +515,38 @@ its axis (eaxis) and the values at its ends (ed0, ed1). Makes the estimate exact
                               (if (< v6 0) 1 0) (if (< v7 0) 1 0))]
                 (when (and (> inside 0) (< inside 8))
                   (let [i (+ i0 a) j (+ j0 b) k (+ k0 c)
-                        v [v0 v1 v2 v3 v4 v5 v6 v7]
-                        cell {: i : j : k : v :edges {}}]
-                    (table.insert cells cell)
+                        vb (* 8 cells) eb (* 12 cells)]
+                    (set cells (+ cells 1))
+                    (tset cell-i cells i) (tset cell-j cells j) (tset cell-k cells k)
+                    (tset cell-v (+ vb 1) v0) (tset cell-v (+ vb 2) v1)
+                    (tset cell-v (+ vb 3) v2) (tset cell-v (+ vb 4) v3)
+                    (tset cell-v (+ vb 5) v4) (tset cell-v (+ vb 6) v5)
+                    (tset cell-v (+ vb 7) v6) (tset cell-v (+ vb 8) v7)
                     (for [e 0 11]
                       (let [ca (. edge-low (+ e 1))
-                            da (. v (+ ca 1)) db (. v (+ (. edge-high (+ e 1)) 1))]
-                        (when (not= (< da 0) (< db 0))
-                          (let [gi (+ i (% ca 2)) gj (+ j (% (floor (/ ca 2)) 2))
-                                gk (+ k (floor (/ ca 4)))
-                                axis (floor (/ e 4))
-                                key (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk))))]
-                            (var idx (. edge-index key))
-                            (when (not idx)
-                              (set crossings (+ crossings 1))
-                              (set idx crossings)
-                              (tset edge-index key idx)
-                              (tset ex0 idx gi) (tset ey0 idx gj) (tset ez0 idx gk)
-                              (tset eaxis idx axis)
-                              (tset ed0 idx da) (tset ed1 idx db))
-                            (tset cell.edges e idx))))))))))))))
+                            da (. cell-v (+ vb ca 1)) db (. cell-v (+ vb (. edge-high (+ e 1)) 1))]
+                        (if (not= (< da 0) (< db 0))
+                            (let [gi (+ i (% ca 2)) gj (+ j (% (floor (/ ca 2)) 2))
+                                  gk (+ k (floor (/ ca 4)))
+                                  axis (floor (/ e 4))
+                                  key (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk))))]
+                              (var idx (. edge-index key))
+                              (when (not idx)
+                                (set crossings (+ crossings 1))
+                                (set idx crossings)
+                                (tset edge-index key idx)
+                                (tset ex0 idx gi) (tset ey0 idx gj) (tset ez0 idx gk)
+                                (tset eaxis idx axis)
+                                (tset ed0 idx da) (tset ed1 idx db))
+                              (tset cell-edges (+ eb e 1) idx))
+                            (tset cell-edges (+ eb e 1) 0)))))))))))))
     ;; Each crossing: refine-steps points, 4 for its normal, and about one vertex
     ;; (a cell has about as many crossing edges as a cell has vertices: 3990 and
     ;; 3992 on a sphere), whose distance is checked.
     (set counts.estimate (+ counts.work (* crossings (+ refine-steps 5 state.after))))
-    (set (state.cells state.crossings) (values cells crossings))
+    (set (state.cell-count state.crossings) (values cells crossings))
+    (set (state.cell-i state.cell-j state.cell-k state.cell-v state.cell-edges)
+         (values cell-i cell-j cell-k cell-v cell-edges))
     (set state.edge-index edge-index)
     (set (state.ex0 state.ey0 state.ez0 state.ed0 state.ed1 state.eaxis)
          (values ex0 ey0 ez0 ed0 ed1 eaxis))))
@@ -623,52 +633,69 @@ unit length, in state.nrx, nry, nrz."
     (set (state.nrx state.nry state.nrz) (values nrx nry nrz))))
 
 (fn find-patches! [state]
-  "6. Patches: each cell's :rep and :joined (see patches), and :flips where its
-faces' decisions were reversed. Where both cells of an ambiguous face have one patch
-through both of the face's segments, the quads of the two segments would share
-their edge across the face (four triangles on one edge): reversing the face's
-decision in both cells splits each patch in two. Repeated until no face is left so
-(each reversal only splits patches, so it ends); counted in state.counts.flipped."
-  (let [{: cells : counts : stride-x : stride-y} state
+  "6. Patches: each cell's patches (see patches) in state.cell-rep and
+state.cell-joined, and in state.cell-flips (by cell) the faces whose decisions were
+reversed. Where both cells of an ambiguous face have one patch through both of the
+face's segments, the quads of the two segments would share their edge across the
+face (four triangles on one edge): reversing the face's decision in both cells
+splits each patch in two. Repeated until no face is left so (each reversal only
+splits patches, so it ends); counted in state.counts.flipped."
+  (let [{: cell-count : cell-i : cell-j : cell-k : cell-v : counts : stride-x : stride-y} state
+        ;; Grid cell key -> cell number.
         cell-at {}
-        face-key (fn [cell fi]
+        ;; A cell's corner values as patches reads them (one table, refilled).
+        corner-scratch [0 0 0 0 0 0 0 0]
+        values-of (fn [c]
+                    (let [b (* 8 (- c 1))]
+                      (for [q 1 8] (tset corner-scratch q (. cell-v (+ b q))))
+                      corner-scratch))
+        cell-rep (table-new cell-count) cell-joined (table-new cell-count)
+        cell-flips {}
+        face-key (fn [c fi]
                    (let [axis (floor (/ (- fi 1) 2)) side (% (- fi 1) 2)]
-                     (+ axis (* 3 (+ cell.i (if (= axis 0) side 0)
-                                     (* stride-x (+ cell.j (if (= axis 1) side 0)))
-                                     (* stride-y (+ cell.k (if (= axis 2) side 0))))))))
+                     (+ axis (* 3 (+ (. cell-i c) (if (= axis 0) side 0)
+                                     (* stride-x (+ (. cell-j c) (if (= axis 1) side 0)))
+                                     (* stride-y (+ (. cell-k c) (if (= axis 2) side 0))))))))
         ;; The same face seen from the cell across it.
-        across (fn [cell fi]
+        across (fn [c fi]
                  (let [axis (floor (/ (- fi 1) 2)) sgn (if (= 0 (% (- fi 1) 2)) -1 1)]
-                   (values (. cell-at (+ cell.i (if (= axis 0) sgn 0)
-                                         (* stride-x (+ cell.j (if (= axis 1) sgn 0)))
-                                         (* stride-y (+ cell.k (if (= axis 2) sgn 0)))))
+                   (values (. cell-at (+ (. cell-i c) (if (= axis 0) sgn 0)
+                                         (* stride-x (+ (. cell-j c) (if (= axis 1) sgn 0)))
+                                         (* stride-y (+ (. cell-k c) (if (= axis 2) sgn 0)))))
                            (if (= sgn 1) (- fi 1) (+ fi 1)))))
+        flip! (fn [c fi]
+                (let [flips (or (. cell-flips c) {})]
+                  (tset cell-flips c flips)
+                  (tset flips fi (not (. flips fi)))
+                  (let [(rep joined) (patches (values-of c) flips)]
+                    (tset cell-rep c rep)
+                    (tset cell-joined c joined))))
         flipped {}]
-    (each [_ cell (ipairs cells)]
-      (tset cell-at (+ cell.i (* stride-x cell.j) (* stride-y cell.k)) cell)
-      (set (cell.rep cell.joined) (patches cell.v)))
+    (for [c 1 cell-count]
+      (tset cell-at (+ (. cell-i c) (* stride-x (. cell-j c)) (* stride-y (. cell-k c))) c)
+      (let [(rep joined) (patches (values-of c))]
+        (tset cell-rep c rep)
+        (tset cell-joined c joined)))
     ;; Each reversal takes effect at once: a cell between two such faces
     ;; (a twisted row of cells) must not have both reversed in one pass.
-    (var todo (icollect [_ cell (ipairs cells)] (when (< 0 (length cell.joined)) cell)))
+    (var todo (fcollect [c 1 cell-count] (when (< 0 (length (. cell-joined c))) c)))
     (for [_ 1 16 &until (= 0 (length todo))]
       (let [again []
-            joined? (fn [c fi] (accumulate [j? false _ g (ipairs c.joined)] (or j? (= g fi))))]
-        (each [_ cell (ipairs todo)]
-          (each [_ fi (ipairs (icollect [_ g (ipairs cell.joined)] g))]
-            (let [(other ofi) (across cell fi)]
-              (when (and other (joined? cell fi) (joined? other ofi)
-                         (not (. flipped (face-key cell fi))))
-                (tset flipped (face-key cell fi) true)
+            joined? (fn [c fi] (accumulate [j? false _ g (ipairs (. cell-joined c))] (or j? (= g fi))))]
+        (each [_ c (ipairs todo)]
+          (each [_ fi (ipairs (icollect [_ g (ipairs (. cell-joined c))] g))]
+            (let [(other ofi) (across c fi)]
+              (when (and other (joined? c fi) (joined? other ofi)
+                         (not (. flipped (face-key c fi))))
+                (tset flipped (face-key c fi) true)
                 (set counts.flipped (+ 1 (or counts.flipped 0)))
-                (when (not cell.flips) (set cell.flips {}))
-                (when (not other.flips) (set other.flips {}))
-                (tset cell.flips fi (not (. cell.flips fi)))
-                (tset other.flips ofi (not (. other.flips ofi)))
-                (set (cell.rep cell.joined) (patches cell.v cell.flips))
-                (set (other.rep other.joined) (patches other.v other.flips))
-                (table.insert again cell)
+                (flip! c fi)
+                (flip! other ofi)
+                (table.insert again c)
                 (table.insert again other)))))
-        (set todo again)))))
+        (set todo again)))
+    (set (state.cell-rep state.cell-joined state.cell-flips)
+         (values cell-rep cell-joined cell-flips))))
 
 (fn separate! [placed lx ly lz h]
   "Patches of one cell (their vertices `placed`, each [x y z mx my mz] with the
@@ -691,13 +718,26 @@ toward its crossings' mean (or, when that is the same point, apart along x)."
               (tset q 2 (clamp-cell (+ y (* push uy)) ly h))
               (tset q 3 (clamp-cell (+ z (* push uz)) lz h)))))))))
 
+(local single-patches (setmetatable {} {:__mode :k}))
+
+(fn single-patch? [rep]
+  "Whether a cell's patches (see patches) are one: all its crossing edges share a
+representative. Remembered per table: most cells share plain-patches' few."
+  (let [known (. single-patches rep)]
+    (if (not= nil known) known
+        (let [r1 (. rep (next rep))
+              one? (accumulate [one? true _ r (pairs rep)] (and one? (= r r1)))]
+          (tset single-patches rep one?)
+          one?))))
+
 (fn place-vertices! [state]
   "7. One vertex per patch of each cell (see qef-vertex and separate!). Leaves
 state.positions [x y z ...], state.vertex-info (per vertex its cell's low corner and
 its crossings' mean, six numbers) and state.quad-vertices (per crossing, the
 vertices of its four cells' patches through it, in the order of make-triangles);
-empties the cells but for i j k."
-  (let [{: cells : px : py : pz : nrx : nry : nrz : ox : oy : oz : h : eaxis : crossings} state
+drops the cells' values, edges and patches (their grid positions stay)."
+  (let [{: cell-count : cell-i : cell-j : cell-k : cell-edges : cell-rep
+         : px : py : pz : nrx : nry : nrz : ox : oy : oz : h : eaxis : crossings} state
         positions []
         vertex-info []
         shared {}
@@ -714,21 +754,20 @@ empties the cells but for i j k."
                  (tset vertex-info (+ i 3) lz) (tset vertex-info (+ i 4) mx)
                  (tset vertex-info (+ i 5) my) (tset vertex-info (+ i 6) mz)))]
     (var vertex-count 0)
-    (each [_ cell (ipairs cells)]
-      (let [rep cell.rep
-            edges cell.edges
-            lx (+ ox (* cell.i h)) ly (+ oy (* cell.j h)) lz (+ oz (* cell.k h))
-            first (next rep)
-            r1 (. rep first)
-            one? (accumulate [one? true _ r (pairs rep)] (and one? (= r r1)))]
-        (if one?
+    (for [c 1 cell-count]
+      (let [rep (. cell-rep c)
+            eb (* 12 (- c 1))
+            lx (+ ox (* (. cell-i c) h)) ly (+ oy (* (. cell-j c) h)) lz (+ oz (* (. cell-k c) h))]
+        (if (single-patch? rep)
             ;; One patch (most cells): its vertex, with no grouping.
-            (let [ids (fcollect [e 0 11] (. edges e))
+            (let [ids (fcollect [e 0 11]
+                        (let [idx (. cell-edges (+ eb e 1))] (when (not= idx 0) idx)))
                   (x y z mx my mz) (qef-vertex ids px py pz nrx nry nrz lx ly lz h)]
               (set vertex-count (+ vertex-count 1))
               (add! vertex-count x y z lx ly lz mx my mz)
               (for [e 0 11]
-                (case (. edges e) idx (put! e idx vertex-count))))
+                (let [idx (. cell-edges (+ eb e 1))]
+                  (when (not= idx 0) (put! e idx vertex-count)))))
             (let [groups {}
                   order []
                   local-vertex {}]
@@ -738,7 +777,7 @@ empties the cells but for i j k."
                     (when (not (. groups r))
                       (tset groups r [])
                       (table.insert order r))
-                    (table.insert (. groups r) (. edges e)))))
+                    (table.insert (. groups r) (. cell-edges (+ eb e 1))))))
               (let [placed (icollect [_ r (ipairs order)]
                              [(qef-vertex (. groups r) px py pz nrx nry nrz lx ly lz h)])]
                 ;; Two or more patches in one cell (a feature thinner than a cell,
@@ -750,7 +789,7 @@ empties the cells but for i j k."
                 ;; of the others, and moves onto the surface only nearer that mean
                 ;; than the others' (see project-vertices!).
                 (each [_ q (ipairs placed)]
-                  (for [c 1 3] (tset q c (. q (+ c 3)))))
+                  (for [k 1 3] (tset q k (. q (+ k 3)))))
                 (separate! placed lx ly lz h)
                 (each [n r (ipairs order)]
                   (let [[x y z mx my mz] (. placed n)]
@@ -759,9 +798,11 @@ empties the cells but for i j k."
                                                (+ (- vertex-count n) (length order))])
                     (add! vertex-count x y z lx ly lz mx my mz)
                     (tset local-vertex r vertex-count))))
-              (each [e idx (pairs edges)] (put! e idx (. local-vertex (. rep e))))))
-        ;; Done with this cell: the rest may go.
-        (set (cell.v cell.edges cell.rep cell.joined cell.flips) nil)))
+              (for [e 0 11]
+                (let [idx (. cell-edges (+ eb e 1))]
+                  (when (not= idx 0) (put! e idx (. local-vertex (. rep e))))))))))
+    ;; Done with the cells but for their grid positions: the rest may go.
+    (set (state.cell-v state.cell-edges state.cell-rep state.cell-joined state.cell-flips) nil)
     (set (state.positions state.vertex-info state.quad-vertices state.shared-cell)
          (values positions vertex-info quad-vertices shared))))
 
@@ -986,7 +1027,7 @@ bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
       (mark! state nil)
       {:positions state.positions : triangles
        :stats {:points counts.points :blocks (length state.leaves) :skipped state.skipped
-               :cells (length state.cells) :crossings state.crossings
+               :cells state.cell-count :crossings state.crossings
                :moved counts.moved :times state.times
                :flipped (or counts.flipped 0)
                :collections (or counts.collections 0)
