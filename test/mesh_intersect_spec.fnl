@@ -108,6 +108,65 @@
           (assert.are.equal 0 (intersect.pair-overlap p q))
           (assert.are.equal 0 (intersect.pair-overlap q p)))))
 
+    (it "finds no fold between nearly coplanar triangles on opposite sides of their vertex"
+      (fn []
+        ;; Two triangles of one flat fan of platonic-shelf at 128 cells: the
+        ;; first below their common vertex, the second above it, in one vertical
+        ;; plane but for 1e-13 of a coordinate. The planes' line through the
+        ;; vertex is ill-defined; cutting along it found a fold of half a cell.
+        (let [tri (fn [text] (icollect [w (text:gmatch "%S+")] (tonumber w)))
+              p (tri "2.3526647973759642 -0.49030731939245586 4.3101562500000004 2.3526647973759642 -0.49030731939245586 4.3960937500000004 2.2831398994219008 -0.53327606939251071 4.3960937500000004")
+              q (tri "2.3526647973759642 -0.49030731939245586 4.3960937500000004 2.395633547375998 -0.46375117143841371 4.4820312500000004 2.3526647973760046 -0.49030731939252126 4.4820312500000004")]
+          (assert.are.equal 0 (intersect.pair-overlap p q))
+          (assert.are.equal 0 (intersect.pair-overlap q p)))))
+
+    (it "still finds triangles crossing at a tiny angle, as an overlap in their plane"
+      (fn []
+        ;; The base and a copy turned by 1e-8 radians about the line y = 0.5
+        ;; and shifted by half along x: they cross along that line, and seen
+        ;; along the normal they overlap in a triangle of legs 1 and 1.
+        (let [a 1e-8
+              turn (fn [x y] [(+ x 0.5) y (* (- y 0.5) (math.sin a))])
+              q (let [out []]
+                  (each [_ [x y] (ipairs [[0 0] [2 0] [0 2]])]
+                    (each [_ v (ipairs (turn x y))] (table.insert out v)))
+                  out)
+              (len kind) (intersect.pair-overlap base q)]
+          (assert.is_true (> len 1) (string.format "overlap %.3g" len))
+          (assert.are.equal :coplanar kind))))
+
+    (it "finds folds through each vertex's own triangles, and none in a flat or bent fan"
+      (fn []
+        ;; A fan of six around the origin, flat, then bent into a cone: an
+        ;; umbrella, no fold. Then one triangle turned over onto its neighbour's
+        ;; side: a fold at the shared vertex, found by folds as by
+        ;; self-intersections.
+        (let [ring (fcollect [k 0 5]
+                     (let [t (* k (/ math.pi 3))] [(math.cos t) (math.sin t)]))
+              fan (fn [height]
+                    ;; The centre, then the ring at `height`.
+                    (let [positions [0 0 0]]
+                      (each [_ [x y] (ipairs ring)]
+                        (table.insert positions x) (table.insert positions y)
+                        (table.insert positions height))
+                      positions))
+              tris (fn [] (let [out []]
+                            (for [k 1 6]
+                              (table.insert out 1) (table.insert out (+ k 1))
+                              (table.insert out (+ (% k 6) 2)))
+                            out))]
+          (each [_ height (ipairs [0 0.4 -0.7])]
+            (let [m {:positions (fan height) :triangles (tris)}]
+              (assert.are.same [] (intersect.folds m) (.. "height " height))))
+          ;; Vertex 3 (ring point 2) pulled across, in the plane, to (-0.9 -0.5):
+          ;; the triangles 1-2-3 and 1-3-4 turn over and lie on 1-5-6 and 1-6-7.
+          (let [m {:positions (fan 0) :triangles (tris)}]
+            (tset m.positions 7 -0.9) (tset m.positions 8 -0.5)
+            (let [folds (intersect.folds m)
+                  r (intersect.self-intersections m)]
+              (assert.is_true (> (length folds) 0))
+              (assert.are.equal r.folds (length folds)))))))
+
     (it "finds every crossing pair of a grid of triangles, each pair once"
       (fn []
         ;; n x n small horizontal triangles, and n vertical ones each piercing

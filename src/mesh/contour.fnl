@@ -948,15 +948,21 @@ crossing or folded in counts.crossing."
                          out))
         risky {}]
     (for [v 1 nv] (when (off? v) (tset risky v true)))
-    (var only (triangles-of risky))
+    ;; Crossings among the triangles of risky vertices; folds around every vertex
+    ;; (intersect.folds: a vertex's own triangles, cheap), in later rounds around
+    ;; those of the triangles moved.
+    (var (only fold-only first?) (values (triangles-of risky) nil true))
     (var (rounds moved left) (values 0 0 0))
-    (while only
-      (let [r (intersect.self-intersections m {:min-length (* 1e-6 h) :max-list math.huge
-                                                :only only})
+    (while (or only first?)
+      (let [r (if only
+                  (intersect.self-intersections m {:min-length (* 1e-6 h) :max-list math.huge
+                                                    :only only :folds? false})
+                  {:pairs 0 :list []})
+            fold-list (intersect.folds m {:min-length (* 1e-6 h) :only fold-only})
             changed {}]
-        (set (only left rounds) (values nil (+ r.pairs r.folds) (+ rounds 1)))
+        (set (only first? left rounds) (values nil false (+ r.pairs (length fold-list)) (+ rounds 1)))
         (when (<= rounds untangle-rounds)
-          (each [_ [s t fold?] (ipairs (icollect [_ [a b] (ipairs r.fold-list)
+          (each [_ [s t fold?] (ipairs (icollect [_ [a b] (ipairs fold-list)
                                                   &into (icollect [_ p (ipairs r.list)] p)]
                                           [a b true]))]
             (each [_ tri (ipairs [s t])]
@@ -970,7 +976,11 @@ crossing or folded in counts.crossing."
                     (set moved (+ moved 1))
                     (for [q 1 3]
                       (tset positions (+ (* 3 (- v 1)) q) (. vertex-info (+ (* 6 (- v 1)) 3 q)))))))))
-          (when (next changed) (set only (triangles-of changed))))))
+          (when (next changed)
+            (set only (triangles-of changed))
+            (set fold-only {})
+            (each [t (pairs only)]
+              (for [c 1 3] (tset fold-only (. triangles (+ (* 3 (- t 1)) c)) true)))))))
     (set (counts.untangled counts.crossing) (values moved left))))
 
 (fn mesh [field grid ?progress]

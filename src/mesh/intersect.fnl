@@ -112,6 +112,10 @@ normal n (0 when they are apart or only touch, at a point or along a segment;
 ;; planes' angle, so 1e-8 holds down to angles of some 1e-7.
 (local agree 1e-8)
 
+;; Planes whose normals' angle has a sine under this are taken as one (see
+;; pair-overlap).
+(local parallel 1e-6)
+
 (fn point-at [pts lx ly lz ll s]
   "The point of the cut `pts` (one or two points) whose parameter along the unit
 direction l/ll is `s`."
@@ -152,6 +156,60 @@ direction l/ll is `s`."
       (set (lo hi) (values (min lo s) (max hi s)))))
   (values lo hi))
 
+(fn shared-corner [p q]
+  ;; The corners (1-3 each) of p and q at the same point, when exactly one is;
+  ;; else nil.
+  (var (found fi fj) (values 0 nil nil))
+  (for [i 0 2]
+    (for [j 0 2]
+      (when (and (= (. p (+ 1 (* 3 i))) (. q (+ 1 (* 3 j))))
+                 (= (. p (+ 2 (* 3 i))) (. q (+ 2 (* 3 j))))
+                 (= (. p (+ 3 (* 3 i))) (. q (+ 3 (* 3 j)))))
+        (set (found fi fj) (values (+ found 1) (+ i 1) (+ j 1))))))
+  (when (= found 1) (values fi fj)))
+
+(fn cross2 [ax ay bx by] (- (* ax by) (* ay bx)))
+
+(fn inside-wedge? [dx dy ax ay bx by]
+  ;; Whether direction d is strictly between a and b (counter-clockwise a to b).
+  (and (> (cross2 ax ay dx dy) 0) (> (cross2 dx dy bx by) 0)))
+
+(fn wedge [t k iu iv]
+  ;; Triangle t's two edges from corner k, projected on coordinates iu iv, in
+  ;; counter-clockwise order, and their bisector; nil when degenerate.
+  (let [k1 (+ 1 (% k 3)) k2 (+ 1 (% (+ k 1) 3))
+        ox (. t (+ iu (* 3 (- k 1)))) oy (. t (+ iv (* 3 (- k 1))))
+        ax (- (. t (+ iu (* 3 (- k1 1)))) ox) ay (- (. t (+ iv (* 3 (- k1 1)))) oy)
+        bx (- (. t (+ iu (* 3 (- k2 1)))) ox) by (- (. t (+ iv (* 3 (- k2 1)))) oy)
+        c (cross2 ax ay bx by)
+        la (sqrt (+ (* ax ax) (* ay ay))) lb (sqrt (+ (* bx bx) (* by by)))]
+    (if (or (= c 0) (= la 0) (= lb 0)) nil
+        (< c 0) (values bx by ax ay (+ (/ ax la) (/ bx lb)) (+ (/ ay la) (/ by lb)))
+        (values ax ay bx by (+ (/ ax la) (/ bx lb)) (+ (/ ay la) (/ by lb))))))
+
+(fn wedges-apart? [p q nx ny nz]
+  "Whether coplanar triangles p and q (normal n) sharing exactly one corner meet
+only there: near that corner each is its wedge, and two pointed wedges share
+interior exactly when a side or the bisector of one is strictly inside the other.
+False when they share no corner or more than one (the full test decides). A fast
+answer for the commonest pair of a flat face, a vertex's neighbours."
+  (case (shared-corner p q)
+    (i j)
+    (let [ax (abs nx) ay (abs ny) az (abs nz)
+          (iu iv) (if (and (>= ax ay) (>= ax az)) (values 2 3)
+                      (>= ay az) (values 3 1)
+                      (values 1 2))
+          (a1x a1y a2x a2y amx amy) (wedge p i iu iv)
+          (b1x b1y b2x b2y bmx bmy) (wedge q j iu iv)]
+      (and a1x b1x
+           (not (or (inside-wedge? b1x b1y a1x a1y a2x a2y)
+                    (inside-wedge? b2x b2y a1x a1y a2x a2y)
+                    (inside-wedge? bmx bmy a1x a1y a2x a2y)
+                    (inside-wedge? a1x a1y b1x b1y b2x b2y)
+                    (inside-wedge? a2x a2y b1x b1y b2x b2y)
+                    (inside-wedge? amx amy b1x b1y b2x b2y)))))
+    _ false))
+
 (fn pair-overlap [p q]
   "The length of what triangles `p` and `q` (each [x y z x y z x y z]) have in
 common: 0 when apart or touching at a point, the length of their common segment
@@ -186,9 +244,19 @@ coplanar and overlapping. Second value: :crossing, :coplanar or nil."
               dp3 (snap (plane-distance mx my mz lm q1x q1y q1z p3x p3y p3z) tol)]
           (if (or (one-side? dq1 dq2 dq3) (one-side? dp1 dp2 dp3))
               (values 0 nil)
-              (and (= 0 dq1) (= 0 dq2) (= 0 dq3))
-              (let [d (coplanar-overlap p q nx ny nz scale)]
-                (values d (when (> d 0) :coplanar)))
+              ;; In one plane, or as good as: planes within a millionth of a
+              ;; radian meet along a line that rounding moves anywhere, and the
+              ;; cuts along it gave a fold of half a cell between two triangles
+              ;; of one flat fan on opposite sides of their vertex (platonic-shelf
+              ;; at 128 cells). Triangles that cross at so small an angle overlap
+              ;; seen along the normal, which the coplanar test measures.
+              (or (and (= 0 dq1) (= 0 dq2) (= 0 dq3))
+                  (let [(cx cy cz) (cross nx ny nz mx my mz)]
+                    (< (sqrt (dot cx cy cz cx cy cz)) (* parallel ln lm))))
+              (if (wedges-apart? p q nx ny nz)
+                  (values 0 nil)
+                  (let [d (coplanar-overlap p q nx ny nz scale)]
+                    (values d (when (> d 0) :coplanar))))
               ;; Each triangle's cut by the other's plane lies on the line where
               ;; the planes meet, of direction n x m: the overlap of the two cuts
               ;; along it is what they share.
@@ -348,4 +416,90 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
                             (test! (min s t) (max s t))))))))))))))
     result))
 
-{: self-intersections : pair-overlap}
+(fn umbrella? [positions tris around first last v]
+  "Whether the triangles around vertex v (0-based indices around[first..last]) lie
+over a disc once, like an umbrella's panels: seen along their mean normal each turns
+counter-clockwise about v and their angles at v add up to one turn. Then no two of
+them overlap beyond v (their shadows tile the disc), and the pairs need no test."
+  (let [b (* 3 (- v 1))
+        vx (. positions (+ b 1)) vy (. positions (+ b 2)) vz (. positions (+ b 3))]
+    (var (mx my mz) (values 0 0 0))
+    ;; The mean normal: the sum of the triangles' (area-weighted) normals.
+    (for [q first last]
+      (let [t (* 3 (. around q))
+            c1 (. tris (+ t 1)) c2 (. tris (+ t 2)) c3 (. tris (+ t 3))
+            (ia ib) (if (= c1 v) (values c2 c3) (= c2 v) (values c3 c1) (values c1 c2))
+            pa (* 3 (- ia 1)) pb (* 3 (- ib 1))
+            ax (- (. positions (+ pa 1)) vx) ay (- (. positions (+ pa 2)) vy)
+            az (- (. positions (+ pa 3)) vz)
+            bx (- (. positions (+ pb 1)) vx) by (- (. positions (+ pb 2)) vy)
+            bz (- (. positions (+ pb 3)) vz)
+            (nx ny nz) (cross ax ay az bx by bz)]
+        (set (mx my mz) (values (+ mx nx) (+ my ny) (+ mz nz)))))
+    (let [ml (sqrt (dot mx my mz mx my mz))]
+      (var (turn positive?) (values 0 (> ml 0)))
+      (for [q first last &until (not positive?)]
+        (let [t (* 3 (. around q))
+              c1 (. tris (+ t 1)) c2 (. tris (+ t 2)) c3 (. tris (+ t 3))
+              (ia ib) (if (= c1 v) (values c2 c3) (= c2 v) (values c3 c1) (values c1 c2))
+              pa (* 3 (- ia 1)) pb (* 3 (- ib 1))
+              ax (- (. positions (+ pa 1)) vx) ay (- (. positions (+ pa 2)) vy)
+              az (- (. positions (+ pa 3)) vz)
+              bx (- (. positions (+ pb 1)) vx) by (- (. positions (+ pb 2)) vy)
+              bz (- (. positions (+ pb 3)) vz)
+              ;; a and b flattened onto the plane of the mean normal m.
+              sa (/ (dot ax ay az mx my mz) (* ml ml)) sb (/ (dot bx by bz mx my mz) (* ml ml))
+              (fax fay faz) (values (- ax (* sa mx)) (- ay (* sa my)) (- az (* sa mz)))
+              (fbx fby fbz) (values (- bx (* sb mx)) (- by (* sb my)) (- bz (* sb mz)))
+              (cx cy cz) (cross fax fay faz fbx fby fbz)
+              sine (/ (dot cx cy cz mx my mz) ml)
+              angle (math.atan2 sine (dot fax fay faz fbx fby fbz))]
+          (set positive? (> angle 0))
+          (set turn (+ turn angle))))
+      ;; A turn to well within rounding (an angle is good to some 1e-15; a fold
+      ;; would add a whole turn or more).
+      (and positive? (< (abs (- turn (* 2 math.pi))) 1e-6)))))
+
+(fn folds [m ?options]
+  "The folds of mesh `m`: pairs of triangles sharing exactly one vertex that meet
+along more than it (see pair-overlap), found through each vertex's triangles (no
+broad phase: a fold's triangles are neighbours). Returns a list [[s t length] ...]
+(0-based triangle indices). Options: :min-length (as self-intersections'), :only (a
+table whose keys are the 1-based vertices to look around; default all)."
+  (let [options (or ?options {})
+        positions m.positions
+        tris m.triangles
+        nt (/ (length tris) 3)
+        nv (/ (length positions) 3)
+        only options.only
+        min-length (or options.min-length 0)
+        ;; Each vertex's triangles, compressed: start[v] .. start[v + 1] - 1 of `around`.
+        start (fcollect [_ 1 (+ nv 1)] 0)
+        around []
+        p-points [] r-points []
+        out []]
+    (for [q 1 (* 3 nt)]
+      (let [v (. tris q)] (tset start v (+ 1 (. start v)))))
+    (var sum 1)
+    (for [v 1 (+ nv 1)]
+      (let [c (. start v)] (tset start v sum) (set sum (+ sum c))))
+    (let [fill (fcollect [v 1 nv] (. start v))]
+      (for [t 0 (- nt 1)]
+        (for [c 1 3]
+          (let [v (. tris (+ (* 3 t) c))]
+            (tset around (. fill v) t)
+            (tset fill v (+ 1 (. fill v)))))))
+    (for [v 1 nv]
+      (when (and (or (not only) (. only v))
+                 (not (umbrella? positions tris around (. start v) (- (. start (+ v 1)) 1) v)))
+        (for [a (. start v) (- (. start (+ v 1)) 1)]
+          (for [b (+ a 1) (- (. start (+ v 1)) 1)]
+            (let [s (. around a) t (. around b)]
+              (when (= 1 (shared-vertices tris s t))
+                (let [len (pair-overlap (triangle-points positions tris s p-points)
+                                        (triangle-points positions tris t r-points))]
+                  (when (> len min-length)
+                    (table.insert out [(min s t) (max s t) len])))))))))
+    out))
+
+{: self-intersections : pair-overlap : folds}
