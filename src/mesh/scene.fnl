@@ -7,6 +7,7 @@
 ;; plain LuaJIT.
 
 (local plan-mod (require :src.render.plan))
+(local fork (require :src.util.fork))
 (local reference (require :src.reference))
 (local lower (require :src.sdf.lower))
 
@@ -178,27 +179,36 @@ the cut on every side, so its boundary is outside."
 ;; inward by as much, a tenth of the sharp-feature tests' 0.01 cell.
 (local surface-offset 1e-3)
 
-(fn cpu-field [scene]
+(fn cpu-field [scene ?workers]
   "The CPU evaluator (src/reference.fnl, double precision) of `scene` as a
 field for contour.mesh, with :colors (fn [flat n]) -> r g b ... per point (the
-material's colour there) and :distance (fn [x y z]) -> d; or nil and a message."
+material's colour there) and :distance (fn [x y z]) -> d; or nil and a message.
+A batch of points is shared among ?workers processes (default: one per core) when
+it is worth the forks (see src/util/fork.fnl); the numbers are the same as one's."
   (case (plan-mod.scene->plan scene {:view :glow :probe? true})
     (nil err) (values nil err)
     plan
     (let [T (reference.tracer scene plan)
           map T.map
-          map-color T.map-color]
+          map-color T.map-color
+          split-distances (fork.splitter ?workers)
+          split-colours (fork.splitter ?workers)]
       {:distances (fn [flat n]
-                    (fcollect [k 1 n]
-                      (let [b (* 3 (- k 1))]
-                        (map (. flat (+ b 1)) (. flat (+ b 2)) (. flat (+ b 3))))))
+                    (split-distances n 1
+                                      (fn [first last out]
+                                        (for [k first last]
+                                          (let [b (* 3 (- k 1))]
+                                            (tset out k (map (. flat (+ b 1)) (. flat (+ b 2))
+                                                             (. flat (+ b 3)))))))))
        :colors (fn [flat n]
-                 (let [out []]
-                   (for [k 1 n]
-                     (let [b (* 3 (- k 1))
-                           (_ _ r g bl) (map-color (. flat (+ b 1)) (. flat (+ b 2)) (. flat (+ b 3)))]
-                       (tset out (+ b 1) r) (tset out (+ b 2) g) (tset out (+ b 3) bl)))
-                   out))
+                 (split-colours n 3
+                                   (fn [first last out]
+                                     (for [k first last]
+                                       (let [b (* 3 (- k 1))
+                                             (_ _ r g bl) (map-color (. flat (+ b 1)) (. flat (+ b 2))
+                                                                     (. flat (+ b 3)))]
+                                         (tset out (+ b 1) r) (tset out (+ b 2) g)
+                                         (tset out (+ b 3) bl))))))
        :distance map
        ;; Double precision: a small step keeps creases sharp.
        :step 1e-4

@@ -55,6 +55,10 @@
    :environ ["extern char **environ;"]
    :sysconf ["long sysconf(int name);"]
    :getpid ["int getpid(void);"]
+   :fork ["int fork(void);"]
+   :_exit ["void _exit(int status);"]
+   :mmap ["void *mmap(void *addr, unsigned long length, int prot, int flags, int fd, long offset);"]
+   :munmap ["int munmap(void *addr, unsigned long length);"]
    ;; Limits.
    :setrlimit ["int setrlimit(int resource, const rm_rlimit_t *rlim);" :rm_rlimit_t]
    :getrlimit ["int getrlimit(int resource, rm_rlimit_t *rlim);" :rm_rlimit_t]

@@ -1,0 +1,118 @@
+;; Work on every core: a range of items split between this process and children made
+;; by fork(), each child writing its share's numbers into memory shared with the
+;; parent (an anonymous shared mapping) and leaving with _exit. A child starts as a
+;; copy of the parent (copy-on-write), so it has the same functions and data and
+;; needs nothing sent to it; it makes no garbage collection (the collector is
+;; stopped: a finalizer could reach a resource the parent still uses) and no output.
+;; A share whose child failed is computed again by the parent, whose error, if it
+;; fails too, says why. Linux through LuaJIT's FFI; elsewhere, or with one core, the
+;; parent computes everything.
+
+(local libc (require :src.util.libc))
+(local ffi libc.ffi)
+
+(local native
+  (when (and ffi (= ffi.os :Linux))
+    (libc.declare [:fork :_exit :mmap :munmap :waitpid :sysconf])))
+
+;; sysconf's _SC_NPROCESSORS_ONLN on Linux; mmap's PROT_READ | PROT_WRITE and
+;; MAP_SHARED | MAP_ANONYMOUS.
+(local table-new (let [(ok? new) (pcall require :table.new)]
+                   (if ok? (fn [n] (new n 0)) (fn [] []))))
+
+(local filestat (require :src.util.filestat))
+(local clock filestat.monotonic)
+
+(local online-processors 84)
+(local read-write 3)
+(local shared-anonymous 0x21)
+
+;; Fewer items than this are not split: a fork of a large heap costs milliseconds
+;; (its page tables are copied), more than a few thousand field values.
+(local min-share 4096)
+
+(fn cores []
+  "The processors online (1 where that is unknown)."
+  (if native (math.max 1 (tonumber (native.sysconf online-processors))) 1))
+
+(fn exited-cleanly? [pid]
+  (let [status (ffi.new "int[1]")]
+    (and (= pid (native.waitpid pid status 0))
+         ;; WIFEXITED and WEXITSTATUS 0: the low 16 bits all zero.
+         (= 0 (% (. status 0) 65536)))))
+
+(fn split-range [n width compute workers]
+  "As a splitter's function (see splitter), the range always shared among `workers`
+processes when it has min-share items for each (1: none forked). Returns the list,
+and the items this process computed and their seconds."
+  (let [out (table-new (* n width))
+        workers (math.min workers (math.floor (/ n min-share)))]
+    (if (or (not native) (< workers 2))
+        (let [t0 (clock)]
+          (compute 1 n out)
+          (values out n (- (clock) t0)))
+        (let [share (math.ceil (/ n workers))
+              bytes (* n width 8)
+              mem (native.mmap nil bytes read-write shared-anonymous -1 0)
+              failed? (= (ffi.cast "intptr_t" mem) -1)
+              shared (ffi.cast "double *" mem)
+              children []]
+          (when (not failed?)
+            (for [w 2 workers]
+              (let [first (+ 1 (* (- w 1) share))
+                    last (math.min n (* w share))
+                    pid (native.fork)]
+                (if (= pid 0)
+                    (do (collectgarbage :stop)
+                        (let [ok? (pcall (fn []
+                                           (let [mine []]
+                                             (compute first last mine)
+                                             (for [q (+ 1 (* (- first 1) width)) (* last width)]
+                                               (tset shared (- q 1) (. mine q))))))]
+                          (native._exit (if ok? 0 1))))
+                    (< pid 0) nil
+                    (table.insert children {: pid : first : last})))))
+          ;; This process's share, and any share no child took.
+          (local t0 (clock))
+          (compute 1 (math.min n share) out)
+          (local own-seconds (- (clock) t0))
+          (let [taken {}]
+            (each [_ c (ipairs children)] (tset taken c.first true))
+            (for [w 2 workers]
+              (let [first (+ 1 (* (- w 1) share))]
+                (when (not (. taken first))
+                  (compute first (math.min n (* w share)) out)))))
+          (each [_ {: pid : first : last} (ipairs children)]
+            (if (exited-cleanly? pid)
+                (for [q (+ 1 (* (- first 1) width)) (* last width)]
+                  (tset out q (. shared (- q 1))))
+                (compute first last out)))
+          (when (not failed?) (native.munmap mem bytes))
+          (values out (math.min n share) own-seconds)))))
+
+(fn fork-cost []
+  ;; Seconds a fork costs the parent, from the heap's size (measured: 1 ms, and
+  ;; 0.05 to 0.07 ms a MB, copying page tables and then the pages it writes to).
+  (+ 0.001 (* 7e-5 (/ (collectgarbage :count) 1024))))
+
+(fn splitter [?workers]
+  "A function (fn [n width compute]) -> item i's `width` numbers, for i from 1 to
+n, in one flat list (item i's k-th at (i - 1) * width + k), `compute` (fn [first
+last out]) writing those of items first to last into the table `out` at those
+places. The range is shared among ?workers processes (default: the cores) when
+the work is worth the forks: the time an item took in the calls before (the
+first call runs here alone; each measures this process's share) times n, against
+one and a half times what the forks cost (see fork-cost). The list is the same
+either way."
+  (let [workers (or ?workers (cores))
+        seen {:items 0 :seconds 0}]
+    (fn [n width compute]
+      (let [per-item (when (< 0 seen.items) (/ seen.seconds seen.items))
+            split? (and per-item (< 1 workers)
+                        (> (* per-item n (/ (- workers 1) workers)) (* 1.5 workers (fork-cost))))
+            (out items seconds) (split-range n width compute (if split? workers 1))]
+        (set seen.items (+ seen.items items))
+        (set seen.seconds (+ seen.seconds seconds))
+        out))))
+
+{: splitter : split-range : cores : min-share}
