@@ -165,7 +165,18 @@
             (let [folds (intersect.folds m)
                   r (intersect.self-intersections m)]
               (assert.is_true (> (length folds) 0))
-              (assert.are.equal r.folds (length folds)))))))
+              (assert.are.equal r.folds (length folds))))
+          ;; A fan that does not close: a quarter and a quarter, then two
+          ;; panels that overlap each other (200-300 and 250-350 degrees). A
+          ;; direction in the first panel is covered once, but the fan is no
+          ;; umbrella: its pairs are tested, and the overlap found.
+          (let [at (fn [degrees] (let [t (math.rad degrees)] [(math.cos t) (math.sin t) 0]))
+                positions [0 0 0]]
+            (each [_ d (ipairs [0 90 180 200 300 250 350])]
+              (each [_ c (ipairs (at d))] (table.insert positions c)))
+            (let [m {: positions :triangles [1 2 3 1 3 4 1 5 6 1 7 8]}]
+              (assert.are.equal 1 (length (intersect.folds m)))
+              (assert.are.equal 1 (. (intersect.self-intersections m) :folds)))))))
 
     (it "finds every crossing pair of a grid of triangles, each pair once"
       (fn []

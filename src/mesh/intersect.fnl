@@ -416,49 +416,69 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
                             (test! (min s t) (max s t))))))))))))))
     result))
 
-(fn umbrella? [positions tris around first last v]
+(fn det3 [ax ay az bx by bz cx cy cz]
+  ;; a x b . c: positive when a turns to b counter-clockwise seen from c's side.
+  (dot (- (* ay bz) (* az by)) (- (* az bx) (* ax bz)) (- (* ax by) (* ay bx)) cx cy cz))
+
+(fn fan-ends [tris t v]
+  ;; Triangle t's (0-based) other two corners than v, in its winding order.
+  (let [c1 (. tris (+ (* 3 t) 1)) c2 (. tris (+ (* 3 t) 2)) c3 (. tris (+ (* 3 t) 3))]
+    (if (= c1 v) (values c2 c3) (= c2 v) (values c3 c1) (values c1 c2))))
+
+(fn fan-edges [positions tris t v vx vy vz]
+  ;; Triangle t's (0-based) two edges from its corner v, in its winding order.
+  (let [(ia ib) (fan-ends tris t v)
+        pa (* 3 (- ia 1)) pb (* 3 (- ib 1))]
+    (values (- (. positions (+ pa 1)) vx) (- (. positions (+ pa 2)) vy)
+            (- (. positions (+ pa 3)) vz) (- (. positions (+ pb 1)) vx)
+            (- (. positions (+ pb 2)) vy) (- (. positions (+ pb 3)) vz))))
+
+(fn umbrella? [positions tris around first last v marks]
   "Whether the triangles around vertex v (0-based indices around[first..last]) lie
-over a disc once, like an umbrella's panels: seen along their mean normal each turns
-counter-clockwise about v and their angles at v add up to one turn. Then no two of
-them overlap beyond v (their shadows tile the disc), and the pairs need no test."
+over a disc once, like an umbrella's panels: their far edges close around v (each
+triangle's second end is another's first), seen along their mean normal m each
+turns counter-clockwise about v, and a direction r inside the first lies inside
+exactly one of them (a fan closed in several cycles, each turning, covers the disc
+once per cycle). Then no two of them overlap beyond v (their shadows tile the
+disc), and the pairs need no test. Seen along m is by the sign of a triple product
+with m: no projection. `marks` has a 0 for every vertex, and is left so."
   (let [b (* 3 (- v 1))
         vx (. positions (+ b 1)) vy (. positions (+ b 2)) vz (. positions (+ b 3))]
-    (var (mx my mz) (values 0 0 0))
-    ;; The mean normal: the sum of the triangles' (area-weighted) normals.
+    (var (mx my mz ok?) (values 0 0 0 true))
+    ;; The mean normal: the sum of the triangles' (area-weighted) normals. Each
+    ;; first end counted, once at most.
     (for [q first last]
-      (let [t (* 3 (. around q))
-            c1 (. tris (+ t 1)) c2 (. tris (+ t 2)) c3 (. tris (+ t 3))
-            (ia ib) (if (= c1 v) (values c2 c3) (= c2 v) (values c3 c1) (values c1 c2))
-            pa (* 3 (- ia 1)) pb (* 3 (- ib 1))
-            ax (- (. positions (+ pa 1)) vx) ay (- (. positions (+ pa 2)) vy)
-            az (- (. positions (+ pa 3)) vz)
-            bx (- (. positions (+ pb 1)) vx) by (- (. positions (+ pb 2)) vy)
-            bz (- (. positions (+ pb 3)) vz)
+      (let [t (. around q)
+            (ia) (fan-ends tris t v)
+            (ax ay az bx by bz) (fan-edges positions tris t v vx vy vz)
             (nx ny nz) (cross ax ay az bx by bz)]
+        (when (< 0 (. marks ia)) (set ok? false))
+        (tset marks ia 1)
         (set (mx my mz) (values (+ mx nx) (+ my ny) (+ mz nz)))))
-    (let [ml (sqrt (dot mx my mz mx my mz))]
-      (var (turn positive?) (values 0 (> ml 0)))
-      (for [q first last &until (not positive?)]
-        (let [t (* 3 (. around q))
-              c1 (. tris (+ t 1)) c2 (. tris (+ t 2)) c3 (. tris (+ t 3))
-              (ia ib) (if (= c1 v) (values c2 c3) (= c2 v) (values c3 c1) (values c1 c2))
-              pa (* 3 (- ia 1)) pb (* 3 (- ib 1))
-              ax (- (. positions (+ pa 1)) vx) ay (- (. positions (+ pa 2)) vy)
-              az (- (. positions (+ pa 3)) vz)
-              bx (- (. positions (+ pb 1)) vx) by (- (. positions (+ pb 2)) vy)
-              bz (- (. positions (+ pb 3)) vz)
-              ;; a and b flattened onto the plane of the mean normal m.
-              sa (/ (dot ax ay az mx my mz) (* ml ml)) sb (/ (dot bx by bz mx my mz) (* ml ml))
-              (fax fay faz) (values (- ax (* sa mx)) (- ay (* sa my)) (- az (* sa mz)))
-              (fbx fby fbz) (values (- bx (* sb mx)) (- by (* sb my)) (- bz (* sb mz)))
-              (cx cy cz) (cross fax fay faz fbx fby fbz)
-              sine (/ (dot cx cy cz mx my mz) ml)
-              angle (math.atan2 sine (dot fax fay faz fbx fby fbz))]
-          (set positive? (> angle 0))
-          (set turn (+ turn angle))))
-      ;; A turn to well within rounding (an angle is good to some 1e-15; a fold
-      ;; would add a whole turn or more).
-      (and positive? (< (abs (- turn (* 2 math.pi))) 1e-6)))))
+    (let [(ax ay az bx by bz) (fan-edges positions tris (. around first) v vx vy vz)
+          ;; Strictly inside the first wedge (its angle is under half a turn).
+          (rx ry rz) (values (+ ax bx) (+ ay by) (+ az bz))]
+      (var covering 0)
+      (for [q first last]
+        (let [t (. around q)
+              (_ ib) (fan-ends tris t v)
+              (ax ay az bx by bz) (fan-edges positions tris t v vx vy vz)]
+          (tset marks ib (- (. marks ib) 1))
+          (when (<= (det3 ax ay az bx by bz mx my mz) 0) (set ok? false))
+          ;; r in the half-open wedge [a, b): each direction of a disc covered
+          ;; once is in exactly one.
+          (when (and (>= (det3 ax ay az rx ry rz mx my mz) 0)
+                     (> (det3 rx ry rz bx by bz mx my mz) 0))
+            (set covering (+ covering 1)))))
+      ;; Every end met as often as a first end as a second; the marks back to 0.
+      (for [q first last]
+        (let [(ia ib) (fan-ends tris (. around q) v)]
+          (when (or (not= 0 (. marks ia)) (not= 0 (. marks ib))) (set ok? false))))
+      (for [q first last]
+        (let [(ia ib) (fan-ends tris (. around q) v)]
+          (tset marks ia 0)
+          (tset marks ib 0)))
+      (and ok? (= covering 1)))))
 
 (fn folds [m ?options]
   "The folds of mesh `m`: pairs of triangles sharing exactly one vertex that meet
@@ -477,6 +497,7 @@ table whose keys are the 1-based vertices to look around; default all)."
         start (fcollect [_ 1 (+ nv 1)] 0)
         around []
         p-points [] r-points []
+        marks (fcollect [_ 1 nv] 0)
         out []]
     (for [q 1 (* 3 nt)]
       (let [v (. tris q)] (tset start v (+ 1 (. start v)))))
@@ -491,7 +512,8 @@ table whose keys are the 1-based vertices to look around; default all)."
             (tset fill v (+ 1 (. fill v)))))))
     (for [v 1 nv]
       (when (and (or (not only) (. only v))
-                 (not (umbrella? positions tris around (. start v) (- (. start (+ v 1)) 1) v)))
+                 (not (umbrella? positions tris around (. start v) (- (. start (+ v 1)) 1) v
+                                 marks)))
         (for [a (. start v) (- (. start (+ v 1)) 1)]
           (for [b (+ a 1) (- (. start (+ v 1)) 1)]
             (let [s (. around a) t (. around b)]
