@@ -199,8 +199,8 @@
         ;; first version did) twisted it back: colonnade at 128 cells had an edge of
         ;; four triangles. The field is tiny, so no block is skipped (it is not a
         ;; distance; only its signs matter here).
-        (let [field {:distances (fn [flat n]
-                                  (fcollect [k 1 n]
+        (let [field {:distances (fn [flat n ?skip]
+                                  (fcollect [k (+ 1 (or ?skip 0)) (+ n (or ?skip 0))]
                                     (let [x (. flat (- (* 3 k) 2)) y (. flat (- (* 3 k) 1))
                                           z (. flat (* 3 k))]
                                       (* 0.01 (+ (* (- y 2.5) (- z 2.5))
@@ -225,8 +225,8 @@
                       (+ (* (. w 1) (math.sin (+ (* x (+ 1 (. w 2)) period) (* y (. w 3) 2) (. w 4))))
                          (* (. w 5) (math.sin (+ (* y (+ 1 (. w 6)) period) (* z (. w 7) 2) (. w 8))))
                          (* (. w 9) (math.sin (+ (* z (+ 1 (. w 10)) period) (* x (. w 11) 2) (. w 12))))))
-                  field {:distances (fn [flat k]
-                                      (fcollect [q 1 k]
+                  field {:distances (fn [flat k ?skip]
+                                      (fcollect [q (+ 1 (or ?skip 0)) (+ k (or ?skip 0))]
                                         (* 0.001 (f (. flat (- (* 3 q) 2)) (. flat (- (* 3 q) 1))
                                                     (. flat (* 3 q))))))}
                   m (contour.mesh field {:lo [0 0 0] :h 1 :dims [(+ n 2) (+ n 2) (+ n 2)]

@@ -266,16 +266,14 @@ batches of batch-size points; each batch counts as work done (see mesh) and
             out (table-new n)]
         (for [start 0 (- n 1) batch-size]
           (let [count (min batch-size (- n start))
-                ;; One batch: the list itself, not a copy.
-                chunk (if (and (= start 0) (= count n)) flat
-                          (fcollect [q (+ 1 (* 3 start)) (* 3 (+ start count))] (. flat q)))
-                ds (field.distances chunk count)]
+                ;; A batch: the points after the first `start` of the list (no copy).
+                ds (field.distances flat count start)]
             (for [k 1 count]
-              (let [j (* 3 (- k 1))
+              (let [j (* 3 (+ start k -1))
                     d (. ds k)
-                    qx (- (abs (- (. chunk (+ j 1)) mx)) sx)
-                    qy (- (abs (- (. chunk (+ j 2)) my)) sy)
-                    qz (- (abs (- (. chunk (+ j 3)) mz)) sz)
+                    qx (- (abs (- (. flat (+ j 1)) mx)) sx)
+                    qy (- (abs (- (. flat (+ j 2)) my)) sy)
+                    qz (- (abs (- (. flat (+ j 3)) mz)) sz)
                     ox (max qx 0) oy (max qy 0) oz (max qz 0)
                     b (+ (sqrt (+ (* ox ox) (* oy oy) (* oz oz))) (min (max qx qy qz) 0))]
                 (tset out (+ start k) (+ (max d b) offset))))
@@ -434,6 +432,21 @@ sides)."
         (tset mask-cells halves out)
         out)))
 
+;; The most grid points a dense index of them may have (4 bytes each: 256 MB); a
+;; grid with more indexes its points in a hash table.
+(local dense-points (* 64 1024 1024))
+
+(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
+
+(fn grid-index [points]
+  "An index from the keys of a grid's `points` (0 to points - 1) to numbers, all 0
+at first: an array of 32-bit integers where LuaJIT's FFI is there and the grid is
+not too large (no hashing: on a torus at 256 cells the hash table's lookups and
+growth took a third of the sampling), else a table (nil at first)."
+  (if (and ffi (<= points dense-points))
+      (ffi.new "int32_t[?]" points)
+      {}))
+
 (fn sample-corners! [state]
   "2. The corners of the leaves' kept halves (see find-leaves!; clamped to the
 grid): their values in state.corner-values, (leaf + 1)^3 slots a leaf, x fastest,
@@ -444,7 +457,7 @@ edges and corners) is evaluated once. Makes the first estimate of the work."
         side (+ leaf 1)
         ;; Per leaf corner, the index of its grid point among the distinct ones.
         slots (table-new (* (length leaves) side side side))
-        index {}
+        index (grid-index (* (+ nz 1) stride-y))
         flat []]
     (var (n distinct) (values 0 0))
     (each [l [i j k] (ipairs leaves)]
@@ -455,7 +468,7 @@ edges and corners) is evaluated once. Makes the first estimate of the work."
                 gi (min nx (+ i a)) gj (min ny (+ j b)) gk (min nz (+ k c))
                 key (+ gi (* stride-x gj) (* stride-y gk))]
             (var at (. index key))
-            (when (not at)
+            (when (or (= at nil) (= at 0))
               (set distinct (+ distinct 1))
               (set at distinct)
               (tset index key at)
@@ -984,8 +997,9 @@ crossing or folded in counts.crossing."
     (set (counts.untangled counts.crossing) (values moved left))))
 
 (fn mesh [field grid ?progress]
-  "Contour `field` over `grid`. The field: {:distances (fn [flat n]) -> n signed
-distances at the points of the flat list x1 y1 z1 x2 ...; :step the gradient's
+  "Contour `field` over `grid`. The field: {:distances (fn [flat n ?skip]) -> n
+signed distances at the points of the flat list x1 y1 z1 x2 ... after its first
+?skip (default 0); :step the gradient's
 difference step as a share of a cell; :offset (default 0) a share of a cell
 added to every value: the level set meshed is the field's at minus that, see
 src/mesh/scene.fnl}. The grid: {:lo [x y z] (its low corner) :h

@@ -26,15 +26,15 @@
           (shader err) (if source (gpu.compile-source source "mesh") (values nil serr))
           cam {:pos [0 0 0] :yaw 0 :pitch 0 :fov 60}]
       (if (not shader) (values nil err)
-          (let [run (fn [flat n]
-                      ;; Distances and colours of the n points of `flat`: one float
-                      ;; pointer to w * h texels of d r g b.
+          (let [run (fn [flat n ?skip]
+                      ;; Distances and colours of the n points of `flat` after its
+                      ;; first ?skip: one float pointer to w * h texels of d r g b.
                       (let [w (math.max 1 (math.min n row-length))
                             h (math.max 1 (math.ceil (/ n row-length)))
                             data (love.image.newImageData w h :rgba32f)
                             p (ffi.cast "float*" (data:getFFIPointer))]
                         (for [k 0 (- n 1)]
-                          (let [b (* 3 k) q (* 4 k)]
+                          (let [b (* 3 (+ k (or ?skip 0))) q (* 4 k)]
                             (tset p q (. flat (+ b 1))) (tset p (+ q 1) (. flat (+ b 2)))
                             (tset p (+ q 2) (. flat (+ b 3))) (tset p (+ q 3) 1)))
                         (let [image (love.graphics.newImage data)
@@ -51,8 +51,8 @@
                           (let [out (canvas:newImageData)]
                             (data:release) (image:release) (canvas:release)
                             out))))]
-            {:distances (fn [flat n]
-                          (let [out (run flat n)
+            {:distances (fn [flat n ?skip]
+                          (let [out (run flat n ?skip)
                                 p (ffi.cast "float*" (out:getFFIPointer))
                                 ds (fcollect [k 0 (- n 1)] (tonumber (. p (* 4 k))))]
                             (out:release)

@@ -181,7 +181,8 @@ the cut on every side, so its boundary is outside."
 
 (fn cpu-field [scene ?workers]
   "The CPU evaluator (src/reference.fnl, double precision) of `scene` as a
-field for contour.mesh, with :colors (fn [flat n]) -> r g b ... per point (the
+field for contour.mesh (:distances (fn [flat n ?skip]), see contour.mesh), with
+:colors (fn [flat n]) -> r g b ... per point (the
 material's colour there) and :distance (fn [x y z]) -> d; or nil and a message.
 A batch of points is shared among ?workers processes (default: one per core) when
 it is worth the forks (see src/util/fork.fnl); the numbers are the same as one's."
@@ -193,11 +194,11 @@ it is worth the forks (see src/util/fork.fnl); the numbers are the same as one's
           map-color T.map-color
           split-distances (fork.splitter ?workers)
           split-colours (fork.splitter ?workers)]
-      {:distances (fn [flat n]
+      {:distances (fn [flat n ?skip]
                     (split-distances n 1
                                       (fn [first last out]
                                         (for [k first last]
-                                          (let [b (* 3 (- k 1))]
+                                          (let [b (* 3 (+ k (or ?skip 0) -1))]
                                             (tset out k (map (. flat (+ b 1)) (. flat (+ b 2))
                                                              (. flat (+ b 3)))))))))
        :colors (fn [flat n]
