@@ -967,7 +967,7 @@ crossing or folded in counts.crossing."
     (var (only fold-only first?) (values (triangles-of risky) nil true))
     (var (rounds moved left) (values 0 0 0))
     (while (or only first?)
-      (let [r (if only
+      (let [r (if (and only (next only))
                   (intersect.self-intersections m {:min-length (* 1e-6 h) :max-list math.huge
                                                     :only only :folds? false})
                   {:pairs 0 :list []})
