@@ -486,12 +486,7 @@ edges and corners) is evaluated once. Makes the first estimate of the work."
     (let [ds (evaluate :corners flat)]
       (for [q 1 (* (length leaves) side side side)]
         (case (. slots q) at (tset slots q (. ds at))))
-      (set state.corner-values slots))
-    ;; Kept until mesh returns, as when the phases were one function: the live heap
-    ;; paces LuaJIT's collector, and dropping these here (and the edge index, see
-    ;; find-cells!) made the later steps collect more often, 8% slower on a mesh
-    ;; whose field is cheap.
-    (set state.corner-points flat)))
+      (set state.corner-values slots))))
 
 (fn find-cells! [state]
   "3. Cells with surface, and their crossing edges (each edge once). Leaves
@@ -560,7 +555,6 @@ its axis (eaxis) and the values at its ends (ed0, ed1). Makes the estimate exact
     (set (state.cell-count state.crossings) (values cells crossings))
     (set (state.cell-i state.cell-j state.cell-k state.cell-v state.cell-edges)
          (values cell-i cell-j cell-k cell-v cell-edges))
-    (set state.edge-index edge-index)
     (set (state.ex0 state.ey0 state.ez0 state.ed0 state.ed1 state.eaxis)
          (values ex0 ey0 ez0 ed0 ed1 eaxis))))
 
@@ -748,7 +742,7 @@ representative. Remembered per table: most cells share plain-patches' few."
 state.positions [x y z ...], state.vertex-info (per vertex its cell's low corner and
 its crossings' mean, six numbers) and state.quad-vertices (per crossing, the
 vertices of its four cells' patches through it, in the order of make-triangles);
-drops the cells' values, edges and patches (their grid positions stay)."
+drops the cells' values, edges and patches."
   (let [{: cell-count : cell-i : cell-j : cell-k : cell-edges : cell-rep
          : px : py : pz : nrx : nry : nrz : ox : oy : oz : h : eaxis : crossings} state
         positions []
@@ -1029,8 +1023,13 @@ bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
     (sample-corners! state)
     (mark! state :cells)
     (find-cells! state)
+    ;; What each step leaves that no later one reads goes at once: the peak is
+    ;; the cells, crossings and vertices together (a box at 256 cells: 256 MB live
+    ;; keeping them to the end).
+    (set state.corner-values nil)
     (mark! state :crossings)
     (refine-crossings! state)
+    (set state.ed1 nil)
     (mark! state :normals)
     (crossing-normals! state)
     (worked! state :patches (* 0.25 geometry-work state.crossings))
@@ -1039,6 +1038,9 @@ bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
     (worked! state :vertices (* 0.25 geometry-work state.crossings))
     (mark! state :vertices)
     (place-vertices! state)
+    (set (state.px state.py state.pz state.nrx state.nry state.nrz state.eaxis)
+         (values nil nil nil nil nil nil nil))
+    (set (state.cell-i state.cell-j state.cell-k) (values nil nil nil))
     (worked! state :projection (* 0.2 geometry-work state.crossings))
     (mark! state :projection)
     (project-vertices! state)
