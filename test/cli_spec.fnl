@@ -83,7 +83,7 @@
                           (select 2 (cli.parse ["--mesh" "a.fnl"])))
         (assert.are.equal "--out must name a .stl, .ply or .obj file, got a.png"
                           (select 2 (cli.parse ["--mesh" "a.fnl" "--out" "a.png"])))
-        (assert.are.equal "--resolution must be a whole number from 8 to 512, got 7"
+        (assert.are.equal "--resolution must be a whole number from 8 to 1024, got 7"
                           (select 2 (cli.parse ["--mesh" "a.fnl" "--out" "a.stl" "--resolution" "7"])))
         (assert.are.equal "--region: z1 must be greater than z0, got 0,0,1,1,1,1"
                           (select 2 (cli.parse ["--mesh" "a.fnl" "--out" "a.stl" "--region" "0,0,1,1,1,1"])))

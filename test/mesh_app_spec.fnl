@@ -138,11 +138,11 @@
                          "error: --out must name a .stl, .ply or .obj file, got x.off"]
                         ["--mesh scenes/seed.fnl" "error: --mesh needs --out FILE.stl, FILE.ply or FILE.obj"]
                         ["--mesh scenes/seed.fnl --out x.stl --resolution 2000"
-                         "error: --resolution must be a whole number from 8 to 512, got 2000"]
+                         "error: --resolution must be a whole number from 8 to 1024, got 2000"]
                         ["--mesh scenes/seed.fnl --out x.stl --region 1,2,3"
                          "error: --region must be six numbers x0,y0,z0,x1,y1,z1, got 1,2,3"]
                         ["--mesh scenes/seed.fnl --out x.stl --resolution 1e999"
-                         "error: --resolution must be a whole number from 8 to 512, got 1e999"]
+                         "error: --resolution must be a whole number from 8 to 1024, got 1e999"]
                         ["--mesh scenes/seed.fnl --out x.stl --region 0,0,0,1,1,nan"
                          "error: --region must be six numbers x0,y0,z0,x1,y1,z1, got 0,0,0,1,1,nan"]
                         ["--mesh scenes/seed.fnl --out x.stl --region 0,0,0,1,1,1e400"

@@ -82,13 +82,13 @@
 
     (it "refuses a resolution whose surface would take too much memory, before sampling it"
       (fn []
-        ;; A unit box at 512 cells: 98,306 leaf blocks (196,236 and 6.3 GB before
-        ;; the octree went down to half leaves); refused once the octree has
-        ;; counted them, with a resolution that fits.
+        ;; A unit box at 768 cells: 221,186 leaf blocks (at 512, 98,306 took 2.07
+        ;; GB); refused once the octree has counted them, with a resolution that
+        ;; fits.
         (let [box (scene-of "{:kind :box :size [1 1 1]}")
-              (r err) (export.build box {:quiet? true :resolution 512})]
+              (r err) (export.build box {:quiet? true :resolution 768})]
           (assert.is_nil r)
-          (assert.are.equal "the surface at 512 cells fills 98306 blocks of 4x4x4 cells, more than the 65536 one mesh may have (memory follows them, about 2 GB at that many); give --resolution 376 or less"
+          (assert.are.equal "the surface at 768 cells fills 221186 blocks of 4x4x4 cells, more than the 131072 one mesh may have (memory follows them, up to about 2.8 GB at that many); give --resolution 528 or less"
                             err))
         ;; The mesher's own limit: raised before any corner is sampled.
         (let [contour (require :src.mesh.contour)
@@ -124,7 +124,7 @@
           (let [(r err) (options.parse-region text)]
             (assert.is_nil r text)
             (assert.are.equal message err)))
-        (each [_ text (ipairs ["1e9" "513" "1e999" "nan" "-128" "0x10000" "7"])]
+        (each [_ text (ipairs ["1e9" "1025" "1e999" "nan" "-128" "0x10000" "7"])]
           (let [(r err) (options.parse-resolution text)]
             (assert.is_nil r text)
-            (assert.are.equal (.. "--resolution must be a whole number from 8 to 512, got " text) err)))))))
+            (assert.are.equal (.. "--resolution must be a whole number from 8 to 1024, got " text) err)))))))

@@ -325,9 +325,9 @@
           (assert.is_nil r)
           (assert.are.equal "no surface to mesh: left out, outside the region: objects[1] (sphere) (is the region clear of every object?)"
                             err))
-        (assert.are.equal "--resolution must be a whole number from 8 to 512, got 4"
+        (assert.are.equal "--resolution must be a whole number from 8 to 1024, got 4"
                           (select 2 (options.parse-resolution "4")))
-        (assert.are.equal "--resolution must be a whole number from 8 to 512, got 12.5"
+        (assert.are.equal "--resolution must be a whole number from 8 to 1024, got 12.5"
                           (select 2 (options.parse-resolution "12.5")))
         (assert.are.equal "--region must be six numbers x0,y0,z0,x1,y1,z1, got 1,2,3"
                           (select 2 (options.parse-region "1,2,3")))

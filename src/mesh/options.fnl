@@ -3,16 +3,16 @@
 ;; requires.
 
 (local min-resolution 8)
-;; 1.5 GB at 512 (machined-part, 632k triangles): the mesher keeps Lua tables per
-;; surface cell, so memory grows with the area, four times a doubling.
-(local max-resolution 512)
+;; Memory grows with the area, four times a doubling: machined-part at 1024 cells
+;; (2.5 million triangles) peaked at 1.72 GB and took 17 s, organic at 1024 1.63 GB.
+(local max-resolution 1024)
 (local default-resolution 128)
 ;; The most leaf blocks (4x4x4 cells the mesher samples) one mesh may have. Memory
-;; follows them, about 35 KB each at the peak (a unit box: 24,578 at 256 cells, 944 MB;
-;; 98,306 at 512; before the octree went down to half leaves, 48,972 at 256 took 1.7
-;; GB, 196,000 at 512 6.3 GB and 140 s): this keeps the main process near 2 GB. At 128
-;; cells a whole grid has 36,000, so the default is never refused.
-(local max-leaves 65536)
+;; follows them, at the peak from 8 KB a block (city at 512: 162,000 blocks, 1.34 GB)
+;; to 21 KB (a unit box, every block full of surface: 98,306 at 512, 2.07 GB): at most
+;; about 2.8 GB at this many. At 128 cells a whole grid has 36,000, so the default is
+;; never refused.
+(local max-leaves 131072)
 
 (fn parse-region [s]
   "The box {:lo :hi} of `s` = \"x0,y0,z0,x1,y1,z1\", or nil and a message."
@@ -32,7 +32,7 @@
               {: lo : hi})))))
 
 (fn parse-resolution [s]
-  "The resolution in `s` (a whole number of cells, 8 to 512: min-resolution to
+  "The resolution in `s` (a whole number of cells, 8 to 1024: min-resolution to
 max-resolution), or nil and a message."
   (let [n (tonumber s)]
     (if (and n (= n (math.floor n)) (>= n min-resolution) (<= n max-resolution)) n
