@@ -82,13 +82,13 @@
 
     (it "refuses a resolution whose surface would take too much memory, before sampling it"
       (fn []
-        ;; A unit box at 768 cells: 221,186 leaf blocks (at 512, 98,306 took 2.07
+        ;; A unit box at 768 cells: 221,186 leaf blocks (at 704, 186,000 took 4.0
         ;; GB); refused once the octree has counted them, with a resolution that
         ;; fits.
         (let [box (scene-of "{:kind :box :size [1 1 1]}")
               (r err) (export.build box {:quiet? true :resolution 768})]
           (assert.is_nil r)
-          (assert.are.equal "the surface at 768 cells fills 221186 blocks of 4x4x4 cells, more than the 131072 one mesh may have (memory follows them, up to about 2.8 GB at that many); give --resolution 528 or less"
+          (assert.are.equal "the surface at 768 cells fills 221186 blocks of 4x4x4 cells, more than the 180224 one mesh may have (memory follows them, up to about 3.9 GB at that many); give --resolution 616 or less"
                             err))
         ;; The mesher's own limit: raised before any corner is sampled.
         (let [contour (require :src.mesh.contour)

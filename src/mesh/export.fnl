@@ -154,7 +154,7 @@ Returns {:mesh {:positions :triangles :colors} :message (what was left out or cu
               ;; Too much surface for the resolution: the blocks grow with its square.
               (do (when (not options.quiet?) (status.done!))
                   (values nil (string.format
-                               "the surface at %d cells fills %d blocks of 4x4x4 cells, more than the %d one mesh may have (memory follows them, up to about 2.8 GB at that many); give --resolution %d or less"
+                               "the surface at %d cells fills %d blocks of 4x4x4 cells, more than the %d one mesh may have (memory follows them, up to about 3.9 GB at that many); give --resolution %d or less"
                                resolution m.leaves m.max-leaves
                                (resolution-for resolution m))))
               (not ok?) (error m 0)

@@ -9,10 +9,10 @@
 (local default-resolution 128)
 ;; The most leaf blocks (4x4x4 cells the mesher samples) one mesh may have. Memory
 ;; follows them, at the peak from 8 KB a block (city at 512: 162,000 blocks, 1.34 GB)
-;; to 21 KB (a unit box, every block full of surface: 98,306 at 512, 2.07 GB): at most
-;; about 2.8 GB at this many. At 128 cells a whole grid has 36,000, so the default is
-;; never refused.
-(local max-leaves 131072)
+;; to 21 KB (a unit box, every block full of surface: 98,306 at 512 took 2.07 GB,
+;; 186,000 at 704 4.0 GB): at most about 3.9 GB at this many. At 128 cells a whole
+;; grid has 36,000, so the default is never refused.
+(local max-leaves 180224)
 
 (fn parse-region [s]
   "The box {:lo :hi} of `s` = \"x0,y0,z0,x1,y1,z1\", or nil and a message."
