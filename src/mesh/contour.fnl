@@ -97,6 +97,11 @@
 ;; Each edge's corners, as two flat lists (the inner loops read no pair).
 (local edge-low (icollect [_ [a _] (ipairs edge-corners)] a))
 (local edge-high (icollect [_ [_ b] (ipairs edge-corners)] b))
+;; Each edge's low corner's offset in the cell, and its axis.
+(local edge-dx (icollect [_ [a _] (ipairs edge-corners)] (% a 2)))
+(local edge-dy (icollect [_ [a _] (ipairs edge-corners)] (% (floor (/ a 2)) 2)))
+(local edge-dz (icollect [_ [a _] (ipairs edge-corners)] (floor (/ a 4))))
+(local edge-axis (fcollect [e 0 11] (floor (/ e 4))))
 
 ;; Where each local edge's cell stands in the quad of its crossing (see
 ;; make-triangles): the slot, 1-4, of the four cells around the edge, counter-
@@ -129,7 +134,9 @@ below 0): a table from each crossing edge (0-11) to its patch's representative, 
 a list of the cell's ambiguous faces (1-6) whose two segments belong to one patch.
 `?flipped` (a table of faces 1-6) reverses the asymptotic decider on those faces.
 The tables returned may be shared between cells: not to be changed."
-  (let [mask (faccumulate [m 0 c 0 7] (if (< (. v (+ c 1)) 0) (+ m (^ 2 c)) m))
+  (let [mask (+ (if (< (. v 1) 0) 1 0) (if (< (. v 2) 0) 2 0) (if (< (. v 3) 0) 4 0)
+                (if (< (. v 4) 0) 8 0) (if (< (. v 5) 0) 16 0) (if (< (. v 6) 0) 32 0)
+                (if (< (. v 7) 0) 64 0) (if (< (. v 8) 0) 128 0))
         known (and (not ?flipped) (. plain-patches mask))]
     (if known
         (values known no-faces)
@@ -534,9 +541,9 @@ its axis (eaxis) and the values at its ends (ed0, ed1). Makes the estimate exact
                       (let [ca (. edge-low (+ e 1))
                             da (. cell-v (+ vb ca 1)) db (. cell-v (+ vb (. edge-high (+ e 1)) 1))]
                         (if (not= (< da 0) (< db 0))
-                            (let [gi (+ i (% ca 2)) gj (+ j (% (floor (/ ca 2)) 2))
-                                  gk (+ k (floor (/ ca 4)))
-                                  axis (floor (/ e 4))
+                            (let [gi (+ i (. edge-dx (+ e 1))) gj (+ j (. edge-dy (+ e 1)))
+                                  gk (+ k (. edge-dz (+ e 1)))
+                                  axis (. edge-axis (+ e 1))
                                   key (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk))))]
                               (var idx (. edge-index key))
                               (when (not idx)
@@ -679,13 +686,17 @@ splits patches, so it ends); counted in state.counts.flipped."
                     (tset cell-joined c joined))))
         flipped {}]
     (for [c 1 cell-count]
-      (tset cell-at (+ (. cell-i c) (* stride-x (. cell-j c)) (* stride-y (. cell-k c))) c)
       (let [(rep joined) (patches (values-of c))]
         (tset cell-rep c rep)
         (tset cell-joined c joined)))
     ;; Each reversal takes effect at once: a cell between two such faces
     ;; (a twisted row of cells) must not have both reversed in one pass.
     (var todo (fcollect [c 1 cell-count] (when (< 0 (length (. cell-joined c))) c)))
+    ;; The cells by grid position, to find the one across a face: only where a
+    ;; face is joined (most meshes have none: a torus, machined-part).
+    (when (< 0 (length todo))
+      (for [c 1 cell-count]
+        (tset cell-at (+ (. cell-i c) (* stride-x (. cell-j c)) (* stride-y (. cell-k c))) c)))
     (for [_ 1 16 &until (= 0 (length todo))]
       (let [again []
             joined? (fn [c fi] (accumulate [j? false _ g (ipairs (. cell-joined c))] (or j? (= g fi))))]
