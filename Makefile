@@ -29,7 +29,7 @@ test:
 	@$(HEADLESS) bash tools/run-tests.sh
 
 # The fast loop while developing: the specs that need no window or GPU, a sample of the
-# corpus through the app and 2000 fuzz cases (see README, Tests). `make test` is the suite.
+# corpus through the app and 500 fuzz cases (see docs/testing.md). `make test` is the suite.
 check: build
 	@$(HEADLESS) bash tools/run-tests.sh --check
 

@@ -268,7 +268,7 @@
                (assert.is_nil (msg:find "\27" 1 true))
                (assert.is_truthy (msg:find want 1 true) msg))))))
 
-    (it "times the check of 100,000 spheres (printed, not judged)"
+    (it "times the check of 100,000 spheres (printed, not judged) #timing"
       (fn []
         (let [src (with-open [f (assert (io.open "test/fixtures/spheres-100000.fnl"))] (f:read :*a))
               a (real-answer src)

@@ -6,7 +6,7 @@
 ;; scene.load-string and, when it loads, plan.scene->plan. Each outcome must be a table,
 ;; or nil and a non-empty message starting with the file name: never an error.
 ;; FUZZ_SEED=n picks another seed; the seed is printed either way. The number of cases
-;; is fixed, 10,000 or FUZZ_CASES=n (`make check` runs 2000: the first 2000 of the same
+;; is fixed, 10,000 or FUZZ_CASES=n (`make check` runs 500: the first 500 of the same
 ;; sequence), never a time budget: the verdict must not depend on the machine's speed; each
 ;; case is bounded by the loader's own step and memory limits. One mutation in twenty
 ;; inserts a hostile fragment (compile-time code in key position, huge strings, bytes

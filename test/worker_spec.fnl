@@ -242,7 +242,7 @@
             (assert.truthy (worker.info) "the worker was ended")
             (assert (worker.animate s 1))))))
 
-    (it "times: a value edit's round trip and a loop of 100,000 objects (printed, not judged)"
+    (it "times: a value edit's round trip and a loop of 100,000 objects (printed, not judged) #timing"
       (fn []
         (let [f (assert (io.open "test/fixtures/spheres-100000.fnl"))
               big (f:read :*a)]
