@@ -34,20 +34,20 @@
    :cpu-seconds 5                 ; a backstop while a scene runs: the step limit
                                   ; trips long before (it grows as the steps do)
    ;; Compiling (the compiler is Lua code too; a macro can copy its arguments
-   ;; without end: nested case-try, 4 KB, took 1.3 GB and more). A 512 KB file of
-   ;; 6310 spheres written out compiles in 39 million steps (0.46 s) and 43 MB at
-   ;; the peak; the scenes in scenes/ take 0.2 million; a loop of 100,000 objects
-   ;; is a short file. 512 KB of dense macros (case, match-try, icollect on every
-   ;; line) takes 223 million and 259 MB, and is refused.
-   :compile-steps 100000000       ; about 1.2 s here
+   ;; without end: nested case-try, 4 KB, took 1.3 GB and more). Every instruction
+   ;; of a compile is counted (the JIT's traces are flushed for it, see
+   ;; within-limits): a 512 KB file of 6000 spheres written out compiles in 86
+   ;; million steps (1.0 s) and 43 MB at the peak; the scenes in scenes/ take 0.25
+   ;; to 0.36 million; a loop of 100,000 objects is a short file. 512 KB of dense
+   ;; macros (case, match-try, icollect on every line) took 259 MB, and is refused.
+   :compile-steps 200000000       ; about 2.3 s here
    :compile-memory-mb 128         ; Lua memory, garbage included
    ;; A backstop for time the step count does not see (long library calls). The
-   ;; steps must trip first on a slow or busy machine too: the 100 million take
-   ;; 1.3 s of CPU here in this process and 1.6 s in the worker, and at 5 s a
-   ;; compile stopped by its steps on a busy 2-core CI machine said "took more than
-   ;; 5 s" instead. 15 s: ten times the steps' time, about the margin
-   ;; the run's backstop has (5 s for 20 million steps, 0.4 s), and under the
-   ;; worker's 20 s of CPU a load, so the message still names the compile.
+   ;; steps must trip first on a slow or busy machine too: the 200 million take
+   ;; 2.3 s of CPU here, and at 5 s a compile stopped by its steps on a busy
+   ;; 2-core CI machine said "took more than 5 s" instead. 15 s: six times the
+   ;; steps' time, and under the worker's 20 s of CPU a load, so the message still
+   ;; names the compile.
    :compile-cpu-seconds 15
    :compile-hook-every 1000       ; instructions between the compiler's limit checks
    :hook-every 4})                ; instructions between limit checks
@@ -284,7 +284,12 @@ true and its value, or false and the error (a sandbox error when a limit stopped
                            (stop! (.. file ": compiling took more than "
                                       limits.compile-cpu-seconds " s and was stopped"))))))
         jit-was-on? (and jit (jit.status))]
-    (when jit (jit.off))
+    ;; Off, and the traces compiled so far flushed: code that runs in a trace is
+    ;; not seen by the count hook, and which of the compiler's functions have
+    ;; traces depends on what the process did before (and on where LuaJIT's hot
+    ;; counters fall): the same file counted 39 million steps in one run and over
+    ;; 50 million in another, of 86 million in all.
+    (when jit (jit.off) (jit.flush))
     (let [(outer-ok? ok? value) (pcall (fn []
                                          (debug.sethook hook "" limits.compile-hook-every)
                                          (let [(ok? value) (pcall f)]
