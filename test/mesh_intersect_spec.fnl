@@ -22,6 +22,16 @@
 
 (local base [0 0 0 2 0 0 0 2 0])
 
+(fn apart-both-ways [p-text q-text]
+  "Two triangles, each nine numbers in text, share nothing beyond a point, either
+way round. Read from text: Fennel writes number literals into Lua with 14 digits,
+which would move the vertices off the plane they share."
+  (let [tri (fn [text] (icollect [w (text:gmatch "%S+")] (tonumber w)))
+        p (tri p-text)
+        q (tri q-text)]
+    (assert.are.equal 0 (intersect.pair-overlap p q))
+    (assert.are.equal 0 (intersect.pair-overlap q p))))
+
 (describe "triangle self-intersections"
   (fn []
     (it "measures the segment two crossing triangles share"
@@ -100,13 +110,8 @@
         ;; from -0.0836 to 0.0023, and at y = -0.0836 the first is one point
         ;; beside the second's edge. The line where their planes meet is
         ;; ill-defined; a test that trusted it found them crossing 0.03 cells.
-        ;; Read from text: Fennel writes number literals into Lua with 14 digits,
-        ;; which would move the vertices off the plane they share.
-        (let [tri (fn [text] (icollect [w (text:gmatch "%S+")] (tonumber w)))
-              p (tri "-3.5344056822027952 -0.16953124999999991 1.7939974488419144 -3.5701818837848327 -0.083593749999999911 1.7320312499999999 -3.5701818837848025 -0.16953124999999991 1.7320312499999826")
-              q (tri "-3.5344056822027952 -0.083593749999999911 1.7939974488419144 -3.5095976628235439 -0.083593749999999911 1.8369661988419086 -3.5095976628235275 0.0023437500000000888 1.8369661988418988")]
-          (assert.are.equal 0 (intersect.pair-overlap p q))
-          (assert.are.equal 0 (intersect.pair-overlap q p)))))
+        (apart-both-ways "-3.5344056822027952 -0.16953124999999991 1.7939974488419144 -3.5701818837848327 -0.083593749999999911 1.7320312499999999 -3.5701818837848025 -0.16953124999999991 1.7320312499999826"
+                         "-3.5344056822027952 -0.083593749999999911 1.7939974488419144 -3.5095976628235439 -0.083593749999999911 1.8369661988419086 -3.5095976628235275 0.0023437500000000888 1.8369661988418988")))
 
     (it "finds no fold between nearly coplanar triangles on opposite sides of their vertex"
       (fn []
@@ -114,11 +119,8 @@
         ;; first below their common vertex, the second above it, in one vertical
         ;; plane but for 1e-13 of a coordinate. The planes' line through the
         ;; vertex is ill-defined; cutting along it found a fold of half a cell.
-        (let [tri (fn [text] (icollect [w (text:gmatch "%S+")] (tonumber w)))
-              p (tri "2.3526647973759642 -0.49030731939245586 4.3101562500000004 2.3526647973759642 -0.49030731939245586 4.3960937500000004 2.2831398994219008 -0.53327606939251071 4.3960937500000004")
-              q (tri "2.3526647973759642 -0.49030731939245586 4.3960937500000004 2.395633547375998 -0.46375117143841371 4.4820312500000004 2.3526647973760046 -0.49030731939252126 4.4820312500000004")]
-          (assert.are.equal 0 (intersect.pair-overlap p q))
-          (assert.are.equal 0 (intersect.pair-overlap q p)))))
+        (apart-both-ways "2.3526647973759642 -0.49030731939245586 4.3101562500000004 2.3526647973759642 -0.49030731939245586 4.3960937500000004 2.2831398994219008 -0.53327606939251071 4.3960937500000004"
+                         "2.3526647973759642 -0.49030731939245586 4.3960937500000004 2.395633547375998 -0.46375117143841371 4.4820312500000004 2.3526647973760046 -0.49030731939252126 4.4820312500000004")))
 
     (it "still finds triangles crossing at a tiny angle, as an overlap in their plane"
       (fn []
