@@ -15,14 +15,14 @@
   (when (and ffi (= ffi.os :Linux))
     (libc.declare [:fork :_exit :mmap :munmap :waitpid :sysconf])))
 
-;; sysconf's _SC_NPROCESSORS_ONLN on Linux; mmap's PROT_READ | PROT_WRITE and
-;; MAP_SHARED | MAP_ANONYMOUS.
 (local table-new (let [(ok? new) (pcall require :table.new)]
                    (if ok? (fn [n] (new n 0)) (fn [] []))))
 
 (local filestat (require :src.util.filestat))
 (local clock filestat.monotonic)
 
+;; sysconf's _SC_NPROCESSORS_ONLN on Linux; mmap's PROT_READ | PROT_WRITE and
+;; MAP_SHARED | MAP_ANONYMOUS.
 (local online-processors 84)
 (local read-write 3)
 (local shared-anonymous 0x21)
