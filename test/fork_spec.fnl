@@ -8,6 +8,20 @@
 (local load (require :src.scene.load))
 (local mesh-scene (require :src.mesh.scene))
 
+(fn children []
+  "This process's children, as a sorted list of process ids, from Linux's
+/proc/PID/task/PID/children (read here: a shell would be a child itself); nil
+where that is not there."
+  (let [libc (require :src.util.libc)
+        native (libc.declare [:getpid])]
+    (when native
+      (let [pid (native.getpid)]
+        (case (io.open (string.format "/proc/%d/task/%d/children" pid pid))
+          f (let [text (with-open [f f] (f:read :*a))
+                  pids (icollect [w (text:gmatch "%d+")] (tonumber w))]
+              (table.sort pids)
+              pids))))))
+
 (fn compute [first last out]
   ;; Item i's two numbers: a value with all its bits (not a small integer), and i.
   (for [i first last]
@@ -39,6 +53,25 @@
               (ok? err) (pcall fork.split-range n 1 failing 2)]
           (assert.is_false ok?)
           (assert.truthy (string.find (tostring err) "cannot be computed" 1 true)))))
+    (it "waits for its children when this process's own share fails"
+      (fn []
+        ;; The first half (this process's) fails; the child computing the second
+        ;; half is waited for before the error goes up: none is left behind.
+        (let [n (* 2 fork.min-share)
+              failing (fn [first last out]
+                        (for [i first last]
+                          (when (<= i fork.min-share) (error "the first half cannot be computed"))
+                          (tset out i i)))
+              before (children)
+              (ok? err) (pcall fork.split-range n 1 failing 2)]
+          (assert.is_false ok?)
+          (assert.truthy (string.find (tostring err) "first half cannot" 1 true))
+          ;; Where Linux lists a process's children: none that was not there
+          ;; before the call (another spec's scene worker may be one of them).
+          (when before
+            (let [known (collect [_ pid (ipairs before)] pid true)]
+              (each [_ pid (ipairs (children))]
+                (assert.is_true (. known pid) (.. "a child left behind: " pid))))))))
     (it "makes a mesh's field give the same distances and colours split or not"
       (fn []
         (let [scene (. (mesh-scene.select-objects (assert (load.load-file "scenes/organic.fnl"))) :scene)

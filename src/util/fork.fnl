@@ -72,22 +72,29 @@ and the items this process computed and their seconds."
                           (native._exit (if ok? 0 1))))
                     (< pid 0) nil
                     (table.insert children {: pid : first : last})))))
-          ;; This process's share, and any share no child took.
+          ;; This process's share, and any share no child took. An error here
+          ;; waits for the children and frees the mapping before it goes on up
+          ;; (no process or memory left behind in a player that goes on).
           (local t0 (clock))
-          (compute 1 (math.min n share) out)
+          (local (own-ok? own-err)
+            (pcall (fn []
+                     (compute 1 (math.min n share) out)
+                     (let [taken {}]
+                       (each [_ c (ipairs children)] (tset taken c.first true))
+                       (for [w 2 workers]
+                         (let [first (+ 1 (* (- w 1) share))]
+                           (when (not (. taken first))
+                             (compute first (math.min n (* w share)) out))))))))
           (local own-seconds (- (clock) t0))
-          (let [taken {}]
-            (each [_ c (ipairs children)] (tset taken c.first true))
-            (for [w 2 workers]
-              (let [first (+ 1 (* (- w 1) share))]
-                (when (not (. taken first))
-                  (compute first (math.min n (* w share)) out)))))
-          (each [_ {: pid : first : last} (ipairs children)]
-            (if (exited-cleanly? pid)
-                (for [q (+ 1 (* (- first 1) width)) (* last width)]
-                  (tset out q (. shared (- q 1))))
-                (compute first last out)))
+          (local clean (icollect [_ c (ipairs children)] (exited-cleanly? c.pid)))
+          (when own-ok?
+            (each [i {: first : last} (ipairs children)]
+              (if (. clean i)
+                  (for [q (+ 1 (* (- first 1) width)) (* last width)]
+                    (tset out q (. shared (- q 1))))
+                  (compute first last out))))
           (when (not failed?) (native.munmap mem bytes))
+          (when (not own-ok?) (error own-err 0))
           (values out (math.min n share) own-seconds)))))
 
 (fn fork-cost []
