@@ -178,6 +178,9 @@ which would move the vertices off the plane they share."
               (each [_ c (ipairs (at d))] (table.insert positions c)))
             (let [m {: positions :triangles [1 2 3 1 3 4 1 5 6 1 7 8]}]
               (assert.are.equal 1 (length (intersect.folds m)))
+              ;; A vertex no triangle uses, last: no fan to look around.
+              (each [_ c (ipairs [5 5 5])] (table.insert positions c))
+              (assert.are.equal 1 (length (intersect.folds m)))
               (assert.are.equal 1 (. (intersect.self-intersections m) :folds)))))))
 
     (it "finds every crossing pair of a grid of triangles, each pair once"

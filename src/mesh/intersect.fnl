@@ -511,7 +511,9 @@ table whose keys are the 1-based vertices to look around; default all)."
             (tset around (. fill v) t)
             (tset fill v (+ 1 (. fill v)))))))
     (for [v 1 nv]
+      ;; (A vertex no triangle uses has no fan, and no fold.)
       (when (and (or (not only) (. only v))
+                 (< (. start v) (. start (+ v 1)))
                  (not (umbrella? positions tris around (. start v) (- (. start (+ v 1)) 1) v
                                  marks)))
         (for [a (. start v) (- (. start (+ v 1)) 1)]
