@@ -1,13 +1,9 @@
 ;; The CPU reference's distance field: the tape's objects folded as the shader folds
-;; them (map, mapFinite, mapColor, mapOthers and planesHit), an object, an instance
-;; group's members, a group with a grid (src/sdf/grid.fnl) or a field
-;; (src/render/field.fnl) at a time.
+;; them (map, mapFinite, mapColor, mapOthers and planesHit), each tape object's run
+;; of objects through its drawing strategy's queries (src/sdf/strategies/).
 
-(local field (require :src.render.field))
 (local grid (require :src.sdf.grid))
-
-(fn member-count [o]
-  (if o.instances o.instances.count o.field o.field.count 1))
+(local strategies (require :src.sdf.strategies))
 
 (fn half-spaces [plan]
   "Whether each tape object (by tape number) is a half-space, met in closed form with
@@ -15,26 +11,112 @@ bounds."
   (let [out {}]
     (var j 0)
     (each [_ o (ipairs plan.tape.objects)]
-      (for [_ 1 (member-count o)]
+      (for [_ 1 (strategies.count o)]
         (set j (+ j 1))
         (tset out j o.half-space?)))
     out))
 
 (fn runs [plan]
-  "The tape's objects as the shader folds them, run by run: {:first :last
-:half-space? :field :grid}, :field the plan's field for the field's run and :grid a
-group's grid (the members its cell lists and the bound of the others, folded in
-first)."
+  "The tape's objects as the shader folds them, run by run: {:first :last (numbers in
+plan.objects) :unmarched? (not in a bounded march: a half-space or a field) :min
+:color :near (its strategy's queries, see src/sdf/strategies.fnl)}, with what its
+strategy adds (a group's :grid, a field's :field)."
   (let [out []]
     (var j 0)
     (each [_ o (ipairs plan.tape.objects)]
-      (let [n (member-count o)
-            g (?. o :instances :grid)]
-        (table.insert out {:first (+ j 1) :last (+ j n) :half-space? o.half-space?
-                           :field (when o.field plan.field)
-                           :grid (when g (. plan.grids.list (+ g 1) :grid))})
+      (let [s (strategies.of o)
+            n (s.count o)]
+        (table.insert out (s.run plan o {:first (+ j 1) :last (+ j n)
+                                         :unmarched? (not (s.marched? o))
+                                         :min s.reference.min :color s.reference.color
+                                         :near s.reference.near}))
         (set j (+ j n))))
     out))
+
+;;; Queries over a run's objects one by one (a tree object, a group without a grid),
+;;; and through a group's grid. (No closure in these: LuaJIT traces no function that
+;;; makes one, and they run per point in a mesh.)
+
+(fn each-min [r d x y z skip tape-distance _ ?dx ?dy ?dz]
+  "d lowered by run `r`'s objects at x y z, but tape object number `skip`."
+  (var d d)
+  (for [i r.first r.last]
+    (when (not= i skip)
+      (let [di ((. tape-distance i) x y z ?dx ?dy ?dz)]
+        (when (< di d) (set d di)))))
+  d)
+
+(fn visit [material i x y z d best r g b mirror rough emit modern?]
+  ;; The colour query's state after tape object `i` at x y z: it wins when strictly
+  ;; nearer. (Each `if` bound first: one as the last of `values` would be a closure.)
+  (let [(di mr mg mb ma mk me) ((. material i) x y z)
+        hit-rough (if modern? mk rough)
+        hit-emit (if modern? me emit)]
+    (if (< di d)
+        (values di i mr mg mb ma hit-rough hit-emit)
+        (values d best r g b mirror rough emit))))
+
+(fn each-color [run x y z d best r g b mirror rough emit tape-distance tape-material modern?]
+  "The colour query's state (see map-color-fn) after run `run`'s objects. An object's
+material is read only where its distance (the same code without the material) is
+below the nearest so far: one that is not could not win, and a material costs several
+distances."
+  (var (d best r g b mirror rough emit) (values d best r g b mirror rough emit))
+  (for [i run.first run.last]
+    (when (< ((. tape-distance i) x y z) d)
+      (set (d best r g b mirror rough emit)
+           (visit tape-material i x y z d best r g b mirror rough emit modern?))))
+  (values d best r g b mirror rough emit))
+
+(fn each-near [r x y z reach tape-distance]
+  "How many of run `r`'s objects come within `reach` of x y z."
+  (var near 0)
+  (for [i r.first r.last]
+    (when (< ((. tape-distance i) x y z) reach) (set near (+ near 1))))
+  near)
+
+(fn grid-min [r d x y z skip tape-distance draw ?dx ?dy ?dz]
+  "each-min through a group's grid (r.grid): the members the point's cell lists and
+the others' bound; along the ray ?dx ?dy ?dz a march skips members it is far from
+(gridSkip)."
+  (if (not r.grid)
+      (each-min r d x y z skip tape-distance draw ?dx ?dy ?dz)
+      (let [(start count bound) (grid.query r.grid x y z ?dx ?dy ?dz draw)
+            records r.grid.records]
+        (var d (if (< bound d) bound d))
+        (for [s (+ start 1) (+ start count)]
+          (let [member (. records s)
+                i (+ r.first member)]
+            (when (not= i skip)
+              (let [di (or (and ?dx (grid.skip r.grid member x y z ?dx ?dy ?dz draw))
+                           ((. tape-distance i) x y z))]
+                (when (< di d) (set d di))))))
+        d)))
+
+(fn grid-color [run x y z d best r g b mirror rough emit tape-distance tape-material modern?]
+  "each-color through a group's grid: its bound lowers d, not the colour (as
+emit-glsl's terms)."
+  (if (not run.grid)
+      (each-color run x y z d best r g b mirror rough emit tape-distance tape-material modern?)
+      (let [(start count bound) (grid.query run.grid x y z)]
+        (var (d best r g b mirror rough emit) (values d best r g b mirror rough emit))
+        (when (< bound d) (set d bound))
+        (for [s (+ start 1) (+ start count)]
+          (set (d best r g b mirror rough emit)
+               (visit tape-material (+ run.first (. run.grid.records s)) x y z
+                      d best r g b mirror rough emit modern?)))
+        (values d best r g b mirror rough emit))))
+
+(fn grid-near [r x y z reach tape-distance]
+  "each-near through a group's grid: the members the point's cell lists."
+  (if (not r.grid)
+      (each-near r x y z reach tape-distance)
+      (let [(start count) (grid.query r.grid x y z)]
+        (var near 0)
+        (for [s (+ start 1) (+ start count)]
+          (when (< ((. tape-distance (+ r.first (. r.grid.records s))) x y z) reach)
+            (set near (+ near 1))))
+        near)))
 
 (fn tape-min-fn [runs tape-distance draw]
   (fn [d x y z finite? skip ?dx ?dy ?dz]
@@ -44,29 +126,8 @@ first)."
     ;; members along the ray ?dx ?dy ?dz when a march gives one (mapFiniteAlong).
     (var d d)
     (each [_ r (ipairs runs)]
-      (when (not (and finite? (or r.half-space? r.field)))
-        (if r.field
-            ;; (No closure in this loop, nor in map-color-fn's: LuaJIT traces no
-            ;; function that makes one, and these run per point in a mesh.)
-            (let [own (and skip (+ 1 (- skip r.first)))
-                  df (field.distance r.field x y z own)]
-              (when (< df d) (set d df)))
-            r.grid
-            (let [(start count bound) (grid.query r.grid x y z ?dx ?dy ?dz draw)
-                  records r.grid.records]
-              (when (< bound d) (set d bound))
-              (for [s (+ start 1) (+ start count)]
-                (let [member (. records s)
-                      i (+ r.first member)]
-                  (when (not= i skip)
-                    ;; A march skips members it is far from (gridSkip).
-                    (let [di (or (and ?dx (grid.skip r.grid member x y z ?dx ?dy ?dz draw))
-                                 ((. tape-distance i) x y z))]
-                      (when (< di d) (set d di)))))))
-            (for [i r.first r.last]
-              (when (not= i skip)
-                (let [di ((. tape-distance i) x y z ?dx ?dy ?dz)]
-                  (when (< di d) (set d di))))))))
+      (when (not (and finite? r.unmarched?))
+        (set d (r.min r d x y z skip tape-distance draw ?dx ?dy ?dz))))
     d))
 
 (fn near-count-fn [runs tape-distance]
@@ -75,13 +136,7 @@ first)."
     ;; grid's reach: the ones its cell lists).
     (var near 0)
     (each [_ r (ipairs runs)]
-      (if r.grid
-          (let [(start count) (grid.query r.grid x y z)]
-            (for [s (+ start 1) (+ start count)]
-              (when (< ((. tape-distance (+ r.first (. r.grid.records s))) x y z) reach)
-                (set near (+ near 1)))))
-          (for [i r.first r.last]
-            (when (< ((. tape-distance i) x y z) reach) (set near (+ near 1))))))
+      (set near (+ near (r.near r x y z reach tape-distance))))
     near))
 
 (fn planes-hit-fn [planes tape-distance tape-gradient draw]
@@ -96,54 +151,20 @@ first)."
             (< v 0) (math.min t (/ (- s) v))
             t)))))
 
-(local black [0 0 0])
-
-(fn visit [material i x y z d best r g b mirror rough emit modern?]
-  ;; map-color-fn's state after tape object `i` at x y z: it wins when strictly nearer.
-  ;; (Each `if` bound first: one as the last of `values` would be a closure.)
-  (let [(di mr mg mb ma mk me) ((. material i) x y z)
-        hit-rough (if modern? mk rough)
-        hit-emit (if modern? me emit)]
-    (if (< di d)
-        (values di i mr mg mb ma hit-rough hit-emit)
-        (values d best r g b mirror rough emit))))
-
 (fn map-color-fn [runs tape-distance tape-material draw modern?]
   (fn [x y z]
-    ;; Strictly smaller wins, so ties go to the earlier object in plan order. An
-    ;; object's material is read only where its distance (the same code without the
-    ;; material, or a bound below it) is below the nearest so far: one that is not
-    ;; could not win, and a material costs several distances (the colours of a mesh's
-    ;; vertices took 13 microseconds each on machined-part reading them all).
+    ;; Strictly smaller wins, so ties go to the earlier object in plan order (the
+    ;; colours of a mesh's vertices took 13 microseconds each on machined-part
+    ;; reading every material: see each-color).
     ;; Returns the distance, the index into plan.objects (or nil) and the colour and
     ;; mirror amount of the material found.
     ;; In the modern model also its roughness and emission (a field's objects:
     ;; matte, 0.5 and none; the classic model's are full mirrors).
     (var (d best) (values draw nil))
     (var (r g b mirror rough emit) (values 0 0 0 (if modern? 0 1) 0.5 0))
-    ;; A grid's bound lowers d, not the colour (as emit-glsl's looped).
     (each [_ run (ipairs runs)]
-      (if run.field
-          ;; A field's nearest listed member (black, and no object, outside its
-          ;; grid), as fieldMap and fieldColor.
-          (let [(df fb) (field.distance run.field x y z)]
-            (when (< df d)
-              (set d df)
-              (set best (and fb (+ run.first fb -1)))
-              (let [colour (if fb (. run.field.colors fb) black)
-                    [cr cg cb] colour]
-                (set (r g b) (values cr cg cb)))))
-          run.grid
-          (let [(start count bound) (grid.query run.grid x y z)]
-            (when (< bound d) (set d bound))
-            (for [s (+ start 1) (+ start count)]
-              (set (d best r g b mirror rough emit)
-                   (visit tape-material (+ run.first (. run.grid.records s)) x y z
-                          d best r g b mirror rough emit modern?))))
-          (for [i run.first run.last]
-            (when (< ((. tape-distance i) x y z) d)
-              (set (d best r g b mirror rough emit)
-                   (visit tape-material i x y z d best r g b mirror rough emit modern?))))))
+      (set (d best r g b mirror rough emit)
+           (run.color run x y z d best r g b mirror rough emit tape-distance tape-material modern?)))
     (values d best r g b mirror rough emit)))
 
 (fn evaluators [ctx]
@@ -181,4 +202,6 @@ table of
      :others-map (fn [i] (fn [x y z] (tape-min draw x y z false i)))
      :object-map (fn [i] (. tape-distance i))}))
 
-{: evaluators : runs : half-spaces}
+{: evaluators : runs : half-spaces
+ ;; The strategies' queries (src/sdf/strategies/):
+ : each-min : each-color : each-near : grid-min : grid-color : grid-near : visit}

@@ -8,6 +8,7 @@
 
 ;; From this radius on a sphere loses float32 precision near its surface.
 (local large-radius (. (require :src.sdf.large-sphere) :radius))
+(local strategies (require :src.sdf.strategies))
 
 (fn length3 [[x y z]] (math.sqrt (+ (* x x) (* y y) (* z z))))
 
@@ -37,7 +38,7 @@ near its surface."
         b [[px py pz] (or child.radius (length3 b))])))
 
 (fn grid-sphere [g]
-  ;; The sphere about a grid's box (src/sdf/grid.fnl): it holds every member.
+  "The sphere about a grid's box (src/sdf/grid.fnl): it holds every member."
   (let [[lx ly lz] g.lo
         [sx sy sz] g.size]
     [[(+ lx (* 0.5 sx)) (+ ly (* 0.5 sy)) (+ lz (* 0.5 sz))]
@@ -45,24 +46,15 @@ near its surface."
 
 (fn finite-spheres [plan]
   "The bounding spheres ([centre radius], or false for an object that has none) of the
-objects a bounded plan marches by them: every tape object's (an instance group's
-members each) but the half-spaces (met in closed form; see lower.fnl); one for an
-instance group with a grid, about its grid; not a field's (its grid bounds them; see
+objects a bounded plan marches by them, each tape object's by its drawing strategy's
+:spheres (src/sdf/strategies/): every object's (an instance group's members each)
+but the half-spaces (met in closed form; see lower.fnl); one for an instance group
+with a grid, about its grid; not a field's (its grid bounds them; see
 src/render/field.fnl). plan.objects holds the tape's objects in this order."
   (let [out []]
     (var at 0)
     (each [_ o (ipairs plan.tape.objects)]
-      (let [g (?. o :instances :grid)
-            n (if o.instances o.instances.count o.field o.field.count 1)]
-        (if o.field (set at (+ at n))
-            g
-            (do (table.insert out (grid-sphere (. plan.grids.list (+ g 1) :grid)))
-                (set at (+ at n)))
-            (for [m 1 n]
-              (set at (+ at 1))
-              (when (not o.half-space?)
-                (table.insert out (or (object-sphere (. plan.objects at) (if o.infos (. o.infos m) o.info))
-                                      false)))))))
+      (set at ((. (strategies.of o) :spheres) plan o at out)))
     out))
 
 (fn plan-bounds [plan scene options]
@@ -119,4 +111,4 @@ o is grown by g (q + r): a soft shadow's penumbra, which widens with the distanc
             (set exit (math.max exit t1)))))))
   (values enter (math.min exit far)))
 
-{: plan-bounds : spheres : span : object-sphere}
+{: plan-bounds : spheres : span : object-sphere : grid-sphere}

@@ -4,6 +4,7 @@
 
 (local files (require :src.util.files))
 (local emit-glsl (require :src.sdf.emit-glsl))
+(local strategies (require :src.sdf.strategies))
 (local primitives (require :src.sdf.primitives))
 (local field (require :src.render.field))
 (local features (require :src.render.features))
@@ -88,7 +89,7 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
 (fn marched? [o]
   ;; Whether a bounded march steps by tape object `o`'s distance (mapFinite): not
   ;; a half-space (met in closed form, planesHit) nor a field (its grid is walked).
-  (not (or o.half-space? o.field)))
+  ((. (strategies.of o) :marched?) o))
 
 (fn modern-materials? [plan]
   (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8))))

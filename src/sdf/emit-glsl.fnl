@@ -3,6 +3,7 @@
 ;; deterministic: the same tape gives the same text.
 
 (local primitives (require :src.sdf.primitives))
+(local strategies (require :src.sdf.strategies))
 
 (local swizzles ["x" "y" "z" "w"])
 
@@ -286,13 +287,18 @@ constant indices, and the instance groups', in loops."
                  "instance groups' parameters and materials, one stride each" true)]
        [])])
 
-(fn object-comment [o]
-  ;; The object's path and what it draws (under the translation its :pos makes).
+;;; Helpers for the strategies' terms (src/sdf/strategies/): an object's code, its
+;;; comment, its block in a minimum, its material's tail, its gradient.
+
+(fn object-comment [o ?more]
+  "A comment naming object `o`: its path and what it draws (under the translation its
+:pos makes), then `?more`."
   (.. "// " o.info.path ": "
       (if (and o.info.implicit? (. o.info.children 1)) (. o.info.children 1 :kind) o.info.kind)
-      (if o.instances (.. " and " (- o.instances.count 1) " more like it") "")))
+      (or ?more "")))
 
 (fn indented [lines]
+  "`lines` (nested lists flattened) indented by four spaces."
   (let [out []]
     (fn add [ls]
       (each [_ l (ipairs ls)]
@@ -318,92 +324,68 @@ could not lower d."
         (each [_ l (ipairs tail)] (table.insert lines l))
         lines)))
 
-(fn id-expr [o first]
-  ;; The GLSL number of object `o` (of its member i in a group), objects counted
-  ;; from `first`.
-  (if o.instances (.. (+ first o.id) " + i") (tostring (+ first o.id))))
-
-(fn in-group [cx o lines-fn ?slot]
-  ;; `(lines-fn cx2)` with cx2 reading `o`'s rows (an instance group's bank; in a
-  ;; loop over a grid cell's list, the first row at the list slot ?slot).
-  (lines-fn (derived cx :group (if ?slot
-                                   (doto (collect [k v (pairs o.instances)] k v) (tset :slot ?slot))
-                                   o.instances))))
-
-(fn bank-point [o]
-  ;; A group whose bank is in a texture evaluates its members at pg (see reg).
-  (if (?. o :instances :texture?) ["vec3 pg = p - uBankOrigin;"] []))
-
-(fn looped [cx o block-fn]
-  ;; `(block-fn cx2)`'s lines for object `o` after its comment: once, or for an
-  ;; instance group in a loop over its members, read from its bank. A group with a
-  ;; grid (src/sdf/grid.fnl) loops over the members its cell at pg lists, after
-  ;; folding the lower bound of the others into d (in mapColor too: it lowers d, never
-  ;; the colour, as no surface is nearer than it).
-  (let [g (?. o :instances :grid)
-        block (if o.instances (in-group cx o block-fn (when g "gridStart + k")) (block-fn cx))]
-    [(object-comment o)
-     (if g
-         ["{"
-          (indented [(bank-point o)
-                     "int gridStart;"
-                     "int gridCount;"
-                     (if cx.along?
-                         (.. "float gridBound = gridCellAlong(" g ", pg, rd, gridStart, gridCount);")
-                         (.. "float gridBound = gridCell(" g ", pg, gridStart, gridCount);"))
-                     "d = min(d, gridBound);"
-                     "for (int k = 0; k < gridCount; k++) {"
-                     (indented [;; A march skips a member it is far from by the
-                                ;; ray's entry into its bounding sphere (gridSkip).
-                                (if cx.along?
-                                    [(.. "float gridStep = gridSkip(" g ", gridStart + k, pg, rd);")
-                                     "if (gridStep >= 0.0) {"
-                                     "    d = min(d, gridStep);"
-                                     "    continue;"
-                                     "}"]
-                                    [])
-                                "int i = gridMember(gridStart + k);"
-                                block])
-                     "}"])
-          "}"]
-         o.instances
-         (let [loop [(.. "for (int i = 0; i < " o.instances.count "; i++) {") (indented block) "}"]]
-           (if o.instances.texture? ["{" (indented [(bank-point o) loop]) "}"] loop))
-         block)]))
-
-(fn object-block [cx o first materials? open tail]
-  "Lines for one object of a minimum: its code and then `(tail id)` (lines using its
-distance), in a block opened by `(open id)`; an instance group's in a loop over its
-members. `id`: the object's number as GLSL (see id-expr)."
-  (let [id (id-expr o first)]
-    (looped cx o #[(open id) (indented (guarded-lines $ o materials? (tail id))) "}"])))
+(fn object-body [cx o id materials? open tail]
+  "Object `o`'s block in a minimum: opened by `(open id)`, its code and then `(tail
+id)` (lines using its distance); `id` is its number as GLSL."
+  [(open id) (indented (guarded-lines cx o materials? (tail id))) "}"])
 
 (fn open-block [] "{")
 
-;; A field (lower.fnl's :field strategy): its members are found through its grid by
-;; shaders/pipeline/field.glsl's functions, which number them from 0; `first` is the
-;; number of its first member, o.id counted from the objects' first.
+(fn minimum-tail [o]
+  "A tail for object-body: the object's distance folded into d."
+  #[(.. "d = min(d, " o.dout ");")])
 
-(fn field-number [expr first]
-  ;; A field member's number `expr` (from 0) as an object's number.
-  (if (= first 0) expr (.. expr " + " first)))
+(fn taken-open [id]
+  "An opening for object-body in mapObject: taken when every object is (`all`) or
+gObject is this one."
+  ["take = all;" (.. "if (gObject == " id ") take = true;") "if (take) {"])
 
-(fn field-index [first]
-  ;; gObject as the number of a field's member (from 0).
-  (if (= first 0) "gObject" (.. "gObject - " first)))
+(fn color-tail [o ?first mirrors? modern?]
+  "A tail for object-body in mapColor: the nearest keeps its colour (with `mirrors?`
+or two-row materials, its mirror amount; with those, its second row), and with
+`?first` its number in gObject."
+  (let [row (when o.mout (if modern? (.. o.mout "[0]") o.mout))]
+    #[(.. "if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
+          (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
+          (if modern? (.. " gMaterial = " o.mout "[1];") "")
+          (if ?first (.. " gObject = " $ ";") "") " }")]))
 
-(fn field-selected [o first action]
-  ;; `action` (a GLSL expression's prefix) on member gObject when it is the field's.
-  (let [id (+ first o.id)]
-    [(.. "if (gObject >= " id " && gObject < " (+ id o.field.count) ") " action "(p, "
-         (field-index id) ");")]))
+(fn leaf-gradient [cx o action]
+  "A leaf object's exact normal: its translations, then its primitive's gradient
+(see lower.fnl's :leaf); `action` is \"n = \" or \"return \"."
+  (let [{: points : prim} o.leaf]
+    [(emit-code cx [] points false)
+     (.. action (call cx (gradient-name prim.desc) (reg cx prim.pin) prim.args) ";")]))
 
-(fn field-minimum [skip]
-  ;; The field's part of a minimum, skipping its member `skip` (a GLSL int).
-  ["{" "    int best;" (.. "    d = min(d, fieldMap(p, " skip ", best));") "}"])
+(fn leaf-exact? [o]
+  "Whether leaf object `o`'s primitive has its gradient in closed form."
+  (not= nil (?. o :leaf :prim :desc :gradient-glsl)))
+
+(fn plane-block [o]
+  "A function of a context giving half-space `o`'s block for planesHit(ro, rd): t
+lowered to where the ray enters it, 0 from inside, t = -s / v for s its distance at
+the origin and v the ray's rate along its normal (the gradient). `p` is the ray's
+origin."
+  (let [{: points : prim} o.leaf]
+    #["{"
+      (indented [(emit-code $ [] points false)
+                 (.. "float s = " (call $ prim.desc.glsl-name (reg $ prim.pin) prim.args) ";")
+                 (.. "float v = dot(rd, " (call $ (gradient-name prim.desc) (reg $ prim.pin)
+                                                  prim.args) ");")
+                 "if (s <= 0.0) {"
+                 "    t = 0.0;"
+                 "} else if (v < 0.0) {"
+                 "    t = min(t, -s / v);"
+                 "}"])
+      "}"]))
+
+;;; The shader's queries: each tape object's terms through its strategy.
 
 (fn objects-of [tape ?which]
   (icollect [_ o (ipairs tape.objects)] (when (or (not ?which) (?which o)) o)))
+
+(fn glsl-of [o]
+  (. (strategies.of o) :glsl))
 
 (fn distance-terms [cx tape ?which ?along?]
   "Lines for map(), emitted with context `cx` (see new-context): each tree object's
@@ -411,15 +393,13 @@ distance (each for which `?which` is true), folded into d. With `?along?`, a mar
 rd is its ray's direction, and a grid's bound reaches along it (see gridCellAlong)."
   (let [cx (derived cx :along? (= true ?along?))]
     (icollect [_ o (ipairs (objects-of tape ?which))]
-      (if o.field (field-minimum "-1")
-          (object-block cx o 0 false open-block #[(.. "d = min(d, " o.dout ");")])))))
+      ((. (glsl-of o) :distance) cx o))))
 
 (fn others-terms [cx tape first]
   "Lines for mapOthers(): map's minimum, each object but the one gObject numbers
 (objects counted from `first`, as color-terms does)."
   (icollect [_ o (ipairs tape.objects)]
-    (if o.field (field-minimum (field-index (+ first o.id)))
-        (object-block cx o first false #(.. "if (gObject != " $ ") {") #[(.. "d = min(d, " o.dout ");")]))))
+    ((. (glsl-of o) :others) cx o first)))
 
 (fn color-terms [cx tape mirrors? ?first]
   "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
@@ -429,100 +409,36 @@ objects are numbered from it in tape order, an instance group's members one each
   (let [cx (derived cx :mt (. material-types tape.material-size))
         modern? (= tape.material-size 8)]
     (icollect [_ o (ipairs tape.objects)]
-      (let [row (when o.mout (if modern? (.. o.mout "[0]") o.mout))]
-        (if o.field
-            ;; (Its members are matte: the mirror amount and material stay.)
-            ["{"
-             "    int best;"
-             "    float di = fieldMap(p, -1, best);"
-             "    if (di < d) {"
-             "        d = di;"
-             "        color = best >= 0 ? fieldColor(best) : vec3(0.0);"
-             (if ?first
-                 (.. "        gObject = best >= 0 ? " (field-number "best" (+ ?first o.id)) " : -1;")
-                 [])
-             "    }"
-             "}"]
-        (object-block cx o (or ?first 0) true open-block
-                      #[(.. "if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
-                            (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
-                            (if modern? (.. " gMaterial = " o.mout "[1];") "")
-                            (if ?first (.. " gObject = " $ ";") "") " }")]))))))
-
-(fn selected [cx o first lines-fn]
-  ;; `(lines-fn cx2)`, run when gObject is object `o`'s number (one of its group's:
-  ;; then with `i` its member's), objects counted from `first`.
-  (let [id (+ first o.id)]
-    (if o.instances
-        [(.. "if (gObject >= " id " && gObject < " (+ id o.instances.count) ") {  "
-             (object-comment o))
-         (indented [(.. "int i = gObject" (if (= id 0) "" (.. " - " id)) ";")
-                    (bank-point o)
-                    (in-group cx o lines-fn)])
-         "}"]
-        [(.. "if (gObject == " id ") {  " (object-comment o))
-         (indented (lines-fn cx))
-         "}"])))
+      ((. (glsl-of o) :color) cx o ?first mirrors? modern?))))
 
 (fn object-terms [cx tape first]
   "Lines for mapObject(): the distance of the object gObject numbers (numbered from
 `first` as color-terms does) alone, set in d; with no object found (`all`, gObject
 -1) every object's, folded into d as map() folds them. A tree object is written once
-for both cases, the whole scene's copy that mapObject called before is gone (GLSL
-compilers inline every call: each copy is its share of the compile, issue 42). An
-instance group or a field has two forms: its whole minimum, and one member's."
+for both cases (GLSL compilers inline every call: each copy of the scene is its share
+of the compile)."
   (icollect [_ o (ipairs tape.objects)]
-    (if o.field ["if (all) {" (indented (field-minimum "-1")) "}"
-                 (field-selected o first "d = fieldObject")]
-        o.instances ["if (all) {"
-                     (indented (object-block cx o 0 false open-block #[(.. "d = min(d, " o.dout ");")]))
-                     "}"
-                     (selected cx o first #[(emit-code $ [] o.code false) (.. "d = " o.dout ";")])]
-        [(object-block cx o first false
-                       #["take = all;" (.. "if (gObject == " $ ") take = true;") "if (take) {"]
-                       #[(.. "d = min(d, " o.dout ");")])])))
-
-(fn leaf-gradient [cx o action]
-  ;; A leaf object's exact normal: its translations, then its primitive's gradient
-  ;; (see lower.fnl's :leaf); `action` is "n = " or "return ".
-  (let [{: points : prim} o.leaf]
-    [(emit-code cx [] points false)
-     (.. action (call cx (gradient-name prim.desc) (reg cx prim.pin) prim.args) ";")]))
+    ((. (glsl-of o) :object) cx o first)))
 
 (fn exact? [o]
-  "Whether object `o` has its exact normal in closed form: a leaf whose primitive has
-a gradient, or a field of spheres and boxes only (their round boxes have their inner
-box's; a field with marched members takes differences for all of them)."
-  (if o.field (= 0 (length o.field.kinds.marched))
-      (not= nil (?. o :leaf :prim :desc :gradient-glsl))))
+  "Whether object `o` has its exact normal in closed form (its strategy's :exact?)."
+  ((. (glsl-of o) :exact?) o))
 
 (fn gradient-terms [cx tape first action]
   "Lines for calcNormal: each object with an exact normal (exact?) gives it when
 gObject is its number (counted from `first`); `action` is \"n = \" or \"return \"."
   (icollect [_ o (ipairs tape.objects)]
-    (if o.field (when (exact? o) (field-selected o first (.. action "fieldNormal")))
-        (exact? o) (selected cx o first #(leaf-gradient $ o action)))))
+    ((. (glsl-of o) :gradient) cx o first action)))
 
 (fn plane-terms [cx tape]
-  "Lines for planesHit(ro, rd): each half-space object (lower.fnl's :half-space?: a
-leaf whose primitive is solid below a plane, met in closed form) lowers t to where
-the ray enters it: 0 from inside, t = -s / v for s its distance at the origin and v
-the ray's rate along its normal (the gradient). `p` is the ray's origin."
+  "Lines for planesHit(ro, rd): each half-space object's (lower.fnl's :half-space?: a
+leaf whose primitive is solid below a plane, met in closed form; see plane-block)."
   (icollect [_ o (ipairs tape.objects)]
-    (when o.half-space?
-      (let [{: points : prim} o.leaf]
-        (looped cx o #["{"
-                       (indented [(emit-code $ [] points false)
-                                  (.. "float s = " (call $ prim.desc.glsl-name (reg $ prim.pin) prim.args) ";")
-                                  (.. "float v = dot(rd, " (call $ (gradient-name prim.desc) (reg $ prim.pin)
-                                                                   prim.args) ");")
-                                  "if (s <= 0.0) {"
-                                  "    t = 0.0;"
-                                  "} else if (v < 0.0) {"
-                                  "    t = min(t, -s / v);"
-                                  "}"])
-                       "}"])))))
+    ((. (glsl-of o) :planes) cx o)))
 
 {: functions : gradient-functions : declarations : declare : new-context : reads
  : distance-terms : others-terms : color-terms : object-terms : gradient-terms : plane-terms
- : exact? : text-lines : float-literal}
+ : exact? : text-lines : float-literal
+ ;; For the strategies' terms (src/sdf/strategies/):
+ : derived : emit-code : object-comment : indented : guarded-lines : object-body : open-block
+ : minimum-tail : taken-open : color-tail : leaf-gradient : leaf-exact? : plane-block}

@@ -4,9 +4,7 @@
 ;; function, so the two evaluators cannot drift apart.
 
 (local grid (require :src.sdf.grid))
-(local box-gradient (. ((. (require :src.sdf.primitives) :lookup) :box) :gradient))
-(local field-shape (. (require :src.sdf.lower) :field-shape))
-(local field-marched (. (require :src.sdf.lower) :field-marched))
+(local strategies (require :src.sdf.strategies))
 
 (local max-locals 150)   ; Lua allows 200 locals per function; beyond, a table holds them
 
@@ -217,42 +215,33 @@
       (each [_ v (ipairs row)] (table.insert out v)))
     out))
 
-(local unpack (or table.unpack _G.unpack))
-
-(fn marched-distance [m cx cy cz]
-  ;; A marched field member's distance (lower.fnl's field-marched `m`, its origin c):
-  ;; its primitive's CPU form in its frame.
-  (let [[a b c d e f g h k] m.rows
-        cpu m.desc.cpu
-        args m.args]
-    (fn [x y z]
-      (let [x (- x cx) y (- y cy) z (- z cz)]
-        (cpu (+ (* a x) (* b y) (* c z)) (+ (* d x) (* e y) (* f z)) (+ (* g x) (* h y) (* k z))
-             (unpack args))))))
-
-(fn field-evaluators [f what material-size]
-  ;; A field's members (lower.fnl's :field strategy) by object number: each its shape's
-  ;; round box, by the descriptor's CPU form, or a marched member's own primitive in
-  ;; its frame; matte (the shader's field keeps the mirror amount and material
-  ;; mapColor starts from). A round box's exact normal is its inner box's gradient
-  ;; (the box descriptor's), except in a field with marched members: none has one
-  ;; there (emit-glsl's exact?).
-  (let [round-box f.desc.cpu
-        modern? (= material-size 8)
-        exact? (= 0 (length f.kinds.marched))]
-    (icollect [_ m (ipairs f.members)]
-      (let [(cx cy cz hx hy hz r) (field-shape m)
-            marched (when m.tree (field-marched m))
-            distance (if marched (marched-distance marched cx cy cz)
-                         (fn [x y z] (round-box (- x cx) (- y cy) (- z cz) hx hy hz r)))]
-        (case what
-          :distance distance
-          :material (let [[cr cg cb] (if marched marched.color m.color)]
-                      (if modern?
-                          (fn [x y z] (values (distance x y z) cr cg cb 0 0.5 0 0 0))
-                          (fn [x y z] (values (distance x y z) cr cg cb 1))))
-          :gradient (if (not exact?) false
-                        (fn [x y z] (box-gradient (- x cx) (- y cy) (- z cz) hx hy hz))))))))
+(fn object-evaluators [tape o what banks into ?group]
+  "Add object `o`'s CPU evaluator of `what` (see compile) to the list `into`: its code
+compiled from Lua source, or false for a gradient its leaf has not; with `?group` (an
+instance group: {:count :base :stride}), one per member, reading its rows from the
+group's bank. Returns the source, if any."
+  (if (and (= what :gradient) (not (?. o :leaf :prim :desc :gradient)))
+      (for [_ 1 (if ?group ?group.count 1)] (table.insert into false))
+      (let [emit (fn [table-mode?]
+                   (let [e (doto (new-emitter table-mode? tape.material-size (not= nil ?group))
+                             (tset :instances banks.instances)
+                             (tset :estimate? (= what :estimate)))]
+                     (e.line 0 "local S, F, FN, first, stride, count = ...")
+                     (when ?group
+                       (e.line 0 "for member = 0, count - 1 do")
+                       (e.line 0 "local B = (first + member * stride) * 4"))
+                     (function-lines e o what)
+                     (when ?group (e.line 0 "end"))
+                     e))
+            ;; Locals while they fit; a table holds them in a function with more.
+            e (let [e (emit false)]
+                (if (or (= what :material) (> (local-count e.lines) max-locals)) (emit true) e))
+            source (table.concat e.lines "\n")
+            chunk (assert ((or _G.loadstring load) source (.. "=tape:" o.info.path)))]
+        (if ?group
+            (chunk banks.instances e.fns into ?group.base ?group.stride ?group.count)
+            (chunk banks.tape e.fns into))
+        source)))
 
 (fn compile [tape]
   "CPU evaluators for `tape`'s objects, in world coordinates and double precision, one
@@ -261,45 +250,20 @@ per object number (an instance group's members one each, in order): {:distance
 :material-size 8: roughness emission and two spare)] :gradient [(fn [x y z]) -> nx ny
 nz, or false where the object has no exact normal] :estimate [(fn [x y z]) -> d read
 as an estimate of the distance: see :estimates? in lower.fnl; the :distance list
-itself without them] :source text}."
+itself without them] :source text}. Each object's come from its drawing strategy
+(src/sdf/strategies/)."
   (let [sources []
         banks {:tape (flat-rows tape.rows) :instances (flat-rows tape.instances.rows)}
         out {:distance [] :material [] :gradient [] :estimate []}]
     (each [_ what (ipairs (if tape.estimates? [:distance :material :gradient :estimate]
                               [:distance :material :gradient]))]
       (each [_ o (ipairs tape.objects)]
-        (let [group o.instances
-              into (. out what)
-              emit (fn [table-mode?]
-                     (let [e (doto (new-emitter table-mode? tape.material-size (not= nil group))
-                               (tset :instances banks.instances)
-                               (tset :estimate? (= what :estimate)))]
-                       (e.line 0 "local S, F, FN, first, stride, count = ...")
-                       (when group
-                         (e.line 0 "for member = 0, count - 1 do")
-                         (e.line 0 "local B = (first + member * stride) * 4"))
-                       (function-lines e o what)
-                       (when group (e.line 0 "end"))
-                       e))]
-          (if o.field
-              (each [_ f (ipairs (field-evaluators o.field (if (= what :estimate) :distance what)
-                                                   tape.material-size))]
-                (table.insert into f))
-              (and (= what :gradient) (not (?. o :leaf :prim :desc :gradient)))
-              (for [_ 1 (if group group.count 1)] (table.insert into false))
-              ;; Locals while they fit; a table holds them in a function with more.
-              (let [e (let [e (emit false)]
-                        (if (or (= what :material) (> (local-count e.lines) max-locals)) (emit true) e))
-                    source (table.concat e.lines "\n")
-                    chunk (assert ((or _G.loadstring load) source (.. "=tape:" o.info.path)))]
-                (table.insert sources source)
-                (if group
-                    (chunk banks.instances e.fns into group.base group.stride group.count)
-                    (chunk banks.tape e.fns into)))))))
+        (let [source ((. (strategies.of o) :lua) tape o what banks (. out what))]
+          (when source (table.insert sources source)))))
     (set out.source (table.concat sources "\n"))
     ;; Without estimates (tape.estimates?), the field read as an estimate is the
     ;; distance itself.
     (when (not tape.estimates?) (set out.estimate out.distance))
     out))
 
-{: compile}
+{: compile : object-evaluators}

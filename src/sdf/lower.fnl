@@ -85,6 +85,7 @@
 (local operations (require :src.sdf.operations))
 (local large-sphere (require :src.sdf.large-sphere))
 (local custom (require :src.sdf.custom))
+(local strategies (require :src.sdf.strategies))
 
 (local sizes primitives.glsl-types)
 (local box-desc (primitives.lookup :box))
@@ -794,7 +795,8 @@ place there)}. Only their code is compiled in."
   ;; first appearance: a member's kind number is its place there); :descs, the
   ;; primitives whose GLSL it calls.
   (let [kinds (field-kinds members)]
-    {:field {:count (length members) : kinds
+    {:strategy :field
+     :field {:count (length members) : kinds
              : members
              :desc round-box-desc
              :descs (doto (icollect [_ k (ipairs kinds.marched)] (primitives.lookup k))
@@ -861,6 +863,7 @@ own fields) the same leaf as a node, placed by :pos and coloured by :color."
     (set o.leaf (leaf-of o.code o.dout))
     (set o.size (length st.rows))
     (set o.half-space? (= true (?. o :leaf :prim :desc :half-space?)))
+    (set o.strategy :tree)
     (values st o)))
 
 (fn lower [objects ?options]
@@ -937,7 +940,8 @@ as a field: the first tape object (see Strategies above)."
             (let [base (append-rows! group-bank (. states 1))]
               (for [m 2 (length states)] (append-rows! group-bank (. states m)))
               (set o.instances {:count (length states) : base
-                                :stride (length (. states 1 :rows))})))
+                                :stride (length (. states 1 :rows))})
+              (set o.strategy :group)))
           ;; The blends' children's rows after the groups' (see blend!).
           (let [offset (append-rows! group-bank blends.bank)]
             (each [_ ins (ipairs blends.list)] (set ins.base (+ ins.base offset))))
@@ -946,7 +950,7 @@ as a field: the first tape object (see Strategies above)."
                      (tset :inner tape-bank.inner) (tset :derived tape-bank.derived)
                      (tset :key key))]
             (when options.fold?
-              (fold! st (icollect [_ o (ipairs out)] (when (not (or o.instances o.field)) o))))
+              (fold! st (icollect [_ o (ipairs out)] (when (. (strategies.of o) :folds?) o))))
             (table.insert key (.. "rows:" (length tape-bank.rows)))
             (when options.modern? (table.insert key "materials:8"))
             {:objects out :count id :rows tape-bank.rows :relative tape-bank.relative
@@ -974,9 +978,9 @@ each)."
   (let [out {}]
     (each [_ o (ipairs tape.objects)]
       ;; (A field's members have no lowered tree.)
-      (when (not o.field)
-        (each [m index (ipairs (or o.indices [o.index]))]
-          (tset out index (if o.infos (. o.infos m) o.info)))))
+      (case ((. (strategies.of o) :infos) o)
+        infos (each [m index (ipairs (or o.indices [o.index]))]
+                (tset out index (. infos m)))))
     out))
 
 (fn class-label [info]
@@ -992,18 +996,17 @@ each)."
   "Lines describing every node of `tape`'s objects, indented by depth, with its class:
 what `--tree` prints."
   (let [lines []]
-    (fn walk [info depth ?group ?field]
+    (fn walk [info depth ?more]
       (let [b info.bounds
             bounds (if b (string.format "bounds ±%.3g ±%.3g ±%.3g" (. b 1) (. b 2) (. b 3))
                        info.field? "each member's box"
                        "unbounded")]
         (table.insert lines (.. (string.rep "  " depth) info.kind
                                 (if info.implicit? " (shorthand)" "")
-                                (if ?group (.. " x" ?group.count " (instance group: a loop)") "")
-                                (if ?field (.. " of " ?field.count " objects (a grid in textures)") "")
+                                (or ?more "")
                                 "  " (class-label info) "  " bounds "  " info.path)))
       (each [_ c (ipairs info.children)] (walk c (+ depth 1))))
-    (each [_ o (ipairs tape.objects)] (walk o.info 0 o.instances o.field))
+    (each [_ o (ipairs tape.objects)] (walk o.info 0 ((. (strategies.of o) :describe) o)))
     lines))
 
 {: lower : describe : node-of : min-group : infos-by-index : field-shape : field-marched : field-kinds

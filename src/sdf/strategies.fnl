@@ -1,0 +1,89 @@
+;; Drawing strategies: how a tape object is drawn. Lowering (src/sdf/lower.fnl) gives
+;; every tape object a :strategy, the name of one descriptor file in
+;; src/sdf/strategies/, found by listing that folder as primitives and lighting
+;; features are. Every consumer (the GLSL and Lua emitters, the bounds, the CPU
+;; reference, --tree) reaches an object through its strategy's descriptor and never
+;; asks which strategy that is: drawing a new way is one new file.
+;;
+;; A descriptor:
+;;   :name      keyword, the :strategy lowering writes; :doc one line
+;;   :count     (fn [o]) -> the objects it draws (an object number each)
+;;   :folds?    whether fold! (values as constants, lower.fnl) writes its rows into the
+;;              code (an instance group's stay in its bank; a field has no code)
+;;   :marched?  (fn [o]) -> whether a bounded march steps by its distance (mapFinite):
+;;              not a half-space (met in closed form) nor a field (its grid is walked)
+;;   :infos     (fn [o]) -> its objects' lowered root infos, or nil when they have
+;;              none (a field's members)
+;;   :describe  (fn [o]) -> what --tree adds after its root's kind
+;;   :glsl      the lines it gives each of the shader's queries (emit-glsl.fnl's
+;;              context cx; `first`, the number of the tape's first object):
+;;              :distance (fn [cx o]) map's term; :others (fn [cx o first]) mapOthers';
+;;              :color (fn [cx o ?first mirrors? modern?]) mapColor's (with ?first it
+;;              sets gObject); :object (fn [cx o first]) mapObject's; :gradient (fn [cx o
+;;              first action]) its exact normal (nil: none); :planes (fn [cx o])
+;;              planesHit's (nil: not a half-space); :exact? (fn [o]) whether it has an
+;;              exact normal in closed form
+;;   :lua       (fn [tape o what banks into]) adds its CPU evaluators (emit-lua.fnl's
+;;              compile: `what` is :distance, :material, :gradient or :estimate) to the
+;;              list `into`, one per object, and returns the Lua source it compiled, if
+;;              any
+;;   :spheres   (fn [plan o at out]) adds the bounding spheres a bounded march tests
+;;              ([centre radius], false for an object that has none) to `out`; `at`
+;;              is the number of plan.objects before its first. Returns the count
+;;              after its objects (src/render/bounds.fnl)
+;;   :run       (fn [plan o run]) fills the CPU reference's run of its objects
+;;              ({:first :last} numbers in plan.objects) with what its queries need
+;;   :reference {:min (fn [run d x y z skip tape-distance draw ?dx ?dy ?dz]) -> d
+;;              lowered by its objects but `skip`; :color (fn [run x y z d best r g b
+;;              mirror rough emit tape-distance tape-material modern?]) -> the same
+;;              after its objects, the nearest's material winning; :near (fn [run x y
+;;              z reach tape-distance]) -> how many come within reach}
+;;              (src/reference/distance.fnl)
+
+(local files (require :src.util.files))
+
+(local dir "src/sdf/strategies")
+
+(fn check-descriptor [d file]
+  (fn need [ok? what] (assert ok? (.. file ": strategy " what)))
+  (need (= (type d.name) :string) "needs a :name")
+  (need (= (type d.doc) :string) "needs :doc")
+  (each [_ key (ipairs [:count :marched? :infos :describe :lua :spheres :run])]
+    (need (= (type (. d key)) :function) (.. "needs :" key)))
+  (need (= (type d.folds?) :boolean) "needs :folds?")
+  (need (= (type d.glsl) :table) "needs :glsl")
+  (each [_ key (ipairs [:distance :others :color :object :gradient :planes :exact?])]
+    (need (= (type (. d.glsl key)) :function) (.. "needs :glsl :" key)))
+  (need (= (type d.reference) :table) "needs :reference")
+  (each [_ key (ipairs [:min :color :near])]
+    (need (= (type (. d.reference key)) :function) (.. "needs :reference :" key)))
+  d)
+
+;; The descriptors by name, loaded on first use: they require the emitters, which
+;; reach objects through this module.
+(local loaded {})
+
+(fn by-name []
+  (when (not (next loaded))
+    (each [_ file (ipairs (assert (files.list-project dir)))]
+      (let [base (file:match "^(.-)%.fnl$")]
+        (when base
+          (let [d (check-descriptor (require (.. "src.sdf.strategies." base)) (.. dir "/" file))]
+            (tset loaded d.name d))))))
+  loaded)
+
+(fn all []
+  "Every strategy's descriptor, sorted by name."
+  (doto (icollect [_ d (pairs (by-name))] d)
+    (table.sort (fn [a b] (< a.name b.name)))))
+
+(fn of [o]
+  "The descriptor of tape object `o`'s strategy (its :strategy)."
+  (or (. (by-name) o.strategy)
+      (error (.. "no drawing strategy " (tostring o.strategy) " in " dir))))
+
+(fn count [o]
+  "How many objects tape object `o` draws (an object number each)."
+  ((. (of o) :count) o))
+
+{: all : of : count}

@@ -1,0 +1,125 @@
+;; The field strategy: many of the article's flat spheres and boxes (and marched
+;; primitives) drawn from a grid in textures that a ray walks (src/render/field.fnl,
+;; shaders/pipeline/field.glsl), the first tape object (lower.fnl's field-object). Its
+;; members are numbered from 0 by the field's functions; `first` + o.id is the
+;; number of its first. See src/sdf/strategies.fnl for the interface.
+
+(local glsl (require :src.sdf.emit-glsl))
+(local field (require :src.render.field))
+(local lower (require :src.sdf.lower))
+(local runs (require :src.reference.distance))
+(local box-gradient (. ((. (require :src.sdf.primitives) :lookup) :box) :gradient))
+
+(fn field-number [expr first]
+  ;; A member's number `expr` (from 0) as an object's number.
+  (if (= first 0) expr (.. expr " + " first)))
+
+(fn field-index [first]
+  ;; gObject as the number of a member (from 0).
+  (if (= first 0) "gObject" (.. "gObject - " first)))
+
+(fn field-selected [o first action]
+  ;; `action` (a GLSL expression's prefix) on member gObject when it is the field's.
+  (let [id (+ first o.id)]
+    [(.. "if (gObject >= " id " && gObject < " (+ id o.field.count) ") " action "(p, "
+         (field-index id) ");")]))
+
+(fn field-minimum [skip]
+  ;; The field's part of a minimum, skipping its member `skip` (a GLSL int).
+  ["{" "    int best;" (.. "    d = min(d, fieldMap(p, " skip ", best));") "}"])
+
+(fn exact? [o]
+  ;; Spheres and boxes only: their round boxes have their inner box's normal; with
+  ;; marched members, differences are taken for all of them.
+  (= 0 (length o.field.kinds.marched)))
+
+(local unpack (or table.unpack _G.unpack))
+
+(fn marched-distance [m cx cy cz]
+  ;; A marched member's distance (lower.fnl's field-marched `m`, its origin c): its
+  ;; primitive's CPU form in its frame.
+  (let [[a b c d e f g h k] m.rows
+        cpu m.desc.cpu
+        args m.args]
+    (fn [x y z]
+      (let [x (- x cx) y (- y cy) z (- z cz)]
+        (cpu (+ (* a x) (* b y) (* c z)) (+ (* d x) (* e y) (* f z)) (+ (* g x) (* h y) (* k z))
+             (unpack args))))))
+
+(fn evaluators [tape o what into]
+  ;; The members' CPU evaluators by object number: each its shape's round box, by the
+  ;; descriptor's CPU form, or a marched member's own primitive in its frame; matte
+  ;; (the shader's field keeps the mirror amount and material mapColor starts from).
+  ;; A round box's exact normal is its inner box's gradient, except in a field with
+  ;; marched members (exact?).
+  (let [f o.field
+        what (if (= what :estimate) :distance what)
+        round-box f.desc.cpu
+        modern? (= tape.material-size 8)
+        exact? (exact? o)]
+    (each [_ m (ipairs f.members)]
+      (let [(cx cy cz hx hy hz r) (lower.field-shape m)
+            marched (when m.tree (lower.field-marched m))
+            distance (if marched (marched-distance marched cx cy cz)
+                         (fn [x y z] (round-box (- x cx) (- y cy) (- z cz) hx hy hz r)))]
+        (table.insert into
+                      (case what
+                        :distance distance
+                        :material (let [[cr cg cb] (if marched marched.color m.color)]
+                                    (if modern?
+                                        (fn [x y z] (values (distance x y z) cr cg cb 0 0.5 0 0 0))
+                                        (fn [x y z] (values (distance x y z) cr cg cb 1))))
+                        :gradient (if (not exact?) false
+                                      (fn [x y z] (box-gradient (- x cx) (- y cy) (- z cz) hx hy hz)))))))))
+
+(local black [0 0 0])
+
+(fn field-min [r d x y z skip]
+  ;; The field's nearest listed member (fieldMap), skipping tape number `skip`.
+  (let [own (and skip (+ 1 (- skip r.first)))
+        df (field.distance r.field x y z own)]
+    (if (< df d) df d)))
+
+(fn field-color [run x y z d best r g b mirror rough emit]
+  ;; Its nearest listed member (black, and no object, outside its grid), as fieldMap
+  ;; and fieldColor; the mirror amount and material stay.
+  (let [(df fb) (field.distance run.field x y z)]
+    (if (< df d)
+        (let [[cr cg cb] (if fb (. run.field.colors fb) black)
+              hit (and fb (+ run.first fb -1))]
+          (values df hit cr cg cb mirror rough emit))
+        (values d best r g b mirror rough emit))))
+
+{:name :field
+ :doc "many flat spheres and boxes, from a grid in textures that a ray walks"
+ :count (fn [o] o.field.count)
+ :folds? false
+ :marched? (fn [_] false)
+ :infos (fn [_] nil)
+ :describe (fn [o] (.. " of " o.field.count " objects (a grid in textures)"))
+ :glsl {:distance (fn [_ _] (field-minimum "-1"))
+        :others (fn [_ o first] (field-minimum (field-index (+ first o.id))))
+        ;; (Its members are matte: the mirror amount and material stay.)
+        :color (fn [_ o ?first]
+                 ["{"
+                  "    int best;"
+                  "    float di = fieldMap(p, -1, best);"
+                  "    if (di < d) {"
+                  "        d = di;"
+                  "        color = best >= 0 ? fieldColor(best) : vec3(0.0);"
+                  (if ?first
+                      (.. "        gObject = best >= 0 ? " (field-number "best" (+ ?first o.id)) " : -1;")
+                      [])
+                  "    }"
+                  "}"])
+        :object (fn [_ o first]
+                  ["if (all) {" (glsl.indented (field-minimum "-1")) "}"
+                   (field-selected o first "d = fieldObject")])
+        :gradient (fn [_ o first action]
+                    (when (exact? o) (field-selected o first (.. action "fieldNormal"))))
+        :planes (fn [_ _] nil)
+        : exact?}
+ :lua (fn [tape o what _ into] (evaluators tape o what into))
+ :spheres (fn [_ o at _] (+ at o.field.count))
+ :run (fn [plan _ run] (doto run (tset :field plan.field)))
+ :reference {:min field-min :color field-color :near runs.each-near}}

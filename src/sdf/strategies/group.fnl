@@ -1,0 +1,117 @@
+;; The instance-group strategy: objects of one structure (equal lowered code but for
+;; their values; lower.fnl's min-group or more) drawn as a loop over their rows in a
+;; bank, each member its own object number. A group whose members all have a box has
+;; a grid (src/sdf/grid.fnl, made by src/render/plan.fnl): a point then visits only
+;; the members its cell lists, and the others' lower bound. See
+;; src/sdf/strategies.fnl for the interface.
+
+(local glsl (require :src.sdf.emit-glsl))
+(local emit-lua (require :src.sdf.emit-lua))
+(local bounds (require :src.render.bounds))
+(local runs (require :src.reference.distance))
+
+(fn group-comment [o]
+  (glsl.object-comment o (.. " and " (- o.instances.count 1) " more like it")))
+
+(fn in-group [cx o lines-fn ?slot]
+  ;; `(lines-fn cx2)` with cx2 reading `o`'s rows (the group's bank; in a loop over a
+  ;; grid cell's list, the first row at the list slot ?slot).
+  (lines-fn (glsl.derived cx :group (if ?slot
+                                        (doto (collect [k v (pairs o.instances)] k v) (tset :slot ?slot))
+                                        o.instances))))
+
+(fn bank-point [o]
+  ;; A group whose bank is in a texture evaluates its members at pg (emit-glsl's reg).
+  (if o.instances.texture? ["vec3 pg = p - uBankOrigin;"] []))
+
+(fn looped [cx o block-fn]
+  ;; `(block-fn cx2)`'s lines for each member, after the group's comment: in a loop
+  ;; over its members, read from its bank. A group with a grid loops over the members
+  ;; its cell at pg lists, after folding the lower bound of the others into d (in
+  ;; mapColor too: it lowers d, never the colour, as no surface is nearer than it).
+  (let [g o.instances.grid
+        block (in-group cx o block-fn (when g "gridStart + k"))]
+    [(group-comment o)
+     (if g
+         ["{"
+          (glsl.indented [(bank-point o)
+                          "int gridStart;"
+                          "int gridCount;"
+                          (if cx.along?
+                              (.. "float gridBound = gridCellAlong(" g ", pg, rd, gridStart, gridCount);")
+                              (.. "float gridBound = gridCell(" g ", pg, gridStart, gridCount);"))
+                          "d = min(d, gridBound);"
+                          "for (int k = 0; k < gridCount; k++) {"
+                          (glsl.indented [;; A march skips a member it is far from by the
+                                          ;; ray's entry into its bounding sphere (gridSkip).
+                                          (if cx.along?
+                                              [(.. "float gridStep = gridSkip(" g ", gridStart + k, pg, rd);")
+                                               "if (gridStep >= 0.0) {"
+                                               "    d = min(d, gridStep);"
+                                               "    continue;"
+                                               "}"]
+                                              [])
+                                          "int i = gridMember(gridStart + k);"
+                                          block])
+                          "}"])
+          "}"]
+         (let [loop [(.. "for (int i = 0; i < " o.instances.count "; i++) {") (glsl.indented block) "}"]]
+           (if o.instances.texture? ["{" (glsl.indented [(bank-point o) loop]) "}"] loop)))]))
+
+(fn block [cx o first materials? open tail]
+  ;; Each member's block in a minimum (glsl.object-body), its number first + id + i.
+  (let [id (.. (+ first o.id) " + i")]
+    (looped cx o #(glsl.object-body $ o id materials? open tail))))
+
+(fn selected [cx o first lines-fn]
+  ;; `(lines-fn cx2)`, run when gObject is one of the group's numbers, with `i` its
+  ;; member's.
+  (let [id (+ first o.id)]
+    [(.. "if (gObject >= " id " && gObject < " (+ id o.instances.count) ") {  " (group-comment o))
+     (glsl.indented [(.. "int i = gObject" (if (= id 0) "" (.. " - " id)) ";")
+                     (bank-point o)
+                     (in-group cx o lines-fn)])
+     "}"]))
+
+(fn grid-of [plan o]
+  ;; The group's grid (src/sdf/grid.fnl), or nil.
+  (let [g o.instances.grid]
+    (when g (. plan.grids.list (+ g 1) :grid))))
+
+{:name :group
+ :doc "objects of one structure, a loop over their rows (through a grid when they have boxes)"
+ :count (fn [o] o.instances.count)
+ :folds? false
+ :marched? (fn [o] (not o.half-space?))
+ :infos (fn [o] o.infos)
+ :describe (fn [o] (.. " x" o.instances.count " (instance group: a loop)"))
+ :glsl {:distance (fn [cx o] (block cx o 0 false glsl.open-block (glsl.minimum-tail o)))
+        :others (fn [cx o first]
+                  (block cx o first false #(.. "if (gObject != " $ ") {") (glsl.minimum-tail o)))
+        :color (fn [cx o ?first mirrors? modern?]
+                 (block cx o (or ?first 0) true glsl.open-block
+                        (glsl.color-tail o ?first mirrors? modern?)))
+        ;; Two forms: the whole group's minimum, and one member's.
+        :object (fn [cx o first]
+                  ["if (all) {"
+                   (glsl.indented (block cx o 0 false glsl.open-block (glsl.minimum-tail o)))
+                   "}"
+                   (selected cx o first #[(glsl.emit-code $ [] o.code false) (.. "d = " o.dout ";")])])
+        :gradient (fn [cx o first action]
+                    (when (glsl.leaf-exact? o)
+                      (selected cx o first #(glsl.leaf-gradient $ o action))))
+        :planes (fn [cx o] (when o.half-space? (looped cx o (glsl.plane-block o))))
+        :exact? glsl.leaf-exact?}
+ :lua (fn [tape o what banks into] (emit-lua.object-evaluators tape o what banks into o.instances))
+ :spheres (fn [plan o at out]
+            (let [g (grid-of plan o)
+                  n o.instances.count]
+              (if g
+                  (table.insert out (bounds.grid-sphere g))
+                  (for [m 1 n]
+                    (when (not o.half-space?)
+                      (table.insert out (or (bounds.object-sphere (. plan.objects (+ at m)) (. o.infos m))
+                                            false)))))
+              (+ at n)))
+ :run (fn [plan o run] (doto run (tset :grid (grid-of plan o))))
+ :reference {:min runs.grid-min :color runs.grid-color :near runs.grid-near}}
