@@ -5,8 +5,6 @@
 (local files (require :src.util.files))
 (local emit-glsl (require :src.sdf.emit-glsl))
 (local strategies (require :src.sdf.strategies))
-(local primitives (require :src.sdf.primitives))
-(local field (require :src.render.field))
 (local features (require :src.render.features))
 
 ;; Chunks are read through the program's one file reader (project files, from any
@@ -436,71 +434,14 @@ hit before the view, so that form keeps the march before the loop."
     :surface []
     :background (if plan.bounds ["return min(tPlane, tMax);"] ["return uDrawDist;"])))
 
-(fn field-object [plan]
-  ;; The field's tape object's :field (lower.fnl's field strategy).
-  (accumulate [f nil _ o (ipairs plan.tape.objects) &until f] o.field))
-
-(fn marched-args [desc]
-  ;; The GLSL arguments of marched primitive `desc` after the point, read from its
-  ;; packed numbers in the vectors u and v (field-primitives.glsl's fieldKindDistance).
-  (let [component (fn [i] (.. (if (< i 4) "u." "v.") (string.sub "xyzw" (+ 1 (% i 4)) (+ 1 (% i 4)))))
-        out []]
-    (var at 0)
-    (each [_ a (ipairs desc.args)]
-      (let [n (. primitives.glsl-types a.type)
-            parts (fcollect [i at (+ at n -1)] (component i))]
-        (table.insert out
-                      (if (= n 1) (. parts 1)
-                          ;; (a swizzle when the components lie in one vector)
-                          (= (math.floor (/ at 4)) (math.floor (/ (+ at n -1) 4)))
-                          (.. (string.sub (. parts 1) 1 2)
-                              (table.concat (icollect [_ p (ipairs parts)] (string.sub p 3))))
-                          (.. a.type "(" (table.concat parts ", ") ")")))
-        (set at (+ at n))))
-    (table.concat out ", ")))
-
-(fn field-lines [plan]
-  ;; The field's functions (shaders/pipeline/field.glsl) with the code of the kinds
-  ;; it holds, and its marched members' (field-primitives.glsl) when it has some.
-  (let [{: spheres? : boxes? : marched} plan.field.kinds
-        marched? (> (length marched) 0)
-        record-b "fieldRead(uFieldRecords, uFieldRows.y, r + 1)"
-        box (.. "fieldBoxEntry(q0, inv, a, " (if marched? "b" record-b) ".xyz)")
-        closed (if (and spheres? boxes?) (.. "a.w > 0.0 ? fieldSphereEntry(q0, rd, a) : " box)
-                   spheres? "fieldSphereEntry(q0, rd, a)"
-                   boxes? box)
-        march "fieldMarchedEntry(q0, rd, a, int(-b.x), int(b.w), t0)"]
-    [(.. "const bool kFieldOthers = " (tostring (> plan.bounds.count 0))
-         ";  // finite objects beside the field (mapFinite)")
-     (string.format "const float kFieldTiny = %.6f;  // a ray direction's smallest component"
-                    field.tiny)
-     (.. "const int kFieldObjectTexels = " (field.object-texels plan.field)
-         ";  // texels per object in uFieldObjects")
-     (if marched?
-         [(.. "const int kFieldMarchTurns = " field.marched-turns
-              ";  // steps a ray may take in a marched member")
-          (.. "const int kFieldArgTexels = " (field.arg-texels plan.field)
-              ";  // texels of a marched member's numbers")]
-         [])
-     (fill "shaders/pipeline/field.glsl"
-           {:marched (if marched?
-                         (fill "shaders/pipeline/field-primitives.glsl"
-                               {:kinds (icollect [k name (ipairs marched)]
-                                         (let [desc (primitives.lookup name)
-                                               call (.. "return " desc.glsl-name "(l, " (marched-args desc) ");")]
-                                           (if (= k (length marched)) [call]
-                                               [(.. "if (kind == " k ") {") (.. "    " call) "}"])))})
-                         [])
-            :member-distance (if marched?
-                                 ["return b.x < 0.0 ? fieldMarchedDistance(q, a, int(-b.x), int(b.w))"
-                                  "                  : sdFieldShape(q, a, b.xyz);"]
-                                 ["return sdFieldShape(q, a, b.xyz);"])
-            :entry (if (not marched?) [(.. "t = min(t, " closed ");")]
-                       closed [(.. "vec4 b = " record-b ";")
-                               (.. "t = min(t, b.x < 0.0 ? " march)
-                               (.. "                      : " closed ");")]
-                       [(.. "vec4 b = " record-b ";")
-                        (.. "t = min(t, " march ");")])})]))
+(fn shader-hooks [plan part]
+  ;; The tape objects' strategies' shader parts `part` (src/sdf/strategies.fnl's
+  ;; :shader), each a function of what it needs but plan and object (given here):
+  ;; :functions (fn [defined]) -> sections, :gradients (fn [defined]) -> lines or
+  ;; nil, :sections (fn []) -> a section, with the chunk system's fill.
+  (icollect [_ o (ipairs plan.tape.objects)]
+    (case (?. (strategies.of o) :shader part)
+      f (fn [...] (f plan o fill ...)))))
 
 (fn body-lines [cx plan]
   (let [view plan.view
@@ -516,29 +457,29 @@ hit before the view, so that form keeps the march before the loop."
       (when plan.grids
         (table.insert sections (fill "shaders/pipeline/grid.glsl" {})))
       (table.insert sections (emit-glsl.functions plan.tape defined))
-      ;; A field's spheres and boxes are round boxes (shaders/pipeline/field.glsl);
-      ;; its marched members call their primitives.
-      (when plan.field
-        (each [_ desc (ipairs (. (field-object plan) :descs))]
-          (when (not (. defined desc.glsl-name))
-            (tset defined desc.glsl-name true)
-            (table.insert sections (emit-glsl.text-lines desc.glsl)))))
-      ;; Exact normals take every leaf's gradient; planesHit, the half-spaces'.
-      (when (or plan.field (and normals? (object-normals? plan)) plan.bounds)
-        (let [normals? (and normals? (object-normals? plan))
-              gradients (emit-glsl.gradient-functions
-                         plan.tape #(or normals? (and (not= nil plan.bounds) $.half-space?))
-                         defined)
-              box (primitives.lookup :box)]
-          (when (and plan.field (not (. defined "gradBox")))
-            (tset defined "gradBox" true)
-            (when (> (length gradients) 0) (table.insert gradients ""))
-            (flatten-into gradients "" (emit-glsl.text-lines box.gradient-glsl)))
-          (table.insert sections gradients))))
-    ;; The hit test, before the field's marched members take it.
+      ;; What a strategy's own functions need (a field's marched members call their
+      ;; primitives).
+      (each [_ f (ipairs (shader-hooks plan :functions))]
+        (each [_ section (ipairs (f defined))]
+          (table.insert sections section)))
+      ;; Exact normals take every leaf's gradient; planesHit, the half-spaces'; then
+      ;; what a strategy's exact normals call (a field's, the box's).
+      (let [hooks (shader-hooks plan :gradients)]
+        (when (or (> (length hooks) 0) (and normals? (object-normals? plan)) plan.bounds)
+          (let [normals? (and normals? (object-normals? plan))
+                gradients (emit-glsl.gradient-functions
+                           plan.tape #(or normals? (and (not= nil plan.bounds) $.half-space?))
+                           defined)]
+            (each [_ f (ipairs hooks)]
+              (case (f defined)
+                lines (do (when (> (length gradients) 0) (table.insert gradients ""))
+                          (flatten-into gradients "" lines))))
+            (table.insert sections gradients)))))
+    ;; The hit test, before a field's marched members take it; then a strategy's own
+    ;; functions (a field's walk, shaders/pipeline/field.glsl).
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
-    (when plan.field
-      (table.insert sections (field-lines plan)))
+    (each [_ f (ipairs (shader-hooks plan :sections))]
+      (table.insert sections (f)))
     (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms cx plan)}))
     ;; mapColor only where the view has a use for colours.
     (when colors?

@@ -9,6 +9,7 @@
 (local features (require :src.render.features))
 (local grid (require :src.sdf.grid))
 (local uniforms (require :src.render.uniforms))
+(local strategies (require :src.sdf.strategies))
 
 (local views [:shaded :normals :glow :heat])
 
@@ -165,21 +166,21 @@ the copies, flower 193 against 221, gallery and the seed alike)."
     options))
 
 (fn grids-of [tape]
-  "The grids of `tape`'s instance groups (src/sdf/grid.fnl): one for each group of at
-least grid.min-members members that all have a box (finite, not a half-space), or nil
-when none has. Marks those groups (:grid, their number from 0) and, since the bank
-then lives in a texture, every group (:texture?). Returns {:list [{:id :grid}]
+  "The grids of `tape`'s instance groups (src/sdf/grid.fnl): one for each object whose
+strategy's :grid-boxes gives boxes (a group of at least grid.min-members members that
+all have a box: finite, not a half-space), or nil when none does. Those objects mark
+themselves (their number from 0) and, since the bank then lives in a texture, every
+object whose strategy reads the bank is told (:bank-in-texture!). Returns {:list [{:id :grid}]
 :anchor (the first grid's low corner: the bank's rows are about it) :textures}, or
 nil and a message when a texture would not fit."
   (let [list []
         all []]
+    ;; The objects a strategy grids (its :grid-boxes: an instance group's members).
     (each [_ o (ipairs tape.objects)]
-      (when (and o.instances (>= o.instances.count grid.min-members) (not o.half-space?))
-        (let [boxes (icollect [_ info (ipairs o.infos)] (when (not info.large?) info.box))]
-          (when (= (length boxes) o.instances.count)
-            (set o.instances.grid (length list))
-            (each [_ b (ipairs boxes)] (table.insert all b))
-            (table.insert list {:id o.id : boxes :layout o.instances})))))
+      (case (?. (strategies.of o) :grid-boxes)
+        grid-boxes (case (grid-boxes o (length list))
+                     (boxes layout) (do (each [_ b (ipairs boxes)] (table.insert all b))
+                                        (table.insert list {:id o.id : boxes : layout})))))
     ;; One frame for every grid: a ray crosses one set of walls.
     (let [f (when (> (length list) 0) (grid.frame all))]
       (each [_ e (ipairs list)]
@@ -201,7 +202,8 @@ nil and a message when a texture would not fit."
     (when (> (length list) 0)
       (set tape.instances.texture? true)
       (each [_ o (ipairs tape.objects)]
-        (when o.instances (set o.instances.texture? true)))
+        (case (?. (strategies.of o) :bank-in-texture!)
+          f (f o)))
       (let [anchor (. list 1 :grid :lo)]
         (case (grid.textures (icollect [_ e (ipairs list)] e.grid)
                              (uniforms.tape-values tape.instances anchor) anchor

@@ -5,7 +5,7 @@
 (local camera (require :src.render.camera))
 (local large-sphere (require :src.sdf.large-sphere))
 (local bounds (require :src.render.bounds))
-(local field (require :src.render.field))
+(local strategies (require :src.sdf.strategies))
 (local features (require :src.render.features))
 
 (fn hit-threshold [scene plan cam height]
@@ -88,29 +88,6 @@ centre's row and the camera."
       (append! out ((. (features.lookup name) :uniforms) lighting cam-pos)))
     out))
 
-(fn field-uniforms [fd cam-pos]
-  "A field's uniforms: its grid, the low corner camera-relative (in double), and its
-textures (:type :texture, {:width :height :data}; the same tables every frame, so a
-backend uploads them once). A field of spheres walks one more texture (:walk?)."
-  (let [tex (field.textures fd)]
-    (doto [{:name "uFieldOrigin" :type :vec3 :values (relative fd.lo cam-pos)}
-           {:name "uFieldSize" :type :vec3 :values fd.size}
-           {:name "uFieldCell" :type :vec3 :values fd.cell}
-           {:name "uFieldDims" :type :vec3 :values fd.dims}
-           {:name "uFieldReach" :type :float :values [fd.reach]}
-           {:name "uFieldCrossings" :type :int :values [fd.crossings]}
-           ;; fieldRead's reciprocal row counts (texture widths are field.texture-width).
-           {:name "uFieldRows" :type :vec4
-            :values (icollect [_ k (ipairs [:cells :records :objects :walk])]
-                      (let [t (. tex k)] (if t (/ 1 t.height) 0)))}
-           {:name "uFieldCells" :type :texture :texture tex.cells}
-           {:name "uFieldRecords" :type :texture :texture tex.records}
-           {:name "uFieldObjects" :type :texture :texture tex.objects}]
-      (append! (if fd.walk?
-                   [{:name "uFieldTurns" :type :int :values [fd.turns]}
-                    {:name "uFieldWalk" :type :texture :texture tex.walk}]
-                   [])))))
-
 (fn grid-uniforms [grids cam-pos]
   "The uniforms of a plan's grids (src/sdf/grid.fnl, src/render/plan.fnl's grids-of):
 per grid its low corner about the anchor, reach, cell, first cell and cells along
@@ -165,8 +142,10 @@ by name. Booleans are sent as 0 or 1 with :type :bool. A field's textures come a
       (table.insert out {:name "uGlow" :type :bool :values [(if render.glow 1 0)]}))
     (when plan.lighting
       (append! out (lighting-uniforms scene.lighting plan cam.pos)))
-    (when plan.field
-      (append! out (field-uniforms plan.field cam.pos)))
+    ;; A strategy's own (a field's grid and textures).
+    (each [_ o (ipairs plan.tape.objects)]
+      (case (. (strategies.of o) :uniforms)
+        f (append! out (f plan o cam.pos))))
     (when plan.grids
       (append! out (grid-uniforms plan.grids cam.pos)))
     (each [_ [name bank] (ipairs [["uTape" plan.tape] ["uInstances" plan.tape.instances]])]

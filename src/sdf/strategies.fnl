@@ -33,6 +33,17 @@
 ;;              after its objects (src/render/bounds.fnl)
 ;;   :run       (fn [plan o run]) fills the CPU reference's run of its objects
 ;;              ({:first :last} numbers in plan.objects) with what its queries need
+;;   :uniforms  optional (fn [plan o cam-pos]) -> its own uniforms (src/render/uniforms.fnl)
+;;   :shader    optional parts of the shader of its own (src/render/codegen.fnl), each
+;;              given the plan, the object and the chunk system's fill: :functions (fn
+;;              [plan o fill defined]) -> sections of function definitions (those not
+;;              yet `defined`, added to it); :gradients (the same) -> lines of the
+;;              gradients its exact normals call, or nil; :sections (fn [plan o fill])
+;;              -> a section after the hit test
+;;   :grid-boxes optional (fn [o number]) -> the boxes of its objects and its bank's
+;;              layout ({:base :stride}) when a grid is to hold them (then it marks
+;;              itself grid `number`, from 0), or nil (src/render/plan.fnl's grids-of)
+;;   :bank-in-texture! optional (fn [o]): the instance bank is read from a texture
 ;;   :reference {:min (fn [run d x y z skip tape-distance draw ?dx ?dy ?dz]) -> d
 ;;              lowered by its objects but `skip`; :color (fn [run x y z d best r g b
 ;;              mirror rough emit tape-distance tape-material modern?]) -> the same

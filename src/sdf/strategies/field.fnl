@@ -8,7 +8,8 @@
 (local field (require :src.render.field))
 (local lower (require :src.sdf.lower))
 (local runs (require :src.reference.distance))
-(local box-gradient (. ((. (require :src.sdf.primitives) :lookup) :box) :gradient))
+(local primitives (require :src.sdf.primitives))
+(local box-gradient (. (primitives.lookup :box) :gradient))
 
 (fn field-number [expr first]
   ;; A member's number `expr` (from 0) as an object's number.
@@ -72,6 +73,111 @@
                         :gradient (if (not exact?) false
                                       (fn [x y z] (box-gradient (- x cx) (- y cy) (- z cz) hx hy hz)))))))))
 
+(fn marched-args [desc]
+  ;; The GLSL arguments of marched primitive `desc` after the point, read from its
+  ;; packed numbers in the vectors u and v (field-primitives.glsl's fieldKindDistance).
+  (let [component (fn [i] (.. (if (< i 4) "u." "v.") (string.sub "xyzw" (+ 1 (% i 4)) (+ 1 (% i 4)))))
+        out []]
+    (var at 0)
+    (each [_ a (ipairs desc.args)]
+      (let [n (. primitives.glsl-types a.type)
+            parts (fcollect [i at (+ at n -1)] (component i))]
+        (table.insert out
+                      (if (= n 1) (. parts 1)
+                          ;; (a swizzle when the components lie in one vector)
+                          (= (math.floor (/ at 4)) (math.floor (/ (+ at n -1) 4)))
+                          (.. (string.sub (. parts 1) 1 2)
+                              (table.concat (icollect [_ p (ipairs parts)] (string.sub p 3))))
+                          (.. a.type "(" (table.concat parts ", ") ")")))
+        (set at (+ at n))))
+    (table.concat out ", ")))
+
+(fn field-lines [plan fill]
+  ;; The field's functions (shaders/pipeline/field.glsl, filled by the chunk system's
+  ;; `fill`) with the code of the kinds it holds, and its marched members'
+  ;; (field-primitives.glsl) when it has some.
+  (let [{: spheres? : boxes? : marched} plan.field.kinds
+        marched? (> (length marched) 0)
+        record-b "fieldRead(uFieldRecords, uFieldRows.y, r + 1)"
+        box (.. "fieldBoxEntry(q0, inv, a, " (if marched? "b" record-b) ".xyz)")
+        closed (if (and spheres? boxes?) (.. "a.w > 0.0 ? fieldSphereEntry(q0, rd, a) : " box)
+                   spheres? "fieldSphereEntry(q0, rd, a)"
+                   boxes? box)
+        march "fieldMarchedEntry(q0, rd, a, int(-b.x), int(b.w), t0)"]
+    [(.. "const bool kFieldOthers = " (tostring (> plan.bounds.count 0))
+         ";  // finite objects beside the field (mapFinite)")
+     (string.format "const float kFieldTiny = %.6f;  // a ray direction's smallest component"
+                    field.tiny)
+     (.. "const int kFieldObjectTexels = " (field.object-texels plan.field)
+         ";  // texels per object in uFieldObjects")
+     (if marched?
+         [(.. "const int kFieldMarchTurns = " field.marched-turns
+              ";  // steps a ray may take in a marched member")
+          (.. "const int kFieldArgTexels = " (field.arg-texels plan.field)
+              ";  // texels of a marched member's numbers")]
+         [])
+     (fill "shaders/pipeline/field.glsl"
+           {:marched (if marched?
+                         (fill "shaders/pipeline/field-primitives.glsl"
+                               {:kinds (icollect [k name (ipairs marched)]
+                                         (let [desc (primitives.lookup name)
+                                               call (.. "return " desc.glsl-name "(l, " (marched-args desc) ");")]
+                                           (if (= k (length marched)) [call]
+                                               [(.. "if (kind == " k ") {") (.. "    " call) "}"])))})
+                         [])
+            :member-distance (if marched?
+                                 ["return b.x < 0.0 ? fieldMarchedDistance(q, a, int(-b.x), int(b.w))"
+                                  "                  : sdFieldShape(q, a, b.xyz);"]
+                                 ["return sdFieldShape(q, a, b.xyz);"])
+            :entry (if (not marched?) [(.. "t = min(t, " closed ");")]
+                       closed [(.. "vec4 b = " record-b ";")
+                               (.. "t = min(t, b.x < 0.0 ? " march)
+                               (.. "                      : " closed ");")]
+                       [(.. "vec4 b = " record-b ";")
+                        (.. "t = min(t, " march ");")])})]))
+
+(fn shader-functions [_ o _ defined]
+  ;; Its spheres and boxes are round boxes (shaders/pipeline/field.glsl); its marched
+  ;; members call their primitives: each definition not yet `defined`.
+  (let [out []]
+    (each [_ desc (ipairs o.field.descs)]
+      (when (not (. defined desc.glsl-name))
+        (tset defined desc.glsl-name true)
+        (table.insert out (glsl.text-lines desc.glsl))))
+    out))
+
+(fn shader-gradients [_ _ _ defined]
+  ;; fieldNormal takes the box's gradient.
+  (when (not (. defined "gradBox"))
+    (tset defined "gradBox" true)
+    (glsl.text-lines (. (primitives.lookup :box) :gradient-glsl))))
+
+(fn field-uniforms [plan _ cam-pos]
+  ;; Its grid, the low corner camera-relative (in double), and its textures (:type
+  ;; :texture, {:width :height :data}; the same tables every frame, so a backend
+  ;; uploads them once). A field of spheres walks one more texture (:walk?).
+  (let [fd plan.field
+        tex (field.textures fd)
+        [x y z] fd.lo
+        [cx cy cz] cam-pos]
+    (local out [{:name "uFieldOrigin" :type :vec3 :values [(- x cx) (- y cy) (- z cz)]}
+                {:name "uFieldSize" :type :vec3 :values fd.size}
+                {:name "uFieldCell" :type :vec3 :values fd.cell}
+                {:name "uFieldDims" :type :vec3 :values fd.dims}
+                {:name "uFieldReach" :type :float :values [fd.reach]}
+                {:name "uFieldCrossings" :type :int :values [fd.crossings]}
+                ;; fieldRead's reciprocal row counts (texture widths are field.texture-width).
+                {:name "uFieldRows" :type :vec4
+                 :values (icollect [_ k (ipairs [:cells :records :objects :walk])]
+                           (let [t (. tex k)] (if t (/ 1 t.height) 0)))}
+                {:name "uFieldCells" :type :texture :texture tex.cells}
+                {:name "uFieldRecords" :type :texture :texture tex.records}
+                {:name "uFieldObjects" :type :texture :texture tex.objects}])
+    (when fd.walk?
+      (table.insert out {:name "uFieldTurns" :type :int :values [fd.turns]})
+      (table.insert out {:name "uFieldWalk" :type :texture :texture tex.walk}))
+    out))
+
 (local black [0 0 0])
 
 (fn field-min [r d x y z skip]
@@ -122,4 +228,7 @@
  :lua (fn [tape o what _ into] (evaluators tape o what into))
  :spheres (fn [_ o at _] (+ at o.field.count))
  :run (fn [plan _ run] (doto run (tset :field plan.field)))
+ :uniforms field-uniforms
+ :shader {:functions shader-functions :gradients shader-gradients
+          :sections (fn [plan _ fill] (field-lines plan fill))}
  :reference {:min field-min :color field-color :near runs.each-near}}

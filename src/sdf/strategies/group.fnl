@@ -9,6 +9,7 @@
 (local emit-lua (require :src.sdf.emit-lua))
 (local bounds (require :src.render.bounds))
 (local runs (require :src.reference.distance))
+(local grid (require :src.sdf.grid))
 
 (fn group-comment [o]
   (glsl.object-comment o (.. " and " (- o.instances.count 1) " more like it")))
@@ -114,4 +115,14 @@
                                             false)))))
               (+ at n)))
  :run (fn [plan o run] (doto run (tset :grid (grid-of plan o))))
+ ;; A grid (src/render/plan.fnl's grids-of) for a group of grid.min-members or more
+ ;; whose members all have a box: their boxes and the bank's layout, the group marked
+ ;; as grid `number`; then its bank is read from a texture.
+ :grid-boxes (fn [o number]
+               (when (and (>= o.instances.count grid.min-members) (not o.half-space?))
+                 (let [boxes (icollect [_ info (ipairs o.infos)] (when (not info.large?) info.box))]
+                   (when (= (length boxes) o.instances.count)
+                     (set o.instances.grid number)
+                     (values boxes o.instances)))))
+ :bank-in-texture! (fn [o] (set o.instances.texture? true))
  :reference {:min runs.grid-min :color runs.grid-color :near runs.grid-near}}
