@@ -9,6 +9,7 @@
 (local load (require :src.scene.load))
 (local plan-mod (require :src.render.plan))
 (local emit-lua (require :src.sdf.emit-lua))
+(local operations (require :src.sdf.operations))
 (local oracles (require :test.support.oracles))
 (local {: lcg : gradient : surface-samples : nearest : outside-points}
   (require :test.support.fields))
@@ -35,108 +36,104 @@ its bounding box's distance, test/far_field_spec.fnl), unless `?far-field?`."
 
 (fn clamp [v lo hi] (max lo (min hi v)))
 
-;; name, node, oracle (fn [x y z]) -> d, sampling half extents
+;; Each operation's example nodes (its descriptor's :examples) by kind.
+(local examples
+  (collect [_ d (ipairs operations.all)]
+    (values d.kind (icollect [_ e (ipairs (or d.examples []))] e))))
+
+(fn example [name]
+  ;; The node of the example called `name`.
+  (accumulate [found nil _ es (pairs examples)]
+    (or found (accumulate [f nil _ e (ipairs es)] (or f (when (= e.name name) e.node))))))
+
+;; name, node, oracle (fn [x y z]) -> d (and for a node no operation's example has,
+;; the sampling half extents of its promises)
 (local cases
-  [[:translate "{:kind :translate :offset [1 2 3] :children [{:kind :sphere :radius 1}]}"
-    #(sphere $1 $2 $3 [1 2 3] 1) [2.5 3.5 4.5]]
-   [:rotate-angles "{:kind :rotate :angles [0 0 90] :children [{:kind :box :size [2 1 1]}]}"
-    #(box $1 $2 $3 [0 0 0] [0.5 1 0.5]) [2 2 2]]
-   [:rotate-axis "{:kind :rotate :axis [0 0 2] :angle 90 :children [{:kind :box :size [2 1 1]}]}"
-    #(box $1 $2 $3 [0 0 0] [0.5 1 0.5]) [2 2 2]]
-   [:scale "{:kind :scale :factor 2 :children [{:kind :box :size [1 2 1]}]}"
-    #(box $1 $2 $3 [0 0 0] [1 2 1]) [2 3 2]]
+  [[:translate (example :translate)
+    #(sphere $1 $2 $3 [1 2 3] 1)]
+   [:rotate-angles (example :rotate-angles)
+    #(box $1 $2 $3 [0 0 0] [0.5 1 0.5])]
+   [:rotate-axis (example :rotate-axis)
+    #(box $1 $2 $3 [0 0 0] [0.5 1 0.5])]
+   [:scale (example :scale)
+    #(box $1 $2 $3 [0 0 0] [1 2 1])]
    [:shorthand "{:kind :box :size [2 1 1] :pos [1 0 0] :rotate [0 0 90] :scale 2}"
     #(box $1 $2 $3 [1 0 0] [1 2 1]) [3 3 2]]
-   [:stretch "{:kind :stretch :factors [2 1 1] :children [{:kind :sphere :radius 1}]}"
-    #(* (sphere (/ $1 2) $2 $3 [0 0 0] 1) 1) [3 2 2]]
-   [:mirror "{:kind :mirror :normal [1 0 0] :children [{:kind :sphere :radius 1 :pos [2 0 0]}]}"
-    #(min (sphere $1 $2 $3 [2 0 0] 1) (sphere $1 $2 $3 [-2 0 0] 1)) [4 2 2]]
-   [:elongate "{:kind :elongate :size [2 0 0] :children [{:kind :sphere :radius 1}]}"
-    #(- (sqrt (+ (^ (- $1 (clamp $1 -1 1)) 2) (* $2 $2) (* $3 $3))) 1) [3 2 2]]
-   [:twist "{:kind :twist :angle 30 :children [{:kind :box :size [1 1 3]}]}"
+   [:stretch (example :stretch)
+    #(* (sphere (/ $1 2) $2 $3 [0 0 0] 1) 1)]
+   [:mirror (example :mirror)
+    #(min (sphere $1 $2 $3 [2 0 0] 1) (sphere $1 $2 $3 [-2 0 0] 1))]
+   [:elongate (example :elongate)
+    #(- (sqrt (+ (^ (- $1 (clamp $1 -1 1)) 2) (* $2 $2) (* $3 $3))) 1)]
+   [:twist (example :twist)
     (let [k (/ pi 6) rho0 (sqrt 0.5)]
       (fn [x y z]
         (let [c (cos (* k z)) s (sin (* k z))
               v (* k (max rho0 (sqrt (+ (* x x) (* y y)))))]
           (/ (box (+ (* c x) (* s y)) (- (* c y) (* s x)) z [0 0 0] [0.5 0.5 1.5])
-             (* 0.5 (+ v (sqrt (+ (* v v) 4))))))))
-    [1.5 1.5 2.5]]
-   [:bend "{:kind :bend :angle 20 :children [{:kind :box :size [3 1 0.5]}]}"
+             (* 0.5 (+ v (sqrt (+ (* v v) 4))))))))]
+   [:bend (example :bend)
     (let [k (/ pi 9) rho0 (sqrt (+ 2.25 0.0625))]
       (fn [x y z]
         (let [c (cos (* k x)) s (sin (* k x))]
           (/ (box (- (* c x) (* s z)) y (+ (* s x) (* c z)) [0 0 0] [1.5 0.5 0.25])
-             (+ 1 (* k (max rho0 (sqrt (+ (* x x) (* z z))))))))))
-    [2.5 1.5 2]]
-   [:repeat "{:kind :repeat :period [3 0 0] :children [{:kind :sphere :radius 0.5 :pos [0.8 0 0]}]}"
+             (+ 1 (* k (max rho0 (sqrt (+ (* x x) (* z z))))))))))]
+   [:repeat (example :repeat)
     (fn [x y z]
       (var d math.huge)
       (for [k -60 60] (set d (min d (sphere x y z [(+ 0.8 (* 3 k)) 0 0] 0.5))))
-      d)
-    [4 1.5 1.5]]
-   [:repeat-limited "{:kind :repeat :period [3 3 0] :count [2 1 0] :children [{:kind :box :size [1 1 1]}]}"
+      d)]
+   [:repeat-limited (example :repeat-limited)
     (fn [x y z]
       (var d math.huge)
       (for [i -2 2] (for [j -1 1] (set d (min d (box x y z [(* 3 i) (* 3 j) 0] [0.5 0.5 0.5])))))
-      d)
-    [8.5 5.5 1.5]]
-   [:polar "{:kind :polar :count 6 :children [{:kind :sphere :radius 0.5 :pos [2 0.3 0]}]}"
+      d)]
+   [:polar (example :polar)
     (fn [x y z]
       (var d math.huge)
       (for [i 0 5]
         (let [a (* i (/ pi 3)) c (cos a) s (sin a)]
           (set d (min d (sphere x y z [(- (* c 2) (* s 0.3)) (+ (* s 2) (* c 0.3)) 0] 0.5)))))
-      d)
-    [3 3 1.5]]
-   [:round "{:kind :round :radius 0.2 :children [{:kind :box :size [1 1 1]}]}"
-    #(- (box $1 $2 $3 [0 0 0] [0.5 0.5 0.5]) 0.2) [1.5 1.5 1.5]]
-   [:onion "{:kind :onion :thickness 0.1 :children [{:kind :onion :thickness 0.2 :children [{:kind :sphere :radius 1}]}]}"
-    #(- (abs (- (abs (sphere $1 $2 $3 [0 0 0] 1)) 0.2)) 0.1) [2 2 2]]
-   [:displace "{:kind :displace :amplitude 0.1 :frequency 5 :children [{:kind :sphere :radius 1}]}"
+      d)]
+   [:round (example :round)
+    #(- (box $1 $2 $3 [0 0 0] [0.5 0.5 0.5]) 0.2)]
+   [:onion (example :onion)
+    #(- (abs (- (abs (sphere $1 $2 $3 [0 0 0] 1)) 0.2)) 0.1)]
+   [:displace (example :displace)
     (let [L (+ 1 (* 0.1 5 (sqrt 3)))]
-      #(/ (+ (sphere $1 $2 $3 [0 0 0] 1) (* 0.1 (sin (* 5 $1)) (sin (* 5 $2)) (sin (* 5 $3)))) L))
-    [2 2 2]]
-   [:union "{:kind :union :children [{:kind :sphere :radius 1 :pos [-2 0 0]} {:kind :box :size [1 1 1] :pos [2 0 0]} {:kind :sphere :radius 0.5 :pos [0 2 0]}]}"
-    #(min (sphere $1 $2 $3 [-2 0 0] 1) (box $1 $2 $3 [2 0 0] [0.5 0.5 0.5]) (sphere $1 $2 $3 [0 2 0] 0.5))
-    [3.5 3 2]]
-   [:intersection "{:kind :intersection :children [{:kind :sphere :radius 1} {:kind :box :size [1.5 1.5 1.5]}]}"
-    #(max (sphere $1 $2 $3 [0 0 0] 1) (box $1 $2 $3 [0 0 0] [0.75 0.75 0.75])) [1.5 1.5 1.5]]
-   [:subtraction "{:kind :subtraction :children [{:kind :box :size [2 2 2]} {:kind :sphere :radius 1.2} {:kind :sphere :radius 0.5 :pos [1 1 1]}]}"
-    #(max (box $1 $2 $3 [0 0 0] [1 1 1]) (- (sphere $1 $2 $3 [0 0 0] 1.2)) (- (sphere $1 $2 $3 [1 1 1] 0.5)))
-    [1.5 1.5 1.5]]
-   [:xor "{:kind :xor :children [{:kind :sphere :radius 1} {:kind :sphere :radius 1 :pos [1 0 0]}]}"
-    #(let [a (sphere $1 $2 $3 [0 0 0] 1) b (sphere $1 $2 $3 [1 0 0] 1)] (max (min a b) (- (max a b))))
-    [2.5 1.5 1.5]]
-   [:smooth-union "{:kind :smooth-union :radius 0.5 :children [{:kind :sphere :radius 1 :pos [-0.8 0 0]} {:kind :sphere :radius 1 :pos [0.8 0 0]}]}"
+      #(/ (+ (sphere $1 $2 $3 [0 0 0] 1) (* 0.1 (sin (* 5 $1)) (sin (* 5 $2)) (sin (* 5 $3)))) L))]
+   [:union (example :union)
+    #(min (sphere $1 $2 $3 [-2 0 0] 1) (box $1 $2 $3 [2 0 0] [0.5 0.5 0.5]) (sphere $1 $2 $3 [0 2 0] 0.5))]
+   [:intersection (example :intersection)
+    #(max (sphere $1 $2 $3 [0 0 0] 1) (box $1 $2 $3 [0 0 0] [0.75 0.75 0.75]))]
+   [:subtraction (example :subtraction)
+    #(max (box $1 $2 $3 [0 0 0] [1 1 1]) (- (sphere $1 $2 $3 [0 0 0] 1.2)) (- (sphere $1 $2 $3 [1 1 1] 0.5)))]
+   [:xor (example :xor)
+    #(let [a (sphere $1 $2 $3 [0 0 0] 1) b (sphere $1 $2 $3 [1 0 0] 1)] (max (min a b) (- (max a b))))]
+   [:smooth-union (example :smooth-union)
     #(let [a (sphere $1 $2 $3 [-0.8 0 0] 1) b (sphere $1 $2 $3 [0.8 0 0] 1)
            h (clamp (+ 0.5 (/ (- b a) 1)) 0 1)]
        ;; Written as the classic form: min(a, b) - r/4 * s^2 with s = max(r - |a - b|, 0) / r.
        (let [s (/ (max (- 0.5 (abs (- a b))) 0) 0.5)]
-         (- (min a b) (* 0.125 s s))))
-    [2.5 1.5 1.5]]
-   [:smooth-union-exp "{:kind :smooth-union :kernel :exp :radius 0.2 :children [{:kind :sphere :radius 1 :pos [-0.8 0 0]} {:kind :sphere :radius 1 :pos [0.8 0 0]}]}"
+         (- (min a b) (* 0.125 s s))))]
+   [:smooth-union-exp (example :smooth-union-exp)
     #(let [a (sphere $1 $2 $3 [-0.8 0 0] 1) b (sphere $1 $2 $3 [0.8 0 0] 1)]
-       (* -0.2 (log (+ (exp (/ a -0.2)) (exp (/ b -0.2))))))
-    [2.5 1.5 1.5]]
-   [:smooth-intersection "{:kind :smooth-intersection :radius 0.3 :children [{:kind :sphere :radius 1} {:kind :box :size [1.5 1.5 1.5]}]}"
+       (* -0.2 (log (+ (exp (/ a -0.2)) (exp (/ b -0.2))))))]
+   [:smooth-intersection (example :smooth-intersection)
     #(let [a (sphere $1 $2 $3 [0 0 0] 1) b (box $1 $2 $3 [0 0 0] [0.75 0.75 0.75])
            s (/ (max (- 0.3 (abs (- a b))) 0) 0.3)]
-       (+ (max a b) (* 0.075 s s)))
-    [1.5 1.5 1.5]]
-   [:smooth-subtraction "{:kind :smooth-subtraction :radius 0.3 :children [{:kind :box :size [2 2 2]} {:kind :sphere :radius 1.2}]}"
+       (+ (max a b) (* 0.075 s s)))]
+   [:smooth-subtraction (example :smooth-subtraction)
     #(let [a (box $1 $2 $3 [0 0 0] [1 1 1]) b (- (sphere $1 $2 $3 [0 0 0] 1.2))
            s (/ (max (- 0.3 (abs (- a b))) 0) 0.3)]
-       (+ (max a b) (* 0.075 s s)))
-    [1.5 1.5 1.5]]
-   [:chamfer-union "{:kind :chamfer-union :radius 0.4 :children [{:kind :box :size [3 3 1]} {:kind :box :size [1 1 3] :pos [0 0 1]}]}"
+       (+ (max a b) (* 0.075 s s)))]
+   [:chamfer-union (example :chamfer-union)
     #(let [a (box $1 $2 $3 [0 0 0] [1.5 1.5 0.5]) b (box $1 $2 $3 [0 0 1] [0.5 0.5 1.5])]
-       (min a b (* 0.5 (- (+ a b) 0.4))))
-    [2 2 3]]
-   [:stairs-union "{:kind :stairs-union :radius 0.6 :steps 3 :children [{:kind :box :size [3 3 1]} {:kind :box :size [1 1 3] :pos [0 0 1]}]}"
+       (min a b (* 0.5 (- (+ a b) 0.4))))]
+   [:stairs-union (example :stairs-union)
     ;; The staircase's corner points: the union with every step's quarter plane.
     #(let [a (box $1 $2 $3 [0 0 0] [1.5 1.5 0.5]) b (box $1 $2 $3 [0 0 1] [0.5 0.5 1.5])]
-       (min a b (max (- a 0.2) (- b 0.6)) (max (- a 0.4) (- b 0.4)) (max (- a 0.6) (- b 0.2))))
-    [2 2 3]]])
+       (min a b (max (- a 0.2) (- b 0.6)) (max (- a 0.4) (- b 0.4)) (max (- a 0.6) (- b 0.2))))]])
 
 (describe "operations against their oracles"
   (fn []
@@ -155,10 +152,26 @@ its bounding box's distance, test/far_field_spec.fnl), unless `?far-field?`."
                                 (string.format "%s at (%g %g %g): tape %.12g, oracle %.12g"
                                                name x y z got want))))))))))
 
+(fn promise-cases []
+  ;; [name node extent]: the cases with their own extent, then every operation's
+  ;; examples.
+  (let [out (icollect [_ [name text _ extent] (ipairs cases)]
+              (when extent [name text extent]))]
+    (each [_ d (ipairs operations.all)]
+      (each [_ e (ipairs (. examples d.kind))]
+        (table.insert out [e.name e.node e.extent])))
+    out))
+
 (describe "operations keep their promises"
   (fn []
-    ;; With the far field, as the marcher sees them.
-    (each [_ [name text _ box-extent] (ipairs cases)]
+    (it "every operation has an example"
+      (fn []
+        (each [_ d (ipairs operations.all)]
+          (assert.is_true (> (length (. examples d.kind)) 0)
+                          (.. d.kind ": no :examples in its descriptor")))))
+    ;; Every operation's examples, and the cases of none (the shorthand), with the far
+    ;; field, as the marcher sees them.
+    (each [_ [name text box-extent] (ipairs (promise-cases))]
       (let [(f _ info) (evaluator text true)]
         (it (.. name " (" info.class ", Lipschitz " info.lipschitz "): changes at most 1 per unit after correction")
           (fn []
