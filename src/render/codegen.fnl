@@ -136,76 +136,45 @@ it gives. The chunk's own text declares both; nothing generated is rewritten."
   ;; See plan.lighting.soft-bounded? in src/render/plan.fnl.
   (= true (?. plan :lighting :soft-bounded?)))
 
-;; A soft shadow ray with bounds: a plane before the light hides it; else it marches
-;; the finite objects only over the span of their bounding spheres grown by the
-;; penumbra width there (softness times the distance, so a sphere q away with radius
-;; r grows by s (q + r) / (1 - s): no farther point of the ray can be darkened by
-;; it); a ray that meets none is lit. From a softness of 0.5 on the whole ray.
-(local soft-span-lines
-  ["if (planesHit(o, l) < reach) {"
-   "    return 0.0;"
-   "}"
-   "vec2 span = softness < 0.5 ? boundsSpanGrown(o, l, softness / (1.0 - softness)) : vec2(0.0, uDrawDist);"
-   "t = max(span.x, 0.0);"
-   "reach = min(reach, span.y);"
-   "if (t >= reach) {"
-   "    return 1.0;"
-   "}"])
+(fn parts [path]
+  "The parts of chunk `path`, split at `// @part NAME` lines: name -> lines (the
+comment lines before the first part are the chunk's own documentation)."
+  (let [out {}]
+    (var current nil)
+    (each [line (: (.. (chunk path) "\n") :gmatch "([^\n]*)\n")]
+      (let [name (line:match "^// @part ([%w%-]+)%s*$")]
+        (if name (do (set current []) (tset out name current))
+            current (table.insert current line))))
+    ;; A blank line that only separates one part from the next is not the part's.
+    (each [_ lines (pairs out)]
+      (while (= (. lines (length lines)) "") (table.remove lines)))
+    out))
+
+(fn fill-part [path name slots]
+  "Lines of part `name` of chunk `path` (see `parts`), slots filled as `fill` does."
+  (let [lines (. (parts path) name)]
+    (assert lines (.. path ": no part " name))
+    (fill-lines path lines slots)))
 
 (fn span-lines [n grown?]
   ;; boundsSpan, and with `grown?` boundsSpanGrown (soft shadows): the same loop over
-  ;; the n bounding spheres, the second growing each.
-  [(if grown?
-       ["// boundsSpan with each sphere of radius r, q from ro, grown by grow * (q + r):"
-        "// a soft shadow's penumbra (see soft-span-lines)."
-        "vec2 boundsSpanGrown(vec3 ro, vec3 rd, float grow) {"]
-       ["// Where the ray is inside some bounding sphere: the first entry and the last exit,"
-        "// or (draw distance, 0) when it meets none. From the point of closest approach, so"
-        "// a far ray passing near a small sphere loses nothing to cancellation."
-        "vec2 boundsSpan(vec3 ro, vec3 rd) {"])
-   "    float enter = uDrawDist;"
-   "    float exit = 0.0;"
-   (if (> n 0)
-       [(.. "    for (int i = 0; i < " n "; i++) {")
-        "        vec3 q = ro - uBounds[i].xyz;"
-        (if grown? ["        float r = uBounds[i].w + grow * (length(q) + uBounds[i].w);"] [])
-        "        float b = dot(q, rd);"
-        "        vec3 a = q - b * rd;"
-        (if grown?
-            "        float disc = r * r - dot(a, a);"
-            "        float disc = uBounds[i].w * uBounds[i].w - dot(a, a);")
-        "        if (disc >= 0.0) {"
-        "            float s = sqrt(disc);"
-        "            if (s - b > 0.0) {"
-        "                enter = min(enter, -b - s);"
-        "                exit = max(exit, s - b);"
-        "            }"
-        "        }"
-        "    }"]
-       [])
-   "    return vec2(enter, min(exit, uDrawDist));"
-   "}"])
+  ;; the n bounding spheres, the second growing each (shaders/pipeline/bounds.glsl).
+  (let [path "shaders/pipeline/bounds.glsl"
+        part (if grown? :span-grown :span)]
+    (fill-part path part {:spheres (if (> n 0) (fill-part path (.. part "-loop") {:count (tostring n)})
+                                       [])})))
 
 (fn bounded-lines [cx plan]
   "mapFinite, planesHit and boundsSpan: what the bounded march reads (see
-src/render/bounds.fnl)."
-  (let [n plan.bounds.count]
-    ["// The finite objects only: the half-spaces are met in closed form by planesHit."
-     "float mapFinite(vec3 p) {"
-     "    float d = uDrawDist;"
-     (doto [] (flatten-into "    " (emit-glsl.distance-terms cx plan.tape marched?)))
-     "    return d;"
-     "}"
+src/render/bounds.fnl and shaders/pipeline/bounds.glsl)."
+  (let [n plan.bounds.count
+        path "shaders/pipeline/bounds.glsl"
+        planes? (accumulate [any? false _ o (ipairs plan.tape.objects)] (or any? o.half-space?))]
+    [(fill-part path :map-finite {:distance-terms (emit-glsl.distance-terms cx plan.tape marched?)})
      ""
-     "// The nearest half-space (a ground plane, solid below) along the ray: 0 from inside"
-     "// it, the draw distance when the ray meets none."
-     "float planesHit(vec3 ro, vec3 rd) {"
-     "    float t = uDrawDist;"
-     (if (accumulate [any? false _ o (ipairs plan.tape.objects)] (or any? o.half-space?))
-         ["    vec3 p = ro;" (doto [] (flatten-into "    " (emit-glsl.plane-terms cx plan.tape)))]
-         [])
-     "    return t;"
-     "}"
+     (fill-part path :planes-hit {:plane-terms (if planes?
+                                                   ["vec3 p = ro;" (emit-glsl.plane-terms cx plan.tape)]
+                                                   [])})
      ""
      (span-lines n false)
      (if (soft-bounded? plan) ["" (span-lines n true)] [])]))
@@ -250,40 +219,15 @@ src/render/bounds.fnl)."
       (table.insert lines (emit-glsl.declare "bool" "uGlow")))
     lines))
 
-(fn parts [path]
-  "The parts of chunk `path`, split at `// @part NAME` lines: name -> lines (the
-comment lines before the first part are the chunk's own documentation)."
-  (let [out {}]
-    (var current nil)
-    (each [line (: (.. (chunk path) "\n") :gmatch "([^\n]*)\n")]
-      (let [name (line:match "^// @part ([%w%-]+)%s*$")]
-        (if name (do (set current []) (tset out name current))
-            current (table.insert current line))))
-    ;; A blank line that only separates one part from the next is not the part's.
-    (each [_ lines (pairs out)]
-      (while (= (. lines (length lines)) "") (table.remove lines)))
-    out))
-
-(fn fill-part [path name slots]
-  "Lines of part `name` of chunk `path` (see `parts`), slots filled as `fill` does."
-  (let [lines (. (parts path) name)]
-    (assert lines (.. path ": no part " name))
-    (fill-lines path lines slots)))
-
 (fn along-lines [cx plan]
   "With grids, the distance a march takes, along its ray rd (mapAlong, or with bounds
 mapFiniteAlong): map's or mapFinite's terms, each grid bounding its unlisted members
 along the ray (see gridCellAlong in shaders/pipeline/grid.glsl)."
   (if plan.grids
       (let [bounded? (not= nil plan.bounds)]
-        ["// What the march steps by: as map (mapFinite with bounds), each grid's unlisted"
-         "// members bounded along the ray rd too."
-         (.. "float " (if bounded? "mapFiniteAlong" "mapAlong") "(vec3 p, vec3 rd) {")
-         "    float d = uDrawDist;"
-         (doto [] (flatten-into "    " (emit-glsl.distance-terms cx plan.tape (when bounded? marched?)
-                                                              true)))
-         "    return d;"
-         "}"])
+        (fill-part "shaders/pipeline/bounds.glsl" :along
+                   {:name (if bounded? "mapFiniteAlong" "mapAlong")
+                    :distance-terms (emit-glsl.distance-terms cx plan.tape (when bounded? marched?) true)}))
       []))
 
 (fn march-map [plan]
@@ -381,7 +325,9 @@ only when the plan has it."
                                            "    return ts < reach ? 0.0 : 1.0;"]
                                           "}"]
                                          [])
-                        :soft-span (if (soft-bounded? plan) soft-span-lines [])
+                        :soft-span (if (soft-bounded? plan)
+                                       (fill-part "shaders/pipeline/bounds.glsl" :soft-span {})
+                                       [])
                         :soft-map (let [read (if (soft-bounded? plan) "mapFinite(o + l * t);" "map(o + l * t);")]
                                     (if plan.tape.estimates?
                                         [(.. "float h = " read) "gEstimate = true;"

@@ -1,0 +1,98 @@
+// What a bounded march reads (src/render/bounds.fnl): the finite objects' distance,
+// the nearest half-space along a ray, and the span of the bounding spheres (uBounds)
+// a ray is inside. codegen picks the parts the plan needs and fills their slots.
+//
+// soft-span is a soft shadow ray's start with bounds (the soft-span slot of its
+// march): a plane before the light hides it; else it marches the finite objects
+// only over the span of their bounding spheres grown by the penumbra width there
+// (softness times the distance, so a sphere q away with radius r grows by
+// s (q + r) / (1 - s): no farther point of the ray can be darkened by it); a ray
+// that meets none is lit. From a softness of 0.5 on, the whole ray.
+// @part map-finite
+// The finite objects only: the half-spaces are met in closed form by planesHit.
+float mapFinite(vec3 p) {
+    float d = uDrawDist;
+    // @slot distance-terms
+    return d;
+}
+
+// @part planes-hit
+// The nearest half-space (a ground plane, solid below) along the ray: 0 from inside
+// it, the draw distance when the ray meets none.
+float planesHit(vec3 ro, vec3 rd) {
+    float t = uDrawDist;
+    // @slot plane-terms
+    return t;
+}
+
+// @part span
+// Where the ray is inside some bounding sphere: the first entry and the last exit,
+// or (draw distance, 0) when it meets none. From the point of closest approach, so
+// a far ray passing near a small sphere loses nothing to cancellation.
+vec2 boundsSpan(vec3 ro, vec3 rd) {
+    float enter = uDrawDist;
+    float exit = 0.0;
+    // @slot spheres
+    return vec2(enter, min(exit, uDrawDist));
+}
+
+// @part span-loop
+for (int i = 0; i < @{count}; i++) {
+    vec3 q = ro - uBounds[i].xyz;
+    float b = dot(q, rd);
+    vec3 a = q - b * rd;
+    float disc = uBounds[i].w * uBounds[i].w - dot(a, a);
+    if (disc >= 0.0) {
+        float s = sqrt(disc);
+        if (s - b > 0.0) {
+            enter = min(enter, -b - s);
+            exit = max(exit, s - b);
+        }
+    }
+}
+
+// @part span-grown
+// boundsSpan with each sphere of radius r, q from ro, grown by grow * (q + r):
+// a soft shadow's penumbra (see soft-span).
+vec2 boundsSpanGrown(vec3 ro, vec3 rd, float grow) {
+    float enter = uDrawDist;
+    float exit = 0.0;
+    // @slot spheres
+    return vec2(enter, min(exit, uDrawDist));
+}
+
+// @part span-grown-loop
+for (int i = 0; i < @{count}; i++) {
+    vec3 q = ro - uBounds[i].xyz;
+    float r = uBounds[i].w + grow * (length(q) + uBounds[i].w);
+    float b = dot(q, rd);
+    vec3 a = q - b * rd;
+    float disc = r * r - dot(a, a);
+    if (disc >= 0.0) {
+        float s = sqrt(disc);
+        if (s - b > 0.0) {
+            enter = min(enter, -b - s);
+            exit = max(exit, s - b);
+        }
+    }
+}
+
+// @part soft-span
+if (planesHit(o, l) < reach) {
+    return 0.0;
+}
+vec2 span = softness < 0.5 ? boundsSpanGrown(o, l, softness / (1.0 - softness)) : vec2(0.0, uDrawDist);
+t = max(span.x, 0.0);
+reach = min(reach, span.y);
+if (t >= reach) {
+    return 1.0;
+}
+
+// @part along
+// What the march steps by: as map (mapFinite with bounds), each grid's unlisted
+// members bounded along the ray rd too.
+float @{name}(vec3 p, vec3 rd) {
+    float d = uDrawDist;
+    // @slot distance-terms
+    return d;
+}
