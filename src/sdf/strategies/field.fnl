@@ -5,6 +5,7 @@
 ;; number of its first. See src/sdf/strategies.fnl for the interface.
 
 (local glsl (require :src.sdf.emit-glsl))
+(local chunks (require :src.render.chunks))
 (local field (require :src.render.field))
 (local lower (require :src.sdf.lower))
 (local runs (require :src.reference.distance))
@@ -25,9 +26,11 @@
     [(.. "if (gObject >= " id " && gObject < " (+ id o.field.count) ") " action "(p, "
          (field-index id) ");")]))
 
+(local chunk "shaders/strategies/field.glsl")
+
 (fn field-minimum [skip]
   ;; The field's part of a minimum, skipping its member `skip` (a GLSL int).
-  ["{" "    int best;" (.. "    d = min(d, fieldMap(p, " skip ", best));") "}"])
+  (chunks.fill-part chunk :minimum {: skip}))
 
 (fn exact? [o]
   ;; Spheres and boxes only: their round boxes have their inner box's normal; with
@@ -207,17 +210,11 @@
         :others (fn [_ o first] (field-minimum (field-index (+ first o.id))))
         ;; (Its members are matte: the mirror amount and material stay.)
         :color (fn [_ o ?first]
-                 ["{"
-                  "    int best;"
-                  "    float di = fieldMap(p, -1, best);"
-                  "    if (di < d) {"
-                  "        d = di;"
-                  "        color = best >= 0 ? fieldColor(best) : vec3(0.0);"
-                  (if ?first
-                      (.. "        gObject = best >= 0 ? " (field-number "best" (+ ?first o.id)) " : -1;")
-                      [])
-                  "    }"
-                  "}"])
+                 (chunks.fill-part chunk :color
+                                   {:object (if ?first
+                                                [(.. "gObject = best >= 0 ? " (field-number "best" (+ ?first o.id))
+                                                     " : -1;")]
+                                                [])}))
         :object (fn [_ o first]
                   ["if (all) {" (glsl.indented (field-minimum "-1")) "}"
                    (field-selected o first "d = fieldObject")])

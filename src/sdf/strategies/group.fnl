@@ -10,6 +10,7 @@
 (local bounds (require :src.render.bounds))
 (local runs (require :src.reference.distance))
 (local grid (require :src.sdf.grid))
+(local chunks (require :src.render.chunks))
 
 (fn group-comment [o]
   (glsl.object-comment o (.. " and " (- o.instances.count 1) " more like it")))
@@ -25,39 +26,25 @@
   ;; A group whose bank is in a texture evaluates its members at pg (emit-glsl's reg).
   (if o.instances.texture? ["vec3 pg = p - uBankOrigin;"] []))
 
+(local chunk "shaders/strategies/group.glsl")
+
 (fn looped [cx o block-fn]
   ;; `(block-fn cx2)`'s lines for each member, after the group's comment: in a loop
-  ;; over its members, read from its bank. A group with a grid loops over the members
-  ;; its cell at pg lists, after folding the lower bound of the others into d (in
+  ;; over its members, read from its bank; a group with a grid over the members its
+  ;; cell at pg lists, after folding the lower bound of the others into d (in
   ;; mapColor too: it lowers d, never the colour, as no surface is nearer than it).
   (let [g o.instances.grid
         block (in-group cx o block-fn (when g "gridStart + k"))]
     [(group-comment o)
      (if g
-         ["{"
-          (glsl.indented [(bank-point o)
-                          "int gridStart;"
-                          "int gridCount;"
-                          (if cx.along?
-                              (.. "float gridBound = gridCellAlong(" g ", pg, rd, gridStart, gridCount);")
-                              (.. "float gridBound = gridCell(" g ", pg, gridStart, gridCount);"))
-                          "d = min(d, gridBound);"
-                          "for (int k = 0; k < gridCount; k++) {"
-                          (glsl.indented [;; A march skips a member it is far from by the
-                                          ;; ray's entry into its bounding sphere (gridSkip).
-                                          (if cx.along?
-                                              [(.. "float gridStep = gridSkip(" g ", gridStart + k, pg, rd);")
-                                               "if (gridStep >= 0.0) {"
-                                               "    d = min(d, gridStep);"
-                                               "    continue;"
-                                               "}"]
-                                              [])
-                                          "int i = gridMember(gridStart + k);"
-                                          block])
-                          "}"])
-          "}"]
-         (let [loop [(.. "for (int i = 0; i < " o.instances.count "; i++) {") (glsl.indented block) "}"]]
-           (if o.instances.texture? ["{" (glsl.indented [(bank-point o) loop]) "}"] loop)))]))
+         (let [names {:grid (tostring g)}]
+           (chunks.fill-part chunk :grid
+                             {:bank-point (bank-point o)
+                              :bound (chunks.fill-part chunk (if cx.along? :bound-along :bound) names)
+                              :skip (if cx.along? (chunks.fill-part chunk :skip-along names) [])
+                              :member block}))
+         (let [loop (chunks.fill-part chunk :loop {:count (tostring o.instances.count) :member block})]
+           (if o.instances.texture? (chunks.fill-part chunk :texture-loop {:loop loop}) loop)))]))
 
 (fn block [cx o first materials? open tail]
   ;; Each member's block in a minimum (glsl.object-body), its number first + id + i.
