@@ -487,6 +487,15 @@ reads only its children's distances."
                                                    (.. "unknown kind " (tostring node.kind)))
                               pin material)))))
 
+(fn each-instruction [code f]
+  "Call `f` on every instruction of `code`, in order, each before those nested in it
+(a repetition's :body, a near repetition's neighbours' :code): the one walk of a
+tape that the lowering's passes share."
+  (each [_ ins (ipairs code)]
+    (f ins)
+    (when ins.body (each-instruction ins.body f))
+    (when ins.near? (each-instruction ins.near?.code f))))
+
 ;; An object's translation T is sent as T - camera, so its point is the camera-relative
 ;; one moved to the object's origin. When that origin is far from what the object draws
 ;; (a plane, unbounded; an object without a placement, whose origin is the world's),
@@ -505,22 +514,21 @@ is a translation or a plane; else nil."
   (let [p (. code 1 :pout)
         found {:translations [] :planes []}]
     (var ok? (= :point (?. code 1 :op)))
-    (fn walk [instructions]
-      (each [_ ins (ipairs instructions)]
-        (when (= ins.pin p)
-          (case [ins.op (?. ins :desc :kind)]
-            [:point :translate] (table.insert found.translations (. ins.args 1 :row))
-            [:prim :plane] (let [[n h] ins.args]
-                             ;; The normal and the height share one row.
-                             (assert (and (= n.row h.row) (= n.offset 0) (= h.offset 3)))
-                             (table.insert found.planes {:row n.row :height h}))
-            ;; The ground form's one vec4 is the same row.
-            [:prim :ground] (let [[nh] ins.args]
-                              (table.insert found.planes {:row nh.row :height nh}))
-            _ (set ok? false)))
-        (when ins.body (walk ins.body))
-        (when ins.near? (walk ins.near?.code))))
-    (when ok? (walk (icollect [i ins (ipairs code)] (when (> i 1) ins))))
+    (when ok?
+      (each-instruction
+       (icollect [i ins (ipairs code)] (when (> i 1) ins))
+       (fn [ins]
+         (when (= ins.pin p)
+           (case [ins.op (?. ins :desc :kind)]
+             [:point :translate] (table.insert found.translations (. ins.args 1 :row))
+             [:prim :plane] (let [[n h] ins.args]
+                              ;; The normal and the height share one row.
+                              (assert (and (= n.row h.row) (= n.offset 0) (= h.offset 3)))
+                              (table.insert found.planes {:row n.row :height h}))
+             ;; The ground form's one vec4 is the same row.
+             [:prim :ground] (let [[nh] ins.args]
+                               (table.insert found.planes {:row nh.row :height nh}))
+             _ (set ok? false))))))
     (when (and ok? (or (> (length found.translations) 0) (> (length found.planes) 0)))
       found)))
 
@@ -597,11 +605,7 @@ is a translation or a plane; else nil."
           ;; readers read the shader's point itself.
           (when unplaced?
             (let [p (. (table.remove code 1) :pout)]
-              (fn rename [instructions]
-                (each [_ ins (ipairs instructions)]
-                  (when (= ins.pin p) (set ins.pin "p0"))
-                  (when ins.body (rename ins.body))))
-              (rename code)
+              (each-instruction code #(when (= $.pin p) (set $.pin "p0")))
               (when guard (set guard.head (- guard.head 1)))
               (table.insert st.key "identity")))))
     (table.insert st.key ";")
@@ -666,16 +670,15 @@ tape's :fold? in `lower`)."
               (tset plane-rows pl.row true)))
         row-values (fn [row n] (fcollect [k 1 n] (. st.rows (+ row 1 (math.floor (/ (- k 1) 4)))
                                                      (+ 1 (% (- k 1) 4)))))]
-    (fn walk [code]
-      (each [_ ins (ipairs code)]
-        (each [_ ref (ipairs (or ins.args []))]
-          (when (not (or (. relative ref.row) (. heights ref)))
-            (set ref.literal (fcollect [k 1 ref.size] (. st.rows (+ ref.row 1) (+ ref.offset k))))))
-        (when (= ins.op :material)
-          (set ins.literal (row-values ins.row (if st.modern? 8 4))))
-        (when ins.body (walk ins.body))
-        (when ins.near? (walk ins.near?.code))))
-    (each [_ o (ipairs objects)] (walk o.code))
+    (each [_ o (ipairs objects)]
+      (each-instruction o.code
+                        (fn [ins]
+                          (each [_ ref (ipairs (or ins.args []))]
+                            (when (not (or (. relative ref.row) (. heights ref)))
+                              (set ref.literal (fcollect [k 1 ref.size]
+                                                 (. st.rows (+ ref.row 1) (+ ref.offset k))))))
+                          (when (= ins.op :material)
+                            (set ins.literal (row-values ins.row (if st.modern? 8 4)))))))
     ;; The values are part of the code now: they are part of its key.
     (table.insert st.key "fold:")
     (each [i row (ipairs st.rows)]
@@ -828,14 +831,13 @@ own fields) the same leaf as a node, placed by :pos and coloured by :color."
 
 (fn relocate! [code offset seen]
   ;; Every row `code` reads, `offset` further on (a :post shares its :point's args).
-  (each [_ ins (ipairs code)]
-    (each [_ ref (ipairs (or ins.args []))]
-      (when (not (. seen ref))
-        (tset seen ref true)
-        (set ref.row (+ ref.row offset))))
-    (when (= ins.op :material) (set ins.row (+ ins.row offset)))
-    (when ins.body (relocate! ins.body offset seen))
-    (when ins.near? (relocate! ins.near?.code offset seen))))
+  (each-instruction code
+                    (fn [ins]
+                      (each [_ ref (ipairs (or ins.args []))]
+                        (when (not (. seen ref))
+                          (tset seen ref true)
+                          (set ref.row (+ ref.row offset))))
+                      (when (= ins.op :material) (set ins.row (+ ins.row offset))))))
 
 (fn new-bank [] {:rows [] :relative [] :inner [] :derived []})
 
