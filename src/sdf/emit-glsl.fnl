@@ -379,6 +379,22 @@ origin."
                  "}"])
       "}"]))
 
+(fn written-terms [block selected]
+  "The :glsl terms of a strategy that writes its objects' code out (a tree, an
+instance group), from its `block` (fn [cx o first materials? open tail]: an object's
+block in a minimum, see object-body) and `selected` (fn [cx o first lines-fn]: lines
+run when gObject is its object's number): :distance, :others, :color, :gradient and
+:exact?; the strategy adds :object and :planes."
+  {:distance (fn [cx o] (block cx o 0 false open-block (minimum-tail o)))
+   :others (fn [cx o first]
+             (block cx o first false #(.. "if (gObject != " $ ") {") (minimum-tail o)))
+   :color (fn [cx o ?first mirrors? modern?]
+            (block cx o (or ?first 0) true open-block (color-tail o ?first mirrors? modern?)))
+   :gradient (fn [cx o first action]
+               (when (leaf-exact? o)
+                 (selected cx o first #(leaf-gradient $ o action))))
+   :exact? leaf-exact?})
+
 ;;; The shader's queries: each tape object's terms through its strategy.
 
 (fn objects-of [tape ?which]
@@ -441,4 +457,5 @@ leaf whose primitive is solid below a plane, met in closed form; see plane-block
  : exact? : text-lines : float-literal
  ;; For the strategies' terms (src/sdf/strategies/):
  : derived : emit-code : object-comment : indented : guarded-lines : object-body : open-block
- : minimum-tail : taken-open : color-tail : leaf-gradient : leaf-exact? : plane-block}
+ : minimum-tail : taken-open : color-tail : leaf-gradient : leaf-exact? : plane-block
+ : written-terms}

@@ -73,23 +73,15 @@
  :marched? (fn [o] (not o.half-space?))
  :infos (fn [o] o.infos)
  :describe (fn [o] (.. " x" o.instances.count " (instance group: a loop)"))
- :glsl {:distance (fn [cx o] (block cx o 0 false glsl.open-block (glsl.minimum-tail o)))
-        :others (fn [cx o first]
-                  (block cx o first false #(.. "if (gObject != " $ ") {") (glsl.minimum-tail o)))
-        :color (fn [cx o ?first mirrors? modern?]
-                 (block cx o (or ?first 0) true glsl.open-block
-                        (glsl.color-tail o ?first mirrors? modern?)))
-        ;; Two forms: the whole group's minimum, and one member's.
-        :object (fn [cx o first]
-                  ["if (all) {"
-                   (glsl.indented (block cx o 0 false glsl.open-block (glsl.minimum-tail o)))
-                   "}"
-                   (selected cx o first #[(glsl.emit-code $ [] o.code false) (.. "d = " o.dout ";")])])
-        :gradient (fn [cx o first action]
-                    (when (glsl.leaf-exact? o)
-                      (selected cx o first #(glsl.leaf-gradient $ o action))))
-        :planes (fn [cx o] (when o.half-space? (looped cx o (glsl.plane-block o))))
-        :exact? glsl.leaf-exact?}
+ :glsl (doto (glsl.written-terms block selected)
+         ;; Two forms: the whole group's minimum, and one member's.
+         (tset :object (fn [cx o first]
+                         ["if (all) {"
+                          (glsl.indented (block cx o 0 false glsl.open-block (glsl.minimum-tail o)))
+                          "}"
+                          (selected cx o first
+                                    #[(glsl.emit-code $ [] o.code false) (.. "d = " o.dout ";")])]))
+         (tset :planes (fn [cx o] (when o.half-space? (looped cx o (glsl.plane-block o))))))
  :lua (fn [tape o what banks into] (emit-lua.object-evaluators tape o what banks into o.instances))
  :spheres (fn [plan o at out]
             (let [g (grid-of plan o)

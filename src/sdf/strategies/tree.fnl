@@ -25,21 +25,12 @@
  :marched? (fn [o] (not o.half-space?))
  :infos (fn [o] [o.info])
  :describe (fn [_] "")
- :glsl {:distance (fn [cx o] (block cx o 0 false glsl.open-block (glsl.minimum-tail o)))
-        :others (fn [cx o first]
-                  (block cx o first false #(.. "if (gObject != " $ ") {") (glsl.minimum-tail o)))
-        :color (fn [cx o ?first mirrors? modern?]
-                 (block cx o (or ?first 0) true glsl.open-block
-                        (glsl.color-tail o ?first mirrors? modern?)))
-        :object (fn [cx o first]
-                  [(block cx o first false glsl.taken-open (glsl.minimum-tail o))])
-        :gradient (fn [cx o first action]
-                    (when (glsl.leaf-exact? o)
-                      (selected cx o first #(glsl.leaf-gradient $ o action))))
-        :planes (fn [cx o]
-                  (when o.half-space?
-                    [(glsl.object-comment o) ((glsl.plane-block o) cx)]))
-        :exact? glsl.leaf-exact?}
+ :glsl (doto (glsl.written-terms block selected)
+         (tset :object (fn [cx o first]
+                         [(block cx o first false glsl.taken-open (glsl.minimum-tail o))]))
+         (tset :planes (fn [cx o]
+                         (when o.half-space?
+                           [(glsl.object-comment o) ((glsl.plane-block o) cx)]))))
  :lua (fn [tape o what banks into] (emit-lua.object-evaluators tape o what banks into))
  :spheres (fn [plan o at out]
             (let [at (+ at 1)]
