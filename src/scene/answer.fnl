@@ -67,7 +67,9 @@ at; else the refusal's reason."
           verdict))))
 
 (local type type)
-(local pairs pairs)
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
 (local ipairs ipairs)
 
 (fn finite? [v]
@@ -90,7 +92,7 @@ at; else the refusal's reason."
 (fn list? [t n]
   ;; `t` is a list of `n` values (1..n, no other key).
   (and (= (type t) :table)
-       (accumulate [ok? true k (pairs t)]
+       (accumulate [ok? true k (each-pair t)]
          (and ok? (= (type k) :number) (>= k 1) (<= k n) (= k (math.floor k))))
        (or (= n 0) (not= nil (. t n)))
        (= (length t) n)))
@@ -109,7 +111,7 @@ at; else the refusal's reason."
     _ (if (not (and (list? data.params (length data.params)) (<= (length data.params) max-names)
                     (accumulate [ok? true _ n (ipairs data.params)] (and ok? (name? n)))
                     (= (length data.params)
-                       (accumulate [c 0 _ (pairs (collect [_ n (ipairs data.params)] n true))] (+ c 1)))))
+                       (accumulate [c 0 _ (each-pair (collect [_ n (ipairs data.params)] n true))] (+ c 1)))))
           (values nil "a custom node: its parameters are not a list of distinct names (refused)")
           (not (and (finite? data.cost) (<= 0 data.cost translate.limits.cost)))
           (values nil (.. "a custom node: its cost is not a number from 0 to " translate.limits.cost " (refused)"))
@@ -134,7 +136,7 @@ at; else the refusal's reason."
         (set node.distance f)
         (tset customs f data)))
     (when (= (type node.children) :table)
-      (each [_ c (pairs node.children)] (as-written! c (+ depth 1) customs)))))
+      (each [_ c (each-pair node.children)] (as-written! c (+ depth 1) customs)))))
 
 (fn objects-as-written! [objects customs]
   ;; The objects (in place) as a file writes them; or the field and why not.

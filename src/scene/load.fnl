@@ -17,7 +17,9 @@
 ;; (the tests, tools/fnl.lua) reaches every global through a function, which was half
 ;; the time of validating 100,000 spheres.
 (local type type)
-(local pairs pairs)
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
 (local ipairs ipairs)
 (local huge math.huge)
 (local floor math.floor)
@@ -84,7 +86,7 @@ scene never changes another's defaults."
 
 ;; And the features' own settings (src/render/features/: ambient occlusion, fog, rim
 ;; light, specular highlights).
-(each [k v (pairs (features.settings))] (tset lighting-spec k v))
+(each [k v (each-pair (features.settings))] (tset lighting-spec k v))
 
 (local light-specs
   {:sun {:direction {:type :direction :default [0.4 -0.3 0.85]}   ; toward the sun
@@ -236,7 +238,7 @@ Long words get none: no name is that long, and the distance would cost time."
 (fn check-vec3 [ctx path v what element-what element-ok?]
   (when (or (not= (type v) :table) (not= (length v) 3))
     (fail ctx path (.. "must be " what ", got " (describe-value v))))
-  (each [k _ (pairs v)]
+  (each [k _ (each-pair v)]
     (when (or (not= (type k) :number) (not= k (floor k)) (< k 1) (> k 3))
       (fail ctx path (.. "must be " what " with exactly three numbers"))))
   ;; Not ipairs: [nil nil 5] has length 3 and no first element.
@@ -292,7 +294,7 @@ verdict. Large scenes are mostly such values."
               ok? t.ok?]
           ;; Three finite numbers at 1, 2 and 3 and nothing else: the only keys.
           (when (and (finite? x) (finite? y) (finite? z) (ok? x) (ok? y) (ok? z)
-                     (= 3 (accumulate [keys 0 _ (pairs v)] (+ keys 1))))
+                     (= 3 (accumulate [keys 0 _ (each-pair v)] (+ keys 1))))
             [x y z])))))
 
 (fn check-choice [ctx path v choices]
@@ -413,7 +415,7 @@ a message must not."
         (< (describe-value a) (describe-value b)))))
 
 (fn check-keys [ctx path tbl allowed]
-  (let [bad (icollect [k _ (pairs tbl)]
+  (let [bad (icollect [k _ (each-pair tbl)]
               (when (or (not= (type k) :string)
                         (not (accumulate [known? false _ a (ipairs allowed) &until known?]
                                (= a k))))
@@ -429,7 +431,7 @@ a message must not."
                         "; known fields: :" (table.concat sorted " :")))))))))
 
 (fn check-fields [ctx path given spec]
-  (let [fields (doto (icollect [k (pairs spec)] k) table.sort)
+  (let [fields (doto (icollect [k (each-pair spec)] k) table.sort)
         given (or given {})
         out {}]
     (when (or (not= (type given) :table) (not= nil (. given 1)))
@@ -451,7 +453,7 @@ a message must not."
   (when (= l.kind nil)
     (fail ctx path "missing :kind (:sun, a light from a direction, or :point)"))
   (let [kind (check-choice ctx (sub-path path :kind) l.kind light-kinds)
-        rest (collect [k v (pairs l)] (when (not= k :kind) (values k v)))]
+        rest (collect [k v (each-pair l)] (when (not= k :kind) (values k v)))]
     (doto (check-fields ctx path rest (. light-specs kind))
       (tset :kind kind))))
 
@@ -462,7 +464,7 @@ shines from where the classic :light is (seen from the origin)."
     (when (or (not= (type value) :table) (not= nil (. value 1)))
       (fail ctx [:lighting] (.. "must be a table like {:model :modern}, got " (describe-value value))))
     (let [lights value.lights
-          rest (collect [k v (pairs value)] (when (not= k :lights) (values k v)))
+          rest (collect [k v (each-pair value)] (when (not= k :lights) (values k v)))
           out (check-fields ctx [:lighting] rest lighting-spec)
           path [:lighting :lights]]
       (set out.lights
@@ -470,12 +472,12 @@ shines from where the classic :light is (seen from the origin)."
                (let [[x y z] light.pos
                      len (math.sqrt (+ (* x x) (* y y) (* z z)))]
                  ;; A sun with the defaults of light-specs, but its direction.
-                 [(doto (collect [field f (pairs light-specs.sun)] field (fresh f.default))
+                 [(doto (collect [field f (each-pair light-specs.sun)] field (fresh f.default))
                     (tset :kind :sun)
                     (tset :direction (if (> len 0) [(/ x len) (/ y len) (/ z len)] [0 0 1])))])
                (do
                  (when (or (not= (type lights) :table)
-                           (accumulate [bad? false k (pairs lights)]
+                           (accumulate [bad? false k (each-pair lights)]
                              (or bad? (not= (type k) :number) (< k 1) (> k (length lights)))))
                    (fail ctx path (.. "must be a list of lights like [{:kind :sun}], got "
                                       (describe-value lights))))
@@ -508,7 +510,7 @@ shines from where the classic :light is (seen from the origin)."
 ;; Their fields in order, with types and defaults: the placement, the primitive's own
 ;; parameters, the colour.
 (local grouped-params
-  (collect [kind fields (pairs grouped-fields)]
+  (collect [kind fields (each-pair grouped-fields)]
     (let [desc (primitives.lookup kind)
           out []]
       (when fields.pos (table.insert out {:name :pos :type :vec3 :default [0 0 0]}))
@@ -519,7 +521,7 @@ shines from where the classic :light is (seen from the origin)."
 
 (fn grouped? [o]
   (let [allowed (. grouped-fields o.kind)]
-    (and allowed (accumulate [ok? true k (pairs o)] (and ok? (= true (. allowed k)))))))
+    (and allowed (accumulate [ok? true k (each-pair o)] (and ok? (= true (. allowed k)))))))
 
 (fn check-grouped [ctx i o]
   (let [out {:kind o.kind :index i}]
@@ -569,14 +571,14 @@ shines from where the classic :light is (seen from the origin)."
         (do (when (or (not= (type given) :table) (not= nil (. given 1)))
               (fail ctx rpath (.. "must be a table of the values parameters take, like {:r [0.5 2]}, got "
                                   (describe-value given))))
-            (collect [_ k (ipairs (doto (icollect [k (pairs given)] k) (table.sort key-before?)))]
+            (collect [_ k (ipairs (doto (icollect [k (each-pair given)] k) (table.sort key-before?)))]
               (let [kpath (sub-path rpath k)
                     r (. given k)]
                 (when (or (not= (type k) :string) (not (. names k)))
                   (fail ctx (if (= (type k) :string) kpath rpath)
                         (.. (if (= (type k) :string) "is" (.. "has " (describe-value k) ", which is"))
                             " not a parameter in the node's :params; :ranges names parameters, like {:r [0.5 2]}")))
-                (when (not (and (= (type r) :table) (= 2 (accumulate [c 0 _ (pairs r)] (+ c 1)))
+                (when (not (and (= (type r) :table) (= 2 (accumulate [c 0 _ (each-pair r)] (+ c 1)))
                                 (finite? (. r 1)) (finite? (. r 2))
                                 (coordinate? (. r 1)) (coordinate? (. r 2)) (<= (. r 1) (. r 2))))
                   (fail ctx kpath (.. "must be two numbers [lo hi] from -1e7 to 1e7, lo at most hi, like [0.5 2], got "
@@ -625,7 +627,7 @@ function of time's value, at `?function?`, the time it was called at or true)."
               "let" (when (fennel.sequence? (. node 2))
                       (for [i 1 (length (. node 2)) 2]
                         (bind! (. node 2 i) (. node 2 (+ i 1)))))))
-          (each [k v (pairs node)]
+          (each [k v (each-pair node)]
             (walk k (+ depth 1))
             (walk v (+ depth 1)))))
       (walk ctx.forms 0)
@@ -688,11 +690,11 @@ ran the scene (its sliders are known)."
 (fn limits-text []
   ;; The measure's and the bounds check's limits, in the key of what they found (a
   ;; test changes them).
-  (table.concat (doto (icollect [k v (pairs custom.limits)] (.. k "=" (tostring v))) table.sort) " "))
+  (table.concat (doto (icollect [k v (each-pair custom.limits)] (.. k "=" (tostring v))) table.sort) " "))
 
 (fn values-text [at]
   ;; "r = 2 and s = 0.3" for a sample's ranged values `at`, or nil when none.
-  (let [names (doto (icollect [n (pairs at)] n) table.sort)]
+  (let [names (doto (icollect [n (each-pair at)] n) table.sort)]
     (when (> (length names) 0)
       (table.concat (icollect [_ n (ipairs names)] (.. n " = " (describe-value (. at n)))) " and "))))
 
@@ -718,7 +720,7 @@ shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params
                           (if (= nil o.distance) "" (.. ", got " (describe-value o.distance))))))
     (when (or (not= (type given) :table) (not= nil (. given 1)))
       (fail ctx ppath (.. "must be a table of named numbers like {:radius 1}, got " (describe-value given))))
-    (let [names (doto (icollect [k (pairs given)] k) (table.sort key-before?))]
+    (let [names (doto (icollect [k (each-pair given)] k) (table.sort key-before?))]
       (each [_ k (ipairs names)]
         (when (not= (type k) :string)
           (fail ctx ppath (.. "unexpected entry " (describe-value k) "; parameters are named, like {:radius 1}"))))
@@ -747,7 +749,7 @@ shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params
             (when (= nil (. out.params n))
               (fail ctx dpath (.. "its parameter `" n "` has no value: add it to :params, like :params {:"
                                   n " 1}") line)))
-          (each [_ n (ipairs (doto (icollect [k (pairs out.params)] k) table.sort))]
+          (each [_ n (ipairs (doto (icollect [k (each-pair out.params)] k) table.sort))]
             (when (not (. declared n))
               (fail ctx (sub-path ppath n) (.. "is not a parameter of the distance function; name it after x y z: (fn [x y z "
                                                (table.concat t.params " ") (if (> (length t.params) 0) " " "") n "] ...)"))))
@@ -870,7 +872,7 @@ shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params
             (fail ctx cpath (.. "must be a list of " (if (= lo hi) (.. lo " node") (.. lo " or more nodes"))
                                 ", got " (describe-value children))))
           (var last 0)
-          (each [k _ (pairs children)]
+          (each [k _ (each-pair children)]
             (when (or (not= (type k) :number) (< k 1) (not= k (math.floor k)))
               (fail ctx cpath "must be a list [...] of nodes, not a table with named fields"))
             (set last (math.max last k)))
@@ -909,7 +911,7 @@ shape and measure its Lipschitz factor, into `out`: :custom (the texts), :params
   (when (not= (type value.objects) :table)
     (fail ctx [:objects] (.. "must be a list of objects, got " (describe-value value.objects))))
   (var last 0)
-  (each [k _ (pairs value.objects)]
+  (each [k _ (each-pair value.objects)]
     (when (or (not= (type k) :number) (< k 1) (not= k (floor k)))
       (fail ctx [:objects] "must be a list [...] of objects, not a table with named fields"))
     (when (> k last) (set last k)))
@@ -969,7 +971,7 @@ UTF-8 from a hostile file or path) and at most a few lines long."
 the value it evaluates to, its parsed forms and the checked text; or nil and a
 message."
   (let [env (doto (sandbox.safe-env) (tset :param (params.param-function rec)))
-        allowed (doto (icollect [k (pairs env)] k) table.sort)]
+        allowed (doto (icollect [k (each-pair env)] k) table.sort)]
     (case (sandbox.check-source source file)
       (nil msg) (values nil msg)
       source (let [forms (sandbox.parse source file)]
@@ -1125,8 +1127,8 @@ the app can read through love.filesystem."
 
 (fn defaults []
   "A copy of the default settings, by section (for docs and tests)."
-  (collect [name spec (pairs sections)]
-    name (collect [field f (pairs spec)] field f.default)))
+  (collect [name spec (each-pair sections)]
+    name (collect [field f (each-pair spec)] field f.default)))
 
 (fn limits-of-files []
   "The sandbox's limits (file size, nesting, steps, memory)."

@@ -8,6 +8,9 @@
 (local fennel (require :fennel))
 (local text (require :src.util.text))
 (local output (require :src.util.output))
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
 
 (local max-params 64)   ; rows a panel can show and a person can use
 
@@ -89,7 +92,7 @@ mistake raises a message naming the parameter, and leaves the name in
       (when (not name?)
         (fail "the first argument is the parameter's name, like :radius"))
       (when (not= (type opts) :table) (fail "the options must be a table like {:min 0 :max 1}"))
-      (each [k (pairs opts)]
+      (each [k (each-pair opts)]
         (when (and (not= k :min) (not= k :max))
           (fail "unknown option; the options are :min and :max")))
       (let [(kind why) (kind-of value opts)]
@@ -166,7 +169,7 @@ when the value is not written as a literal."
 (fn find-calls [node found depth]
   (when (and (= (type node) :table) (not (fennel.sym? node)) (< depth 200))
     (when (param-call? node) (table.insert found node))
-    (each [k v (pairs node)]
+    (each [k v (each-pair node)]
       (find-calls k found (+ depth 1))
       (find-calls v found (+ depth 1))))
   found)

@@ -5,6 +5,9 @@
 
 (local fennel (require :fennel))
 (local text (require :src.util.text))
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
 
 (local limits
   {:file-bytes (* 512 1024)       ; a scene file: about 6500 spheres written out, 2 s
@@ -159,7 +162,7 @@ message when it is too large, not UTF-8 text or nested too deeply."
             name (and head (fennel.sym? head) (tostring head))]
         (if (and name (compile-time-form? name))
             node
-            (accumulate [found nil k v (pairs node) &until found]
+            (accumulate [found nil k v (each-pair node) &until found]
               (or (find-forbidden k (+ depth 1)) (find-forbidden v (+ depth 1))))))))
 
 (local global-forms {:global true :set-forcibly! true})
@@ -209,9 +212,9 @@ the allowlist is a special form raising a sandbox error that names it and its li
 Scopes made inside it inherit that through their metatables."
   (let [g (global-scope)
         scope (fennel.scope g)
-        refused (collect [name (pairs g.specials)] (values name true))]
-    (each [name (pairs g.macros)] (tset refused name true))
-    (each [name (pairs refused)]
+        refused (collect [name (each-pair g.specials)] (values name true))]
+    (each [name (each-pair g.macros)] (tset refused name true))
+    (each [name (each-pair refused)]
       (when (not (. allowed-forms name))
         ;; false: not a macro here, so the call reaches the special form below.
         (tset scope.macros name false)
@@ -220,16 +223,16 @@ Scopes made inside it inherit that through their metatables."
 
 (fn compiler-state []
   (let [g (global-scope)]
-    {:specials (collect [k v (pairs g.specials)] k v)
-     :macros (collect [k v (pairs g.macros)] k v)
-     :fennel (collect [k v (pairs fennel)] k v)}))
+    {:specials (collect [k v (each-pair g.specials)] k v)
+     :macros (collect [k v (each-pair g.macros)] k v)
+     :fennel (collect [k v (each-pair fennel)] k v)}))
 
 (fn restore! [live saved]
   "Put table `live` back to the copy `saved`; true when anything had changed."
   (var changed? false)
-  (each [k v (pairs live)]
+  (each [k v (each-pair live)]
     (when (not= v (. saved k)) (set changed? true) (tset live k (. saved k))))
-  (each [k v (pairs saved)]
+  (each [k v (each-pair saved)]
     (when (not= v (rawget live k)) (set changed? true) (tset live k v)))
   changed?)
 
@@ -405,7 +408,7 @@ macros and module table are the same afterwards, whatever happened."
 (fn safe-env []
   "The only globals a scene file sees: arithmetic helpers and nothing that reaches
 the file system, the process, the loader or the compiler."
-  (let [m (collect [k v (pairs math)] (when (and (not= k :randomseed) (not= k :random)) (values k v)))
+  (let [m (collect [k v (each-pair math)] (when (and (not= k :randomseed) (not= k :random)) (values k v)))
         unpack (or table.unpack _G.unpack)]
     {:math m :ipairs ipairs :pairs pairs :tonumber tonumber :tostring tostring
      :type type :select select :unpack unpack

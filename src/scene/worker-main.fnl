@@ -16,6 +16,9 @@
 (local scene-mod (require :src.scene.load))
 (local wire (require :src.util.wire))
 (local confine (require :src.util.confine))
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
 
 ;; Limits of the worker as a whole (the sandbox's are smaller: 512 MB of Lua memory
 ;; while a scene runs, 128 MB while it compiles).
@@ -54,7 +57,7 @@
 
 (fn sendable [scene]
   ;; The scene as plain data: its functions of time stay here; their paths go.
-  (let [copy (collect [k v (pairs scene)] (when (not= k :animated) (values k v)))]
+  (let [copy (collect [k v (each-pair scene)] (when (not= k :animated) (values k v)))]
     (values copy (icollect [_ a (ipairs (or scene.animated []))] a.path))))
 
 (fn out-of-memory? [message]

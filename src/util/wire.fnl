@@ -26,7 +26,13 @@
 ;; Globals the loops call, read once: a module loaded with an :env (the tests,
 ;; tools/fnl.lua) reaches every global through a function.
 (local type type)
-(local pairs pairs)
+;; `pairs` under another name: LuaJIT compiles a loop over pairs (or next) by that name
+;; into its specialised ITERN bytecode, and Debian 12's LuaJIT (2.1 of 2022-03-20)
+;; ends such a loop early once a trace is blacklisted and the loop despecialised
+;; (LuaJIT issue 827, fixed upstream 2022-04): the encoder then sent a node of a
+;; deep tree as an empty list, in about 1 of 6 fresh processes. A loop over a local
+;; of another name is a plain iterator call.
+(local each-pair pairs)
 (local ipairs ipairs)
 (local tostring tostring)
 (local pcall pcall)
@@ -63,7 +69,7 @@
   "Empty each table given: scratch tables a closure of encode or decode holds, which a
 JIT trace may keep alive after the call."
   (each [_ t (ipairs [...])]
-    (each [k (pairs t)] (tset t k nil))))
+    (each [k (each-pair t)] (tset t k nil))))
 
 (fn key-before? [a b]
   ;; Strings before numbers, each ascending.
@@ -150,7 +156,7 @@ another without the copy that joins them (a 140 MB answer was held three times).
                       inner (+ depth 1)]
                   (var count 0)
                   (var list? true)
-                  (each [k (pairs v) &until (not list?)]
+                  (each [k (each-pair v) &until (not list?)]
                     (set count (+ count 1))
                     (when (not (and (= (type k) :number) (>= k 1) (<= k n) (= k (floor k))))
                       (set list? false)))
@@ -170,7 +176,7 @@ another without the copy that joins them (a 140 MB answer was held three times).
                       (let [keys []]
                         (var strings? true)
                         (var nk 0)
-                        (each [k (pairs v) &until err]
+                        (each [k (each-pair v) &until err]
                           (if (= (type k) :string) (do (set nk (+ nk 1)) (tset keys nk k))
                               (integer? k) (do (set nk (+ nk 1)) (tset keys nk k) (set strings? false))
                               (set err (.. "cannot send " (key-text k) " at "
