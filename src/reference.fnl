@@ -9,6 +9,10 @@
 ;;
 ;; Vectors travel as multiple values (x y z) and the inner loops allocate nothing.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local camera (require :src.render.camera))
 (local bounds (require :src.render.bounds))
 (local settings (require :src.reference.settings))
@@ -26,7 +30,7 @@
    :threshold :start-limit :distance-from-camera])
 
 (fn merge [into from]
-  (each [k v (pairs from)] (tset into k v))
+  (each [k v (each-pair from)] (tset into k v))
   into)
 
 (fn tracer [scene plan ?options]

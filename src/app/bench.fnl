@@ -2,6 +2,10 @@
 ;; behind `make bench` (test/bench/report.fnl) is built on: variants, each a compiled
 ;; shader, its uniforms and a canvas, timed interleaved in rounds.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local status (require :src.util.status))
 (local frame (require :src.backend.frame))
 (local gpu (require :src.backend.gpu))
@@ -34,7 +38,7 @@ through gpu.compile-plan)."
             ((. (require :src.scene.load) :load-string) scene-source label)
             (frame.load-scene scene-path))
     (nil err) (values nil err)
-    scene (case (do (each [k v (pairs (or render {}))] (tset scene.render k v))
+    scene (case (do (each [k v (each-pair (or render {}))] (tset scene.render k v))
                     (frame.plan-for scene plan-options))
             (nil err) (values nil err)
             plan (let [[w h] size

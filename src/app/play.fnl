@@ -2,6 +2,10 @@
 ;; at the window's full resolution (times a render scale), with a HUD, debug views,
 ;; fullscreen and screenshots. Installs LÖVE callbacks when started.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local camera (require :src.render.camera))
 (local frame (require :src.backend.frame))
 (local scene-mod (require :src.scene.load))
@@ -693,7 +697,7 @@ the meshing holds the window (organic at 128 cells: about a second on llvmpipe).
         p (accumulate [found nil _ q (ipairs (or (?. state.scene :params) [])) &until found]
             (when (= q.name item.param.name) q))]
     (when p
-      (let [live (doto (collect [k v (pairs item)] k v) (tset :param p))
+      (let [live (doto (collect [k v (each-pair item)] k v) (tset :param p))
             v (panel.with-value live (panel.slider-value live x))]
         (when (not (params.same-value? v p.value))
           (set-parameter! p v))))))

@@ -5,6 +5,10 @@
 
 ;; The still's grid: still-samples x still-samples rays where a pixel holds an edge
 ;; (shaders/pipeline/adaptive.glsl).
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local still-samples 4)
 
 (fn still-options []
@@ -48,7 +52,7 @@ normals: in the other views still is N x N in every pixel too."
   "plan.scene->plan's options for a finished picture (see resolve), with `?extra`
 (a table of further options, copied) merged in."
   (let [r (resolve o scene)
-        out (collect [k v (pairs (or ?extra {}))] k v)]
+        out (collect [k v (each-pair (or ?extra {}))] k v)]
     (set out.samples r.samples)
     (set out.adaptive? r.adaptive?)
     out))

@@ -1,4 +1,8 @@
 ;; Offscreen OpenGL 3.3 core rendering through OSMesa and LuaJIT FFI, so tests can run generated GLSL without LÖVE or a display.
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local ffi (require :ffi))
 (local field (require :src.render.field))
 
@@ -140,7 +144,7 @@ void main() {
   "A table of GL entry points cast from OSMesaGetProcAddress, or nil + reason."
   (let [gl {}]
     (var missing nil)
-    (each [name sig (pairs gl-signatures)]
+    (each [name sig (each-pair gl-signatures)]
       (let [ptr (lib.OSMesaGetProcAddress name)]
         (if (= ptr nil)
             (set missing name)

@@ -3,6 +3,10 @@
 ;; distance field's surface. A mesh is {:positions [x y z ...] :triangles [a b c ...]}
 ;; (1-based vertex indices). Pure: runs under plain LuaJIT.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local sqrt math.sqrt)
 
 (fn edge-key [a b n] (+ (* a (+ n 1)) b))
@@ -37,7 +41,7 @@ triangle, no pinched vertex) :euler (V - E + F)}."
                 (table.insert (. link p) q)
                 (table.insert (. link p) r))))))
     (var (edges boundary non-manifold misoriented) (values 0 0 0 0))
-    (each [uk n (pairs undirected)]
+    (each [uk n (each-pair undirected)]
       (set edges (+ edges 1))
       (if (= n 1) (set boundary (+ boundary 1))
           (> n 2) (set non-manifold (+ non-manifold 1))

@@ -20,6 +20,10 @@
 ;; Pure: runs under plain LuaJIT. The field is a table of batch functions (see mesh),
 ;; so the same mesher runs on the CPU evaluator and on the GPU.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local intersect (require :src.mesh.intersect))
 ;; Preallocated tables (LuaJIT's table.new): the big arrays of a mesh.
 (local table-new (let [(ok? new) (pcall require :table.new)]
@@ -173,7 +177,7 @@ The tables returned may be shared between cells: not to be changed."
                          (= (find parent e01) (find parent e23)))
                 (when (not joined) (set joined []))
                 (table.insert joined fi))))
-          (let [rep (collect [e _ (pairs parent)] e (find parent e))]
+          (let [rep (collect [e _ (each-pair parent)] e (find parent e))]
             (when (not ambiguous?) (tset plain-patches mask rep))
             (values rep (or joined no-faces)))))))
 
@@ -744,7 +748,7 @@ representative. Remembered per table: most cells share plain-patches' few."
   (let [known (. single-patches rep)]
     (if (not= nil known) known
         (let [r1 (. rep (next rep))
-              one? (accumulate [one? true _ r (pairs rep)] (and one? (= r r1)))]
+              one? (accumulate [one? true _ r (each-pair rep)] (and one? (= r r1)))]
           (tset single-patches rep one?)
           one?))))
 
@@ -997,7 +1001,7 @@ crossing or folded in counts.crossing."
           (when (next changed)
             (set only (triangles-of changed))
             (set fold-only {})
-            (each [t (pairs only)]
+            (each [t (each-pair only)]
               (for [c 1 3] (tset fold-only (. triangles (+ (* 3 (- t 1)) c)) true)))))))
     (set (counts.untangled counts.crossing) (values moved left))))
 
@@ -1023,7 +1027,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
 (cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
 moved onto the surface) :collections (full collections of the Lua heap, see
 bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
-:crossing (pairs of triangles left crossing or folded) :times (CPU seconds per step) :work :estimate}}."
+:crossing (each-pair of triangles left crossing or folded) :times (CPU seconds per step) :work :estimate}}."
   (let [state (new-state field grid ?progress)
         counts state.counts]
     (mark! state :blocks)

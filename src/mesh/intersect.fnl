@@ -9,6 +9,10 @@
 ;; diameter is taken as the length). A mesh is {:positions [x y z ...] :triangles [a
 ;; b c ...]} (1-based vertex indices). Pure: runs under plain LuaJIT.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local sqrt math.sqrt)
 (local floor math.floor)
 (local abs math.abs)
@@ -300,10 +304,10 @@ coplanar and overlapping. Second value: :crossing, :coplanar or nil."
   n)
 
 (fn self-intersections [m ?options]
-  "The pairs of triangles of mesh `m` that cross: {:pairs (pairs sharing no vertex
+  "The pairs of triangles of mesh `m` that cross: {:pairs (each-pair sharing no vertex
 whose common part, see pair-overlap, is longer than :min-length) :coplanar (those
 of them that overlap in a plane) :longest (the longest common part of those) :at
-[x y z] (a point of that longest one's triangles) :folds (pairs sharing one vertex
+[x y z] (a point of that longest one's triangles) :folds (each-pair sharing one vertex
 that meet along more than that vertex: a fold through the vertex) :fold-list [[s t
 length] ...] (the first :max-list folds, as :list) :tested (pairs
 whose boxes overlap, tested exactly) :list [[s t length] ...] (the first

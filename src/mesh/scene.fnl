@@ -6,6 +6,10 @@
 ;; (memory and time follow the content, not the region's volume). Pure: runs under
 ;; plain LuaJIT.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local plan-mod (require :src.render.plan))
 (local fork (require :src.util.fork))
 (local reference (require :src.reference))
@@ -46,8 +50,8 @@ mesher's octree skips a block only when the distance at its centre exceeds its
 half-diagonal, so with the cap inside the grid it would sample the whole volume."
   (let [diagonal (math.sqrt (accumulate [s 0 i (ipairs [1 2 3])]
                               (+ s (^ (- (. region.hi i) (. region.lo i)) 2))))
-        render (collect [k v (pairs (or scene.render {}))] k v)
-        sub (collect [k v (pairs scene)] k v)]
+        render (collect [k v (each-pair (or scene.render {}))] k v)
+        sub (collect [k v (each-pair scene)] k v)]
     (set render.draw-distance (math.max (or render.draw-distance 0) (* 2 diagonal)))
     (set sub.render render)
     sub))
@@ -103,7 +107,7 @@ has no box, counts as the ±1e7 a scene's coordinates lie within), so a region o
                 away-text (.. "left out, outside the region: "
                               (table.concat (icollect [_ o (ipairs away)] (object-name o))
                                             ", "))
-                sub (collect [k v (pairs scene)] k v)
+                sub (collect [k v (each-pair scene)] k v)
                 parts []]
             (if (= 0 (length kept))
                 (values nil (.. "no surface to mesh: " away-text
@@ -140,7 +144,7 @@ has no box, counts as the ±1e7 a scene's coordinates lie within), so a region o
                               :hi [math.huge math.huge math.huge]}
                              finite boxes)
                 left-out (icollect [_ o (ipairs infinite)] (.. (object-name o) ": infinite"))
-                sub (collect [k v (pairs scene)] k v)]
+                sub (collect [k v (each-pair scene)] k v)]
             (set sub.objects (icollect [i o (ipairs scene.objects)] (when (. keep i) o)))
             {:scene (far-sighted sub region) : region :cut nil : left-out :cut-objects []
              :message (if (= 0 (length left-out))

@@ -3,6 +3,10 @@
 ;; strategies in src/sdf/strategies/), and whose `// @part NAME` lines split one file
 ;; into parts taken one at a time.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local files (require :src.util.files))
 
 ;; Chunks are read through the program's one file reader (project files, from any
@@ -86,7 +90,7 @@ comment lines before the first part are the chunk's own documentation)."
         (if name (do (set current []) (tset out name current))
             current (table.insert current line))))
     ;; A blank line that only separates one part from the next is not the part's.
-    (each [_ lines (pairs out)]
+    (each [_ lines (each-pair out)]
       (while (= (. lines (length lines)) "") (table.remove lines)))
     out))
 

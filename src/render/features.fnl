@@ -31,6 +31,10 @@
 ;;   :reach     optional (fn [lighting]) -> how far from a surface its distance
 ;;              queries look (a field lists objects at least that near each cell)
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local files (require :src.util.files))
 
 (local dir "src/render/features")
@@ -66,7 +70,7 @@
   "Every feature's settings, merged: field -> {:type :default}."
   (let [out {}]
     (each [_ d (ipairs all)]
-      (each [k v (pairs d.settings)] (tset out k v)))
+      (each [k v (each-pair d.settings)] (tset out k v)))
     out))
 
 (fn active [lighting]

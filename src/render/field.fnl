@@ -20,6 +20,10 @@
 ;; do not change when the camera moves: the shader is sent the corner camera-relative,
 ;; computed in double.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local large-radius (. (require :src.sdf.large-sphere) :radius))
 (local ffi (require :ffi))
 (pcall ffi.cdef "void *calloc(size_t nmemb, size_t size); void free(void *ptr);")
@@ -511,7 +515,7 @@ Each {:width :height} and its floats row after row, float32 in :floats (see
 float-texture, texture-values)."
   (when (not field.textures)
     (set field.textures (make-textures field))
-    (each [_ t (pairs field.textures)]
+    (each [_ t (each-pair field.textures)]
       ;; A texture of a large field without functions of time may let its floats
       ;; go once a backend has its own copy (release-floats!); floats-of makes
       ;; them again.
@@ -532,7 +536,7 @@ driver's. floats-of makes them again when something reads them."
   "The float32 :floats of field texture `tex`, made again (into the tables a backend
 knows, which key its images) if release-floats! let them go."
   (when (and (= nil tex.floats) tex.field)
-    (each [k t (pairs (make-textures tex.field))]
+    (each [k t (each-pair (make-textures tex.field))]
       (set (. tex.field.textures k :floats) t.floats)))
   tex.floats)
 

@@ -2,6 +2,10 @@
 ;; the scene needs (which kinds, how many of each, which features, which view), plus the
 ;; objects in the order the shader stores them. Equal plans mean the same shader.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local lower (require :src.sdf.lower))
 (local bounds (require :src.render.bounds))
 (local field (require :src.render.field))
@@ -111,13 +115,13 @@
   ;; A deterministic text of plain data: tables with their keys sorted.
   (if (not= (type v) :table)
       (if (= (type v) :number) (string.format "%.9g" v) (tostring v))
-      (let [ks (icollect [k (pairs v)] k)]
+      (let [ks (icollect [k (each-pair v)] k)]
         (table.sort ks (fn [a b] (< (tostring a) (tostring b))))
         (.. "{" (table.concat (icollect [_ k (ipairs ks)] (.. (tostring k) "=" (key-text (. v k)))) " ")
             "}"))))
 
 (fn structure-key [plan]
-  (let [ks (icollect [k (pairs plan)] (when (not (. value-fields k)) k))]
+  (let [ks (icollect [k (each-pair plan)] (when (not (. value-fields k)) k))]
     (table.sort ks)
     (table.concat (icollect [_ k (ipairs ks)]
                     (let [part (. parts k)]
@@ -160,7 +164,7 @@ pixel (:load-once?): there a uniform read is an eight-lane gather, every time. A
 GPU reads uniforms from a constant cache, and there the shader reads them where it
 uses them (measured on an H100: colonnade at 1920x1080 in 451 ms against 655 with
 the copies, flower 193 against 221, gallery and the seed alike)."
-  (let [options (collect [k v (pairs (or ?options {}))] k v)]
+  (let [options (collect [k v (each-pair (or ?options {}))] k v)]
     (when (= nil options.load-once?)
       (set options.load-once? (software-renderer? name)))
     options))
@@ -413,7 +417,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
         (and members (not plan.bounds))
         ;; Some other object has no bound (an infinite repetition, a plane inside a
         ;; tree): no field then, and the uniform budget decides.
-        (scene->plan scene (doto (collect [k v (pairs options)] k v) (tset :field? false)))
+        (scene->plan scene (doto (collect [k v (each-pair options)] k v) (tset :field? false)))
         lower-error (values nil (.. scene.file ": " lower-error))
         (> (written-nodes plan.tape) max-written-nodes)
         (values nil (nodes-message scene plan.tape))

@@ -6,6 +6,10 @@
 ;; primitive's, so every emitter, the CPU reference and the probe take it as they
 ;; take a sphere.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local fennel (require :fennel))
 (local translate (require :src.sdf.translate))
 
@@ -85,7 +89,7 @@
         (when (and src src.line)
           (when (not (. index src.line)) (tset index src.line []))
           (table.insert (. index src.line) node))))
-    (each [k v (pairs node)]
+    (each [k v (each-pair node)]
       (index-fn-forms k index (+ depth 1))
       (index-fn-forms v index (+ depth 1))))
   index)
@@ -107,7 +111,7 @@
   (fn walk [node depth]
     (when (and (not found?) (= (type node) :table) (< depth 200))
       (if (rawequal node inner) (set found? true)
-          (each [_ v (pairs node)] (walk v (+ depth 1))))))
+          (each [_ v (each-pair node)] (walk v (+ depth 1))))))
   (each [i v (ipairs outer)] (when (> i 1) (walk v 1)))
   found?)
 
@@ -183,7 +187,7 @@ it (Fennel's name for a local that shadows another of the same name)."
 (fn resolver [f forms file]
   "A resolver for translate: names the closure `f` reaches outside itself (its
 upvalues), as numbers, math functions and functions of the file (`forms`, `file`)."
-  (let [math-names (collect [k v (pairs math)] (when (= (type v) :function) (values v k)))]
+  (let [math-names (collect [k v (each-pair math)] (when (= (type v) :function) (values v k)))]
     ;; LuaJIT's math.mod is an alias of fmod: call the function by its own name.
     (when math.fmod (tset math-names math.fmod :fmod))
     (fn [name]
@@ -991,7 +995,7 @@ descriptors of nodes with the same texts share their GLSL and their Lua function
           key text-key]
       (when (not (. cache key))
         (when (> cached 256)
-          (each [k (pairs cache)] (tset cache k nil))
+          (each [k (each-pair cache)] (tset cache k nil))
           (set cached 0))
         (set cached (+ cached 1))
         (let [names c.params
@@ -1019,7 +1023,7 @@ descriptors of nodes with the same texts share their GLSL and their Lua function
       ;; estimate of the distance (a soft shadow's penumbra, occlusion: the declared
       ;; factor would darken them as if the surface were that much nearer) and the
       ;; declared one where a ray steps: its scale is followed by an :estimate? one.
-      (doto (collect [k v (pairs (. cache key))] k v)
+      (doto (collect [k v (each-pair (. cache key))] k v)
         (estimate! node)
         (tset :lipschitz (or node.lipschitz 1))
         ;; A declared factor taken on trust (:trust-lipschitz), said as such with

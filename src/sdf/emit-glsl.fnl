@@ -2,6 +2,10 @@
 ;; array, and the lines that map() and mapColor() run for each tree object. Output is
 ;; deterministic: the same tape gives the same text.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local primitives (require :src.sdf.primitives))
 (local strategies (require :src.sdf.strategies))
 
@@ -44,7 +48,7 @@ with a decimal point or an exponent."
 
 (fn derived [cx key value]
   ;; `cx` with `key` set to `value` (nil too); the same rows-read.
-  (doto (collect [k v (pairs cx)] k v) (tset key value)))
+  (doto (collect [k v (each-pair cx)] k v) (tset key value)))
 
 (fn reads [cx]
   "The tape's rows the code emitted with context `cx` (or one derived from it) reads:

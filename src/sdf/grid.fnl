@@ -19,6 +19,10 @@
 ;; `query`) read the same cells with the same arithmetic; brute force over every member
 ;; is the tests' oracle.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local floor math.floor)
 (local min math.min)
 (local max math.max)
@@ -265,7 +269,7 @@ and list slot), or nil and a message when one would not fit."
         (set cell-at (+ cell-at (length g.start)))))
     (let [sizes {:cells cell-at :lists (/ (length lists) 4) :bank (/ (length bank-values) 4)
                  :spheres (/ (length spheres) 4) :firsts (/ (length firsts) 4)}
-          over (accumulate [o nil name n (pairs sizes)] (if (> n max-texels) name o))]
+          over (accumulate [o nil name n (each-pair sizes)] (if (> n max-texels) name o))]
       (if over
           (values nil (string.format "the grids' %s need %d texels, more than a texture holds (%d)"
                                      over (. sizes over) max-texels))

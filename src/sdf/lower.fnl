@@ -81,6 +81,10 @@
 ;; at least the box's, could not lower the minimum. The skip changes no value, so
 ;; the CPU evaluator, which has no minimum to compare with, needs none.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local primitives (require :src.sdf.primitives))
 (local operations (require :src.sdf.operations))
 (local large-sphere (require :src.sdf.large-sphere))
@@ -172,7 +176,7 @@ offset 0, where the camera is taken off it; see `hand-in`)."
 (fn wrap-shorthand [node]
   "The node with its :scale, :rotate and :pos shorthands made explicit operations:
 translate(rotate(scale(node)))."
-  (var inner (collect [k v (pairs node)]
+  (var inner (collect [k v (each-pair node)]
                (when (and (not= k :pos) (not= k :rotate) (not= k :scale)) (values k v))))
   (when node.scale
     (set inner {:kind :scale :factor node.scale :children [inner] :path node.path
@@ -726,7 +730,7 @@ tape's :fold? in `lower`)."
     (let [op (and (. {:translate true :rotate true} at.kind) (operations.lookup at.kind))
           desc (and (not op) (primitives.lookup at.kind))
           own (collect [_ p (ipairs (or (?. op :params) (?. desc :params) []))] p.name true)]
-      (each [k (pairs at)]
+      (each [k (each-pair at)]
         (when (not (or (. marched-keys k) (. own k) (and op (= k :children))))
           (set ok? false)))
       (when at.color (set color at.color))
@@ -817,8 +821,8 @@ place there)}. Only their code is compiled in."
 for one of the article's flat objects (a sphere, box or plane written with only its
 own fields) the same leaf as a node, placed by :pos and coloured by :color."
   (if o.tree
-      (doto (collect [k v (pairs o.tree)] k v) (tset :index o.index))
-      (let [node (collect [k v (pairs o)] k v)]
+      (doto (collect [k v (each-pair o.tree)] k v) (tset :index o.index))
+      (let [node (collect [k v (each-pair o)] k v)]
         (set node.path (.. "objects[" o.index "]"))
         (when (= o.kind :plane) (set node.normal [0 0 1]))
         node)))

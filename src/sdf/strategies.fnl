@@ -51,6 +51,10 @@
 ;;              z reach tape-distance]) -> how many come within reach}
 ;;              (src/reference/distance.fnl)
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local files (require :src.util.files))
 
 (local dir "src/sdf/strategies")
@@ -85,7 +89,7 @@
 
 (fn all []
   "Every strategy's descriptor, sorted by name."
-  (doto (icollect [_ d (pairs (by-name))] d)
+  (doto (icollect [_ d (each-pair (by-name))] d)
     (table.sort (fn [a b] (< a.name b.name)))))
 
 (fn of [o]

@@ -47,6 +47,10 @@
 ;; point (a loop counter's bounds are ints): nothing of the scene's text, and the
 ;; same text for the same form.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local fennel (require :fennel))
 (local text (require :src.util.text))
 
@@ -141,7 +145,7 @@
                                (mix (mix (at 0 0 1) (at 1 0 1) u) (mix (at 0 1 1) (at 1 1 1) u) v)
                                w))}})
 
-(each [name spec (pairs library)]
+(each [name spec (each-pair library)]
   (let [(_ spaces) (spec.args:gsub " " "")]
     (tset math-functions name {:library true :counts {(+ spaces 1) true} :args spec.args})))
 
@@ -444,7 +448,7 @@ each component (a number goes to each, computed once): f gives one part."
                     (let [[a b] args]
                       {:g (.. "mod(" a.g ", " b.g ")") :l (.. "(" a.l " % " b.l ")") :t :float})))
         r (and (not p.const) (range-of op args))]
-    (if r (doto (collect [k v (pairs p)] k v) (tset :range r)) p)))
+    (if r (doto (collect [k v (each-pair p)] k v) (tset :range r)) p)))
 
 (fn arithmetic [st node op]
   ;; Of numbers, or component-wise of vectors (a number goes to every component).
@@ -922,8 +926,8 @@ the shape to put them back with `unflat`: per value 0 (one) or a vector's size."
     (set st.scope sc)
     (each [_ [c true?] (ipairs conds)]
       (case (narrow st c true?)
-        (name binding r) (bind! sc name (doto (collect [k v (pairs binding)] k v)
-                                          (tset :part (doto (collect [k v (pairs binding.part)] k v)
+        (name binding r) (bind! sc name (doto (collect [k v (each-pair binding)] k v)
+                                          (tset :part (doto (collect [k v (each-pair binding.part)] k v)
                                                         (tset :range r)))))))
     (let [(block value) (capture st f)]
       (set st.scope saved)
@@ -1101,7 +1105,7 @@ or set together."
                         [(check-name! st pattern)])
               parts (if (fennel.list? pattern) (numbers-of st node value (length names))
                         [(value-arg st value)])
-              new-local (fn [p] (declare! st node (collect [k x (pairs p)] (when (and (not= k :const) (not= k :range)) (values k x)))))]
+              new-local (fn [p] (declare! st node (collect [k x (each-pair p)] (when (and (not= k :const) (not= k :range)) (values k x)))))]
           (each [i name (ipairs names)]
             (let [p (. parts i)
                   v (if (= p.t :vec) {:t :vec :comps (icollect [_ c (ipairs p.comps)] (new-local c))}
@@ -1261,7 +1265,7 @@ or set together."
   (let [out []]
     (var sc st.scope)
     (while sc
-      (each [name b (pairs sc.names)]
+      (each [name b (each-pair sc.names)]
         (when (= b.kind :helper) (table.insert out name)))
       (set sc sc.parent))
     (table.sort out)
@@ -1276,7 +1280,7 @@ or set together."
   ;; A table of the file: an array of numbers, or of vectors of 2 or 3 numbers, as
   ;; constants (a vector when it is 2 or 3 numbers).
   (let [n (length t)
-        keys (accumulate [k 0 _ (pairs t)] (+ k 1))
+        keys (accumulate [k 0 _ (each-pair t)] (+ k 1))
         bad #(refuse st node (.. "`" name "` is a table that is not an array of numbers or of vectors [a b] or [a b c]"
                                  (if $ (.. " (" $ ")") "")
                                  "; a distance function may use numbers, math functions, functions of the file and such arrays from outside it"))
@@ -1287,12 +1291,12 @@ or set together."
                   (let [x (. t i)]
                     (if (= (type x) :table)
                         (let [m (length x)]
-                          (when (or (not (<= 2 m 3)) (not= m (accumulate [k 0 _ (pairs x)] (+ k 1))))
+                          (when (or (not (<= 2 m 3)) (not= m (accumulate [k 0 _ (each-pair x)] (+ k 1))))
                             (bad "a vector item must be [a b] or [a b c]"))
                           {:t :vec :comps (fcollect [j 1 m] (number (. x j)))})
                         (number x))))
           sizes (collect [_ p (ipairs items)] (if (= p.t :vec) (length p.comps) 0) true)]
-      (when (not= 1 (accumulate [k 0 _ (pairs sizes)] (+ k 1)))
+      (when (not= 1 (accumulate [k 0 _ (each-pair sizes)] (+ k 1)))
         (bad "its items are not all numbers or all vectors of one size"))
       (if (and (<= 2 n 3) (= :float (. items 1 :t))) {:t :vec :comps items}
           {:t :array : items}))))
@@ -1469,7 +1473,7 @@ parameters as written: names or [...] patterns) and body forms."
   (let [names {}]
     (var s sc)
     (while s
-      (each [k v (pairs s.names)] (when (= nil (. names k)) (tset names k v)))
+      (each [k v (each-pair s.names)] (when (= nil (. names k)) (tset names k v)))
       (set s s.parent))
     {: names}))
 

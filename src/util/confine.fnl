@@ -25,6 +25,10 @@
 ;; processes use. The list was drawn from strace of a worker serving loads and frames
 ;; of functions of time, under LÖVE and under LuaJIT.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local libc (require :src.util.libc))
 (local ffi libc.ffi)
 
@@ -92,7 +96,7 @@ after which the kernel ends it. True, or nil and a message."
   ;; [code jt jf k] rows: check the architecture, refuse the x32 ABI, allow each listed
   ;; call, ioctl for the listed requests and prlimit64 on this process, and answer
   ;; EPERM to everything else.
-  (let [numbers (doto (icollect [_ n (pairs allowed-x64)] n) table.sort)
+  (let [numbers (doto (icollect [_ n (each-pair allowed-x64)] n) table.sort)
         rows []
         add #(table.insert rows [$1 $2 $3 $4])
         ;; After the tests of the listed calls: the ioctl block (its test, then

@@ -14,6 +14,10 @@
 ;;               pixels) and against the strict GPU normals view (whole image)
 ;; and per scene the Pareto front in (ms/frame, error). Pure LuaJIT: no LÖVE.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local ffi (require :ffi))
 (local fennel (require :fennel))
 (local scene-loader (require :src.scene.load))
@@ -72,7 +76,7 @@
 
 (fn describe-overrides [overrides]
   "`{:max-steps 64 :normals :tetrahedron}` -> \"max-steps 64, normals tetrahedron\"."
-  (let [keys (doto (icollect [k (pairs overrides)] k) table.sort)]
+  (let [keys (doto (icollect [k (each-pair overrides)] k) table.sort)]
     (if (= (length keys) 0) "the scene's own settings"
         (table.concat (icollect [_ k (ipairs keys)]
                         (.. k " " (fmt-number (. overrides k))))
@@ -127,8 +131,8 @@
             (add (.. "refl" r) :reflections {:reflections r}))
           (let [px {:hit-test :pixel :epsilon 0.5 :normals :tetrahedron}
                 with (fn [extra]
-                       (let [out (collect [k v (pairs px)] k v)]
-                         (each [k v (pairs extra)] (tset out k v))
+                       (let [out (collect [k v (each-pair px)] k v)]
+                         (each [k v (each-pair extra)] (tset out k v))
                          out))]
             (add "px.5+tet" :combined px)
             (each [_ w (ipairs [1.2 1.4 1.6])]
@@ -158,14 +162,14 @@
     out))
 
 (fn known-render-keys []
-  (collect [k (pairs (. (scene-loader.defaults) :render))] k true))
+  (collect [k (each-pair (. (scene-loader.defaults) :render))] k true))
 
 (fn defaults-overrides [?defaults]
   "The overrides of the \"defaults\" setting: `?defaults` (a partial render table)
 with the tuning keys it leaves out taken from the scene loader's defaults."
   (let [loader (. (scene-loader.defaults) :render)
         given (or ?defaults {})
-        out (collect [k v (pairs given)] k v)]
+        out (collect [k v (each-pair given)] k v)]
     (each [_ k (ipairs tuning-keys)]
       (when (and (= nil (. out k)) (not= nil (. loader k)))
         (tset out k (. loader k))))
@@ -180,9 +184,9 @@ with the tuning keys it leaves out taken from the scene loader's defaults."
 (fn apply-setting [base overrides known]
   "The render section `base` with `overrides` applied: the table, or nil and why the
 setting cannot be measured with the loader as it is."
-  (let [out (collect [k v (pairs base)] k v)]
+  (let [out (collect [k v (each-pair base)] k v)]
     (var why nil)
-    (each [k v (pairs overrides)]
+    (each [k v (each-pair overrides)]
       (if (. known k) (tset out k v)
           (= v (. article k)) nil
           (set why (.. "the scene format has no :" k " yet"))))
@@ -205,7 +209,7 @@ setting cannot be measured with the loader as it is."
   (fennel.view render {:one-line? true}))
 
 (fn with-render [s render]
-  (doto (collect [k v (pairs s)] k v) (tset :render render)))
+  (doto (collect [k v (each-pair s)] k v) (tset :render render)))
 
 ;;; Pareto front
 
@@ -268,7 +272,7 @@ void main() {
     (if (= (type p) :number) p (values nil p.error))))
 
 (fn release-all [ctx cache]
-  (each [_ p (pairs cache)]
+  (each [_ p (each-pair cache)]
     (when (= (type p) :number) (headless.release ctx p))))
 
 (fn hit-mask [image]
@@ -489,9 +493,9 @@ scenes/ and scenes/stress/), :defaults (a partial render table, see
 defaults-overrides), :progress? (default true; progress lines on stderr), :width
 :height. Returns {:scenes [per-scene results] :config :renderer :seconds}, or nil and
 a reason when OSMesa is not available."
-  (let [options (collect [k v (pairs (or ?options {}))] k v)
+  (let [options (collect [k v (each-pair (or ?options {}))] k v)
         config (. configs (if options.quick? :quick :full))]
-    (each [k v (pairs config)]
+    (each [k v (each-pair config)]
       (when (= nil (. options k)) (tset options k v)))
     (set options.started (now-ms))
     (case (headless.context)
@@ -631,7 +635,7 @@ the seed scene (or `?scene-name`), measured in the same run: a sentence, and
       (each [_ r (ipairs s.rows)]
         (when r.pareto?
           (tset counts r.name (+ 1 (or (. counts r.name) 0))))))
-    (let [names (doto (icollect [k (pairs counts)] k)
+    (let [names (doto (icollect [k (each-pair counts)] k)
                   (table.sort (fn [a b] (if (= (. counts a) (. counts b)) (< a b)
                                             (> (. counts a) (. counts b))))))
           n (length measured)

@@ -5,6 +5,10 @@
 ;; the members its cell lists, and the others' lower bound. See
 ;; src/sdf/strategies.fnl for the interface.
 
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
+
 (local glsl (require :src.sdf.emit-glsl))
 (local emit-lua (require :src.sdf.emit-lua))
 (local bounds (require :src.render.bounds))
@@ -19,7 +23,7 @@
   ;; `(lines-fn cx2)` with cx2 reading `o`'s rows (the group's bank; in a loop over a
   ;; grid cell's list, the first row at the list slot ?slot).
   (lines-fn (glsl.derived cx :group (if ?slot
-                                        (doto (collect [k v (pairs o.instances)] k v) (tset :slot ?slot))
+                                        (doto (collect [k v (each-pair o.instances)] k v) (tset :slot ?slot))
                                         o.instances))))
 
 (fn bank-point [o]
