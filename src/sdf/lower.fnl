@@ -833,6 +833,13 @@ own fields) the same leaf as a node, placed by :pos and coloured by :color."
 ;; unroll (llvmpipe leaves some unrolled).
 (local min-group 9)
 
+(fn strategy-for [count]
+  ;; The drawing strategy of `count` objects of one structure (equal keys): the first
+  ;; by :rank (the lowest) whose :takes? accepts the count, of those that lowering
+  ;; chooses (src/sdf/strategies.fnl).
+  (accumulate [found nil _ s (ipairs (strategies.chosen-in-lowering)) &until found]
+    (when (s.takes? count) s)))
+
 (fn relocate! [code offset seen]
   ;; Every row `code` reads, `offset` further on (a :post shares its :point's args).
   (each-instruction code
@@ -869,7 +876,6 @@ own fields) the same leaf as a node, placed by :pos and coloured by :color."
     (set o.leaf (leaf-of o.code o.dout))
     (set o.size (length st.rows))
     (set o.half-space? (= true (?. o :leaf :prim :desc :half-space?)))
-    (set o.strategy :tree)
     (values st o)))
 
 (fn lower [objects ?options]
@@ -921,33 +927,36 @@ as a field: the first tape object (see Strategies above)."
               (when (not (. used name))
                 (tset used name (. st.used name))
                 (table.insert used-list name)))
-            (if (< (. counts k) min-group)
-                (do (relocate! o.code (append-rows! tape-bank st) {})
-                    (set o.id id)
-                    (set id (+ id 1))
-                    (table.insert out o)
-                    (table.insert key k))
-                (. groups k)
-                (let [g (. groups k)]
-                  (table.insert g.states st)
-                  (table.insert g.o.indices o.index)
-                  (table.insert g.o.infos o.info))
-                (do (set o.indices [o.index])
-                    (set o.infos [o.info])
-                    (set o.id id)
-                    (set id (+ id (. counts k)))
-                    (tset groups k {: o :states [st]})
-                    (table.insert group-order (. groups k))
-                    (table.insert out o)
-                    (table.insert key (.. "group:" (. counts k) "[" k "]")))))
+            ;; The strategy that draws the objects of this structure: one tape
+            ;; object each, their rows in the tape's bank, or gathered into one
+            ;; whose members' rows go one after another in the instance bank.
+            (let [s (strategy-for (. counts k))]
+              (if (not s.gathers?)
+                  (do (relocate! o.code (append-rows! tape-bank st) {})
+                      (set (o.id o.strategy) (values id s.name))
+                      (set id (+ id 1))
+                      (table.insert out o)
+                      (table.insert key (s.key k 1)))
+                  (. groups k)
+                  (let [g (. groups k)]
+                    (table.insert g.states st)
+                    (table.insert g.o.indices o.index)
+                    (table.insert g.o.infos o.info))
+                  (do (set o.indices [o.index])
+                      (set o.infos [o.info])
+                      (set (o.id o.strategy) (values id s.name))
+                      (set id (+ id (. counts k)))
+                      (tset groups k {: o :states [st]})
+                      (table.insert group-order (. groups k))
+                      (table.insert out o)
+                      (table.insert key (s.key k (. counts k)))))))
           ;; A group's members' rows one after another (at base + member * stride),
           ;; groups in order.
           (each [_ {: o : states} (ipairs group-order)]
             (let [base (append-rows! group-bank (. states 1))]
               (for [m 2 (length states)] (append-rows! group-bank (. states m)))
               (set o.instances {:count (length states) : base
-                                :stride (length (. states 1 :rows))})
-              (set o.strategy :group)))
+                                :stride (length (. states 1 :rows))})))
           ;; The blends' children's rows after the groups' (see blend!).
           (let [offset (append-rows! group-bank blends.bank)]
             (each [_ ins (ipairs blends.list)] (set ins.base (+ ins.base offset))))

@@ -8,6 +8,17 @@
 ;; A descriptor:
 ;;   :name      keyword, the :strategy lowering writes; :doc one line
 ;;   :count     (fn [o]) -> the objects it draws (an object number each)
+;;   :takes?    optional (fn [count]) -> whether it draws `count` scene objects of one
+;;              structure (lower.fnl: equal keys, the same code but for their values);
+;;              lowering asks those that have it, by :rank (lowest first), and gives
+;;              the objects to the first that takes them. A strategy without it is
+;;              chosen elsewhere (a field: by the plan)
+;;   :rank      with :takes?: its place in that order
+;;   :gathers?  with :takes?: true to draw them as one tape object whose members' rows
+;;              go one after another in the instance bank (its :instances {:count
+;;              :base :stride}), false for one tape object each, rows in the tape's
+;;              bank
+;;   :key       with :takes?: (fn [key count]) -> its part of the tape's structure key
 ;;   :folds?    whether fold! (values as constants, lower.fnl) writes its rows into the
 ;;              code (an instance group's stay in its bank; a field has no code)
 ;;   :marched?  (fn [o]) -> whether a bounded march steps by its distance (mapFinite):
@@ -97,8 +108,14 @@
   (or (. (by-name) o.strategy)
       (error (.. "no drawing strategy " (tostring o.strategy) " in " dir))))
 
+(fn chosen-in-lowering []
+  "The strategies lowering chooses among for objects of one structure (those with
+:takes?), by :rank."
+  (doto (icollect [_ d (ipairs (all))] (when d.takes? d))
+    (table.sort (fn [a b] (< a.rank b.rank)))))
+
 (fn count [o]
   "How many objects tape object `o` draws (an object number each)."
   ((. (of o) :count) o))
 
-{: all : of : count}
+{: all : of : count : chosen-in-lowering}

@@ -14,6 +14,7 @@
 (local bounds (require :src.render.bounds))
 (local runs (require :src.reference.distance))
 (local grid (require :src.sdf.grid))
+(local lower (require :src.sdf.lower))
 (local chunks (require :src.render.chunks))
 
 (fn group-comment [o]
@@ -72,6 +73,12 @@
 
 {:name :group
  :doc "objects of one structure, a loop over their rows (through a grid when they have boxes)"
+ ;; From lower.fnl's min-group on: fewer are written out one by one, as a person
+ ;; would (the driver then has no loop to unroll; llvmpipe leaves some unrolled).
+ :takes? (fn [count] (>= count lower.min-group))
+ :rank 10
+ :gathers? true
+ :key (fn [key count] (.. "group:" count "[" key "]"))
  :count (fn [o] o.instances.count)
  :folds? false
  :marched? (fn [o] (not o.half-space?))

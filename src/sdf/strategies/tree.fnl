@@ -20,6 +20,10 @@
 
 {:name :tree
  :doc "one object's tree, written out in the shader"
+ :takes? (fn [_] true)
+ :rank 100
+ :gathers? false
+ :key (fn [key _] key)
  :count (fn [_] 1)
  :folds? true
  :marched? (fn [o] (not o.half-space?))
