@@ -16,6 +16,7 @@
 (local scene-mod (require :src.scene.load))
 (local wire (require :src.util.wire))
 (local confine (require :src.util.confine))
+(local strategies (require :src.sdf.strategies))
 ;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
 ;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
 (local each-pair pairs)
@@ -131,6 +132,10 @@
 (fn serve! [input output]
   "Confine this process, say so on `output`, then answer the requests on `input` until
 it ends."
+  ;; The drawing strategies load on first use (their files require the emitters,
+  ;; which reach objects through them): here, while this process can still list a
+  ;; folder and open files (a custom node is lowered when the scene is checked).
+  (strategies.all)
   (let [(applied missing) (confine.confine! limits)]
     (answer! output {:ready true : applied : missing :limits limits})
     (var payload (read-frame input))
