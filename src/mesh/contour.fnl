@@ -1027,7 +1027,7 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
 (cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
 moved onto the surface) :collections (full collections of the Lua heap, see
 bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
-:crossing (each-pair of triangles left crossing or folded) :times (CPU seconds per step) :work :estimate}}."
+:crossing (pairs of triangles left crossing or folded) :times (CPU seconds per step) :work :estimate}}."
   (let [state (new-state field grid ?progress)
         counts state.counts]
     (mark! state :blocks)

@@ -304,10 +304,10 @@ coplanar and overlapping. Second value: :crossing, :coplanar or nil."
   n)
 
 (fn self-intersections [m ?options]
-  "The pairs of triangles of mesh `m` that cross: {:pairs (each-pair sharing no vertex
+  "The pairs of triangles of mesh `m` that cross: {:pairs (pairs sharing no vertex
 whose common part, see pair-overlap, is longer than :min-length) :coplanar (those
 of them that overlap in a plane) :longest (the longest common part of those) :at
-[x y z] (a point of that longest one's triangles) :folds (each-pair sharing one vertex
+[x y z] (a point of that longest one's triangles) :folds (pairs sharing one vertex
 that meet along more than that vertex: a fold through the vertex) :fold-list [[s t
 length] ...] (the first :max-list folds, as :list) :tested (pairs
 whose boxes overlap, tested exactly) :list [[s t length] ...] (the first

@@ -587,11 +587,13 @@ to the earlier record."
 ;; so a reciprocal is huge, not an infinity, along an axis the ray does not move on.
 (local tiny 0.000001)
 
+(fn safe-component [v]
+  (if (< (abs v) tiny) tiny v))
+
 (fn reciprocal [dx dy dz]
   "The reciprocal of the ray direction (dx dy dz) with tiny components replaced, as
 the shader's fieldSafeDirection: ix iy iz (their signs are the walk's steps)."
-  (let [safe (fn [v] (if (< (abs v) tiny) tiny v))]
-    (values (/ 1 (safe dx)) (/ 1 (safe dy)) (/ 1 (safe dz)))))
+  (values (/ 1 (safe-component dx)) (/ 1 (safe-component dy)) (/ 1 (safe-component dz))))
 
 (fn entry [qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far]
   ;; fieldEntry: where the ray q + t d first enters the object, at t >= 0, or `far`.
@@ -666,13 +668,18 @@ march's hit test (see marched-entry), is needed when the field has marched membe
                             (entry qx qy qz dx dy dz ix iy iz cx cy cz ax ay az r far)))))))
     t))
 
+(fn cell-along [q s n]
+  ;; The cell (0-based) holding coordinate q on an axis of n cells of side s, clamped.
+  (max 0 (min (- n 1) (floor (/ q s)))))
+
 (fn cell-of [field qx qy qz]
   "The cell holding field-local (qx qy qz), clamped into the grid: x y z (0-based)
 and its number k (1-based)."
+  ;; (No closure here: LuaJIT compiles no function that makes one, and this runs for
+  ;; every point the CPU reference or a mesh reads in a field.)
   (let [[nx ny nz] field.dims
         [sx sy sz] field.cell
-        c (fn [q s n] (max 0 (min (- n 1) (floor (/ q s)))))
-        x (c qx sx nx) y (c qy sy ny) z (c qz sz nz)]
+        x (cell-along qx sx nx) y (cell-along qy sy ny) z (cell-along qz sz nz)]
     (values x y z (+ 1 x (* nx (+ y (* ny z)))))))
 
 (fn distance [field x y z ?skip]
