@@ -229,8 +229,14 @@
   (fn []
     (it "is found by listing the folder, and its settings are the :lighting section's"
       (fn []
-        (let [features (require :src.render.features)]
-          (assert.are.same [:fog :occlusion :rim :specular] (icollect [_ d (ipairs features.all)] d.name))
+        (let [features (require :src.render.features)
+              files (require :src.util.files)]
+          ;; One feature per file of the folder, named as its file (a new feature is
+          ;; one file and its chunk: nothing here names them).
+          (assert.are.same (icollect [_ name (ipairs (assert (files.list-project "src/render/features")))]
+                             (name:match "^(.-)%.fnl$"))
+                           (icollect [_ d (ipairs features.all)] d.name))
+          (assert.is_true (>= (length features.all) 4))
           (let [s (load (modern "{:rim 0.7 :rim-power 2}"))
                 p (assert (plan.scene->plan s))]
             (assert.are.equal 0.7 s.lighting.rim)
