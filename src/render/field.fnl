@@ -43,11 +43,11 @@
 ;; speed.)
 (local min-objects 16)
 
-;; Texels per texture row. Every texture is 1024 wide and as tall as it needs;
-;; llvmpipe allows 16384 x 16384, so the records texture (two texels a record) holds
-;; at most this many records.
-(local texture-width 1024)
-(local max-texels (* 16384 texture-width))
+;; Textures and grid sizes as an instance group's grid has them (src/sdf/grid.fnl,
+;; one grid system): every texture texture-width wide and as tall as it needs, at most
+;; max-texels; llvmpipe allows 16384 x 16384, so the records texture (two texels a
+;; record) holds at most this many records.
+(local {: texture-width : max-texels : grid-dims : texture} (require :src.sdf.grid))
 (local max-records (/ max-texels 2))
 
 ;; Grid cells per object (the grid's resolution): more cells mean shorter lists and
@@ -58,7 +58,6 @@
 ;; 8; 100,000 173 ms at 2, 181 at 4, 188 at 8, 212 at 12.
 (local cells-per-object 2)
 
-(local max-cells-per-axis 256)
 
 ;; An object is listed in every cell its box comes within `reach` of. The march needs
 ;; no reach (it never leaves a cell without crossing its wall), but a distance query
@@ -155,14 +154,6 @@ a b c, d e f, g h k does (v + 2 q x (q x v + w v), with q = x y z)."
   ;; The shared distance, the round-box primitive's about centre c: a sphere when
   ;; h = 0, a box when r = 0; both exact.
   (round-box-cpu (- qx cx) (- qy cy) (- qz cz) hx hy hz r))
-
-(fn grid-dims [ex ey ez n per-object]
-  ;; Cells along each axis for extents ex ey ez and n objects: about
-  ;; per-object * n cubic cells, at least one along each axis.
-  (let [volume (* (max ex 1e-9) (max ey 1e-9) (max ez 1e-9))
-        side (^ (/ volume (* per-object n)) (/ 1 3))
-        dim (fn [e] (max 1 (min max-cells-per-axis (math.ceil (/ e side)))))]
-    [(dim ex) (dim ey) (dim ez)]))
 
 (fn list-cells [[nx ny nz] ranges n]
   ;; The cells' lists, laid out cell after cell, objects in each in scene order:
@@ -294,9 +285,6 @@ a b c, d e f, g h k does (v + 2 q x (q x v + w v), with q = x y z)."
         (set field.walk? true)
         (set field.turns (+ field.crossings (min listed (* field.crossings longest)))))))
   field)
-
-(fn texture [texels data]
-  {:width texture-width :height (max 1 (math.ceil (/ texels texture-width))) : data})
 
 (fn build [objects ?options]
   "The field of `objects` (members, in order): the grid and the texture data.
@@ -550,7 +538,8 @@ its :floats."
 (local unpack (or table.unpack _G.unpack))
 
 (fn marched-distance [m qx qy qz cx cy cz]
-  ;; fieldMarchedDistance: marched member `m` (about its origin c) at q, in its frame.
+  "fieldMarchedDistance: marched member `m` (lower.fnl's field-marched, about its
+origin c) at q, in its frame."
   (let [[a b c d e f g h k] m.rows
         x (- qx cx) y (- qy cy) z (- qz cz)]
     (m.desc.cpu (+ (* a x) (* b y) (* c z)) (+ (* d x) (* e y) (* f z)) (+ (* g x) (* h y) (* k z))
@@ -848,4 +837,5 @@ member's by marched-entry, with the hit test `?hit`), or `far`."
 {: member? : members : brute-entry : marched-entry : marched-turns : object-texels
  : arg-texels : quaternion
  : member-distance : walk : reciprocal : tiny : changed-spans : build : textures : release-floats! : floats-of : object-distance : cell-distance : cell-of : list-entry
- : distance : brute-distance : rounded-box : min-objects : texture-width : texture-values : shape-at}
+ : distance : brute-distance : rounded-box : min-objects : texture-width : texture-values : shape-at
+ : marched-distance}

@@ -46,13 +46,14 @@
 ;; reach, more steps to leave a cell), and soft shadows step by distance queries.
 (local reach-fraction 0.25)
 
-;; Texels per texture row, as a field's (src/render/field.fnl).
+;; Texels per texture row, for an instance group's grid and a field's
+;; (src/render/field.fnl) alike.
 (local texture-width 1024)
 (local max-texels (* 16384 texture-width))
 
 (fn grid-dims [ex ey ez n per]
-  ;; Cells along each axis for extents ex ey ez and n members: about per * n cubic
-  ;; cells, at least one along each axis.
+  "Cells along each axis for extents ex ey ez and n members: about per * n cubic
+cells, at least one along each axis."
   (let [volume (* (max ex 1e-9) (max ey 1e-9) (max ez 1e-9))
         side (^ (/ volume (* per n)) (/ 1 3))
         dim (fn [e] (max 1 (min max-cells-per-axis (math.ceil (/ e side)))))]
@@ -231,6 +232,8 @@ entry into the sphere (`far` when it never enters), and at least its distance to
         (max e (if (or (< disc 0) (> b 0)) far (- (- b) (math.sqrt disc))))))))
 
 (fn texture [texels data]
+  "A texture of `texels` texels (texture-width a row, as many rows as they need),
+its texels' numbers `data`."
   {:width texture-width :height (max 1 (math.ceil (/ texels texture-width))) : data})
 
 (fn textures [grids bank-values [ax ay az] ?layouts]
@@ -279,4 +282,4 @@ and list slot), or nil and a message when one would not fit."
            :bank (texture (. sizes :bank) bank-values) : offsets}))))
 
 {: frame : build : query : skip : textures : min-members : blend-cells-per-member
- : texture-width}
+ : texture-width : max-texels : grid-dims : texture}

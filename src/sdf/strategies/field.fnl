@@ -37,19 +37,6 @@
   ;; marched members, differences are taken for all of them.
   (= 0 (length o.field.kinds.marched)))
 
-(local unpack (or table.unpack _G.unpack))
-
-(fn marched-distance [m cx cy cz]
-  ;; A marched member's distance (lower.fnl's field-marched `m`, its origin c): its
-  ;; primitive's CPU form in its frame.
-  (let [[a b c d e f g h k] m.rows
-        cpu m.desc.cpu
-        args m.args]
-    (fn [x y z]
-      (let [x (- x cx) y (- y cy) z (- z cz)]
-        (cpu (+ (* a x) (* b y) (* c z)) (+ (* d x) (* e y) (* f z)) (+ (* g x) (* h y) (* k z))
-             (unpack args))))))
-
 (fn evaluators [tape o what into]
   ;; The members' CPU evaluators by object number: each its shape's round box, by the
   ;; descriptor's CPU form, or a marched member's own primitive in its frame; matte
@@ -64,7 +51,7 @@
     (each [_ m (ipairs f.members)]
       (let [(cx cy cz hx hy hz r) (lower.field-shape m)
             marched (when m.tree (lower.field-marched m))
-            distance (if marched (marched-distance marched cx cy cz)
+            distance (if marched (fn [x y z] (field.marched-distance marched x y z cx cy cz))
                          (fn [x y z] (round-box (- x cx) (- y cy) (- z cz) hx hy hz r)))]
         (table.insert into
                       (case what
