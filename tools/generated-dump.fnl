@@ -9,6 +9,7 @@
 ;; 108 pixels of the CPU reference (colour, steps, object, distance). Run it in each
 ;; checkout and diff the two files, leaving out the `###` header lines (their
 ;; variant's fields come in table order).
+
 (local load (require :src.scene.load))
 (local plan (require :src.render.plan))
 (local codegen (require :src.render.codegen))
@@ -16,45 +17,79 @@
 (local camera (require :src.render.camera))
 (local reference (require :src.reference))
 (local uniforms (require :src.render.uniforms))
-(local [out ref?] arg)
-(local files [])
-(each [_ dir (ipairs ["scenes" "scenes/stress" "examples" "test/states/plain" "test/fixtures"])]
-  (let [p (io.popen (.. "ls " dir "/*.fnl 2>/dev/null"))]
-    (each [l (p:lines)] (table.insert files l))
-    (p:close)))
-(local f (assert (io.open out :w)))
-(var n 0)
-(each [_ file (ipairs files)]
-  (let [(scene err) (load.load-file file)]
-    (if (not scene) (f:write "# " file " refused: " (tostring err) "\n")
-        (each [_ renderer (ipairs ["llvmpipe" "NVIDIA"])]
-          (each [_ flags (ipairs [{} {:fold? true} {:grids? false} {:field? false} {:fold? true :field? false}])]
-            (let [(ok? p) (pcall plan.scene->plan scene (plan.renderer-options renderer flags))]
-              (f:write "### " file " " renderer " " (table.concat (icollect [k v (pairs flags)] (.. k "=" (tostring v))) ",") "\n")
-              (if (not (and ok? p)) (f:write "plan failed " (tostring p) "\n")
-                  (do
-                    (each [_ target (ipairs [:love :love-uniforms :core :probe :shadertoy])]
-                      (let [(ok2? s) (pcall codegen.shader p target)]
-                        (set n (+ n 1))
-                        (f:write "## " target "\n" (tostring s) "\n")))
-                    (let [(oku us) (pcall uniforms.pack scene p (camera.from-scene scene) 64 48)]
-                      (f:write "## uniforms\n")
-                      (if oku
-                          (each [_ u (ipairs us)]
-                            (f:write u.name " " u.type " " (tostring u.count) " "
-                                     (table.concat (icollect [_ v (ipairs (or u.values []))] (string.format "%.17g" v)) ",")
-                                     (if u.texture (.. " tex " u.texture.width "x" u.texture.height " " (let [d u.texture.data] (var h 0) (when (= (type d) :cdata) (for [i 0 (- (* u.texture.width u.texture.height) 1)] (set h (% (+ (* h 31) (* 1000 (. d i))) 1000000007)))) (string.format "%.17g" h))) "") "\n"))
-                          (f:write (tostring us) "\n")))
-                    (when (and (= renderer "llvmpipe") (= nil (next flags)))
-                      (let [(ok3? c) (pcall emit-lua.compile p.tape)]
-                        (f:write "## lua\n" (if ok3? c.source (tostring c)) "\n"))
-                      (when ref?
-                        (let [cam (camera.from-scene scene)
-                              pixels (let [t []] (for [y 0 8] (for [x 0 11] (table.insert t [x y]))) t)
-                              (ok4? cols) (pcall reference.render-pixels scene p cam 12 9 pixels)]
-                          (f:write "## ref\n")
-                          (if ok4?
-                              (each [_ c (ipairs cols)] (f:write (table.concat (icollect [_ v (ipairs c.color)] (string.format "%.17g" v)) " ") " " (tostring c.steps) " " (tostring c.object) " " (string.format "%.17g" (or c.distance 0)) "\n"))
-                              (f:write (tostring cols) "\n")))))))))))))
-(f:close)
-(print n "shaders")
+
+(local folders ["scenes" "scenes/stress" "examples" "test/states/plain" "test/fixtures"])
+(local renderers ["llvmpipe" "NVIDIA"])
+(local variants [{} {:fold? true} {:grids? false} {:field? false} {:fold? true :field? false}])
+(local targets [:love :love-uniforms :core :probe :shadertoy])
+
+(fn scene-files []
+  (let [out []]
+    (each [_ dir (ipairs folders)]
+      (with-open [p (io.popen (.. "ls " dir "/*.fnl 2>/dev/null"))]
+        (each [l (p:lines)] (table.insert out l))))
+    out))
+
+(fn number-text [v] (string.format "%.17g" v))
+
+(fn texture-hash [t]
+  ;; A hash of a texture's texels (its FFI data), or 0 without them.
+  (var h 0)
+  (when (= (type t.data) :cdata)
+    (for [i 0 (- (* t.width t.height) 1)]
+      (set h (% (+ (* h 31) (* 1000 (. t.data i))) 1000000007))))
+  h)
+
+(fn write-uniforms [f scene p]
+  (f:write "## uniforms\n")
+  (case (pcall uniforms.pack scene p (camera.from-scene scene) 64 48)
+    (true us) (each [_ u (ipairs us)]
+                (f:write u.name " " u.type " " (tostring u.count) " "
+                         (table.concat (icollect [_ v (ipairs (or u.values []))] (number-text v)) ",")
+                         (if u.texture
+                             (.. " tex " u.texture.width "x" u.texture.height " "
+                                 (number-text (texture-hash u.texture)))
+                             "")
+                         "\n"))
+    (_ err) (f:write (tostring err) "\n")))
+
+(fn write-reference [f scene p]
+  (let [pixels (let [t []] (for [y 0 8] (for [x 0 11] (table.insert t [x y]))) t)]
+    (f:write "## ref\n")
+    (case (pcall reference.render-pixels scene p (camera.from-scene scene) 12 9 pixels)
+      (true results) (each [_ c (ipairs results)]
+                       (f:write (table.concat (icollect [_ v (ipairs c.color)] (number-text v)) " ")
+                                " " (tostring c.steps) " " (tostring c.object) " "
+                                (number-text (or c.distance 0)) "\n"))
+      (_ err) (f:write (tostring err) "\n"))))
+
+(fn write-plan [f scene p default? ref?]
+  (var n 0)
+  (each [_ target (ipairs targets)]
+    (let [(_ text) (pcall codegen.shader p target)]
+      (set n (+ n 1))
+      (f:write "## " target "\n" (tostring text) "\n")))
+  (write-uniforms f scene p)
+  (when default?
+    (let [(ok? c) (pcall emit-lua.compile p.tape)]
+      (f:write "## lua\n" (if ok? c.source (tostring c)) "\n"))
+    (when ref? (write-reference f scene p)))
+  n)
+
+(let [[out ref?] arg
+      f (assert (io.open (assert out "usage: generated-dump.fnl OUT.txt [ref]") :w))]
+  (var n 0)
+  (each [_ file (ipairs (scene-files))]
+    (case (load.load-file file)
+      (nil err) (f:write "# " file " refused: " (tostring err) "\n")
+      scene (each [_ renderer (ipairs renderers)]
+              (each [_ flags (ipairs variants)]
+                (f:write "### " file " " renderer " "
+                         (table.concat (icollect [k v (pairs flags)] (.. k "=" (tostring v))) ",") "\n")
+                (let [(ok? p) (pcall plan.scene->plan scene (plan.renderer-options renderer flags))]
+                  (if (and ok? p)
+                      (set n (+ n (write-plan f scene p (and (= renderer "llvmpipe") (= nil (next flags)))
+                                              ref?)))
+                      (f:write "plan failed " (tostring p) "\n")))))))
+  (f:close)
+  (print n "shaders"))
