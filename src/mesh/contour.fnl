@@ -213,26 +213,30 @@ The tables returned may be shared between cells: not to be changed."
                   (/ (+ (* c12 b1) (* c22 b2) (* c23 b3)) det)
                   (/ (+ (* c13 b1) (* c23 b2) (* c33 b3)) det))))))
 
-(fn qef-vertex [ids px py pz nx ny nz lo-x lo-y lo-z h]
-  "The vertex of the crossings `ids` (indices into the crossing arrays), clamped to
-the cell whose low corner is lo and side h, then the crossings' mean."
-  (var (cx cy cz) (values 0 0 0))
-  (let [m (length ids)]
-    (each [_ k (ipairs ids)]
-      (set (cx cy cz) (values (+ cx (. px k)) (+ cy (. py k)) (+ cz (. pz k)))))
-    (set (cx cy cz) (values (/ cx m) (/ cy m) (/ cz m)))
-    (var (a11 a12 a13 a22 a23 a33 b1 b2 b3) (values 0 0 0 0 0 0 0 0 0))
-    (each [_ k (ipairs ids)]
-      (let [x (. nx k) y (. ny k) z (. nz k)
-            r (+ (* x (- (. px k) cx)) (* y (- (. py k) cy)) (* z (- (. pz k) cz)))]
-        (set (a11 a12 a13) (values (+ a11 (* x x)) (+ a12 (* x y)) (+ a13 (* x z))))
-        (set (a22 a23 a33) (values (+ a22 (* y y)) (+ a23 (* y z)) (+ a33 (* z z))))
-        (set (b1 b2 b3) (values (+ b1 (* x r)) (+ b2 (* y r)) (+ b3 (* z r))))))
-    (let [l (* pull m)
-          (dx dy dz) (solve3 (+ a11 l) a12 a13 (+ a22 l) a23 (+ a33 l) b1 b2 b3)]
-      (values (clamp-cell (+ cx dx) lo-x h) (clamp-cell (+ cy dy) lo-y h)
-              (clamp-cell (+ cz dz) lo-z h)
-              (clamp-cell cx lo-x h) (clamp-cell cy lo-y h) (clamp-cell cz lo-z h)))))
+(fn qef-vertex [ids first last px py pz nx ny nz lo-x lo-y lo-z h]
+  "The vertex of the crossings ids[first..last] (indices into the crossing arrays;
+0s skipped), clamped to the cell whose low corner is lo and side h, then the
+crossings' mean."
+  (var (cx cy cz m) (values 0 0 0 0))
+  (for [q first last]
+    (let [k (. ids q)]
+      (when (not= k 0)
+        (set (cx cy cz m) (values (+ cx (. px k)) (+ cy (. py k)) (+ cz (. pz k)) (+ m 1))))))
+  (set (cx cy cz) (values (/ cx m) (/ cy m) (/ cz m)))
+  (var (a11 a12 a13 a22 a23 a33 b1 b2 b3) (values 0 0 0 0 0 0 0 0 0))
+  (for [q first last]
+    (let [k (. ids q)]
+      (when (not= k 0)
+        (let [x (. nx k) y (. ny k) z (. nz k)
+              r (+ (* x (- (. px k) cx)) (* y (- (. py k) cy)) (* z (- (. pz k) cz)))]
+          (set (a11 a12 a13) (values (+ a11 (* x x)) (+ a12 (* x y)) (+ a13 (* x z))))
+          (set (a22 a23 a33) (values (+ a22 (* y y)) (+ a23 (* y z)) (+ a33 (* z z))))
+          (set (b1 b2 b3) (values (+ b1 (* x r)) (+ b2 (* y r)) (+ b3 (* z r))))))))
+  (let [l (* pull m)
+        (dx dy dz) (solve3 (+ a11 l) a12 a13 (+ a22 l) a23 (+ a33 l) b1 b2 b3)]
+    (values (clamp-cell (+ cx dx) lo-x h) (clamp-cell (+ cy dy) lo-y h)
+            (clamp-cell (+ cz dz) lo-z h)
+            (clamp-cell cx lo-x h) (clamp-cell cy lo-y h) (clamp-cell cz lo-z h))))
 
 ;;; Evaluating the field in batches.
 
@@ -272,8 +276,8 @@ batches of batch-size points; each batch counts as work done (see mesh) and
         mx (* 0.5 (+ lx hx)) my (* 0.5 (+ ly hy)) mz (* 0.5 (+ lz hz))
         sx (* 0.5 (- hx lx)) sy (* 0.5 (- hy ly)) sz (* 0.5 (- hz lz))
         offset (* (or field.offset 0) h)]
-    (fn [phase flat]
-      (let [n (/ (length flat) 3)
+    (fn [phase flat ?n]
+      (let [n (or ?n (/ (length flat) 3))
             out (table-new n)]
         (for [start 0 (- n 1) batch-size]
           (let [count (min batch-size (- n start))
@@ -458,6 +462,18 @@ growth took a third of the sampling), else a table (nil at first)."
       (ffi.new "int32_t[?]" points)
       {}))
 
+(fn int-array [n]
+  "An array of 32-bit integers 1 to n, all 0 (FFI), else a table (nil at first)."
+  (if ffi (ffi.new "int32_t[?]" (+ n 1)) {}))
+
+(fn byte-array [n]
+  "An array of bytes 1 to n, all 0 (FFI), else a table of zeros."
+  (if ffi (ffi.new "uint8_t[?]" (+ n 1)) (fcollect [_ 1 n] 0)))
+
+(fn float-array [n]
+  "An array of doubles 1 to n, all 0 (FFI), else a table of zeros."
+  (if ffi (ffi.new "double[?]" (+ n 1)) (fcollect [_ 1 n] 0)))
+
 (fn sample-corners! [state]
   "2. The corners of the leaves' kept halves (see find-leaves!; clamped to the
 grid): their values in state.corner-values, (leaf + 1)^3 slots a leaf, x fastest,
@@ -469,6 +485,8 @@ edges and corners) is evaluated once. Makes the first estimate of the work."
         ;; Per leaf corner, the index of its grid point among the distinct ones.
         slots (table-new (* (length leaves) side side side))
         index (grid-index (* (+ nz 1) stride-y))
+        ;; Per leaf corner, its grid point's index (find-cells! names edges by it).
+        slot-points (int-array (* (length leaves) side side side))
         flat []]
     (var (n distinct) (values 0 0))
     (each [l [i j k] (ipairs leaves)]
@@ -488,134 +506,164 @@ edges and corners) is evaluated once. Makes the first estimate of the work."
                 (tset flat (+ p 2) (+ oy (* gj h)))
                 (tset flat (+ p 3) (+ oz (* gk h)))))
             (set n (+ n 1))
-            (tset slots (+ base 1 a (* side b) (* side side c)) at)))))
+            (tset slots (+ base 1 a (* side b) (* side side c)) at)
+            (tset slot-points (+ base 1 a (* side b) (* side side c)) at)))))
     ;; The crossings and normals take about as many points again as the corners:
     ;; a leaf of 64 cells holds some 13 crossings where a surface crosses it (a
     ;; sphere at 32 cells), each taking 10 points (measured: 3990 crossings in 308
     ;; leaves); the estimate is made exact once the crossings are counted.
     (set counts.estimate (+ counts.work (* (+ 1 (/ n (max 1 distinct)) (/ after 10)) distinct)))
-    (let [ds (evaluate :corners flat)]
+    (let [ds (evaluate :corners flat)
+          ;; 1 where the value is inside (below 0): find-cells! adds them up.
+          inside (byte-array (* (length leaves) side side side))]
       (for [q 1 (* (length leaves) side side side)]
-        (case (. slots q) at (tset slots q (. ds at))))
-      (set state.corner-values slots))))
+        (case (. slots q)
+          at (let [d (. ds at)]
+               (tset slots q d)
+               (when (< d 0) (tset inside q 1)))))
+      (set (state.corner-values state.corner-inside state.slot-points state.point-count)
+           (values slots inside slot-points distinct)))))
+
+(fn mask-of [inside at side s2]
+  ;; The cell's corners inside, as bits c = x + 2y + 4z, from its low corner's slot.
+  (+ (. inside at) (* 2 (. inside (+ at 1))) (* 4 (. inside (+ at side)))
+     (* 8 (. inside (+ at side 1))) (* 16 (. inside (+ at s2))) (* 32 (. inside (+ at s2 1)))
+     (* 64 (. inside (+ at s2 side))) (* 128 (. inside (+ at s2 side 1)))))
+
+;; Per mask of corners inside (+ 1), the local edges whose ends differ.
+(local mask-edges
+  (fcollect [mask 0 255]
+    (fcollect [e 0 11]
+      (let [bit (fn [c] (% (floor (/ mask (^ 2 c))) 2))]
+        (when (not= (bit (. edge-low (+ e 1))) (bit (. edge-high (+ e 1)))) e)))))
 
 (fn find-cells! [state]
   "3. Cells with surface, and their crossing edges (each edge once). Leaves
 state.cell-count and, per cell c (1-based), its grid cell in state.cell-i, cell-j,
-cell-k, its corner values at 8 (c - 1) + corner + 1 of state.cell-v and its local
-edges' crossings at 12 (c - 1) + edge + 1 of state.cell-edges (0: no crossing): flat
-arrays, no table per cell (a city at 256 cells has 170,000 of them). Leaves
-state.crossings (their count) and per crossing its low end (state.ex0, ey0, ez0),
-its axis (eaxis) and the values at its ends (ed0, ed1). Makes the estimate exact."
-  (let [{: leaves : leaf-halves : corner-values : counts : nx : ny : nz : stride-x : stride-y} state
+cell-k, its corners inside as bits (state.cell-mask), its corner values at 8 (c -
+1) + corner + 1 of state.cell-v and its local edges' crossings at 12 (c - 1) + edge
++ 1 of state.cell-edges (0: no crossing): flat arrays, no table per cell (a city at
+256 cells has 170,000 of them). Leaves state.crossings (their count) and per
+crossing its low end (state.ex0, ey0, ez0), its axis (eaxis) and the values at its
+ends (ed0, ed1). Makes the estimate exact."
+  (let [{: leaves : leaf-halves : corner-values : corner-inside : slot-points : point-count
+         : counts : nx : ny : nz} state
         side (+ leaf 1)
         s2 (* side side)
-        ;; Crossing edges: global key -> index; their ends and values.
-        edge-index {}
+        ;; Each corner's slot from its cell's (see corner-bits).
+        corner-slot (fcollect [c 0 7]
+                      (let [(x y z) (corner-bits c)] (+ x (* side y) (* s2 z))))
+        ;; Crossing edges: 3 p + axis (p their low end's grid point, see
+        ;; sample-corners!) -> index; their ends and values.
+        edge-index (int-array (* 3 (+ point-count 1)))
         ex0 [] ey0 [] ez0 [] ed0 [] ed1 [] eaxis []
-        cell-i [] cell-j [] cell-k [] cell-v [] cell-edges []]
-    (var (crossings cells) (values 0 0))
-    (each [l [i0 j0 k0] (ipairs leaves)]
-      (let [base (* (- l 1) side side side)]
-        (let [visit (cells-of (. leaf-halves l))]
-          (for [q 1 (length visit) 3]
-            (let [a (. visit q) b (. visit (+ q 1)) c (. visit (+ q 2))]
-              ;; The signs first: most cells of a leaf have no surface. A half
-              ;; clear of the surface has no values; cells past the grid's end
-              ;; none either.
-              (when (and (< (+ i0 a) nx) (< (+ j0 b) ny) (< (+ k0 c) nz))
-               (let [at (+ base 1 a (* side b) (* s2 c))
-                    v0 (. corner-values at) v1 (. corner-values (+ at 1))
-                    v2 (. corner-values (+ at side)) v3 (. corner-values (+ at side 1))
-                    v4 (. corner-values (+ at s2)) v5 (. corner-values (+ at s2 1))
-                    v6 (. corner-values (+ at s2 side)) v7 (. corner-values (+ at s2 side 1))
-                    inside (+ (if (< v0 0) 1 0) (if (< v1 0) 1 0) (if (< v2 0) 1 0)
-                              (if (< v3 0) 1 0) (if (< v4 0) 1 0) (if (< v5 0) 1 0)
-                              (if (< v6 0) 1 0) (if (< v7 0) 1 0))]
-                (when (and (> inside 0) (< inside 8))
-                  (let [i (+ i0 a) j (+ j0 b) k (+ k0 c)
-                        vb (* 8 cells) eb (* 12 cells)]
-                    (set cells (+ cells 1))
-                    (tset cell-i cells i) (tset cell-j cells j) (tset cell-k cells k)
-                    (tset cell-v (+ vb 1) v0) (tset cell-v (+ vb 2) v1)
-                    (tset cell-v (+ vb 3) v2) (tset cell-v (+ vb 4) v3)
-                    (tset cell-v (+ vb 5) v4) (tset cell-v (+ vb 6) v5)
-                    (tset cell-v (+ vb 7) v6) (tset cell-v (+ vb 8) v7)
-                    (for [e 0 11]
-                      (let [ca (. edge-low (+ e 1))
-                            da (. cell-v (+ vb ca 1)) db (. cell-v (+ vb (. edge-high (+ e 1)) 1))]
-                        (if (not= (< da 0) (< db 0))
-                            (let [gi (+ i (. edge-dx (+ e 1))) gj (+ j (. edge-dy (+ e 1)))
-                                  gk (+ k (. edge-dz (+ e 1)))
-                                  axis (. edge-axis (+ e 1))
-                                  key (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk))))]
-                              (var idx (. edge-index key))
-                              (when (not idx)
-                                (set crossings (+ crossings 1))
-                                (set idx crossings)
-                                (tset edge-index key idx)
-                                (tset ex0 idx gi) (tset ey0 idx gj) (tset ez0 idx gk)
-                                (tset eaxis idx axis)
-                                (tset ed0 idx da) (tset ed1 idx db))
-                              (tset cell-edges (+ eb e 1) idx))
-                            (tset cell-edges (+ eb e 1) 0)))))))))))))
-    ;; Each crossing: refine-steps points, 4 for its normal, and about one vertex
-    ;; (a cell has about as many crossing edges as a cell has vertices: 3990 and
-    ;; 3992 on a sphere), whose distance is checked.
-    (set counts.estimate (+ counts.work (* crossings (+ refine-steps 5 state.after))))
-    (set (state.cell-count state.crossings) (values cells crossings))
-    (set (state.cell-i state.cell-j state.cell-k state.cell-v state.cell-edges)
-         (values cell-i cell-j cell-k cell-v cell-edges))
-    (set (state.ex0 state.ey0 state.ez0 state.ed0 state.ed1 state.eaxis)
-         (values ex0 ey0 ez0 ed0 ed1 eaxis))))
+        ;; Calls (fn [l i0 j0 k0 a b c at mask]) for each cell of the leaves' kept
+        ;; halves (see cells-of) within the grid, with surface (a corner inside and
+        ;; one not), in order; `at` is its low corner's slot.
+        each-cell (fn [f]
+                    (each [l [i0 j0 k0] (ipairs leaves)]
+                      (let [base (* (- l 1) side side side)
+                            visit (cells-of (. leaf-halves l))]
+                        (for [q 1 (length visit) 3]
+                          (let [a (. visit q) b (. visit (+ q 1)) c (. visit (+ q 2))
+                                at (+ base 1 a (* side b) (* s2 c))
+                                mask (mask-of corner-inside at side s2)]
+                            (when (and (< 0 mask 255)
+                                       (< (+ i0 a) nx) (< (+ j0 b) ny) (< (+ k0 c) nz))
+                              (f (+ i0 a) (+ j0 b) (+ k0 c) at mask)))))))]
+    ;; Counted first, so that the cells' arrays are made at their size.
+    (var cells 0)
+    (each-cell (fn [] (set cells (+ cells 1))))
+    (let [cell-i (int-array cells) cell-j (int-array cells) cell-k (int-array cells)
+          cell-mask (byte-array cells)
+          cell-v (float-array (* 8 cells)) cell-edges (int-array (* 12 cells))]
+      (var (crossings c) (values 0 0))
+      (each-cell
+        (fn [i j k at mask]
+          (let [vb (* 8 c) eb (* 12 c)]
+            (set c (+ c 1))
+            (tset cell-i c i) (tset cell-j c j) (tset cell-k c k) (tset cell-mask c mask)
+            (for [corner 0 7]
+              (tset cell-v (+ vb corner 1) (. corner-values (+ at (. corner-slot (+ corner 1))))))
+            (each [_ e (ipairs (. mask-edges (+ mask 1)))]
+              (let [ca (. edge-low (+ e 1))
+                    key (+ (. edge-axis (+ e 1))
+                           (* 3 (. slot-points (+ at (. corner-slot (+ ca 1))))))]
+                (var idx (. edge-index key))
+                (when (or (= idx nil) (= idx 0))
+                  (set crossings (+ crossings 1))
+                  (set idx crossings)
+                  (tset edge-index key idx)
+                  (tset ex0 idx (+ i (. edge-dx (+ e 1))))
+                  (tset ey0 idx (+ j (. edge-dy (+ e 1))))
+                  (tset ez0 idx (+ k (. edge-dz (+ e 1))))
+                  (tset eaxis idx (. edge-axis (+ e 1)))
+                  (tset ed0 idx (. cell-v (+ vb ca 1)))
+                  (tset ed1 idx (. cell-v (+ vb (. edge-high (+ e 1)) 1))))
+                (tset cell-edges (+ eb e 1) idx))))))
+      ;; Each crossing: refine-steps points, 4 for its normal, and about one vertex
+      ;; (a cell has about as many crossing edges as a cell has vertices: 3990 and
+      ;; 3992 on a sphere), whose distance is checked.
+      (set counts.estimate (+ counts.work (* crossings (+ refine-steps 5 state.after))))
+      (set (state.cell-count state.crossings) (values cells crossings))
+      (set (state.cell-i state.cell-j state.cell-k state.cell-mask state.cell-v state.cell-edges)
+           (values cell-i cell-j cell-k cell-mask cell-v cell-edges))
+      (set (state.ex0 state.ey0 state.ez0 state.ed0 state.ed1 state.eaxis)
+           (values ex0 ey0 ez0 ed0 ed1 eaxis)))))
 
 (fn refine-crossings! [state]
   "4. Crossing points: the linear guess from the corner values, then regula falsi
 (the Illinois variant) on the field along each edge. Leaves the points in state.px,
 py, pz."
   (let [{: evaluate : crossings : ex0 : ey0 : ez0 : ed0 : ed1 : eaxis : ox : oy : oz : h} state
-        px [] py [] pz []
-        ta (fcollect [e 1 crossings] 0)
-        tb (fcollect [e 1 crossings] 1)
-        fa (fcollect [e 1 crossings] (. ed0 e))
-        fb (fcollect [e 1 crossings] (. ed1 e))
-        side-kept (fcollect [e 1 crossings] 0)
-        guess (fn [e]
-                (let [a (. fa e) b (. fb e)]
-                  (+ (. ta e) (* (- (. tb e) (. ta e)) (/ a (- a b))))))
-        point (fn [e t]
-                (let [axis (. eaxis e)]
-                  (values (+ ox (* h (+ (. ex0 e) (if (= axis 0) t 0))))
-                          (+ oy (* h (+ (. ey0 e) (if (= axis 1) t 0))))
-                          (+ oz (* h (+ (. ez0 e) (if (= axis 2) t 0)))))))
-        ts (fcollect [e 1 crossings] (guess e))]
-    ;; The crossings still moving: one whose value is within `done` of zero has
-    ;; its point (a plane's, from the linear guess: most of a machined part's) and
-    ;; is evaluated no more.
-    (var active (fcollect [e 1 crossings] e))
-    (local done (* 1e-6 h))
-    (for [s 1 refine-steps &until (= 0 (length active))]
-      (let [flat []]
-        (each [n e (ipairs active)]
-          (let [(x y z) (point e (. ts e)) q (* 3 (- n 1))]
-            (tset flat (+ q 1) x) (tset flat (+ q 2) y) (tset flat (+ q 3) z)))
-        (let [ds (evaluate :crossings flat)
-              still []]
-          (each [n e (ipairs active)]
-            (let [t (. ts e) d (. ds n)]
-              (when (> (abs d) done) (table.insert still e))
-              (if (= (< d 0) (< (. fa e) 0))
-                  (do (tset ta e t) (tset fa e d)
-                      (when (= (. side-kept e) 1) (tset fb e (* 0.5 (. fb e))))
-                      (tset side-kept e 1))
-                  (do (tset tb e t) (tset fb e d)
-                      (when (= (. side-kept e) -1) (tset fa e (* 0.5 (. fa e))))
-                      (tset side-kept e -1)))
-              (tset ts e (if (= d 0) t (guess e)))))
-          (set active still))))
+        px (table-new crossings) py (table-new crossings) pz (table-new crossings)
+        ;; Per crossing: the bracket [ta tb] along the edge (0 to 1), the values at
+        ;; its ends, the guess ts, and which end the last step kept (1 low, -1 high).
+        ta (float-array crossings) tb (float-array crossings)
+        fa (float-array crossings) fb (float-array crossings)
+        ts (float-array crossings) side-kept (float-array crossings)
+        ;; The crossings still moving, first `live` of them (in order).
+        active (int-array crossings)
+        ;; The points of a round, refilled (evaluate is given their count).
+        flat (table-new (* 3 crossings))
+        ;; One whose value is within `done` of zero has its point (a plane's, from
+        ;; the linear guess: most of a machined part's) and is evaluated no more.
+        done (* 1e-6 h)]
     (for [e 1 crossings]
-      (let [(x y z) (point e (. ts e))]
-        (tset px e x) (tset py e y) (tset pz e z)))
+      (let [a (. ed0 e) b (. ed1 e)]
+        (tset tb e 1) (tset fa e a) (tset fb e b)
+        (tset ts e (+ 0 (* (- 1 0) (/ a (- a b)))))
+        (tset active e e)))
+    (var live crossings)
+    (for [_ 1 refine-steps &until (= 0 live)]
+      (for [n 1 live]
+        (let [e (. active n) t (. ts e) axis (. eaxis e) q (* 3 (- n 1))]
+          (tset flat (+ q 1) (+ ox (* h (+ (. ex0 e) (if (= axis 0) t 0)))))
+          (tset flat (+ q 2) (+ oy (* h (+ (. ey0 e) (if (= axis 1) t 0)))))
+          (tset flat (+ q 3) (+ oz (* h (+ (. ez0 e) (if (= axis 2) t 0)))))))
+      (let [ds (evaluate :crossings flat live)]
+        (var still 0)
+        (for [n 1 live]
+          (let [e (. active n) t (. ts e) d (. ds n)]
+            (when (> (abs d) done)
+              (set still (+ still 1))
+              (tset active still e))
+            (if (= (< d 0) (< (. fa e) 0))
+                (do (tset ta e t) (tset fa e d)
+                    (when (= (. side-kept e) 1) (tset fb e (* 0.5 (. fb e))))
+                    (tset side-kept e 1))
+                (do (tset tb e t) (tset fb e d)
+                    (when (= (. side-kept e) -1) (tset fa e (* 0.5 (. fa e))))
+                    (tset side-kept e -1)))
+            (tset ts e (if (= d 0) t
+                           (let [a (. fa e) b (. fb e) lo (. ta e)]
+                             (+ lo (* (- (. tb e) lo) (/ a (- a b)))))))))
+        (set live still)))
+    (for [e 1 crossings]
+      (let [t (. ts e) axis (. eaxis e)]
+        (tset px e (+ ox (* h (+ (. ex0 e) (if (= axis 0) t 0)))))
+        (tset py e (+ oy (* h (+ (. ey0 e) (if (= axis 1) t 0)))))
+        (tset pz e (+ oz (* h (+ (. ez0 e) (if (= axis 2) t 0)))))))
     (set (state.px state.py state.pz) (values px py pz))))
 
 (fn crossing-normals! [state]
@@ -658,7 +706,7 @@ face's segments, the quads of the two segments would share their edge across the
 face (four triangles on one edge): reversing the face's decision in both cells
 splits each patch in two. Repeated until no face is left so (each reversal only
 splits patches, so it ends); counted in state.counts.flipped."
-  (let [{: cell-count : cell-i : cell-j : cell-k : cell-v : counts : stride-x : stride-y} state
+  (let [{: cell-count : cell-i : cell-j : cell-k : cell-v : cell-mask : counts : stride-x : stride-y} state
         ;; Grid cell key -> cell number.
         cell-at {}
         ;; A cell's corner values as patches reads them (one table, refilled).
@@ -690,9 +738,12 @@ splits patches, so it ends); counted in state.counts.flipped."
                     (tset cell-joined c joined))))
         flipped {}]
     (for [c 1 cell-count]
-      (let [(rep joined) (patches (values-of c))]
-        (tset cell-rep c rep)
-        (tset cell-joined c joined)))
+      ;; Most cells' patches are known by their corners' signs alone.
+      (case (. plain-patches (. cell-mask c))
+        rep (do (tset cell-rep c rep) (tset cell-joined c no-faces))
+        _ (let [(rep joined) (patches (values-of c))]
+            (tset cell-rep c rep)
+            (tset cell-joined c joined))))
     ;; Each reversal takes effect at once: a cell between two such faces
     ;; (a twisted row of cells) must not have both reversed in one pass.
     (var todo (fcollect [c 1 cell-count] (when (< 0 (length (. cell-joined c))) c)))
@@ -782,9 +833,8 @@ drops the cells' values, edges and patches."
             lx (+ ox (* (. cell-i c) h)) ly (+ oy (* (. cell-j c) h)) lz (+ oz (* (. cell-k c) h))]
         (if (single-patch? rep)
             ;; One patch (most cells): its vertex, with no grouping.
-            (let [ids (fcollect [e 0 11]
-                        (let [idx (. cell-edges (+ eb e 1))] (when (not= idx 0) idx)))
-                  (x y z mx my mz) (qef-vertex ids px py pz nrx nry nrz lx ly lz h)]
+            (let [(x y z mx my mz) (qef-vertex cell-edges (+ eb 1) (+ eb 12)
+                                               px py pz nrx nry nrz lx ly lz h)]
               (set vertex-count (+ vertex-count 1))
               (add! vertex-count x y z lx ly lz mx my mz)
               (for [e 0 11]
@@ -801,7 +851,8 @@ drops the cells' values, edges and patches."
                       (table.insert order r))
                     (table.insert (. groups r) (. cell-edges (+ eb e 1))))))
               (let [placed (icollect [_ r (ipairs order)]
-                             [(qef-vertex (. groups r) px py pz nrx nry nrz lx ly lz h)])]
+                             [(qef-vertex (. groups r) 1 (length (. groups r))
+                                          px py pz nrx nry nrz lx ly lz h)])]
                 ;; Two or more patches in one cell (a feature thinner than a cell,
                 ;; two objects close together): their tangent planes meet anywhere
                 ;; in the cell, and a vertex there, or pulled onto the nearest
@@ -1041,7 +1092,7 @@ bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
     ;; What each step leaves that no later one reads goes at once: the peak is
     ;; the cells, crossings and vertices together (a box at 256 cells: 256 MB live
     ;; keeping them to the end).
-    (set state.corner-values nil)
+    (set (state.corner-values state.corner-inside state.slot-points) (values nil nil nil))
     (mark! state :crossings)
     (refine-crossings! state)
     (set state.ed1 nil)
