@@ -420,6 +420,12 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
                             (test! (min s t) (max s t))))))))))))))
     result))
 
+(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
+
+(fn int-array [n]
+  "An array of 32-bit integers 1 to n, all 0 (FFI), else a table of zeros."
+  (if ffi (ffi.new "int32_t[?]" (+ n 1)) (fcollect [_ 1 n] 0)))
+
 (fn det3 [ax ay az bx by bz cx cy cz]
   ;; a x b . c: positive when a turns to b counter-clockwise seen from c's side.
   (dot (- (* ay bz) (* az by)) (- (* az bx) (* ax bz)) (- (* ax by) (* ay bx)) cx cy cz))
@@ -429,15 +435,7 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
   (let [c1 (. tris (+ (* 3 t) 1)) c2 (. tris (+ (* 3 t) 2)) c3 (. tris (+ (* 3 t) 3))]
     (if (= c1 v) (values c2 c3) (= c2 v) (values c3 c1) (values c1 c2))))
 
-(fn fan-edges [positions tris t v vx vy vz]
-  ;; Triangle t's (0-based) two edges from its corner v, in its winding order.
-  (let [(ia ib) (fan-ends tris t v)
-        pa (* 3 (- ia 1)) pb (* 3 (- ib 1))]
-    (values (- (. positions (+ pa 1)) vx) (- (. positions (+ pa 2)) vy)
-            (- (. positions (+ pa 3)) vz) (- (. positions (+ pb 1)) vx)
-            (- (. positions (+ pb 2)) vy) (- (. positions (+ pb 3)) vz))))
-
-(fn umbrella? [positions tris around first last v marks]
+(fn umbrella? [positions tris around first last v marks fan]
   "Whether the triangles around vertex v (0-based indices around[first..last]) lie
 over a disc once, like an umbrella's panels: their far edges close around v (each
 triangle's second end is another's first), seen along their mean normal m each
@@ -445,28 +443,36 @@ turns counter-clockwise about v, and a direction r inside the first lies inside
 exactly one of them (a fan closed in several cycles, each turning, covers the disc
 once per cycle). Then no two of them overlap beyond v (their shadows tile the
 disc), and the pairs need no test. Seen along m is by the sign of a triple product
-with m: no projection. `marks` has a 0 for every vertex, and is left so."
+with m: no projection. `marks` has a 0 for every vertex, and is left so; `fan` is
+scratch (per triangle its two ends and its two edges from v, 8 numbers)."
   (let [b (* 3 (- v 1))
         vx (. positions (+ b 1)) vy (. positions (+ b 2)) vz (. positions (+ b 3))]
     (var (mx my mz ok?) (values 0 0 0 true))
     ;; The mean normal: the sum of the triangles' (area-weighted) normals. Each
     ;; first end counted, once at most.
     (for [q first last]
-      (let [t (. around q)
-            (ia) (fan-ends tris t v)
-            (ax ay az bx by bz) (fan-edges positions tris t v vx vy vz)
-            (nx ny nz) (cross ax ay az bx by bz)]
+      (let [(ia ib) (fan-ends tris (. around q) v)
+            pa (* 3 (- ia 1)) pb (* 3 (- ib 1))
+            ax (- (. positions (+ pa 1)) vx) ay (- (. positions (+ pa 2)) vy)
+            az (- (. positions (+ pa 3)) vz) bx (- (. positions (+ pb 1)) vx)
+            by (- (. positions (+ pb 2)) vy) bz (- (. positions (+ pb 3)) vz)
+            (nx ny nz) (cross ax ay az bx by bz)
+            f (* 8 (- q first))]
+        (tset fan (+ f 1) ia) (tset fan (+ f 2) ib)
+        (tset fan (+ f 3) ax) (tset fan (+ f 4) ay) (tset fan (+ f 5) az)
+        (tset fan (+ f 6) bx) (tset fan (+ f 7) by) (tset fan (+ f 8) bz)
         (when (< 0 (. marks ia)) (set ok? false))
         (tset marks ia 1)
         (set (mx my mz) (values (+ mx nx) (+ my ny) (+ mz nz)))))
-    (let [(ax ay az bx by bz) (fan-edges positions tris (. around first) v vx vy vz)
-          ;; Strictly inside the first wedge (its angle is under half a turn).
-          (rx ry rz) (values (+ ax bx) (+ ay by) (+ az bz))]
+    ;; Strictly inside the first wedge (its angle is under half a turn).
+    (let [rx (+ (. fan 3) (. fan 6)) ry (+ (. fan 4) (. fan 7)) rz (+ (. fan 5) (. fan 8))
+          n (- last first)]
       (var covering 0)
-      (for [q first last]
-        (let [t (. around q)
-              (_ ib) (fan-ends tris t v)
-              (ax ay az bx by bz) (fan-edges positions tris t v vx vy vz)]
+      (for [q 0 n]
+        (let [f (* 8 q)
+              ib (. fan (+ f 2))
+              ax (. fan (+ f 3)) ay (. fan (+ f 4)) az (. fan (+ f 5))
+              bx (. fan (+ f 6)) by (. fan (+ f 7)) bz (. fan (+ f 8))]
           (tset marks ib (- (. marks ib) 1))
           (when (<= (det3 ax ay az bx by bz mx my mz) 0) (set ok? false))
           ;; r in the half-open wedge [a, b): each direction of a disc covered
@@ -475,13 +481,14 @@ with m: no projection. `marks` has a 0 for every vertex, and is left so."
                      (> (det3 rx ry rz bx by bz mx my mz) 0))
             (set covering (+ covering 1)))))
       ;; Every end met as often as a first end as a second; the marks back to 0.
-      (for [q first last]
-        (let [(ia ib) (fan-ends tris (. around q) v)]
-          (when (or (not= 0 (. marks ia)) (not= 0 (. marks ib))) (set ok? false))))
-      (for [q first last]
-        (let [(ia ib) (fan-ends tris (. around q) v)]
-          (tset marks ia 0)
-          (tset marks ib 0)))
+      (for [q 0 n]
+        (let [f (* 8 q)]
+          (when (or (not= 0 (. marks (. fan (+ f 1)))) (not= 0 (. marks (. fan (+ f 2)))))
+            (set ok? false))))
+      (for [q 0 n]
+        (let [f (* 8 q)]
+          (tset marks (. fan (+ f 1)) 0)
+          (tset marks (. fan (+ f 2)) 0)))
       (and ok? (= covering 1)))))
 
 (fn folds [m ?options]
@@ -498,17 +505,18 @@ table whose keys are the 1-based vertices to look around; default all)."
         only options.only
         min-length (or options.min-length 0)
         ;; Each vertex's triangles, compressed: start[v] .. start[v + 1] - 1 of `around`.
-        start (fcollect [_ 1 (+ nv 1)] 0)
-        around []
-        p-points [] r-points []
-        marks (fcollect [_ 1 nv] 0)
+        start (int-array (+ nv 1))
+        around (int-array (* 3 nt))
+        p-points [] r-points [] fan []
+        marks (int-array nv)
         out []]
     (for [q 1 (* 3 nt)]
       (let [v (. tris q)] (tset start v (+ 1 (. start v)))))
     (var sum 1)
     (for [v 1 (+ nv 1)]
       (let [c (. start v)] (tset start v sum) (set sum (+ sum c))))
-    (let [fill (fcollect [v 1 nv] (. start v))]
+    (let [fill (int-array nv)]
+      (for [v 1 nv] (tset fill v (. start v)))
       (for [t 0 (- nt 1)]
         (for [c 1 3]
           (let [v (. tris (+ (* 3 t) c))]
@@ -519,7 +527,7 @@ table whose keys are the 1-based vertices to look around; default all)."
       (when (and (or (not only) (. only v))
                  (< (. start v) (. start (+ v 1)))
                  (not (umbrella? positions tris around (. start v) (- (. start (+ v 1)) 1) v
-                                 marks)))
+                                 marks fan)))
         (for [a (. start v) (- (. start (+ v 1)) 1)]
           (for [b (+ a 1) (- (. start (+ v 1)) 1)]
             (let [s (. around a) t (. around b)]
