@@ -25,6 +25,7 @@
 (local each-pair pairs)
 
 (local intersect (require :src.mesh.intersect))
+(local bit (require :bit))
 ;; Preallocated tables (LuaJIT's table.new): the big arrays of a mesh.
 (local table-new (let [(ok? new) (pcall require :table.new)]
                    (if ok? (fn [n] (new n 0)) (fn [] []))))
@@ -180,6 +181,11 @@ The tables returned may be shared between cells: not to be changed."
           (let [rep (collect [e _ (each-pair parent)] e (find parent e))]
             (when (not ambiguous?) (tset plain-patches mask rep))
             (values rep (or joined no-faces)))))))
+
+;; Interpreted, not compiled: it runs once per mask of corners (256 at most), where
+;; LuaJIT compiled some hundred traces of its short loops, which took longer than
+;; running them.
+(when jit (jit.off patches true))
 
 ;; Vertices keep this share of a cell inside their cell's walls, so that vertices of
 ;; neighbouring cells never meet: a surface lying on a cell wall (a box face on a grid
@@ -398,27 +404,32 @@ blocks' worth of volume skipped)."
           (tset leaf-halves l (+ (. leaf-halves l) bit))))
       (set (state.leaves state.leaf-halves state.skipped) (values leaves leaf-halves skipped)))))
 
-(fn half-kept? [halves a b c]
-  "Whether the half of a leaf holding its cell or corner (a b c), 0 to leaf - 1 (a
-corner at leaf belongs to the upper half), is in the leaf's mask `halves`."
-  (let [half (/ leaf 2)
-        bit (+ (if (< a half) 0 1) (if (< b half) 0 2) (if (< c half) 0 4))]
-    (= 1 (% (floor (/ halves (^ 2 bit))) 2))))
+(fn half-bit [q]
+  ;; The lower (0) or upper (1) half of a leaf along one axis holding cell q.
+  (if (< q (/ leaf 2)) 0 1))
 
-(fn corner-kept? [halves a b c]
-  "Whether corner (a b c) of a leaf, 0 to leaf, is a corner of a half in the
-leaf's mask `halves` (one on the middle plane belongs to the halves on both
-sides)."
-  (let [half (/ leaf 2)
-        lo (fn [q] (if (> q half) 1 0))
-        hi (fn [q] (if (>= q half) 1 0))]
-    (var kept? false)
-    (for [z (lo c) (hi c)]
-      (for [y (lo b) (hi b)]
-        (for [x (lo a) (hi a)]
-          (when (= 1 (% (floor (/ halves (^ 2 (+ x (* 2 y) (* 4 z))))) 2))
-            (set kept? true)))))
-    kept?))
+;; Per corner (a b c) of a leaf, 0 to leaf, x fastest: the bits of the halves it is
+;; a corner of (h = x + 2y + 4z; one on the middle plane belongs to the halves on
+;; both sides). Per cell, 0 to leaf - 1: the bit of its half.
+(local corner-halves
+  (let [half (/ leaf 2) out []]
+    (for [c 0 leaf]
+      (for [b 0 leaf]
+        (for [a 0 leaf]
+          (var bits 0)
+          (for [z (if (> c half) 1 0) (if (>= c half) 1 0)]
+            (for [y (if (> b half) 1 0) (if (>= b half) 1 0)]
+              (for [x (if (> a half) 1 0) (if (>= a half) 1 0)]
+                (set bits (bit.bor bits (bit.lshift 1 (+ x (* 2 y) (* 4 z))))))))
+          (table.insert out bits))))
+    out))
+(local cell-half
+  (let [out []]
+    (for [c 0 (- leaf 1)]
+      (for [b 0 (- leaf 1)]
+        (for [a 0 (- leaf 1)]
+          (table.insert out (bit.lshift 1 (+ (half-bit a) (* 2 (half-bit b)) (* 4 (half-bit c))))))))
+    out))
 
 ;; Per mask of kept halves, its leaf's corners to sample and cells to visit, as
 ;; flat lists [a b c ...] (made once a mask, not tested per corner).
@@ -428,10 +439,12 @@ sides)."
 (fn corners-of [halves]
   (or (. mask-corners halves)
       (let [out []]
+        (var q 0)
         (for [c 0 leaf]
           (for [b 0 leaf]
             (for [a 0 leaf]
-              (when (corner-kept? halves a b c)
+              (set q (+ q 1))
+              (when (not= 0 (bit.band halves (. corner-halves q)))
                 (table.insert out a) (table.insert out b) (table.insert out c)))))
         (tset mask-corners halves out)
         out)))
@@ -439,10 +452,12 @@ sides)."
 (fn cells-of [halves]
   (or (. mask-cells halves)
       (let [out []]
+        (var q 0)
         (for [c 0 (- leaf 1)]
           (for [b 0 (- leaf 1)]
             (for [a 0 (- leaf 1)]
-              (when (half-kept? halves a b c)
+              (set q (+ q 1))
+              (when (not= 0 (bit.band halves (. cell-half q)))
                 (table.insert out a) (table.insert out b) (table.insert out c)))))
         (tset mask-cells halves out)
         out)))
