@@ -22,7 +22,7 @@ if [ ! -x "$work/venv/bin/python" ]; then
   "$work/venv/bin/pip" install -q numpy scikit-image scipy meshio Pillow matplotlib
 fi
 py() { PYTHONPATH="$sdf:tools/mesh-vs-fogleman" "$work/venv/bin/python" tools/mesh-vs-fogleman/bench.py "$@"; }
-cases="scenes/machined-part.fnl:machined-part scenes/organic.fnl:organic tools/mesh-vs-fogleman/torus.fnl:torus"
+cases=${MESH_VS_FOGLEMAN_CASES:-"scenes/machined-part.fnl:machined-part scenes/organic.fnl:organic tools/mesh-vs-fogleman/torus.fnl:torus"}
 sizes=${MESH_VS_FOGLEMAN_SIZES:-"128 256"}
 results=$(mktemp)
 trap 'rm -f "$results"' EXIT
