@@ -25,6 +25,7 @@
 (local each-pair pairs)
 
 (local intersect (require :src.mesh.intersect))
+(local fork (require :src.util.fork))
 (local bit (require :bit))
 ;; Preallocated tables (LuaJIT's table.new): the big arrays of a mesh.
 (local table-new (let [(ok? new) (pcall require :table.new)]
@@ -265,8 +266,10 @@ crossings' mean."
 
 (fn bound-heap! [counts]
   "A full collection when the Lua heap has grown past twice the live heap at the
-last one (counts.live-kb, KB)."
-  (when (> (collectgarbage :count) (* 2 (max heap-floor (or counts.live-kb 0))))
+last one (counts.live-kb, KB). Not in a child of src/util/fork.fnl, whose collector
+stays stopped."
+  (when (and (> (collectgarbage :count) (* 2 (max heap-floor (or counts.live-kb 0))))
+             (not (fork.child?)))
     (collectgarbage)
     (set counts.live-kb (collectgarbage :count))
     (set counts.collections (+ 1 (or counts.collections 0)))))
@@ -318,7 +321,7 @@ of each step."
         [ox oy oz] grid.lo
         h grid.h
         [nx ny nz] grid.dims]
-    {: progress : counts
+    {: progress : counts : field : grid
      :after (+ geometry-work (or grid.after-work 0))
      :evaluate (evaluator field grid.cut counts progress h)
      : ox : oy : oz : h : nx : ny : nz
@@ -783,6 +786,10 @@ splits patches, so it ends); counted in state.counts.flipped."
         (each [_ c (ipairs todo)]
           (each [_ fi (ipairs (icollect [_ g (ipairs (. cell-joined c))] g))]
             (let [(other ofi) (across c fi)]
+              ;; (A share of the leaves, see mesh-shares!, may not have the
+              ;; cell across: then the shares are not used.)
+              (when (and (not other) (joined? c fi))
+                (set state.missing-neighbour? true))
               (when (and other (joined? c fi) (joined? other ofi)
                          (not (. flipped (face-key c fi))))
                 (tset flipped (face-key c fi) true)
@@ -1081,6 +1088,171 @@ crossing or folded in counts.crossing."
               (for [c 1 3] (tset fold-only (. triangles (+ (* 3 (- t 1)) c)) true)))))))
     (set (counts.untangled counts.crossing) (values moved left))))
 
+(fn local-steps! [state]
+  "Steps 2 to 8 on state.leaves: the cells' vertices, and the crossings' quads."
+  (mark! state :corners)
+  (sample-corners! state)
+  (mark! state :cells)
+  (find-cells! state)
+  ;; What each step leaves that no later one reads goes at once: the peak is
+  ;; the cells, crossings and vertices together (a box at 256 cells: 256 MB live
+  ;; keeping them to the end).
+  (set (state.corner-values state.corner-inside state.slot-points) (values nil nil nil))
+  (mark! state :crossings)
+  (refine-crossings! state)
+  (set state.ed1 nil)
+  (mark! state :normals)
+  (crossing-normals! state)
+  (worked! state :patches (* 0.25 geometry-work state.crossings))
+  (mark! state :patches)
+  (find-patches! state)
+  (worked! state :vertices (* 0.25 geometry-work state.crossings))
+  (mark! state :vertices)
+  (place-vertices! state)
+  ;; (The crossings' axes stay: a share's result names its crossings by them.)
+  (set (state.px state.py state.pz state.nrx state.nry state.nrz)
+       (values nil nil nil nil nil nil))
+  (set (state.cell-i state.cell-j state.cell-k) (values nil nil nil))
+  (worked! state :projection (* 0.2 geometry-work state.crossings))
+  (mark! state :projection)
+  (project-vertices! state))
+
+;;; Every core: the leaves in shares, one a process (src/util/fork.fnl), each share
+;;; taken through steps 2 to 8 alone, their crossings and vertices then merged.
+
+;; Leaves a share has at least: a share of fewer takes less time than its fork
+;; (a torus at 128 cells: 3229 leaves, about 20 microseconds each).
+(local min-share-leaves 512)
+;; Numbers before a share's crossings, per crossing and per vertex (see
+;; share-numbers).
+(local share-header 9)
+(local crossing-width 9)
+(local vertex-width 9)
+
+(fn use-shares? [state]
+  "Whether steps 2 to 8 go to shares: a field that may run in a child (:fork-safe?,
+the CPU evaluator's, not the GPU's), and enough leaves for more than one share
+(state.grid.workers, default every core)."
+  (let [workers (or state.grid.workers (fork.cores))]
+    (and state.field.fork-safe? (not (fork.child?)) (< 1 workers)
+         (<= (* 2 min-share-leaves) (length state.leaves)))))
+
+(fn share-numbers [state ?out ?room]
+  "A share's result as one list of numbers, in ?out (an FFI double array with ?room
+places from 1) where they fit, else in a new one; returns the list and their count.
+They are its counts (cells, crossings, vertices, flipped, moved, points, work,
+estimate, 1 when a joined face's cell across was not in the share), then per
+crossing its low end, axis, value there and its quad's four vertices (0: a cell of
+another share), then per vertex its position and info."
+  (let [{: crossings : positions : vertex-info : quad-vertices
+         : ex0 : ey0 : ez0 : eaxis : ed0 : counts} state
+        vertices (/ (length positions) 3)
+        n (+ share-header (* crossing-width crossings) (* vertex-width vertices))
+        out (if (and ?out (<= n ?room)) ?out (float-array n))]
+    (each [q v (ipairs [state.cell-count crossings vertices (or counts.flipped 0)
+                        (or counts.moved 0) counts.points counts.work counts.estimate
+                        (if state.missing-neighbour? 1 0)])]
+      (tset out q v))
+    (for [e 1 crossings]
+      (let [o (+ share-header (* crossing-width (- e 1))) q (* 4 (- e 1))]
+        (tset out (+ o 1) (. ex0 e)) (tset out (+ o 2) (. ey0 e)) (tset out (+ o 3) (. ez0 e))
+        (tset out (+ o 4) (. eaxis e)) (tset out (+ o 5) (. ed0 e))
+        (for [k 1 4] (tset out (+ o 5 k) (or (. quad-vertices (+ q k)) 0)))))
+    (let [o (+ share-header (* crossing-width crossings))]
+      (for [v 1 vertices]
+        (let [b (+ o (* vertex-width (- v 1)))]
+          (for [k 1 3] (tset out (+ b k) (. positions (+ (* 3 (- v 1)) k))))
+          (for [k 1 6] (tset out (+ b 3 k) (. vertex-info (+ (* 6 (- v 1)) k)))))))
+    (values out n)))
+
+(fn merge-shares! [state results]
+  "The shares' results (see share-numbers), in the order of their leaves, as one
+mesher's: vertices numbered on, a crossing that shares meet at (one whose quad has a
+cell in another share) made one, numbered where the first share met it (as one
+process would have), its quad's vertices from each share. Leaves in state what
+steps 2 to 8 leave."
+  (let [{: stride-x : stride-y : counts} state
+        ;; At most the shares' crossings, and their vertices.
+        most (accumulate [n 0 _ [a] (ipairs results)] (+ n (. a 2)))
+        all (accumulate [n 0 _ [a] (ipairs results)] (+ n (. a 3)))
+        positions (table-new (* 3 all)) vertex-info (table-new (* 6 all))
+        quad-vertices (table-new (* 4 most))
+        ex0 (table-new most) ey0 (table-new most) ez0 (table-new most)
+        eaxis (table-new most) ed0 (table-new most)
+        ;; Crossing key -> number, for those a share had only part of the quad of.
+        open {}]
+    (var (nc nv cells) (values 0 0 0))
+    (set (counts.flipped counts.moved counts.estimate) (values 0 0 counts.work))
+    (each [_ [a] (ipairs results)]
+      (let [crossings (. a 2) vertices (. a 3)]
+        (set cells (+ cells (. a 1)))
+        (set counts.flipped (+ counts.flipped (. a 4)))
+        (set counts.moved (+ counts.moved (. a 5)))
+        (set counts.points (+ counts.points (. a 6)))
+        (set counts.work (+ counts.work (. a 7)))
+        (set counts.estimate (+ counts.estimate (. a 8)))
+        (for [e 1 crossings]
+          (let [o (+ share-header (* crossing-width (- e 1)))
+                gi (. a (+ o 1)) gj (. a (+ o 2)) gk (. a (+ o 3)) axis (. a (+ o 4))
+                whole? (and (not= 0 (. a (+ o 6))) (not= 0 (. a (+ o 7)))
+                            (not= 0 (. a (+ o 8))) (not= 0 (. a (+ o 9))))
+                key (when (not whole?) (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk)))))
+                known (when key (. open key))
+                g (or known (+ nc 1))]
+            (when (not known)
+              (set nc g)
+              (tset ex0 g gi) (tset ey0 g gj) (tset ez0 g gk) (tset eaxis g axis)
+              (tset ed0 g (. a (+ o 5)))
+              (when key (tset open key g)))
+            (for [k 1 4]
+              (let [v (. a (+ o 5 k))]
+                (when (not= v 0) (tset quad-vertices (+ (* 4 (- g 1)) k) (+ nv v)))))))
+        (let [o (+ share-header (* crossing-width crossings))]
+          (for [v 1 vertices]
+            (let [b (+ o (* vertex-width (- v 1)))]
+              (for [k 1 3] (tset positions (+ (* 3 (+ nv v -1)) k) (. a (+ b k))))
+              (for [k 1 6] (tset vertex-info (+ (* 6 (+ nv v -1)) k) (. a (+ b 3 k)))))))
+        (set nv (+ nv vertices))))
+    (set (state.cell-count state.crossings state.positions state.vertex-info state.quad-vertices)
+         (values cells nc positions vertex-info quad-vertices))
+    (set (state.ex0 state.ey0 state.ez0 state.eaxis state.ed0)
+         (values ex0 ey0 ez0 eaxis ed0))))
+
+(fn mesh-shares! [state]
+  "Steps 2 to 8 with the leaves in shares, one a process (src/util/fork.fnl): this
+process's share tells progress. Returns true, or false (state as it was) where a
+share met a joined face whose cell across is another share's (see find-patches!:
+its decision needs both cells); then the caller takes the leaves whole."
+  (mark! state nil)
+  (let [{: leaves : leaf-halves : field : grid} state
+        shares (min (or grid.workers (fork.cores)) (floor (/ (length leaves) min-share-leaves)))
+        size (/ (length leaves) shares)
+        ;; The most numbers a share's result may have: per leaf, 64 cells of 12
+        ;; crossings and 4 vertices each (only what is written takes memory).
+        room (+ share-header (* (+ (* crossing-width 12) (* vertex-width 4)) leaf leaf leaf
+                                (+ 1 (floor size))))]
+    (fork.run-shares
+      shares room
+      (fn [s ?out ?room]
+        (let [first (+ 1 (floor (* (- s 1) size)))
+              last (if (= s shares) (length leaves) (floor (* s size)))
+              share (new-state field grid (if (= s 1) state.progress nil))]
+          (set share.leaves (fcollect [l first last] (. leaves l)))
+          (set share.leaf-halves (fcollect [l first last] (. leaf-halves l)))
+          (local-steps! share)
+          (mark! share nil)
+          ;; This process's share's seconds stand for the steps'.
+          (when (= s 1)
+            (each [step t (each-pair share.times)] (tset state.times step t)))
+          (share-numbers share ?out ?room)))
+      (fn [results]
+        (mark! state :merge)
+        (if (accumulate [met? false _ [a] (ipairs results)] (or met? (= 1 (. a 9))))
+            false
+            (do (merge-shares! state results)
+                (set state.counts.shares shares)
+                true))))))
+
 (fn mesh [field grid ?progress]
   "Contour `field` over `grid`. The field: {:distances (fn [flat n ?skip]) -> n
 signed distances at the points of the flat list x1 y1 z1 x2 ... after its first
@@ -1110,31 +1282,8 @@ bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
     (find-leaves! state)
     (when (and grid.max-leaves (> (length state.leaves) grid.max-leaves))
       (error {:leaves (length state.leaves) :max-leaves grid.max-leaves}))
-    (mark! state :corners)
-    (sample-corners! state)
-    (mark! state :cells)
-    (find-cells! state)
-    ;; What each step leaves that no later one reads goes at once: the peak is
-    ;; the cells, crossings and vertices together (a box at 256 cells: 256 MB live
-    ;; keeping them to the end).
-    (set (state.corner-values state.corner-inside state.slot-points) (values nil nil nil))
-    (mark! state :crossings)
-    (refine-crossings! state)
-    (set state.ed1 nil)
-    (mark! state :normals)
-    (crossing-normals! state)
-    (worked! state :patches (* 0.25 geometry-work state.crossings))
-    (mark! state :patches)
-    (find-patches! state)
-    (worked! state :vertices (* 0.25 geometry-work state.crossings))
-    (mark! state :vertices)
-    (place-vertices! state)
-    (set (state.px state.py state.pz state.nrx state.nry state.nrz state.eaxis)
-         (values nil nil nil nil nil nil nil))
-    (set (state.cell-i state.cell-j state.cell-k) (values nil nil nil))
-    (worked! state :projection (* 0.2 geometry-work state.crossings))
-    (mark! state :projection)
-    (project-vertices! state)
+    (when (not (and (use-shares? state) (mesh-shares! state)))
+      (local-steps! state))
     (mark! state :faces)
     (let [triangles (make-triangles state)]
       (worked! state :untangle (* 0.3 geometry-work state.crossings))
@@ -1149,6 +1298,7 @@ bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
                :flipped (or counts.flipped 0)
                :collections (or counts.collections 0)
                :untangled counts.untangled :crossing counts.crossing
+               :shares (or counts.shares 1)
                :work counts.work :estimate counts.estimate}})))
 
 {: mesh : patches : box-distance : leaf :cut-field evaluator}

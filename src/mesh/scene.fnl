@@ -215,6 +215,8 @@ it is worth the forks (see src/util/fork.fnl); the numbers are the same as one's
                                          (tset out (+ b 1) r) (tset out (+ b 2) g)
                                          (tset out (+ b 3) bl))))))
        :distance map
+       ;; It may run in a forked child (src/util/fork.fnl): the mesher's shares.
+       :fork-safe? true
        ;; Double precision: a small step keeps creases sharp.
        :step 1e-4
        :offset surface-offset})))

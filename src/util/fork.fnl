@@ -9,11 +9,13 @@
 ;; parent computes everything.
 
 (local libc (require :src.util.libc))
+;; `pairs` under another name (LuaJIT's ITERN: see src/util/wire.fnl).
+(local each-pair pairs)
 (local ffi libc.ffi)
 
 (local native
   (when (and ffi (= ffi.os :Linux))
-    (libc.declare [:fork :_exit :mmap :munmap :waitpid :sysconf])))
+    (libc.declare [:fork :_exit :mmap :munmap :waitpid :sysconf :nanosleep])))
 
 (local table-new (let [(ok? new) (pcall require :table.new)]
                    (if ok? (fn [n] (new n 0)) (fn [] []))))
@@ -31,6 +33,9 @@
 ;; (its page tables are copied), more than a few thousand field values.
 (local min-share 4096)
 
+;; Whether this process is a child made here: it splits nothing further.
+(var child? false)
+
 (fn cores []
   "The processors online (1 where that is unknown)."
   (if native (math.max 1 (tonumber (native.sysconf online-processors))) 1))
@@ -46,7 +51,7 @@
 processes when it has min-share items for each (1: none forked). Returns the list,
 and the items this process computed and their seconds."
   (let [out (table-new (* n width))
-        workers (math.min workers (math.floor (/ n min-share)))]
+        workers (if child? 1 (math.min workers (math.floor (/ n min-share))))]
     (if (or (not native) (< workers 2))
         (let [t0 (clock)]
           (compute 1 n out)
@@ -64,6 +69,7 @@ and the items this process computed and their seconds."
                     pid (native.fork)]
                 (if (= pid 0)
                     (do (collectgarbage :stop)
+                        (set child? true)
                         (let [ok? (pcall (fn []
                                            (let [mine []]
                                              (compute first last mine)
@@ -97,6 +103,84 @@ and the items this process computed and their seconds."
           (when (not own-ok?) (error own-err 0))
           (values out (math.min n share) own-seconds)))))
 
+(local shared-anonymous-unreserved 0x4021)
+;; waitpid's WNOHANG.
+(local no-hang 1)
+
+(fn wait-for [pid done]
+  "Waits for child `pid` to say it is done (done[0] set) or to leave: true when it
+said so (it may still be leaving: see reap)."
+  (let [status (ffi.new "int[1]")
+        pause (ffi.new "rm_timespec_t" {:sec 0 :nsec 50000})]
+    (var (said? left?) (values false false))
+    (while (not (or said? left?))
+      (if (not= 0 (. done 0)) (set said? true)
+          (= pid (native.waitpid pid status no-hang)) (set left? true)
+          (native.nanosleep pause nil)))
+    ;; A child that left may have said so just before.
+    (or said? (not= 0 (. done 0)))))
+
+(fn run-shares [shares room run use]
+  "Runs (run s out room) for s from 1 to `shares`: share 1 in this process, the
+others each in a child made by fork(), at once. `run` writes share s's numbers at
+out[1..n] (`out` an FFI double array with `room` places from 1, in memory shared
+with the children) and returns out and n; where they do not fit, it returns another
+list (a table or FFI array from 1) and n instead. Calls (use results), results
+being per share [numbers n] (the numbers read in place, from index 1), and returns
+what it returns, having freed the shared memory. A share whose child failed, or
+whose numbers did not fit, is run here again, so an error it raises is this
+process's; with no fork() (or in a child) every share runs here. The children are
+waited for only until they say they are done, and reaped after `use`: a child's
+leaving (freeing its memory) takes milliseconds."
+  (let [region (+ room 2)
+        bytes (* shares region 8)
+        mem (when (and native (not child?) (< 1 shares))
+              (native.mmap nil bytes read-write shared-anonymous-unreserved -1 0))
+        mapped? (and mem (not= (ffi.cast "intptr_t" mem) -1))
+        base (when mapped? (ffi.cast "double *" mem))
+        ;; Share s's region: its done word at [0] (n + 1 once written), numbers from 1.
+        region-of (fn [s] (+ base (* (- s 1) region)))
+        children []
+        results []]
+    (when mapped?
+      (for [s 2 shares]
+        (let [pid (native.fork)]
+          (if (= pid 0)
+              (do (collectgarbage :stop)
+                  (set child? true)
+                  (let [out (region-of s)
+                        (ok? list n) (pcall run s out room)]
+                    (when (and ok? (= list out))
+                      (tset out 0 (+ n 1)))
+                    (native._exit (if (and ok? (= list out)) 0 1))))
+              (< pid 0) nil
+              (tset children s pid)))))
+    ;; This process's share (and the others', without children); the children are
+    ;; waited for even when it fails (none left behind in a player that goes on).
+    (local (ok? err)
+      (pcall (fn []
+               (for [s 1 shares]
+                 (when (not (. children s))
+                   (let [(list n) (if mapped? (run s (region-of s) room) (run s))]
+                     (tset results s [list n])))))))
+    (for [s 2 shares]
+      (case (. children s)
+        pid (let [done (region-of s)]
+              (when (wait-for pid done)
+                (tset results s [done (- (. done 0) 1)])))))
+    (local (used-ok? value)
+      (pcall (fn []
+               (when (not ok?) (error err 0))
+               (for [s 2 shares]
+                 (when (not (. results s))
+                   (let [(list n) (run s)]
+                     (tset results s [list n]))))
+               (use results))))
+    (each [_ pid (each-pair children)] (exited-cleanly? pid))
+    (when mapped? (native.munmap mem bytes))
+    (when (not used-ok?) (error value 0))
+    value))
+
 (fn fork-cost []
   ;; Seconds a fork costs the parent, from the heap's size (measured: 1 ms, and
   ;; 0.05 to 0.07 ms a MB, copying page tables and then the pages it writes to).
@@ -122,4 +206,5 @@ either way."
         (set seen.seconds (+ seen.seconds seconds))
         out))))
 
-{: splitter : split-range : cores : min-share}
+{: splitter : split-range : run-shares : cores : min-share
+ :child? (fn [] child?)}

@@ -86,6 +86,7 @@
    :isatty ["int isatty(int fd);"]
    ;; The clock and the environment.
    :clock_gettime ["int clock_gettime(int clock, rm_timespec_t *ts);" :rm_timespec_t]
+   :nanosleep ["int nanosleep(const rm_timespec_t *req, rm_timespec_t *rem);" :rm_timespec_t]
    :setenv ["int setenv(const char *name, const char *value, int overwrite);"]
    :unsetenv ["int unsetenv(const char *name);"]
    ;; zlib.
