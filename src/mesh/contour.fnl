@@ -734,7 +734,8 @@ face's segments, the quads of the two segments would share their edge across the
 face (four triangles on one edge): reversing the face's decision in both cells
 splits each patch in two. Repeated until no face is left so (each reversal only
 splits patches, so it ends); counted in state.counts.flipped."
-  (let [{: cell-count : cell-i : cell-j : cell-k : cell-v : cell-mask : counts : stride-x : stride-y} state
+  (let [{: cell-count : cell-i : cell-j : cell-k : cell-v : cell-mask : counts : stride-x : stride-y
+         : evaluate : ox : oy : oz : h : nx : ny : nz} state
         ;; Grid cell key -> cell number.
         cell-at {}
         ;; A cell's corner values as patches reads them (one table, refilled).
@@ -764,7 +765,28 @@ splits patches, so it ends); counted in state.counts.flipped."
                   (let [(rep joined) (patches (values-of c) flips)]
                     (tset cell-rep c rep)
                     (tset cell-joined c joined))))
-        flipped {}]
+        flipped {}
+        ;; A share of the leaves (see mesh-shares!) may not have the cell across a
+        ;; joined face: it is another share's. Its corners are evaluated here (the
+        ;; same numbers as that share's) for its joined faces, as that share finds
+        ;; them before any reversal.
+        ;; The grid cell across face fi of cell c.
+        ghost-cell (fn [c fi]
+                     (let [axis (floor (/ (- fi 1) 2)) sgn (if (= 0 (% (- fi 1) 2)) -1 1)]
+                       (values (+ (. cell-i c) (if (= axis 0) sgn 0))
+                               (+ (. cell-j c) (if (= axis 1) sgn 0))
+                               (+ (. cell-k c) (if (= axis 2) sgn 0)))))
+        ghost-joined (fn [c fi]
+                       (let [(gi gj gk) (ghost-cell c fi)
+                             flat []]
+                         (for [corner 0 7]
+                           (let [(x y z) (corner-bits corner)]
+                             (table.insert flat (+ ox (* (min nx (+ gi x)) h)))
+                             (table.insert flat (+ oy (* (min ny (+ gj y)) h)))
+                             (table.insert flat (+ oz (* (min nz (+ gk z)) h)))))
+                         (let [(_ joined) (patches (evaluate :patches flat))] joined)))
+        ;; Each cell's joined faces before any reversal.
+        first-joined {}]
     (for [c 1 cell-count]
       ;; Most cells' patches are known by their corners' signs alone.
       (case (. plain-patches (. cell-mask c))
@@ -780,16 +802,32 @@ splits patches, so it ends); counted in state.counts.flipped."
     (when (< 0 (length todo))
       (for [c 1 cell-count]
         (tset cell-at (+ (. cell-i c) (* stride-x (. cell-j c)) (* stride-y (. cell-k c))) c)))
-    (for [_ 1 16 &until (= 0 (length todo))]
+    (each [_ c (ipairs todo)] (tset first-joined c (. cell-joined c)))
+    (for [round 1 16 &until (= 0 (length todo))]
       (let [again []
             joined? (fn [c fi] (accumulate [j? false _ g (ipairs (. cell-joined c))] (or j? (= g fi))))]
         (each [_ c (ipairs todo)]
           (each [_ fi (ipairs (icollect [_ g (ipairs (. cell-joined c))] g))]
             (let [(other ofi) (across c fi)]
-              ;; (A share of the leaves, see mesh-shares!, may not have the
-              ;; cell across: then the shares are not used.)
-              (when (and (not other) (joined? c fi))
-                (set state.missing-neighbour? true))
+              ;; The cell across is another share's. Where both cells have this
+              ;; face alone joined before any reversal, one process would reverse
+              ;; it whatever the order; each share reverses its side (counted
+              ;; half each). Anything else (more joined faces, a later round) may
+              ;; depend on the order: the share says so (state.met!, see
+              ;; mesh-shares!).
+              (when (and (not other) state.share? (joined? c fi)
+                         (state.cell-kept? (ghost-cell c fi)))
+                (if (and (= round 1) (= 1 (length (. first-joined c)))
+                         (not (. flipped (face-key c fi))))
+                    (let [ghost (ghost-joined c fi)]
+                      (if (and (= 1 (length ghost)) (= ofi (. ghost 1)))
+                          (do (tset flipped (face-key c fi) true)
+                              (set counts.flipped (+ 0.5 (or counts.flipped 0)))
+                              (flip! c fi)
+                              (table.insert again c))
+                          (< 0 (length ghost))
+                          (state.met! (ghost-cell c fi))))
+                    (state.met! (ghost-cell c fi))))
               (when (and other (joined? c fi) (joined? other ofi)
                          (not (. flipped (face-key c fi))))
                 (tset flipped (face-key c fi) true)
@@ -1120,12 +1158,20 @@ crossing or folded in counts.crossing."
 ;;; Every core: the leaves in shares, one a process (src/util/fork.fnl), each share
 ;;; taken through steps 2 to 8 alone, their crossings and vertices then merged.
 
-;; Leaves a share has at least: a share of fewer takes less time than its fork
-;; (a torus at 128 cells: 3229 leaves, about 20 microseconds each).
-(local min-share-leaves 512)
+;; Leaves a share has at least: fewer take less time than a fork (a torus at 128
+;; cells: 3229 leaves, about 20 microseconds each), and a share's border with the
+;; next is worked on by both.
+(local min-share-leaves 256)
+;; Shares per process (see mesh-shares!). More would let a process that is done
+;; take the share of one held up (an expensive object in it), but each share costs
+;; its process new traces (LuaJIT specialises them on the closures a share makes):
+;; with 4 a process, a torus at 128 cells took 0.104 s, with 2 0.092, with 1 0.088
+;; (median of 7); custom, flower, organic and platonic-shelf at 256 were as fast or
+;; faster with 1 than 2.
+(local shares-per-worker 1)
 ;; Numbers before a share's crossings, per crossing and per vertex (see
 ;; share-numbers).
-(local share-header 9)
+(local share-header 10)
 (local crossing-width 9)
 (local vertex-width 9)
 
@@ -1135,13 +1181,14 @@ the CPU evaluator's, not the GPU's), and enough leaves for more than one share
 (state.grid.workers, default every core)."
   (let [workers (or state.grid.workers (fork.cores))]
     (and state.field.fork-safe? (not (fork.child?)) (< 1 workers)
-         (<= (* 2 min-share-leaves) (length state.leaves)))))
+         (<= (* 4 min-share-leaves) (length state.leaves)))))
 
 (fn share-numbers [state ?out ?room]
   "A share's result as one list of numbers, in ?out (an FFI double array with ?room
 places from 1) where they fit, else in a new one; returns the list and their count.
 They are its counts (cells, crossings, vertices, flipped, moved, points, work,
-estimate, 1 when a joined face's cell across was not in the share), then per
+estimate), the first and last share it would have to be taken with (0 0: none; see
+mesh-shares!), then per
 crossing its low end, axis, value there and its quad's four vertices (0: a cell of
 another share), then per vertex its position and info."
   (let [{: crossings : positions : vertex-info : quad-vertices
@@ -1151,7 +1198,7 @@ another share), then per vertex its position and info."
         out (if (and ?out (<= n ?room)) ?out (float-array n))]
     (each [q v (ipairs [state.cell-count crossings vertices (or counts.flipped 0)
                         (or counts.moved 0) counts.points counts.work counts.estimate
-                        (if state.missing-neighbour? 1 0)])]
+                        (or state.met-lo 0) (or state.met-hi 0)])]
       (tset out q v))
     (for [e 1 crossings]
       (let [o (+ share-header (* crossing-width (- e 1))) q (* 4 (- e 1))]
@@ -1219,39 +1266,94 @@ steps 2 to 8 leave."
          (values ex0 ey0 ez0 eaxis ed0))))
 
 (fn mesh-shares! [state]
-  "Steps 2 to 8 with the leaves in shares, one a process (src/util/fork.fnl): this
-process's share tells progress. Returns true, or false (state as it was) where a
-share met a joined face whose cell across is another share's (see find-patches!:
-its decision needs both cells); then the caller takes the leaves whole."
+  "Steps 2 to 8 with the leaves in shares, taken by as many processes as there are
+cores (fork.run-shares); the shares this process takes tell progress. A share that
+met a face it could not decide alone (see find-patches!) is taken again here, as
+one with the shares up to the one across, until none is left so. Then the shares'
+results are merged (merge-shares!)."
   (mark! state nil)
-  (let [{: leaves : leaf-halves : field : grid} state
-        shares (min (or grid.workers (fork.cores)) (floor (/ (length leaves) min-share-leaves)))
+  (let [{: leaves : leaf-halves : field : grid : counts : stride-x : stride-y} state
+        workers (or grid.workers (fork.cores))
+        shares (min (* shares-per-worker workers) (floor (/ (length leaves) min-share-leaves)))
         size (/ (length leaves) shares)
+        first-of (fn [s] (+ 1 (floor (* (- s 1) size))))
+        last-of (fn [s] (if (= s shares) (length leaves) (floor (* s size))))
+        ;; Each leaf's number, by the leaf's position; its share.
+        leaf-at (collect [l [i j k] (ipairs leaves)] (+ i (* stride-x j) (* stride-y k)) l)
+        share-of (fn [l] (faccumulate [found nil s 1 shares]
+                           (or found (when (<= (first-of s) l (last-of s)) s))))
+        ;; The leaf of grid cell (i j k), if sampled, and the cell's half.
+        leaf-of (fn [i j k]
+                  (let [a (% i leaf) b (% j leaf) c (% k leaf)]
+                    (values (. leaf-at (+ (- i a) (* stride-x (- j b)) (* stride-y (- k c))))
+                            (. cell-half (+ 1 a (* leaf b) (* leaf leaf c))))))
         ;; The most numbers a share's result may have: per leaf, 64 cells of 12
         ;; crossings and 4 vertices each (only what is written takes memory).
         room (+ share-header (* (+ (* crossing-width 12) (* vertex-width 4)) leaf leaf leaf
-                                (+ 1 (floor size))))]
+                                (+ 1 (floor size))))
+        ;; Progress: this process's shares stand for the others' (each process
+        ;; takes the next share as it gets free); shown as a share of the shares.
+        (blocks-work blocks-points) (values counts.work counts.points)
+        scale (* 1000 shares)]
+    (var (own-done own-points) (values 0 0))
+    (fn run-range [lo hi ?out ?room]
+      ;; Shares lo to hi as one; see share-numbers.
+      (let [progress (when (not (fork.child?))
+                       (fn [phase work estimate points]
+                         (let [part (if (and estimate (< 0 estimate)) (min 1 (/ work estimate)) 0)]
+                           (state.progress phase
+                                           (+ blocks-work (* scale (min 0.99 (/ (* workers (+ own-done part)) shares))))
+                                           (+ blocks-work scale)
+                                           (+ blocks-points own-points points)))))
+            share (new-state field grid progress)]
+        (set share.share? true)
+        (set share.leaves (fcollect [l (first-of lo) (last-of hi)] (. leaves l)))
+        (set share.leaf-halves (fcollect [l (first-of lo) (last-of hi)] (. leaf-halves l)))
+        ;; Whether grid cell (i j k) is in a sampled half of a leaf (then one
+        ;; process would have it, see find-patches!).
+        (set share.cell-kept?
+             (fn [i j k]
+               (case (leaf-of i j k)
+                 (l half) (not= 0 (bit.band (. leaf-halves l) half))
+                 _ false)))
+        ;; A face the share could not decide: the share of the cell across.
+        (set share.met!
+             (fn [i j k]
+               (let [other (share-of (leaf-of i j k))]
+                 (set share.met-lo (min other (or share.met-lo lo)))
+                 (set share.met-hi (max other (or share.met-hi hi))))))
+        (local-steps! share)
+        (mark! share nil)
+        (when (not (fork.child?))
+          (set (own-done own-points) (values (+ own-done 1) (+ own-points share.counts.points)))
+          ;; The seconds of this process's shares stand for the steps'.
+          (each [step t (each-pair share.times)]
+            (tset state.times step (+ t (or (. state.times step) 0)))))
+        (share-numbers share ?out ?room)))
     (fork.run-shares
       shares room
-      (fn [s ?out ?room]
-        (let [first (+ 1 (floor (* (- s 1) size)))
-              last (if (= s shares) (length leaves) (floor (* s size)))
-              share (new-state field grid (if (= s 1) state.progress nil))]
-          (set share.leaves (fcollect [l first last] (. leaves l)))
-          (set share.leaf-halves (fcollect [l first last] (. leaf-halves l)))
-          (local-steps! share)
-          (mark! share nil)
-          ;; This process's share's seconds stand for the steps'.
-          (when (= s 1)
-            (each [step t (each-pair share.times)] (tset state.times step t)))
-          (share-numbers share ?out ?room)))
+      (fn [s ?out ?room] (run-range s s ?out ?room))
       (fn [results]
         (mark! state :merge)
-        (if (accumulate [met? false _ [a] (ipairs results)] (or met? (= 1 (. a 9))))
-            false
-            (do (merge-shares! state results)
-                (set state.counts.shares shares)
-                true))))))
+        ;; Runs of shares [lo hi result], in order.
+        (var runs (fcollect [s 1 shares] [s s (. results s 1)]))
+        (var again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (. run 3 9)) run))))
+        (while again
+          (let [[lo hi a] again
+                lo (min lo (. a 9)) hi (max hi (. a 10))
+                ;; (All the shares as one meet no other.)
+                whole (run-range lo hi)
+                _ (when (and (= lo 1) (= hi shares)) (tset whole 9 0))
+                kept (icollect [_ run (ipairs runs)]
+                       (when (or (< (. run 2) lo) (> (. run 1) hi)) run))]
+            (set counts.retaken (+ 1 (or counts.retaken 0)))
+            (table.insert kept [lo hi whole])
+            (table.sort kept (fn [x y] (< (. x 1) (. y 1))))
+            (set runs kept)
+            (set again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (. run 3 9)) run))))))
+        (merge-shares! state (icollect [_ [_ _ a] (ipairs runs)] [a]))
+        (set counts.shares (length runs))
+        true))))
 
 (fn mesh [field grid ?progress]
   "Contour `field` over `grid`. The field: {:distances (fn [flat n ?skip]) -> n
@@ -1282,8 +1384,7 @@ bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
     (find-leaves! state)
     (when (and grid.max-leaves (> (length state.leaves) grid.max-leaves))
       (error {:leaves (length state.leaves) :max-leaves grid.max-leaves}))
-    (when (not (and (use-shares? state) (mesh-shares! state)))
-      (local-steps! state))
+    (if (use-shares? state) (mesh-shares! state) (local-steps! state))
     (mark! state :faces)
     (let [triangles (make-triangles state)]
       (worked! state :untangle (* 0.3 geometry-work state.crossings))
@@ -1298,7 +1399,7 @@ bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
                :flipped (or counts.flipped 0)
                :collections (or counts.collections 0)
                :untangled counts.untangled :crossing counts.crossing
-               :shares (or counts.shares 1)
+               :shares (or counts.shares 1) :retaken (or counts.retaken 0)
                :work counts.work :estimate counts.estimate}})))
 
 {: mesh : patches : box-distance : leaf :cut-field evaluator}

@@ -15,7 +15,8 @@
 
 (local native
   (when (and ffi (= ffi.os :Linux))
-    (libc.declare [:fork :_exit :mmap :munmap :waitpid :sysconf :nanosleep])))
+    (libc.declare [:fork :_exit :mmap :munmap :waitpid :sysconf :nanosleep :pipe :read
+                   :write :close])))
 
 (local table-new (let [(ok? new) (pcall require :table.new)]
                    (if ok? (fn [n] (new n 0)) (fn [] []))))
@@ -33,8 +34,10 @@
 ;; (its page tables are copied), more than a few thousand field values.
 (local min-share 4096)
 
-;; Whether this process is a child made here: it splits nothing further.
+;; Whether this process is a child made here, or has children working at shares
+;; (run-shares): then it splits nothing further (every core is busy).
 (var child? false)
+(var sharing? false)
 
 (fn cores []
   "The processors online (1 where that is unknown)."
@@ -51,7 +54,7 @@
 processes when it has min-share items for each (1: none forked). Returns the list,
 and the items this process computed and their seconds."
   (let [out (table-new (* n width))
-        workers (if child? 1 (math.min workers (math.floor (/ n min-share))))]
+        workers (if (or child? sharing?) 1 (math.min workers (math.floor (/ n min-share))))]
     (if (or (not native) (< workers 2))
         (let [t0 (clock)]
           (compute 1 n out)
@@ -107,76 +110,103 @@ and the items this process computed and their seconds."
 ;; waitpid's WNOHANG.
 (local no-hang 1)
 
-(fn wait-for [pid done]
-  "Waits for child `pid` to say it is done (done[0] set) or to leave: true when it
-said so (it may still be leaving: see reap)."
-  (let [status (ffi.new "int[1]")
-        pause (ffi.new "rm_timespec_t" {:sec 0 :nsec 50000})]
-    (var (said? left?) (values false false))
-    (while (not (or said? left?))
-      (if (not= 0 (. done 0)) (set said? true)
-          (= pid (native.waitpid pid status no-hang)) (set left? true)
-          (native.nanosleep pause nil)))
-    ;; A child that left may have said so just before.
-    (or said? (not= 0 (. done 0)))))
+(fn pause! []
+  (native.nanosleep (ffi.new "rm_timespec_t" {:sec 0 :nsec 50000}) nil))
+
+(fn ticket-queue [shares]
+  "A pipe holding the numbers 1 to `shares` (4 bytes each), its writing end closed:
+processes made after take the shares from it one at a time (a pipe's read of 4
+bytes is whole, so no two take one), and read nothing once they are gone. Returns
+its reading end, or nil (no pipe)."
+  (let [fds (ffi.new "int[2]")]
+    (when (= 0 (native.pipe fds))
+      (let [ticket (ffi.new "int32_t[1]")]
+        (for [s 1 shares]
+          (tset ticket 0 s)
+          (native.write (. fds 1) ticket 4))
+        (native.close (. fds 1))
+        (. fds 0)))))
+
+(fn take-ticket [fd]
+  "The next share from a ticket-queue, or nil when none is left."
+  (let [ticket (ffi.new "int32_t[1]")]
+    (when (= 4 (native.read fd ticket 4)) (. ticket 0))))
 
 (fn run-shares [shares room run use]
-  "Runs (run s out room) for s from 1 to `shares`: share 1 in this process, the
-others each in a child made by fork(), at once. `run` writes share s's numbers at
-out[1..n] (`out` an FFI double array with `room` places from 1, in memory shared
-with the children) and returns out and n; where they do not fit, it returns another
-list (a table or FFI array from 1) and n instead. Calls (use results), results
-being per share [numbers n] (the numbers read in place, from index 1), and returns
-what it returns, having freed the shared memory. A share whose child failed, or
-whose numbers did not fit, is run here again, so an error it raises is this
-process's; with no fork() (or in a child) every share runs here. The children are
-waited for only until they say they are done, and reaped after `use`: a child's
-leaving (freeing its memory) takes milliseconds."
+  "Runs (run s out room) for every share s from 1 to `shares`, in this process and
+in children made by fork() (one per core, at most one per share), each process
+taking the next share left as it gets free (so a share that takes longer holds up
+no other). `run` writes share s's numbers at out[1..n] (`out` an FFI double array
+with `room` places from 1, in memory shared by the processes) and returns out and
+n; where they do not fit, it returns another list (a table or FFI array from 1)
+and n instead. Calls (use results), results being per share [numbers n] (the
+numbers read in place, from index 1), and returns what it returns, having freed
+the shared memory. A share that a child did not finish (it failed, or its numbers
+did not fit) is run here again, so an error it raises is this process's; with no
+fork() (or in a child) every share runs here. The children are reaped after
+`use`: a child's leaving (freeing its memory) takes milliseconds."
   (let [region (+ room 2)
         bytes (* shares region 8)
-        mem (when (and native (not child?) (< 1 shares))
+        workers (math.min (cores) shares)
+        mem (when (and native (not child?) (< 1 workers))
               (native.mmap nil bytes read-write shared-anonymous-unreserved -1 0))
         mapped? (and mem (not= (ffi.cast "intptr_t" mem) -1))
         base (when mapped? (ffi.cast "double *" mem))
+        queue (when mapped? (ticket-queue shares))
         ;; Share s's region: its done word at [0] (n + 1 once written), numbers from 1.
         region-of (fn [s] (+ base (* (- s 1) region)))
         children []
         results []]
-    (when mapped?
-      (for [s 2 shares]
+    (when queue
+      (for [_ 2 workers]
         (let [pid (native.fork)]
           (if (= pid 0)
               (do (collectgarbage :stop)
                   (set child? true)
-                  (let [out (region-of s)
-                        (ok? list n) (pcall run s out room)]
-                    (when (and ok? (= list out))
-                      (tset out 0 (+ n 1)))
-                    (native._exit (if (and ok? (= list out)) 0 1))))
-              (< pid 0) nil
-              (tset children s pid)))))
-    ;; This process's share (and the others', without children); the children are
-    ;; waited for even when it fails (none left behind in a player that goes on).
+                  (var ok? true)
+                  (var s (take-ticket queue))
+                  (while (and ok? s)
+                    (let [out (region-of s)
+                          (run-ok? list n) (pcall run s out room)]
+                      (if (and run-ok? (= list out))
+                          (tset out 0 (+ n 1))
+                          (set ok? false)))
+                    (set s (take-ticket queue)))
+                  (native._exit (if ok? 0 1)))
+              (< 0 pid) (table.insert children pid)))))
+    ;; This process's shares, then any a child did not finish; the children are
+    ;; waited for even when one fails (none left behind in a player that goes on).
+    (set sharing? (< 0 (length children)))
     (local (ok? err)
       (pcall (fn []
-               (for [s 1 shares]
-                 (when (not (. children s))
-                   (let [(list n) (if mapped? (run s (region-of s) room) (run s))]
-                     (tset results s [list n])))))))
-    (for [s 2 shares]
-      (case (. children s)
-        pid (let [done (region-of s)]
-              (when (wait-for pid done)
-                (tset results s [done (- (. done 0) 1)])))))
+               (when queue
+                 (var s (take-ticket queue))
+                 (while s
+                   (let [(list n) (run s (region-of s) room)]
+                     (tset results s [list n]))
+                   (set s (take-ticket queue)))))))
+    (set sharing? false)
+    (when queue (native.close queue))
+    ;; Until every share is done or every child has left.
+    (let [status (ffi.new "int[1]")
+          running (collect [_ pid (ipairs children)] pid true)
+          done? (fn [s] (or (. results s) (and mapped? (not= 0 (. (region-of s) 0)))))]
+      (while (and (next running) (not (faccumulate [all? true s 1 shares] (and all? (done? s)))))
+        (each [pid (each-pair (collect [p (each-pair running)] p true))]
+          (when (= pid (native.waitpid pid status no-hang))
+            (tset running pid nil)))
+        (pause!)))
     (local (used-ok? value)
       (pcall (fn []
                (when (not ok?) (error err 0))
-               (for [s 2 shares]
+               (for [s 1 shares]
                  (when (not (. results s))
-                   (let [(list n) (run s)]
-                     (tset results s [list n]))))
+                   (let [done (when mapped? (. (region-of s) 0))]
+                     (tset results s (if (and done (not= 0 done))
+                                         [(region-of s) (- done 1)]
+                                         (let [(list n) (run s)] [list n]))))))
                (use results))))
-    (each [_ pid (each-pair children)] (exited-cleanly? pid))
+    (each [_ pid (ipairs children)] (exited-cleanly? pid))
     (when mapped? (native.munmap mem bytes))
     (when (not used-ok?) (error value 0))
     value))

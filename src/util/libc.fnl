@@ -68,6 +68,8 @@
    ;; Files.
    :open ["int open(const char *path, int flags, int mode);"]
    :write ["long write(int fd, const void *buf, unsigned long n);"]
+   :read ["long read(int fd, void *buf, unsigned long n);"]
+   :pipe ["int pipe(int fds[2]);"]
    :close ["int close(int fd);"]
    :fsync ["int fsync(int fd);"]
    :fchmod ["int fchmod(int fd, unsigned int mode);"]
