@@ -426,6 +426,10 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
   "An array of 32-bit integers 1 to n, all 0 (FFI), else a table of zeros."
   (if ffi (ffi.new "int32_t[?]" (+ n 1)) (fcollect [_ 1 n] 0)))
 
+(fn float-array [n]
+  "An array of doubles 1 to n, all 0 (FFI), else a table of zeros."
+  (if ffi (ffi.new "double[?]" (+ n 1)) (fcollect [_ 1 n] 0)))
+
 (fn det3 [ax ay az bx by bz cx cy cz]
   ;; a x b . c: positive when a turns to b counter-clockwise seen from c's side.
   (dot (- (* ay bz) (* az by)) (- (* az bx) (* ax bz)) (- (* ax by) (* ay bx)) cx cy cz))
@@ -435,60 +439,60 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
   (let [c1 (. tris (+ (* 3 t) 1)) c2 (. tris (+ (* 3 t) 2)) c3 (. tris (+ (* 3 t) 3))]
     (if (= c1 v) (values c2 c3) (= c2 v) (values c3 c1) (values c1 c2))))
 
-(fn umbrella? [positions tris around first last v marks fan]
+(fn umbrella? [positions tris normals around first last v marks fan]
   "Whether the triangles around vertex v (0-based indices around[first..last]) lie
 over a disc once, like an umbrella's panels: their far edges close around v (each
-triangle's second end is another's first), seen along their mean normal m each
-turns counter-clockwise about v, and a direction r inside the first lies inside
-exactly one of them (a fan closed in several cycles, each turning, covers the disc
-once per cycle). Then no two of them overlap beyond v (their shadows tile the
-disc), and the pairs need no test. Seen along m is by the sign of a triple product
-with m: no projection. `marks` has a 0 for every vertex, and is left so; `fan` is
-scratch (per triangle its two ends and its two edges from v, 8 numbers)."
+triangle's second end is another's first), seen along their summed normal m
+(`normals`: each triangle's, 3 numbers from index 1) each turns counter-clockwise
+about v, and a direction r inside the first lies inside exactly one of them (a fan
+closed in several cycles, each turning, covers the disc once per cycle). Then no
+two of them overlap beyond v (their shadows tile the disc, for any m they all turn
+about), and the pairs need no test. Seen along m is by the sign of a product with
+m: no projection. `marks` has a 0 for every vertex, and is left so; `fan` is
+scratch (per triangle its two ends)."
   (let [b (* 3 (- v 1))
         vx (. positions (+ b 1)) vy (. positions (+ b 2)) vz (. positions (+ b 3))]
     (var (mx my mz ok?) (values 0 0 0 true))
-    ;; The mean normal: the sum of the triangles' (area-weighted) normals. Each
-    ;; first end counted, once at most.
+    ;; Each first end counted, once at most.
     (for [q first last]
-      (let [(ia ib) (fan-ends tris (. around q) v)
-            pa (* 3 (- ia 1)) pb (* 3 (- ib 1))
-            ax (- (. positions (+ pa 1)) vx) ay (- (. positions (+ pa 2)) vy)
-            az (- (. positions (+ pa 3)) vz) bx (- (. positions (+ pb 1)) vx)
-            by (- (. positions (+ pb 2)) vy) bz (- (. positions (+ pb 3)) vz)
-            (nx ny nz) (cross ax ay az bx by bz)
-            f (* 8 (- q first))]
+      (let [t (. around q)
+            (ia ib) (fan-ends tris t v)
+            f (* 2 (- q first))
+            n (* 3 t)]
         (tset fan (+ f 1) ia) (tset fan (+ f 2) ib)
-        (tset fan (+ f 3) ax) (tset fan (+ f 4) ay) (tset fan (+ f 5) az)
-        (tset fan (+ f 6) bx) (tset fan (+ f 7) by) (tset fan (+ f 8) bz)
         (when (< 0 (. marks ia)) (set ok? false))
         (tset marks ia 1)
-        (set (mx my mz) (values (+ mx nx) (+ my ny) (+ mz nz)))))
-    ;; Strictly inside the first wedge (its angle is under half a turn).
-    (let [rx (+ (. fan 3) (. fan 6)) ry (+ (. fan 4) (. fan 7)) rz (+ (. fan 5) (. fan 8))
+        (set (mx my mz) (values (+ mx (. normals (+ n 1))) (+ my (. normals (+ n 2)))
+                                (+ mz (. normals (+ n 3)))))))
+    ;; r strictly inside the first wedge (its angle is under half a turn); a
+    ;; wedge [a, b) holds r where a x r . m >= 0 and r x b . m > 0, that is
+    ;; a . w >= 0 and b . w < 0 with w = r x m.
+    (let [p1 (* 3 (- (. fan 1) 1)) p2 (* 3 (- (. fan 2) 1))
+          rx (+ (- (. positions (+ p1 1)) vx) (- (. positions (+ p2 1)) vx))
+          ry (+ (- (. positions (+ p1 2)) vy) (- (. positions (+ p2 2)) vy))
+          rz (+ (- (. positions (+ p1 3)) vz) (- (. positions (+ p2 3)) vz))
+          (wx wy wz) (cross rx ry rz mx my mz)
           n (- last first)]
       (var covering 0)
       (for [q 0 n]
-        (let [f (* 8 q)
-              ib (. fan (+ f 2))
-              ax (. fan (+ f 3)) ay (. fan (+ f 4)) az (. fan (+ f 5))
-              bx (. fan (+ f 6)) by (. fan (+ f 7)) bz (. fan (+ f 8))]
+        (let [t (. around (+ first q))
+              ia (. fan (+ (* 2 q) 1)) ib (. fan (+ (* 2 q) 2))
+              pa (* 3 (- ia 1)) pb (* 3 (- ib 1)) nt (* 3 t)]
           (tset marks ib (- (. marks ib) 1))
-          (when (<= (det3 ax ay az bx by bz mx my mz) 0) (set ok? false))
-          ;; r in the half-open wedge [a, b): each direction of a disc covered
-          ;; once is in exactly one.
-          (when (and (>= (det3 ax ay az rx ry rz mx my mz) 0)
-                     (> (det3 rx ry rz bx by bz mx my mz) 0))
+          (when (<= (dot (. normals (+ nt 1)) (. normals (+ nt 2)) (. normals (+ nt 3)) mx my mz) 0)
+            (set ok? false))
+          (when (and (>= (dot (- (. positions (+ pa 1)) vx) (- (. positions (+ pa 2)) vy)
+                              (- (. positions (+ pa 3)) vz) wx wy wz)
+                         0)
+                     (< (dot (- (. positions (+ pb 1)) vx) (- (. positions (+ pb 2)) vy)
+                             (- (. positions (+ pb 3)) vz) wx wy wz)
+                        0))
             (set covering (+ covering 1)))))
       ;; Every end met as often as a first end as a second; the marks back to 0.
-      (for [q 0 n]
-        (let [f (* 8 q)]
-          (when (or (not= 0 (. marks (. fan (+ f 1)))) (not= 0 (. marks (. fan (+ f 2)))))
-            (set ok? false))))
-      (for [q 0 n]
-        (let [f (* 8 q)]
-          (tset marks (. fan (+ f 1)) 0)
-          (tset marks (. fan (+ f 2)) 0)))
+      (for [q 1 (* 2 (+ n 1))]
+        (when (not= 0 (. marks (. fan q))) (set ok? false)))
+      (for [q 1 (* 2 (+ n 1))]
+        (tset marks (. fan q) 0))
       (and ok? (= covering 1)))))
 
 (fn folds [m ?options]
@@ -509,7 +513,19 @@ table whose keys are the 1-based vertices to look around; default all)."
         around (int-array (* 3 nt))
         p-points [] r-points [] fan []
         marks (int-array nv)
+        ;; Each triangle's normal (twice its area long), 3 numbers from 3t + 1.
+        normals (float-array (* 3 nt))
         out []]
+    (for [t 0 (- nt 1)]
+      (let [a (* 3 (- (. tris (+ (* 3 t) 1)) 1))
+            b (* 3 (- (. tris (+ (* 3 t) 2)) 1))
+            c (* 3 (- (. tris (+ (* 3 t) 3)) 1))
+            ax (. positions (+ a 1)) ay (. positions (+ a 2)) az (. positions (+ a 3))
+            (x y z) (cross (- (. positions (+ b 1)) ax) (- (. positions (+ b 2)) ay)
+                           (- (. positions (+ b 3)) az) (- (. positions (+ c 1)) ax)
+                           (- (. positions (+ c 2)) ay) (- (. positions (+ c 3)) az))]
+        (tset normals (+ (* 3 t) 1) x) (tset normals (+ (* 3 t) 2) y)
+        (tset normals (+ (* 3 t) 3) z)))
     (for [q 1 (* 3 nt)]
       (let [v (. tris q)] (tset start v (+ 1 (. start v)))))
     (var sum 1)
@@ -526,8 +542,8 @@ table whose keys are the 1-based vertices to look around; default all)."
       ;; (A vertex no triangle uses has no fan, and no fold.)
       (when (and (or (not only) (. only v))
                  (< (. start v) (. start (+ v 1)))
-                 (not (umbrella? positions tris around (. start v) (- (. start (+ v 1)) 1) v
-                                 marks fan)))
+                 (not (umbrella? positions tris normals around (. start v)
+                                 (- (. start (+ v 1)) 1) v marks fan)))
         (for [a (. start v) (- (. start (+ v 1)) 1)]
           (for [b (+ a 1) (- (. start (+ v 1)) 1)]
             (let [s (. around a) t (. around b)]
