@@ -1229,24 +1229,50 @@ another share), then per vertex its position and info."
     (values out n)))
 
 (fn merge-shares! [state results]
-  "The shares' results (see share-numbers), in the order of their leaves, as one
-mesher's: vertices numbered on, a crossing that shares meet at (one whose quad has a
-cell in another share) made one, numbered where the first share met it (as one
-process would have), its quad's vertices from each share. Leaves in state what
-steps 2 to 8 leave."
+  "The shares' results, in the order of their leaves, as one mesher's: vertices
+numbered on, a crossing that shares meet at (one whose quad has a cell in another
+share) made one, numbered where the first share met it (as one process would
+have), its quad's vertices from each share. A result is a share's numbers (see
+share-numbers) or, run here, its state; the first one's arrays, if a state, are
+taken as they are and added to. Leaves in state what steps 2 to 8 leave."
   (let [{: stride-x : stride-y : counts} state
+        first (. results 1 1)
+        own (when (= (type first) :table) first)
+        numbers (icollect [k [r] (ipairs results)]
+                  (when (not (and own (= k 1)))
+                    (if (= (type r) :table) (share-numbers r) r)))
         ;; At most the shares' crossings, and their vertices.
-        most (accumulate [n 0 _ [a] (ipairs results)] (+ n (. a 2)))
-        all (accumulate [n 0 _ [a] (ipairs results)] (+ n (. a 3)))
-        positions (table-new (* 3 all)) vertex-info (table-new (* 6 all))
-        quad-vertices (table-new (* 4 most))
+        most (accumulate [n (if own own.crossings 0) _ a (ipairs numbers)] (+ n (. a 2)))
+        all (accumulate [n (if own (/ (length own.positions) 3) 0) _ a (ipairs numbers)]
+              (+ n (. a 3)))
+        positions (if own own.positions (table-new (* 3 all)))
+        vertex-info (if own own.vertex-info (table-new (* 6 all)))
+        quad-vertices (if own own.quad-vertices (table-new (* 4 most)))
         ex0 (table-new most) ey0 (table-new most) ez0 (table-new most)
         eaxis (table-new most) ed0 (table-new most)
         ;; Crossing key -> number, for those a share had only part of the quad of.
         open {}]
     (var (nc nv cells) (values 0 0 0))
     (set (counts.flipped counts.moved counts.estimate) (values 0 0 counts.work))
-    (each [_ [a] (ipairs results)]
+    (when own
+      (let [c own.counts]
+        (set nc own.crossings)
+        (set nv (/ (length own.positions) 3))
+        (set cells own.cell-count)
+        (set counts.flipped (+ counts.flipped (or c.flipped 0)))
+        (set counts.moved (+ counts.moved (or c.moved 0)))
+        (set counts.points (+ counts.points c.points))
+        (set counts.work (+ counts.work c.work))
+        (set counts.estimate (+ counts.estimate c.estimate))
+        (for [e 1 nc]
+          (let [q (* 4 (- e 1)) gi (. own.ex0 e) gj (. own.ey0 e) gk (. own.ez0 e)
+                axis (. own.eaxis e)]
+            (tset ex0 e gi) (tset ey0 e gj) (tset ez0 e gk) (tset eaxis e axis)
+            (tset ed0 e (. own.ed0 e))
+            (when (not (and (. quad-vertices (+ q 1)) (. quad-vertices (+ q 2))
+                            (. quad-vertices (+ q 3)) (. quad-vertices (+ q 4))))
+              (tset open (+ axis (* 3 (+ gi (* stride-x gj) (* stride-y gk)))) e))))))
+    (each [_ a (ipairs numbers)]
       (let [crossings (. a 2) vertices (. a 3)]
         (set cells (+ cells (. a 1)))
         (set counts.flipped (+ counts.flipped (. a 4)))
@@ -1354,28 +1380,34 @@ results are merged (merge-shares!)."
           ;; The seconds of this process's shares stand for the steps'.
           (each [step t (each-pair share.times)]
             (tset state.times step (+ t (or (. state.times step) 0)))))
-        (share-numbers share ?out ?room)))
+        ;; Run here, the share itself (merge-shares! takes it as it is).
+        (if ?out (share-numbers share ?out ?room) share)))
     (fork.run-shares
       shares room
       (fn [s ?out ?room] (run-range s s ?out ?room))
       (fn [results]
         (mark! state :merge)
-        ;; Runs of shares [lo hi result], in order.
+        ;; Runs of shares [lo hi result], in order; the shares a run would have
+        ;; to be taken with (see share-numbers), 0 0 for none.
         (var runs (fcollect [s 1 shares] [s s (. results s 1)]))
-        (var again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (. run 3 9)) run))))
-        (while again
+        (let [met (fn [r] (if (= (type r) :table)
+                              (values (or r.met-lo 0) (or r.met-hi 0))
+                              (values (. r 9) (. r 10))))]
+         (var again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (met (. run 3))) run))))
+         (while again
           (let [[lo hi a] again
-                lo (min lo (. a 9)) hi (max hi (. a 10))
-                ;; (All the shares as one meet no other.)
+                (met-lo met-hi) (met a)
+                lo (min lo met-lo) hi (max hi met-hi)
                 whole (run-range lo hi)
-                _ (when (and (= lo 1) (= hi shares)) (tset whole 9 0))
+                ;; (All the shares as one meet no other.)
+                _ (when (and (= lo 1) (= hi shares)) (set whole.met-lo nil))
                 kept (icollect [_ run (ipairs runs)]
                        (when (or (< (. run 2) lo) (> (. run 1) hi)) run))]
             (set counts.retaken (+ 1 (or counts.retaken 0)))
             (table.insert kept [lo hi whole])
             (table.sort kept (fn [x y] (< (. x 1) (. y 1))))
             (set runs kept)
-            (set again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (. run 3 9)) run))))))
+            (set again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (met (. run 3))) run)))))))
         (merge-shares! state (icollect [_ [_ _ a] (ipairs runs)] [a]))
         (set counts.shares (length runs))
         true))))

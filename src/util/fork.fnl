@@ -113,15 +113,15 @@ and the items this process computed and their seconds."
 (fn pause! []
   (native.nanosleep (ffi.new "rm_timespec_t" {:sec 0 :nsec 50000}) nil))
 
-(fn ticket-queue [shares]
-  "A pipe holding the numbers 1 to `shares` (4 bytes each), its writing end closed:
+(fn ticket-queue [shares first]
+  "A pipe holding the numbers `first` to `shares` (4 bytes each), its writing end closed:
 processes made after take the shares from it one at a time (a pipe's read of 4
 bytes is whole, so no two take one), and read nothing once they are gone. Returns
 its reading end, or nil (no pipe)."
   (let [fds (ffi.new "int[2]")]
     (when (= 0 (native.pipe fds))
       (let [ticket (ffi.new "int32_t[1]")]
-        (for [s 1 shares]
+        (for [s first shares]
           (tset ticket 0 s)
           (native.write (. fds 1) ticket 4))
         (native.close (. fds 1))
@@ -134,14 +134,15 @@ its reading end, or nil (no pipe)."
 
 (fn run-shares [shares room run use]
   "Runs (run s out room) for every share s from 1 to `shares`, in this process and
-in children made by fork() (one per core, at most one per share), each process
-taking the next share left as it gets free (so a share that takes longer holds up
-no other). `run` writes share s's numbers at out[1..n] (`out` an FFI double array
-with `room` places from 1, in memory shared by the processes) and returns out and
-n; where they do not fit, it returns another list (a table or FFI array from 1)
-and n instead. Calls (use results), results being per share [numbers n] (the
-numbers read in place, from index 1), and returns what it returns, having freed
-the shared memory. A share that a child did not finish (it failed, or its numbers
+in children made by fork() (one per core, at most one per share): share 1 here,
+each process then taking the next share left as it gets free (so a share that
+takes longer holds up no other). `run` writes share s's numbers at out[1..n]
+(`out` an FFI double array with `room` places from 1, in memory shared by the
+processes) and returns out and n; where they do not fit, it returns another list
+(a table or FFI array from 1) and n instead. Called as (run s), in this process,
+what it returns is passed on as it is. Calls (use results), results being per
+share [numbers n] (the numbers read in place, from index 1) or what (run s)
+returned, and returns what it returns, having freed the shared memory. A share that a child did not finish (it failed, or its numbers
 did not fit) is run here again, so an error it raises is this process's; with no
 fork() (or in a child) every share runs here. The children are reaped after
 `use`: a child's leaving (freeing its memory) takes milliseconds."
@@ -152,7 +153,8 @@ fork() (or in a child) every share runs here. The children are reaped after
               (native.mmap nil bytes read-write shared-anonymous-unreserved -1 0))
         mapped? (and mem (not= (ffi.cast "intptr_t" mem) -1))
         base (when mapped? (ffi.cast "double *" mem))
-        queue (when mapped? (ticket-queue shares))
+        ;; Share 1 is this process's; the children take the others from here.
+        queue (when mapped? (ticket-queue shares 2))
         ;; Share s's region: its done word at [0] (n + 1 once written), numbers from 1.
         region-of (fn [s] (+ base (* (- s 1) region)))
         children []
@@ -180,6 +182,8 @@ fork() (or in a child) every share runs here. The children are reaped after
     (local (ok? err)
       (pcall (fn []
                (when queue
+                 (let [(list n) (run 1)]
+                   (tset results 1 [list n]))
                  (var s (take-ticket queue))
                  (while s
                    (let [(list n) (run s (region-of s) room)]
