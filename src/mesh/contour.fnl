@@ -1191,7 +1191,7 @@ the CPU evaluator's, not the GPU's), and enough leaves for more than one share
 (state.grid.workers, default every core)."
   (let [workers (or state.grid.workers (fork.cores))]
     (and state.field.fork-safe? (not (fork.child?)) (< 1 workers)
-         (<= (* 4 min-share-leaves) (length state.leaves)))))
+         (<= (* 2 (or state.grid.share-leaves min-share-leaves)) (length state.leaves)))))
 
 (fn share-numbers [state ?out ?room]
   "A share's result as one list of numbers, in ?out (an FFI double array with ?room
@@ -1325,7 +1325,8 @@ results are merged (merge-shares!)."
   (mark! state nil)
   (let [{: leaves : leaf-halves : field : grid : counts : stride-x : stride-y} state
         workers (or grid.workers (fork.cores))
-        shares (min (* shares-per-worker workers) (floor (/ (length leaves) min-share-leaves)))
+        shares (min (* shares-per-worker workers)
+                    (floor (/ (length leaves) (or grid.share-leaves min-share-leaves))))
         size (/ (length leaves) shares)
         first-of (fn [s] (+ 1 (floor (* (- s 1) size))))
         last-of (fn [s] (if (= s shares) (length leaves) (floor (* s size))))
@@ -1418,11 +1419,15 @@ signed distances at the points of the flat list x1 y1 z1 x2 ... after its first
 ?skip (default 0); :step the gradient's
 difference step as a share of a cell; :offset (default 0) a share of a cell
 added to every value: the level set meshed is the field's at minus that, see
-src/mesh/scene.fnl}. The grid: {:lo [x y z] (its low corner) :h
-(the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a box inside the grid
-by at least one cell: the field is cut by it, which closes the mesh) :max-leaves (if
-given, the most leaf blocks to sample: past it, once the octree has found them and
-before any corner is sampled, mesh raises {:leaves n :max-leaves m})}.
+src/mesh/scene.fnl; :fork-safe? true where it may run in a forked child (then
+the leaves are shared among processes, see mesh-shares!)}. The grid: {:lo [x y z]
+(its low corner) :h (the side of a cell) :dims [nx ny nz] (cells) :cut {:lo :hi} (a
+box inside the grid by at least one cell: the field is cut by it, which closes the
+mesh) :max-leaves (if given, the most leaf blocks to sample: past it, once the
+octree has found them and before any corner is sampled, mesh raises {:leaves n
+:max-leaves m}) :workers (processes for the shares, default one a core; 1: none)
+:share-leaves (the fewest leaves a share has, default min-share-leaves)}. The mesh
+is the same whatever the workers and shares.
 `?progress` (fn [phase work estimate points]) hears of each batch of points and
 each step: the phase (:blocks, :corners, :crossings, :normals, :patches, :vertices,
 :projection, :untangle, :faces), the work done so far (in field evaluations: see geometry-work),
@@ -1434,7 +1439,9 @@ counter-clockwise seen from outside) :stats {:points (field evaluations) :blocks
 (cells with surface) :crossings :flipped (ambiguous faces reversed) :moved (vertices
 moved onto the surface) :collections (full collections of the Lua heap, see
 bound-heap!) :untangled (vertices moved to their crossings' mean, see untangle!)
-:crossing (pairs of triangles left crossing or folded) :times (CPU seconds per step) :work :estimate}}."
+:crossing (pairs of triangles left crossing or folded) :times (CPU seconds per step,
+of this process's shares) :work :estimate :shares (runs of leaves merged, 1 for
+none) :retaken (shares taken again, see mesh-shares!)}}."
   (let [state (new-state field grid ?progress)
         counts state.counts]
     (mark! state :blocks)
