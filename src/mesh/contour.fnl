@@ -620,8 +620,15 @@ ends (ed0, ed1). Makes the estimate exact."
           (let [vb (* 8 c) eb (* 12 c)]
             (set c (+ c 1))
             (tset cell-i c i) (tset cell-j c j) (tset cell-k c k) (tset cell-mask c mask)
-            (for [corner 0 7]
-              (tset cell-v (+ vb corner 1) (. corner-values (+ at (. corner-slot (+ corner 1))))))
+            ;; (Written out: a loop of eight costs LuaJIT more than its body.)
+            (tset cell-v (+ vb 1) (. corner-values at))
+            (tset cell-v (+ vb 2) (. corner-values (+ at 1)))
+            (tset cell-v (+ vb 3) (. corner-values (+ at side)))
+            (tset cell-v (+ vb 4) (. corner-values (+ at side 1)))
+            (tset cell-v (+ vb 5) (. corner-values (+ at s2)))
+            (tset cell-v (+ vb 6) (. corner-values (+ at s2 1)))
+            (tset cell-v (+ vb 7) (. corner-values (+ at s2 side)))
+            (tset cell-v (+ vb 8) (. corner-values (+ at s2 side 1)))
             (for [q (. mask-first (+ mask 1)) (- (. mask-first (+ mask 2)) 1)]
               (let [e (. mask-edge-list q)
                     ca (. edge-low (+ e 1))
@@ -889,11 +896,13 @@ state.positions [x y z ...], state.vertex-info (per vertex its cell's low corner
 its crossings' mean, six numbers) and state.quad-vertices (per crossing, the
 vertices of its four cells' patches through it, in the order of make-triangles);
 drops the cells' values, edges and patches."
-  (let [{: cell-count : cell-i : cell-j : cell-k : cell-edges : cell-rep
+  (let [{: cell-count : cell-i : cell-j : cell-k : cell-edges : cell-rep : cell-mask
          : px : py : pz : nrx : nry : nrz : ox : oy : oz : h : eaxis : crossings} state
         positions []
         vertex-info []
         shared {}
+        ;; A cell's crossings, in the order of its edges (refilled per cell).
+        ids [0 0 0 0 0 0 0 0 0 0 0 0]
         quad-vertices (table-new (* 4 crossings))
         ;; The vertex of local edge e, whose crossing is idx, in its quad.
         put! (fn [e idx v]
@@ -912,14 +921,19 @@ drops the cells' values, edges and patches."
             eb (* 12 (- c 1))
             lx (+ ox (* (. cell-i c) h)) ly (+ oy (* (. cell-j c) h)) lz (+ oz (* (. cell-k c) h))]
         (if (single-patch? rep)
-            ;; One patch (most cells): its vertex, with no grouping.
-            (let [(x y z mx my mz) (qef-vertex cell-edges (+ eb 1) (+ eb 12)
-                                               px py pz nrx nry nrz lx ly lz h)]
-              (set vertex-count (+ vertex-count 1))
-              (add! vertex-count x y z lx ly lz mx my mz)
-              (for [e 0 11]
-                (let [idx (. cell-edges (+ eb e 1))]
-                  (when (not= idx 0) (put! e idx vertex-count)))))
+            ;; One patch (most cells): its vertex, with no grouping. Its crossing
+            ;; edges are its mask's (3 to 6 of the 12: a loop over those only).
+            (let [mask (. cell-mask c)
+                  first (. mask-first (+ mask 1)) last (- (. mask-first (+ mask 2)) 1)]
+              (for [q first last]
+                (tset ids (+ 1 (- q first)) (. cell-edges (+ eb 1 (. mask-edge-list q)))))
+              (let [(x y z mx my mz) (qef-vertex ids 1 (+ 1 (- last first))
+                                                 px py pz nrx nry nrz lx ly lz h)]
+                (set vertex-count (+ vertex-count 1))
+                (add! vertex-count x y z lx ly lz mx my mz)
+                (for [q first last]
+                  (let [e (. mask-edge-list q)]
+                    (put! e (. cell-edges (+ eb e 1)) vertex-count)))))
             (let [groups {}
                   order []
                   local-vertex {}]
