@@ -1,12 +1,14 @@
 ;; Work on every core: a range of items split between this process and children made
-;; by fork(), each child writing its share's numbers into memory shared with the
-;; parent (an anonymous shared mapping) and leaving with _exit. A child starts as a
-;; copy of the parent (copy-on-write), so it has the same functions and data and
-;; needs nothing sent to it; it makes no garbage collection (the collector is
-;; stopped: a finalizer could reach a resource the parent still uses) and no output.
-;; A share whose child failed is computed again by the parent, whose error, if it
-;; fails too, says why. Linux through LuaJIT's FFI; elsewhere, or with one core, the
-;; parent computes everything.
+;; by fork() (split-range, splitter), or shares of a job taken by one process a core
+;; from a queue (run-shares: the mesher's leaves), each child writing its numbers
+;; into memory shared with the parent (an anonymous shared mapping) and leaving
+;; with _exit. A child starts as a copy of the parent (copy-on-write), so it has the
+;; same functions and data and needs nothing sent to it; it makes no garbage
+;; collection (the collector is stopped: a finalizer could reach a resource the
+;; parent still uses), no output, and splits nothing further. A share whose child
+;; failed is computed again by the parent, whose error, if it fails too, says why.
+;; Linux through LuaJIT's FFI; elsewhere, or with one core, the parent computes
+;; everything.
 
 (local libc (require :src.util.libc))
 ;; `pairs` under another name (LuaJIT's ITERN: see src/util/wire.fnl).
