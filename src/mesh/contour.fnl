@@ -266,10 +266,10 @@ crossings' mean."
 
 (fn bound-heap! [counts]
   "A full collection when the Lua heap has grown past twice the live heap at the
-last one (counts.live-kb, KB). Not in a child of src/util/fork.fnl, whose collector
-stays stopped."
+last one (counts.live-kb, KB). Not in a child of src/util/fork.fnl whose collector
+is stopped (see fork.run-shares)."
   (when (and (> (collectgarbage :count) (* 2 (max heap-floor (or counts.live-kb 0))))
-             (not (fork.child?)))
+             (fork.collects?))
     (collectgarbage)
     (set counts.live-kb (collectgarbage :count))
     (set counts.collections (+ 1 (or counts.collections 0)))))
@@ -1186,6 +1186,11 @@ crossing or folded in counts.crossing."
 ;; cells: 3229 leaves, about 20 microseconds each), and a share's border with the
 ;; next is worked on by both.
 (local min-share-leaves 256)
+;; From this many leaves (about 256 cells), this process's heap is collected
+;; before the shares are forked, and theirs are then collected as they go (see
+;; fork.run-shares): a collection costs milliseconds, a share's garbage kept to
+;; its end hundreds of MB at 512 cells.
+(local collect-leaves 8192)
 ;; Shares per process (see mesh-shares!). More would let a process that is done
 ;; take the share of one held up (an expensive object in it), but each share costs
 ;; its process new traces (LuaJIT specialises them on the closures a share makes):
@@ -1425,7 +1430,9 @@ results are merged (merge-shares!)."
             (set again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (met (. run 3))) run)))))))
         (merge-shares! state (icollect [_ [_ _ a] (ipairs runs)] [a]))
         (set counts.shares (length runs))
-        true))))
+        true)
+      ;; A large mesh's shares keep their heaps in bounds (see fork.run-shares).
+      (<= collect-leaves (length leaves)))))
 
 (fn mesh [field grid ?progress]
   "Contour `field` over `grid`. The field: {:distances (fn [flat n ?skip]) -> n

@@ -37,9 +37,12 @@
 (local min-share 4096)
 
 ;; Whether this process is a child made here, or has children working at shares
-;; (run-shares): then it splits nothing further (every core is busy).
+;; (run-shares): then it splits nothing further (every core is busy). A child whose
+;; parent collected its heap just before the fork may collect its own (see
+;; run-shares).
 (var child? false)
 (var sharing? false)
+(var child-collects? false)
 
 (fn cores []
   "The processors online (1 where that is unknown)."
@@ -134,7 +137,7 @@ its reading end, or nil (no pipe)."
   (let [ticket (ffi.new "int32_t[1]")]
     (when (= 4 (native.read fd ticket 4)) (. ticket 0))))
 
-(fn run-shares [shares room run use]
+(fn run-shares [shares room run use ?collect?]
   "Runs (run s out room) for every share s from 1 to `shares`, in this process and
 in children made by fork() (one per core, at most one per share): share 1 here,
 each process then taking the next share left as it gets free (so a share that
@@ -147,7 +150,12 @@ share [numbers n] (the numbers read in place, from index 1) or what (run s)
 returned, and returns what it returns, having freed the shared memory. A share that a child did not finish (it failed, or its numbers
 did not fit) is run here again, so an error it raises is this process's; with no
 fork() (or in a child) every share runs here. The children are reaped after
-`use`: a child's leaving (freeing its memory) takes milliseconds."
+`use`: a child's leaving (freeing its memory) takes milliseconds. With ?collect?
+this process collects its heap before the forks, and the children keep their
+collectors: no object a finalizer could act on is garbage in them then (none was
+at the fork, and a share lets go of none of its parent's), so their garbage is
+freed as it goes instead of kept to the end (a share of a mesh at 512 cells held
+twice its parent's memory). It costs a full collection of this heap."
   (let [region (+ room 2)
         bytes (* shares region 8)
         workers (math.min (cores) shares)
@@ -161,12 +169,13 @@ fork() (or in a child) every share runs here. The children are reaped after
         region-of (fn [s] (+ base (* (- s 1) region)))
         children []
         results []]
+    (when (and queue ?collect?) (collectgarbage))
     (when queue
       (for [_ 2 workers]
         (let [pid (native.fork)]
           (if (= pid 0)
-              (do (collectgarbage :stop)
-                  (set child? true)
+              (do (when (not ?collect?) (collectgarbage :stop))
+                  (set (child? child-collects?) (values true (not= nil ?collect?)))
                   (var ok? true)
                   (var s (take-ticket queue))
                   (while (and ok? s)
@@ -243,4 +252,5 @@ either way."
         out))))
 
 {: splitter : split-range : run-shares : cores : min-share
- :child? (fn [] child?)}
+ :child? (fn [] child?)
+ :collects? (fn [] (or (not child?) child-collects?))}
