@@ -33,7 +33,11 @@ for round in $(seq "$rounds"); do
       out=$(luajit tools/fnl.lua tools/mesh-vs-fogleman/ours.fnl "$scene" "$n")
       region=$(echo "$out" | sed -n 's/^region //p')
       read -r ours ours_t < <(echo "$out" | tail -n 1)
-      read -r theirs theirs_t < <(py "$shape" $region)
+      # (Taken whole before the next run starts: read from a process substitution,
+      # the line came back while Python was still leaving, on a core the next run
+      # wanted.)
+      theirs_out=$(py "$shape" $region)
+      read -r theirs theirs_t <<< "$theirs_out"
       echo "$shape $n $ours $ours_t $theirs $theirs_t" >> "$results"
       echo "round $round: $shape at $n: ours $ours s ($ours_t triangles), fogleman/sdf $theirs s ($theirs_t)" >&2
     done
@@ -50,6 +54,6 @@ for c in $cases; do
         for (i = 1; i <= m; i++) for (j = i + 1; j <= m; j++) if (a[j] < a[i]) { x = a[i]; a[i] = a[j]; a[j] = x }
         return (m % 2) ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2 }
       END { mo = median(o, k); mt = median(t, k)
-            printf "| %s | %d | %.2f | %.2f | %.2f | %d / %d |\n", s, n, mo, mt, mo / mt, ot, tt }' "$results"
+            printf "| %s | %d | %.3f | %.3f | %.2f | %d / %d |\n", s, n, mo, mt, mo / mt, ot, tt }' "$results"
   done
 done
