@@ -100,6 +100,26 @@
                     (fn [results] (icollect [_ r (ipairs results)] (as-table r))))]
           (each [s list (ipairs got)]
             (assert.are.same (as-table [(numbers s)]) list (.. "share " s))))))
+    (it "stops the children when this process's share fails (a stop asked for)"
+      (fn []
+        ;; Share 2, in a child, works for 10 s of its CPU time and then writes a
+        ;; file; share 1, here, fails at once. The child must be stopped, not
+        ;; waited for: no file.
+        (let [marker (os.tmpname)]
+          (os.remove marker)
+          (let [(ok? err) (pcall fork.run-shares 2 10
+                                 (fn [s ?out ?room]
+                                   (if (= s 1) (error "stopped here")
+                                       (let [t0 (os.clock)]
+                                         (while (< (- (os.clock) t0) 10) nil)
+                                         (with-open [f (io.open marker :w)] (f:write "done"))
+                                         (numbers s ?out ?room))))
+                                 (fn [results] results))]
+            (assert.is_false ok?)
+            (assert.truthy (string.find (tostring err) "stopped here" 1 true))
+            (let [f (io.open marker)]
+              (when f (f:close) (os.remove marker))
+              (assert.is_nil f "the child went on to the end"))))))
     (it "raises the error of a share that fails here too"
       (fn []
         (let [(ok? err) (pcall fork.run-shares 3 10

@@ -1432,7 +1432,10 @@ results are merged (merge-shares!)."
         (set counts.shares (length runs))
         true)
       ;; A large mesh's shares keep their heaps in bounds (see fork.run-shares).
-      (<= collect-leaves (length leaves)))))
+      (<= collect-leaves (length leaves))
+      ;; Waiting for the others: progress still heard (a stop asked for is seen).
+      (fn [] (state.progress :shares (+ blocks-work (* 0.99 scale)) (+ blocks-work scale)
+                             (+ blocks-points own-points))))))
 
 (fn mesh [field grid ?progress]
   "Contour `field` over `grid`. The field: {:distances (fn [flat n ?skip]) -> n

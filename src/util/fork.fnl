@@ -18,7 +18,7 @@
 (local native
   (when (and ffi (= ffi.os :Linux))
     (libc.declare [:fork :_exit :mmap :munmap :waitpid :sysconf :nanosleep :pipe :read
-                   :write :close])))
+                   :write :close :kill])))
 
 (local table-new (let [(ok? new) (pcall require :table.new)]
                    (if ok? (fn [n] (new n 0)) (fn [] []))))
@@ -112,8 +112,9 @@ and the items this process computed and their seconds."
           (values out (math.min n share) own-seconds)))))
 
 (local shared-anonymous-unreserved 0x4021)
-;; waitpid's WNOHANG.
+;; waitpid's WNOHANG; SIGKILL.
 (local no-hang 1)
+(local sigkill 9)
 
 (fn pause! []
   (native.nanosleep (ffi.new "rm_timespec_t" {:sec 0 :nsec 50000}) nil))
@@ -137,7 +138,7 @@ its reading end, or nil (no pipe)."
   (let [ticket (ffi.new "int32_t[1]")]
     (when (= 4 (native.read fd ticket 4)) (. ticket 0))))
 
-(fn run-shares [shares room run use ?collect?]
+(fn run-shares [shares room run use ?collect? ?waiting]
   "Runs (run s out room) for every share s from 1 to `shares`, in this process and
 in children made by fork() (one per core, at most one per share): share 1 here,
 each process then taking the next share left as it gets free (so a share that
@@ -147,15 +148,21 @@ processes) and returns out and n; where they do not fit, it returns another list
 (a table or FFI array from 1) and n instead. Called as (run s), in this process,
 what it returns is passed on as it is. Calls (use results), results being per
 share [numbers n] (the numbers read in place, from index 1) or what (run s)
-returned, and returns what it returns, having freed the shared memory. A share that a child did not finish (it failed, or its numbers
-did not fit) is run here again, so an error it raises is this process's; with no
-fork() (or in a child) every share runs here. The children are reaped after
-`use`: a child's leaving (freeing its memory) takes milliseconds. With ?collect?
-this process collects its heap before the forks, and the children keep their
-collectors: no object a finalizer could act on is garbage in them then (none was
-at the fork, and a share lets go of none of its parent's), so their garbage is
-freed as it goes instead of kept to the end (a share of a mesh at 512 cells held
-twice its parent's memory). It costs a full collection of this heap."
+returned, and returns what it returns, having freed the shared memory.
+
+A share a child did not finish (it failed, or its numbers did not fit) is run here
+again, so an error it raises is this process's; with no fork() (or in a child)
+every share runs here. Where this process's share fails (a stop asked for, an
+error), or ?waiting raises (called about every 10 ms while this process waits for
+the children), the children are killed and reaped and the error goes up.
+Otherwise they are reaped after `use`: a child's leaving (freeing its memory)
+takes milliseconds.
+
+With ?collect? this process collects its heap before the forks, and the children
+keep their collectors: no object a finalizer could act on is garbage in them then
+(none was at the fork, and a share lets go of none of its parent's), so their
+garbage is freed as it goes instead of kept to the end (a share of a mesh at 512
+cells held twice its parent's memory). It costs a full collection of this heap."
   (let [region (+ room 2)
         bytes (* shares region 8)
         workers (math.min (cores) shares)
@@ -202,18 +209,31 @@ twice its parent's memory). It costs a full collection of this heap."
                    (set s (take-ticket queue)))))))
     (set sharing? false)
     (when queue (native.close queue))
-    ;; Until every share is done or every child has left.
-    (let [status (ffi.new "int[1]")
-          running (collect [_ pid (ipairs children)] pid true)
-          done? (fn [s] (or (. results s) (and mapped? (not= 0 (. (region-of s) 0)))))]
-      (while (and (next running) (not (faccumulate [all? true s 1 shares] (and all? (done? s)))))
-        (each [pid (each-pair (collect [p (each-pair running)] p true))]
-          (when (= pid (native.waitpid pid status no-hang))
-            (tset running pid nil)))
-        (pause!)))
+    ;; This process failed (or was asked to stop): the children's work is not
+    ;; wanted, and a stop must not wait for it.
+    (when (not ok?)
+      (each [_ pid (ipairs children)] (native.kill pid sigkill)))
+    ;; Until every share is done or every child has left (or ?waiting raises).
+    (local (waited-ok? wait-err)
+      (pcall (fn []
+               (let [status (ffi.new "int[1]")
+                     running (collect [_ pid (ipairs children)] pid true)
+                     done? (fn [s] (or (. results s) (and mapped? (not= 0 (. (region-of s) 0)))))]
+                 (var rounds 0)
+                 (while (and (next running)
+                             (not (faccumulate [all? true s 1 shares] (and all? (done? s)))))
+                   (each [pid (each-pair (collect [p (each-pair running)] p true))]
+                     (when (= pid (native.waitpid pid status no-hang))
+                       (tset running pid nil)))
+                   (set rounds (+ rounds 1))
+                   (when (and ok? ?waiting (= 0 (% rounds 200))) (?waiting))
+                   (pause!))))))
+    (when (not waited-ok?)
+      (each [_ pid (ipairs children)] (native.kill pid sigkill)))
     (local (used-ok? value)
       (pcall (fn []
                (when (not ok?) (error err 0))
+               (when (not waited-ok?) (error wait-err 0))
                (for [s 1 shares]
                  (when (not (. results s))
                    (let [done (when mapped? (. (region-of s) 0))]
