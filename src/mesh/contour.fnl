@@ -27,9 +27,7 @@
 (local intersect (require :src.mesh.intersect))
 (local fork (require :src.util.fork))
 (local bit (require :bit))
-;; Preallocated tables (LuaJIT's table.new): the big arrays of a mesh.
-(local table-new (let [(ok? new) (pcall require :table.new)]
-                   (if ok? (fn [n] (new n 0)) (fn [] []))))
+(local {: table-new : int-array : byte-array : float-array} (require :src.util.arrays))
 
 (local sqrt math.sqrt)
 (local floor math.floor)
@@ -489,18 +487,6 @@ growth took a third of the sampling), else a table (nil at first)."
   (if (and ffi (<= points dense-points))
       (ffi.new "int32_t[?]" points)
       {}))
-
-(fn int-array [n]
-  "An array of 32-bit integers 1 to n, all 0 (FFI), else a table (nil at first)."
-  (if ffi (ffi.new "int32_t[?]" (+ n 1)) {}))
-
-(fn byte-array [n]
-  "An array of bytes 1 to n, all 0 (FFI), else a table of zeros."
-  (if ffi (ffi.new "uint8_t[?]" (+ n 1)) (fcollect [_ 1 n] 0)))
-
-(fn float-array [n]
-  "An array of doubles 1 to n, all 0 (FFI), else a table of zeros."
-  (if ffi (ffi.new "double[?]" (+ n 1)) (fcollect [_ 1 n] 0)))
 
 (fn sample-corners! [state]
   "2. The corners of the leaves' kept halves (see find-leaves!; clamped to the

@@ -13,6 +13,8 @@
 ;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
 (local each-pair pairs)
 
+(local {: int-array : float-array} (require :src.util.arrays))
+
 (local sqrt math.sqrt)
 (local floor math.floor)
 (local abs math.abs)
@@ -419,16 +421,6 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
                                      (= q (key (at lx glo-x) (at ly glo-y) (at lz glo-z))))
                             (test! (min s t) (max s t))))))))))))))
     result))
-
-(local ffi (let [(ok? m) (pcall require :ffi)] (when ok? m)))
-
-(fn int-array [n]
-  "An array of 32-bit integers 1 to n, all 0 (FFI), else a table of zeros."
-  (if ffi (ffi.new "int32_t[?]" (+ n 1)) (fcollect [_ 1 n] 0)))
-
-(fn float-array [n]
-  "An array of doubles 1 to n, all 0 (FFI), else a table of zeros."
-  (if ffi (ffi.new "double[?]" (+ n 1)) (fcollect [_ 1 n] 0)))
 
 (fn det3 [ax ay az bx by bz cx cy cz]
   ;; a x b . c: positive when a turns to b counter-clockwise seen from c's side.

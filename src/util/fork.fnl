@@ -20,8 +20,7 @@
     (libc.declare [:fork :_exit :mmap :munmap :waitpid :sysconf :nanosleep :pipe :read
                    :write :close :kill])))
 
-(local table-new (let [(ok? new) (pcall require :table.new)]
-                   (if ok? (fn [n] (new n 0)) (fn [] []))))
+(local {: table-new} (require :src.util.arrays))
 
 (local filestat (require :src.util.filestat))
 (local clock filestat.monotonic)
