@@ -1107,11 +1107,12 @@ crossing or folded in counts.crossing."
     (var (only fold-only first?) (values (when (next risky) (triangles-of risky)) nil true))
     (var (rounds moved left) (values 0 0 0))
     (while (or only first?)
-      (let [r (if (and only (next only))
+      (let [tick (fn [] (worked! state :untangle 0))
+            r (if (and only (next only))
                   (intersect.self-intersections m {:min-length (* 1e-6 h) :max-list math.huge
-                                                    :only only :folds? false})
+                                                    :only only :folds? false : tick})
                   {:pairs 0 :list []})
-            fold-list (intersect.folds m {:min-length (* 1e-6 h) :only fold-only})
+            fold-list (intersect.folds m {:min-length (* 1e-6 h) :only fold-only : tick})
             changed {}]
         (set (only first? left rounds) (values nil false (+ r.pairs (length fold-list)) (+ rounds 1)))
         (when (<= rounds untangle-rounds)

@@ -21,6 +21,10 @@
 (local min math.min)
 (local max math.max)
 
+;; Triangles (or vertices) between calls of a check's :tick (a mesh at 512 cells has
+;; a million triangles and took seconds).
+(local tick-every 65536)
+
 ;; A vertex nearer a plane than this share of the triangles' size is on it: the
 ;; distances are sums of products of coordinates, good to some 1e-16 of their size,
 ;; so 1e-12 takes rounding for zero and nothing a mesher would make on purpose.
@@ -317,7 +321,8 @@ whose boxes overlap, tested exactly) :list [[s t length] ...] (the first
 and are not tested. Options: :min-length (default 1e-9 of the mesh's size; pass
 e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
 1-based triangles to test, each against every triangle; default all), :folds?
-(false: pairs sharing a vertex are not tested, and :folds stays 0)."
+(false: pairs sharing a vertex are not tested, and :folds stays 0), :tick (called
+every tick-every triangles: a caller's progress, which may raise to stop)."
   (let [options (or ?options {})
         positions m.positions
         tris m.triangles
@@ -396,6 +401,7 @@ e.g. 1e-6 cells), :max-list (default 100), :only (a table whose keys are the
                           list (. buckets q)]
                       (if list (table.insert list t) (tset buckets q [t])))))))))
         (for [t 1 nt]
+          (when (and options.tick (= 0 (% t tick-every))) (options.tick))
           (let [ot (* 6 (- t 1))
                 tlx (. box (+ ot 1)) tly (. box (+ ot 2)) tlz (. box (+ ot 3))
                 thx (. box (+ ot 4)) thy (. box (+ ot 5)) thz (. box (+ ot 6))
@@ -492,7 +498,8 @@ scratch (per triangle its two ends)."
 along more than it (see pair-overlap), found through each vertex's triangles (no
 broad phase: a fold's triangles are neighbours). Returns a list [[s t length] ...]
 (0-based triangle indices). Options: :min-length (as self-intersections'), :only (a
-table whose keys are the 1-based vertices to look around; default all)."
+table whose keys are the 1-based vertices to look around; default all), :tick (as
+self-intersections')."
   (let [options (or ?options {})
         positions m.positions
         tris m.triangles
@@ -531,6 +538,7 @@ table whose keys are the 1-based vertices to look around; default all)."
             (tset around (. fill v) t)
             (tset fill v (+ 1 (. fill v)))))))
     (for [v 1 nv]
+      (when (and options.tick (= 0 (% v tick-every))) (options.tick))
       ;; (A vertex no triangle uses has no fan, and no fold.)
       (when (and (or (not only) (. only v))
                  (< (. start v) (. start (+ v 1)))
