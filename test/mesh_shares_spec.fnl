@@ -69,6 +69,42 @@
           (tset grid :workers 1)
           (assert.are.equal 1 (. (contour.mesh field grid) :stats :shares)))))))
 
+(describe "settling the runs of shares (contour.settle-runs)"
+  (fn []
+    ;; A result is {:meets [a b]} (the shares it would have to be taken with) or
+    ;; {}; taking lo to hi again gives what `again` says for that range.
+    (fn settle [met-by again]
+      (let [runs (fcollect [s 1 (length met-by)] [s s {:meets (. met-by s)}])
+            taken []
+            met (fn [r] (case r.meets [a b] (values a b) _ (values 0 0)))
+            take (fn [lo hi]
+                   (table.insert taken [lo hi])
+                   {:meets (. again (.. lo "-" hi))})]
+        (values (icollect [_ [lo hi] (ipairs (contour.settle-runs runs met take))] [lo hi])
+                taken)))
+    (it "keeps runs that meet none"
+      (fn []
+        (let [(runs taken) (settle [false false false] {})]
+          (assert.are.same [[1 1] [2 2] [3 3]] runs)
+          (assert.are.same [] taken))))
+    (it "takes a run again with the ones up to the one it met"
+      (fn []
+        (let [(runs taken) (settle [false [4 4] false false false] {})]
+          (assert.are.same [[1 1] [2 4] [5 5]] runs)
+          (assert.are.same [[2 4]] taken))))
+    (it "covers a run already taken again whole when a later one meets part of it"
+      (fn []
+        ;; 5 meets 6 (taken again as 5-6), then 7 meets 6: the new run must
+        ;; cover 5 to 7, not 6 to 7 (share 5 would be lost).
+        (let [(runs taken) (settle [false false false false [6 6] false [6 6]] {})]
+          (assert.are.same [[1 1] [2 2] [3 3] [4 4] [5 7]] runs)
+          (assert.are.same [[5 6] [5 7]] taken))))
+    (it "widens a run taken again that still meets another"
+      (fn []
+        (let [(runs taken) (settle [[2 2] false false false] {"1-2" [4 4]})]
+          (assert.are.same [[1 4]] runs)
+          (assert.are.same [[1 2] [1 4]] taken))))))
+
 (describe "fork.run-shares"
   (fn []
     (fn numbers [s ?out ?room]

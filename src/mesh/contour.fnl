@@ -1322,6 +1322,30 @@ taken as they are and added to. Leaves in state what steps 2 to 8 leave."
     (set (state.ex0 state.ey0 state.ez0 state.eaxis state.ed0)
          (values ex0 ey0 ez0 eaxis ed0))))
 
+(fn settle-runs [runs met take]
+  "Runs of shares [lo hi result] (disjoint, in order) with none left that met
+another: a run whose result met shares a to b ((met result) -> a b, 0 0 for none)
+is replaced, with every run it then meets, by one run over them all, whose result
+is (take lo hi); until no run meets another. Returns the runs, in order."
+  (var runs runs)
+  (var again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (met (. run 3))) run))))
+  (while again
+    (let [[lo hi a] again
+          (met-lo met-hi) (met a)
+          ;; The runs it meets, whole (runs are disjoint and in order, so one pass
+          ;; covers them).
+          (lo hi) (accumulate [(l h) (values (min lo met-lo) (max hi met-hi))
+                               _ [rlo rhi] (ipairs runs)]
+                    (if (and (<= rlo h) (>= rhi l)) (values (min l rlo) (max h rhi))
+                        (values l h)))
+          kept (icollect [_ run (ipairs runs)]
+                 (when (or (< (. run 2) lo) (> (. run 1) hi)) run))]
+      (table.insert kept [lo hi (take lo hi)])
+      (table.sort kept (fn [x y] (< (. x 1) (. y 1))))
+      (set runs kept)
+      (set again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (met (. run 3))) run))))))
+  runs)
+
 (fn mesh-shares! [state]
   "Steps 2 to 8 with the leaves in shares, taken by as many processes as there are
 cores (fork.run-shares); the shares this process takes tell progress. A share that
@@ -1394,29 +1418,20 @@ results are merged (merge-shares!)."
       (fn [s ?out ?room] (run-range s s ?out ?room))
       (fn [results]
         (mark! state :merge)
-        ;; Runs of shares [lo hi result], in order; the shares a run would have
-        ;; to be taken with (see share-numbers), 0 0 for none.
-        (var runs (fcollect [s 1 shares] [s s (. results s 1)]))
+        ;; Runs of shares [lo hi result], in order; a result met shares a to b
+        ;; (see share-numbers), 0 0 for none.
         (let [met (fn [r] (if (= (type r) :table)
                               (values (or r.met-lo 0) (or r.met-hi 0))
-                              (values (. r 9) (. r 10))))]
-         (var again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (met (. run 3))) run))))
-         (while again
-          (let [[lo hi a] again
-                (met-lo met-hi) (met a)
-                lo (min lo met-lo) hi (max hi met-hi)
-                whole (run-range lo hi)
-                ;; (All the shares as one meet no other.)
-                _ (when (and (= lo 1) (= hi shares)) (set whole.met-lo nil))
-                kept (icollect [_ run (ipairs runs)]
-                       (when (or (< (. run 2) lo) (> (. run 1) hi)) run))]
-            (set counts.retaken (+ 1 (or counts.retaken 0)))
-            (table.insert kept [lo hi whole])
-            (table.sort kept (fn [x y] (< (. x 1) (. y 1))))
-            (set runs kept)
-            (set again (accumulate [r nil _ run (ipairs runs)] (or r (when (< 0 (met (. run 3))) run)))))))
-        (merge-shares! state (icollect [_ [_ _ a] (ipairs runs)] [a]))
-        (set counts.shares (length runs))
+                              (values (. r 9) (. r 10))))
+              runs (settle-runs (fcollect [s 1 shares] [s s (. results s 1)]) met
+                                (fn [lo hi]
+                                  (set counts.retaken (+ 1 (or counts.retaken 0)))
+                                  (let [whole (run-range lo hi)]
+                                    ;; (All the shares as one meet no other.)
+                                    (when (and (= lo 1) (= hi shares)) (set whole.met-lo nil))
+                                    whole)))]
+          (merge-shares! state (icollect [_ [_ _ a] (ipairs runs)] [a]))
+          (set counts.shares (length runs)))
         true)
       ;; A large mesh's shares keep their heaps in bounds (see fork.run-shares).
       (<= collect-leaves (length leaves))
@@ -1477,4 +1492,4 @@ none) :retaken (shares taken again, see mesh-shares!)}}."
                :shares (or counts.shares 1) :retaken (or counts.retaken 0)
                :work counts.work :estimate counts.estimate}})))
 
-{: mesh : patches : box-distance : leaf :cut-field evaluator}
+{: mesh : patches : box-distance : leaf :cut-field evaluator : settle-runs}
