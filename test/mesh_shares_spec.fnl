@@ -156,6 +156,22 @@
             (let [f (io.open marker)]
               (when f (f:close) (os.remove marker))
               (assert.is_nil f "the child went on to the end"))))))
+    (it "lets a child collect its heap only when asked to (?collect?)"
+      (fn []
+        ;; Each share's one number: 1 where its process may collect (see
+        ;; fork.collects?). This process always may; a child only with ?collect?.
+        (each [_ [collect? expected] (ipairs [[false 0] [true 1]])]
+          (let [got (fork.run-shares 2 4
+                                     (fn [s ?out]
+                                       (let [list (or ?out [])]
+                                         (tset list 1 (if (fork.collects?) 1 0))
+                                         (values list 1)))
+                                     (fn [results] (icollect [_ [list] (ipairs results)] (. list 1)))
+                                     collect?)]
+            (assert.are.equal 1 (. got 1) "this process")
+            ;; (Without fork() the second share runs here too.)
+            (when (= "Linux" (. (require :ffi) :os))
+              (assert.are.equal expected (. got 2) (.. "a child, ?collect? " (tostring collect?))))))))
     (it "raises the error of a share that fails here too"
       (fn []
         (let [(ok? err) (pcall fork.run-shares 3 10

@@ -5,7 +5,8 @@
 ;; with _exit. A child starts as a copy of the parent (copy-on-write), so it has the
 ;; same functions and data and needs nothing sent to it; it makes no garbage
 ;; collection (the collector is stopped: a finalizer could reach a resource the
-;; parent still uses), no output, and splits nothing further. A share whose child
+;; parent still uses; but see run-shares' ?collect?), no output, and splits nothing
+;; further. A share whose child
 ;; failed is computed again by the parent, whose error, if it fails too, says why.
 ;; Linux through LuaJIT's FFI; elsewhere, or with one core, the parent computes
 ;; everything.
@@ -181,7 +182,7 @@ cells held twice its parent's memory). It costs a full collection of this heap."
         (let [pid (native.fork)]
           (if (= pid 0)
               (do (when (not ?collect?) (collectgarbage :stop))
-                  (set (child? child-collects?) (values true (not= nil ?collect?)))
+                  (set (child? child-collects?) (values true (= true ?collect?)))
                   (var ok? true)
                   (var s (take-ticket queue))
                   (while (and ok? s)
@@ -190,7 +191,9 @@ cells held twice its parent's memory). It costs a full collection of this heap."
                       (if (and run-ok? (= list out))
                           (tset out 0 (+ n 1))
                           (set ok? false)))
-                    (set s (take-ticket queue)))
+                    ;; (A child that failed takes no more: the others, or this
+                    ;; process afterwards, take what is left.)
+                    (set s (when ok? (take-ticket queue))))
                   (native._exit (if ok? 0 1)))
               (< 0 pid) (table.insert children pid)))))
     ;; This process's shares, then any a child did not finish; the children are
