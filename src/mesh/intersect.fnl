@@ -428,10 +428,6 @@ every tick-every triangles: a caller's progress, which may raise to stop)."
                             (test! (min s t) (max s t))))))))))))))
     result))
 
-(fn det3 [ax ay az bx by bz cx cy cz]
-  ;; a x b . c: positive when a turns to b counter-clockwise seen from c's side.
-  (dot (- (* ay bz) (* az by)) (- (* az bx) (* ax bz)) (- (* ax by) (* ay bx)) cx cy cz))
-
 (fn fan-ends [tris t v]
   ;; Triangle t's (0-based) other two corners than v, in its winding order.
   (let [c1 (. tris (+ (* 3 t) 1)) c2 (. tris (+ (* 3 t) 2)) c3 (. tris (+ (* 3 t) 3))]
