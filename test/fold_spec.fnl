@@ -51,6 +51,42 @@
                               (. (plan-of (text:gsub ":pos %[3 4 5%]" ":pos [7 8 9]") {:fold? true})
                                  :key))))))
 
+    (it "writes the settings and lighting values as constants, keeps the view's values uniforms"
+      (fn []
+        (let [text "{:objects [{:kind :sphere :radius 1 :pos [0 1 0] :color [1 0 0]}]
+                     :render {:max-steps 321 :reflections 1}
+                     :lighting {:lights [{:kind :sun :direction [1 2 3]}
+                                         {:kind :point :pos [4 5 6] :range 10}]
+                                :exposure 1.25}}"
+              (folded scene) (plan-of text {:fold? true})
+              (plain) (plan-of text)
+              source (codegen.shader folded :love)
+              plain-source (codegen.shader plain :love)]
+          ;; The settings are constants, and not copied once per pixel (load-once).
+          (assert.truthy (source:find "const int uMaxSteps = 321;" 1 true) source)
+          (assert.truthy (source:find "const float uExposure = 1.25;" 1 true))
+          (assert.falsy (source:find "gMaxSteps = " 1 true))
+          (assert.truthy (plain-source:find "uniform int uMaxSteps;" 1 true))
+          (assert.truthy (plain-source:find "gMaxSteps = " 1 true))
+          ;; A point light's position follows the camera: the lights stay uniforms, as
+          ;; the camera's values and the resolution do.
+          (assert.truthy (source:find "uniform vec4 uLights[2];" 1 true))
+          (each [_ name (ipairs ["uCamForward" "uProjDist" "uResolution"])]
+            (assert.truthy (source:find (.. "uniform [%w]+ " name ";")) name))
+          ;; What the constants are: uniforms.fixed, the uniforms no view changes.
+          (let [fixed (collect [_ u (ipairs (uniforms.fixed scene folded))] u.name true)
+                far (doto (camera.from-scene scene) (tset :pos [100 -50 7]))]
+            (assert.truthy fixed.uMaxSteps)
+            (assert.falsy fixed.uLights)
+            ;; Every uniform that fixed leaves out changes with the view or is a texture.
+            (each [_ u (ipairs (uniforms.pack scene folded far 320 180))]
+              (when (and u.values (not (. fixed u.name)))
+                (assert.truthy u.view? u.name))))
+          ;; Another setting: another folded key, the same unfolded one.
+          (let [text2 (text:gsub ":max%-steps 321" ":max-steps 322")]
+            (assert.are_not.equal folded.key (. (plan-of text2 {:fold? true}) :key))
+            (assert.are.equal plain.key (. (plan-of text2) :key))))))
+
     (local ctx (assert (headless.context)))
     (each [_ file (ipairs ["scenes/organic.fnl" "scenes/twisted-tower.fnl" "scenes/flower.fnl"
                            "scenes/colonnade.fnl" "scenes/machined-part.fnl" "scenes/custom.fnl"])]

@@ -514,7 +514,8 @@ vertex stage of their own: returns the lines and the vertex stage's."
     (var opaque? false)
     (each [_ {:declare d} (ipairs declarations)]
       (table.insert out (declaration-text d))
-      (when (not (or (. read-directly d.name) (d.type:find "sampler") d.loop?))
+      (when (not (or (. read-directly d.name) (d.type:find "sampler") d.loop?
+                     (: (declaration-text d) :find "^const ")))
         (let [copy (.. "g" (d.name:sub 2))]
           (table.insert copied [d.name copy])
           (table.insert out (.. d.type " " copy (if d.count (.. "[" d.count "]") "") ";"))
@@ -619,7 +620,14 @@ declaration (d: {:type :name :count :trailer :text}; the Shadertoy export writes
 constants). Returns the text, or nil and a message when a chunk cannot be read."
   (let [target (. targets (or ?target :love))
         _ (assert target (.. "unknown target " (tostring ?target)))
-        (ok? result) (pcall generate plan target (or ?declaration default-declaration))]
+        declaration (or ?declaration default-declaration)
+        ;; A folded plan's settings are constants (plan :baked).
+        (ok? result) (pcall generate plan target
+                            (if plan.baked
+                                (fn [d] (case (. plan.baked d.name)
+                                          text (.. text d.trailer)
+                                          _ (declaration d)))
+                                declaration))]
     (if ok? result
         (chunk-error? result) (values nil result.message)
         (error result 0))))

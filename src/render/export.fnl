@@ -7,26 +7,6 @@
 (local uniforms (require :src.render.uniforms))
 (local camera (require :src.render.camera))
 
-(local float-literal (. (require :src.sdf.emit-glsl) :float-literal))
-
-(fn value-literal [kind vals i]
-  (let [n (. uniforms.components kind)]
-    (case kind
-      :float (float-literal (. vals i))
-      :int (string.format "%d" (. vals i))
-      :bool (if (= 0 (. vals i)) "false" "true")
-      _ (.. kind "(" (table.concat (fcollect [k 0 (- n 1)] (float-literal (. vals (+ i k)))) ", ")
-            ")"))))
-
-(fn constant [u]
-  (let [n (. uniforms.components u.type)]
-    (if u.count
-        (.. "const " u.type " " u.name "[" u.count "] = " u.type "[" u.count "]("
-            (table.concat (fcollect [e 0 (- u.count 1)] (value-literal u.type u.values (+ 1 (* e n))))
-                          ", ")
-            ");")
-        (.. "const " u.type " " u.name " = " (value-literal u.type u.values 1) ";"))))
-
 (fn shadertoy [scene plan]
   "The shader of `scene` lowered to `plan`, seen from the scene's camera, as a
 Shadertoy fragment shader: every uniform a constant but the resolution (iResolution).
@@ -45,7 +25,7 @@ Returns the text, or nil and a message."
                                          (fn [d]
                                            (if (= d.name "uResolution") (.. "vec2 uResolution;" d.trailer)
                                                (case (. values-by-name d.name)
-                                                 u (.. (constant u) d.trailer)
+                                                 u (.. (uniforms.constant u) d.trailer)
                                                  _ (do (set missing d.name) d.text)))))]
                 (if missing (values nil (.. "export: no value for the uniform " missing))
                     text))))

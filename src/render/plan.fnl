@@ -301,9 +301,11 @@ shader of `plan` holds, and how its soft shadows march."
   :model          :classic draws a scene that has :lighting with the article's model
                   (the player's m key)
   :field-cells    grid cells per field object (default src/render/field.fnl's)
-  :fold?          true: the scene trees' values (but camera-relative positions) as
-                  constants in the code, and in the key (--render, --export-shader,
-                  --record of a scene without functions of time)
+  :fold?          true: the scene trees' values (but camera-relative positions),
+                  the render settings and the lighting values (uniforms.fixed, in
+                  :baked) as constants in the code, and in the key (--render,
+                  --export-shader, --record of a scene without functions of time,
+                  the player's shader once values settle)
 The rest each switch one speed-up off (the default has it on): the tests' oracles
 and `make bench`'s before (test/bench/report.fnl).
   :bounds?        false: march every object everywhere, planes too (see
@@ -411,6 +413,12 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
     (set plan.exact-normals? (and (= plan.normals-of :object)
                                   (accumulate [all? true _ o (ipairs plan.tape.objects)]
                                     (and all? (emit-glsl.exact? o)))))
+    ;; Folded: the settings and lighting values as constants too (what no view
+    ;; changes; the export writes every value so), each as its GLSL declaration, and so
+    ;; in the key.
+    (when (and options.fold? (not uber?))
+      (set plan.baked (collect [_ u (ipairs (uniforms.fixed scene plan))]
+                        u.name (uniforms.constant u))))
     (set plan.key (structure-key plan))
     (if field-error (values nil field-error)
         grid-error (values nil grid-error)

@@ -75,7 +75,10 @@ centre's row and the camera."
           (append! positions (doto (relative l.pos cam-pos) (table.insert l.range))))
       (append! colors (doto (linear l.color l.intensity) (table.insert l.softness))))
     (append! out
-             [{:name "uLights" :type :vec4 :values positions :count (length lighting.lights)}
+             [{:name "uLights" :type :vec4 :values positions :count (length lighting.lights)
+               ;; A point light's position is camera-relative.
+               :view? (accumulate [point? false _ l (ipairs lighting.lights)]
+                        (or point? (not= l.kind :sun)))}
               {:name "uLightColors" :type :vec4 :values colors :count (length lighting.lights)}
               {:name "uSkyZenith" :type :vec3 :values (linear lighting.sky-zenith)}
               {:name "uSkyHorizon" :type :vec3 :values (linear lighting.sky-horizon)}
@@ -106,7 +109,7 @@ every frame, so a backend uploads them once) and their rows' reciprocals."
                        cx cy cz (. textures.offsets i :cell)
                        nx ny nz 0])))
     [{:name "uGrids" :type :vec4 :count (* 3 (length list)) :values rows}
-     {:name "uBankOrigin" :type :vec3 :values (relative anchor cam-pos)}
+     {:name "uBankOrigin" :type :vec3 :values (relative anchor cam-pos) :view? true}
      {:name "uGridRows" :type :vec4 :values [(/ 1 textures.bank.height) (/ 1 textures.cells.height)
                                             (/ 1 textures.lists.height) (/ 1 textures.spheres.height)]}
      {:name "uGridSpheres" :type :texture :texture textures.spheres}
@@ -120,15 +123,17 @@ every frame, so a backend uploads them once) and their rows' reciprocals."
   "Uniforms for drawing `scene` lowered to `plan`, seen by camera state `cam`, into a
 `width` x `height` target: a list of {:name :type :values [numbers] :count n} sorted
 by name. Booleans are sent as 0 or 1 with :type :bool. A field's textures come as
-{:name :type :texture :texture {:width :height :data}} (no :values)."
+{:name :type :texture :texture {:width :height :data}} (no :values). A uniform whose
+values follow the view (the camera, the target's size: camera-relative positions) is
+marked :view? true; the others are the scene's settings (see fixed)."
   (let [(f r u) (camera.basis cam)
         render scene.render
-        out [{:name "uResolution" :type :vec2 :values [width height]}
-             {:name "uCamForward" :type :vec3 :values f}
-             {:name "uCamRight" :type :vec3 :values r}
-             {:name "uCamUp" :type :vec3 :values u}
-             {:name "uProjDist" :type :float :values [(camera.projection-distance cam)]}
-             {:name "uLightPos" :type :vec3 :values (relative scene.light.pos cam.pos)}
+        out [{:name "uResolution" :type :vec2 :values [width height] :view? true}
+             {:name "uCamForward" :type :vec3 :values f :view? true}
+             {:name "uCamRight" :type :vec3 :values r :view? true}
+             {:name "uCamUp" :type :vec3 :values u :view? true}
+             {:name "uProjDist" :type :float :values [(camera.projection-distance cam)] :view? true}
+             {:name "uLightPos" :type :vec3 :values (relative scene.light.pos cam.pos) :view? true}
              {:name "uEnvColor" :type :vec3 :values scene.environment}
              {:name "uMaxSteps" :type :int :values [render.max-steps]}
              {:name "uEpsilon" :type :float :values [render.epsilon]}
@@ -142,18 +147,20 @@ by name. Booleans are sent as 0 or 1 with :type :bool. A field's textures come a
       (table.insert out {:name "uGlow" :type :bool :values [(if render.glow 1 0)]}))
     (when plan.lighting
       (append! out (lighting-uniforms scene.lighting plan cam.pos)))
-    ;; A strategy's own (a field's grid and textures).
+    ;; A strategy's own (a field's grid and textures): taken as the view's.
     (each [_ o (ipairs plan.tape.objects)]
       (case (. (strategies.of o) :uniforms)
-        f (append! out (f plan o cam.pos))))
+        f (each [_ u (ipairs (f plan o cam.pos))]
+            (set u.view? true)
+            (table.insert out u))))
     (when plan.grids
       (append! out (grid-uniforms plan.grids cam.pos)))
     (each [_ [name bank] (ipairs [["uTape" plan.tape] ["uInstances" plan.tape.instances]])]
       (when (and (> (length bank.rows) 0) (not bank.texture?))
         (table.insert out {: name :type :vec4 :values (tape-values bank cam.pos)
-                           :count (length bank.rows)})))
+                           :count (length bank.rows) :view? true})))
     (when (and plan.bounds (> plan.bounds.count 0))
-      (table.insert out {:name "uBounds" :type :vec4 :count plan.bounds.count
+      (table.insert out {:name "uBounds" :type :vec4 :count plan.bounds.count :view? true
                          :values (bounds.spheres plan cam.pos
                                                  (hit-threshold scene plan cam height))}))
     (table.sort out (fn [a b] (< a.name b.name)))
@@ -168,4 +175,33 @@ these has none (pass 0), as the CPU reference draws it."
       [{:name "uPriorPass" :type :float :values [2]} {:name "uPrior" :type :image :image ?image}]
       [{:name "uPriorPass" :type :float :values [pass]}]))
 
-{: pack : prior : components : linear : tape-values}
+(fn fixed [scene plan]
+  "The uniforms of `scene` lowered to `plan` that no view changes (pack's without
+:view?, textures aside): the render settings, the lighting model's values, a sun's
+direction. The folded shader writes them as constants (plan :baked)."
+  (icollect [_ u (ipairs (pack scene plan (camera.from-scene scene) 1 1))]
+    (when (and (not u.view?) u.values) u)))
+
+(local float-literal (. (require :src.sdf.emit-glsl) :float-literal))
+
+(fn value-literal [kind vals i]
+  (let [n (. components kind)]
+    (case kind
+      :float (float-literal (. vals i))
+      :int (string.format "%d" (. vals i))
+      :bool (if (= 0 (. vals i)) "false" "true")
+      _ (.. kind "(" (table.concat (fcollect [k 0 (- n 1)] (float-literal (. vals (+ i k)))) ", ")
+            ")"))))
+
+(fn constant [u]
+  "The GLSL declaration of uniform `u` (an item of pack's list) as a constant of its
+values: `const vec3 uName = vec3(...);`, an array as an array constructor."
+  (let [n (. components u.type)]
+    (if u.count
+        (.. "const " u.type " " u.name "[" u.count "] = " u.type "[" u.count "]("
+            (table.concat (fcollect [e 0 (- u.count 1)] (value-literal u.type u.values (+ 1 (* e n))))
+                          ", ")
+            ");")
+        (.. "const " u.type " " u.name " = " (value-literal u.type u.values 1) ";"))))
+
+{: pack : fixed : constant : prior : components : linear : tape-values}

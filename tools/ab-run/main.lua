@@ -1,6 +1,7 @@
 -- love tools/ab-run W H FRAMES DUMP_A DUMP_B ...: the frame times of each dump's shader
 -- (written by tools/ab-dump.fnl, in any checkout), drawn in turn, frame by frame, in
 -- one process: the ratio of two versions of the code on a shared, noisy machine.
+-- AB_COMPARE=1 also counts the pixels that differ from the first dump's picture.
 local comps = {float=1, int=1, bool=1, vec2=2, vec3=3, vec4=4}
 local function send(shader, us)
   for _, u in ipairs(us) do
@@ -53,6 +54,26 @@ function love.load(args)
       local ts = {}
       for i, t in ipairs(v.times) do ts[i] = string.format("%.2f", t) end
       print("frames " .. v.name .. " " .. table.concat(ts, " "))
+    end
+  end
+  -- AB_COMPARE=1: each dump's picture against the first one's, pixel by pixel (the
+  -- same picture from two forms of one scene, say uniforms and folded).
+  if os.getenv("AB_COMPARE") then
+    local first = vs[1].canvas:newImageData()
+    for i = 2, #vs do
+      local img = vs[i].canvas:newImageData()
+      local differ, most = 0, 0
+      for y = 0, h - 1 do
+        for x = 0, w - 1 do
+          local r1, g1, b1 = first:getPixel(x, y)
+          local r2, g2, b2 = img:getPixel(x, y)
+          local d = math.max(math.abs(r1 - r2), math.abs(g1 - g2), math.abs(b1 - b2)) * 255
+          if d > 0.5 then differ = differ + 1 end
+          if d > most then most = d end
+        end
+      end
+      print(string.format("%s against %s: %d of %d pixels differ, largest %.0f/255",
+                          vs[i].name, vs[1].name, differ, w * h, most))
     end
   end
   for _, v in ipairs(vs) do

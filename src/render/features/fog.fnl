@@ -15,7 +15,7 @@
  :uniforms (fn [l cam-pos]
              [{:name "uFog" :type :vec4 :values (doto (linear l.fog-color) (table.insert l.fog))}
               {:name "uFogFalloff" :type :float :values [l.fog-falloff]}
-              {:name "uCamHeight" :type :float :values [(. cam-pos 3)]}])
+              {:name "uCamHeight" :type :float :values [(. cam-pos 3)] :view? true}])
  :chunk "shaders/shading/modern/fog.glsl"
  :slot :segment
  :lines ["float fogThrough = fogTransmittance(origin, dir, t);"
