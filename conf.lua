@@ -1,43 +1,14 @@
--- LÖVE configuration. It also puts Fennel on the module path and loads main.fnl, so
--- no main.lua is needed: `love .` works right after `make run` has installed Fennel.
+-- LÖVE configuration. It also puts the app's modules on `require` (src/boot.lua's
+-- install: each module's compiled Lua from build/lua/ when current, else its Fennel
+-- compiled here, Fennel's compiler loaded only then) and loads main.fnl, so no main.lua
+-- is needed: `love .` works right after `make run` has installed Fennel. Modules are
+-- read through love.filesystem, so `love path/to/game` works from any directory.
 -- (love.filesystem.read of a missing file gives nil, so no build/ is needed either.)
-package.path = package.path .. ";lib/?.lua;/usr/share/lua/5.4/?.lua;/usr/share/lua/5.3/?.lua"
 local boot = require("src.boot")
-
--- Fennel's compiler is loaded only when a module must be compiled here (no build, or
--- its source edited since) or a scene file is read: a start from a build needs none.
-local fennel
-local function compiler()
-  if not fennel then
-    local ok, f = pcall(require, "fennel")
-    if not ok then
-      error("Fennel is not installed (looked for fennel.lua in lib/ and /usr/share/lua/5.4/).\n"
-            .. "Run `make run` once: it installs what is missing.")
-    end
-    fennel = f
-  end
-  return fennel
-end
-
--- Modules are read through love.filesystem, so `love path/to/game` works from any
--- directory. A module runs from its compiled Lua in build/lua/ (made by `make`, see
--- src/boot.lua) when that was compiled from the source as it is now; otherwise it is
--- compiled here. Either way line numbers in errors are the Fennel source's.
 local function read(path)
   if love.filesystem.getInfo(path, "file") then return (love.filesystem.read(path)) end
 end
-table.insert(package.loaders, 2, boot.searcher(read))
-table.insert(package.loaders, 3, function(name)
-  local path = name:gsub("%.", "/") .. ".fnl"
-  local source = read(path)
-  if source then
-    return function(...)
-      local lua = compiler().compileString(source, {filename = path,
-                                                    correlate = boot.options.correlate})
-      return assert(loadstring(lua, "@" .. path))(...)
-    end
-  end
-end)
+boot.install(read)
 
 -- Command-line modes that only print need no window.
 local function has_arg(flag)

@@ -83,5 +83,39 @@ local function read_file(path)
   return text
 end
 
-return {digest = digest, searcher = searcher, ["read-file"] = read_file, ["compiled-path"] = compiled_path, key = key,
+--- Where Fennel's compiler is looked for: the project's lib/ (make deps), then Debian's.
+local fennel_path = ";lib/?.lua;/usr/share/lua/5.4/?.lua;/usr/share/lua/5.3/?.lua"
+
+--- Put the app's modules on `require` in this Lua state (conf.lua's, a LÖVE thread's):
+--- a module runs from its compiled Lua in build/lua/ when that was compiled from the
+--- source as it is now (`searcher`), else its Fennel is compiled here, the compiler
+--- loaded only then. `read` gives a file's text by its path relative to the game, or nil.
+local function install(read)
+  package.path = package.path .. fennel_path
+  local fennel
+  local function compiler()
+    if not fennel then
+      local ok, f = pcall(require, "fennel")
+      if not ok then
+        error("Fennel is not installed (looked for fennel.lua in lib/ and /usr/share/lua/5.4/).\n"
+              .. "Run `make run` once: it installs what is missing.")
+      end
+      fennel = f
+    end
+    return fennel
+  end
+  table.insert(package.loaders, 2, searcher(read))
+  table.insert(package.loaders, 3, function(name)
+    local path = name:gsub("%.", "/") .. ".fnl"
+    local source = read(path)
+    if source then
+      return function(...)
+        local lua = compiler().compileString(source, {filename = path, correlate = options.correlate})
+        return assert(loadstring(lua, "@" .. path))(...)
+      end
+    end
+  end)
+end
+
+return {digest = digest, searcher = searcher, install = install, ["read-file"] = read_file, ["compiled-path"] = compiled_path, key = key,
         compile = compile, fresh = fresh, options = options}

@@ -45,6 +45,8 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
        love . --soak [SCENE] [--cycles N]    hot-reload soak test (edits a temp scene)
        love . --input-check                  the player driven by scripted keys and mouse
        love . --edit-latency SCENE [--sync-compile]   the player's delay in showing an edit
+       love . --edit-latency SCENE --preview-check   a structural edit whose shader never comes:
+                                             its CPU preview must show the new scene, alone
        love . --warm-shader FILE.glsl        compile a shader and draw it once (the player's helper;
                                              conf.lua runs it before anything else)
        love . --warm-server DIR PID          the player's compile helper, serving DIR until PID ends
@@ -113,6 +115,8 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
       (values nil (.. "the output file is the scene file " o.scene "; choose another name"))
       (and o.sync-compile? (not= o.mode :play) (not= o.mode :edit-latency))
       (values nil "--sync-compile only goes with playing a scene or --edit-latency")
+      (and o.preview-check? (or (not= o.mode :edit-latency) o.sync-compile?))
+      (values nil "--preview-check only goes with --edit-latency (and the compile helper)")
       (and o.shot (not= o.mode :play))
       (values nil "--shot only goes with playing a scene")
       (and o.gpu? (not= o.mode :probe) (not= o.mode :mesh))
@@ -156,6 +160,7 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
             (= a "--gpu") (set o.gpu? true)
             (= a "--turntable") (set o.turntable? true)
             (= a "--sync-compile") (set o.sync-compile? true)
+            (= a "--preview-check") (set o.preview-check? true)
             (or (= a "--help") (= a "-h"))
             (set o.mode :help)
             (= a "--help-dev")

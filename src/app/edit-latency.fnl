@@ -27,6 +27,9 @@
 (local scripted (require :src.app.scripted))
 (local write! scripted.write!)
 (local warm (require :src.app.warm))
+(local picture (require :src.reference.picture))
+(local camera (require :src.render.camera))
+(local plan (require :src.render.plan))
 
 (fn with-spheres [text n color]
   ;; The scene's own text, evaluated as it is, with `n` more top-level objects.
@@ -61,7 +64,8 @@
             first (+ (length frames) 1)
             compiles state.cache.compiles
             compile-seconds state.cache.compile-seconds
-            cancelled (or (?. state.warm :cancelled) 0)]
+            cancelled (or (?. state.warm :cancelled) 0)
+            previewed state.previewed]
         (write! path new-text)
         (play.poll-file! (+ (filestat.now) 0.05))
         (play.poll-file! (+ (filestat.now) 0.3))
@@ -77,7 +81,11 @@
                 (- state.cache.compiles compiles)
                 (* 1000 (- state.cache.compile-seconds compile-seconds))
                 (- (or (?. state.warm :cancelled) 0) cancelled)
-                (if (shown?) "" (string.format "  (not shown within %d s)" limit)))
+                (if (shown?) "" (string.format "  (not shown within %d s)" limit))
+                ;; The first preview of the new scene (preview.fnl), when one came.
+                (case (?. state.previewed :first)
+                  p (when (and (not= p (?. previewed :first)) (> p.at start))
+                      {:ms (* 1000 (- p.at start)) :w p.w :h p.h})))
         (shown?)))
     (fn structural! [label n]
       (let [old state.scene]
@@ -138,6 +146,81 @@
                   #(and (not= state.scene before) (= (?. state.drawn :scene) state.scene)))))
     nil))
 
+(fn with-ball-ahead [text cam]
+  ;; The scene's own text with a magenta ball 6 units ahead of camera `cam`: an edit
+  ;; whose new scene looks new.
+  (let [f (camera.forward cam)
+        at (fcollect [i 1 3] (+ (. cam.pos i) (* 6 (. f i))))]
+    (.. "(let [scene (do " text "\n)]\n"
+        (string.format "  (table.insert scene.objects {:kind :sphere :radius 1 :pos [%.9g %.9g %.9g] :color [1 0 1]})\n"
+                       (. at 1) (. at 2) (. at 3))
+        "  scene)\n")))
+
+(fn reference-picture [scene request w h]
+  ;; What the preview thread draws of `scene` for preview request `request`.
+  (picture.picture scene (assert (plan.scene->plan scene request.options)) request.cam w h))
+
+(fn preview-verdict [shown p request old new]
+  ;; Whether the frames `shown` since the edit (each the preview drawn, or false for
+  ;; the last scene's picture), ending with preview `p`, are right: nil and a message
+  ;; when they are not.
+  (let [first-preview (accumulate [at nil i f (ipairs shown) &until at] (when f i))
+        mixed (accumulate [at nil i f (ipairs shown) &until at]
+                (when (and (> i first-preview) (not f)) i))]
+    (if mixed (values nil (string.format "frame %d after the first preview showed the last scene" mixed))
+        (= p.bytes (reference-picture old request p.w p.h))
+        (values nil (string.format "the %dx%d preview is the last scene's picture" p.w p.h))
+        (not= p.bytes (reference-picture new request p.w p.h))
+        (values nil (string.format "the %dx%d preview is not the reference's picture of the new scene" p.w p.h))
+        (- first-preview 1))))
+
+(fn preview-check [path text report]
+  "A structural edit whose shader never comes (the helper is held: its jobs never
+finish): the window must go from the last scene's pictures to the CPU reference's
+pictures of the new scene (preview.fnl), the new scene alone from the first preview
+on, and the preview must be what the reference draws of the new scene from the
+camera it is loaded with, not of the last scene. `report` gets a line; true when all
+holds (or there is no helper to hold)."
+  (let [state play.state
+        limit (or (tonumber (os.getenv "EDIT_LATENCY_LIMIT")) 600)
+        frames []
+        wait (fn [] (coroutine.yield)
+               (table.insert frames (or state.shown-preview false)))
+        until-true (fn [ok?]
+                     (let [stop (+ (love.timer.getTime) limit)]
+                       (while (and (not (ok?)) (< (love.timer.getTime) stop)) (wait))
+                       (ok?)))
+        fail (fn [why] (report (.. "preview check: failed: " why)) false)]
+    (when (?. state.warm :enabled?)
+      ;; Every job a helper is given runs for ever.
+      (set state.warm.start! (fn [lane key _ _] (set lane.running {: key :check #nil}) true))
+      (for [_ 1 5] (wait)))
+    (let [start (love.timer.getTime)
+          first (+ (length frames) 1)
+          old state.scene]
+      (if (not (?. state.warm :enabled?))
+          (do (report "preview check: no compile helper here (the driver keeps no shared cache)")
+              true)
+          (do (write! path (with-ball-ahead text state.cam))
+              (play.poll-file! (+ (filestat.now) 0.05))
+              (play.poll-file! (+ (filestat.now) 0.3))
+              (if (not state.pending)
+                  (fail "the edit did not wait for a helper")
+                  ;; The third rung of the ladder (picture.fnl): 9, 18, then 36 rows.
+                  (not (until-true #(>= (or (?. state.shown-preview :h) 0) (* 4 picture.first-height))))
+                  (fail (.. "no preview of the third size within " limit " s: "
+                            (or (?. state.preview :failed) "no failure said")))
+                  (let [shown (icollect [i f (ipairs frames)] (when (>= i first) f))
+                        sizes (icollect [i f (ipairs shown)]
+                                (when (and f (not= f (. shown (- i 1)))) (.. f.w "x" f.h)))]
+                    (case (preview-verdict shown state.shown-preview state.preview-request
+                                           old state.pending.scene)
+                      (nil why) (fail why)
+                      before (do (report (string.format "preview check: ok: %d frames of the last scene, then previews %s (the first %.0f ms after the edit); the last one is the reference's picture of the new scene"
+                                                        before (table.concat sizes ", ")
+                                                        (* 1000 (- state.previewed.first.at start))))
+                                 true)))))))))
+
 (fn run [o]
   "Play a copy of `o.scene`, edit it and print the latencies; quits 0, or 1 when the
 scene cannot be read."
@@ -151,13 +234,18 @@ scene cannot be read."
             (set play.state.quiet? true)
             (play.start! {:scene path :frames 0 :warm? (not o.sync-compile?)})
             (scripted.run-per-frame!
-              #(script path text
-                       (fn [label ms longest compiles compile-ms cancelled note]
-                         (print (string.format "%s %s, %s: shown after %.0f ms, longest frame %.0f ms, the player compiled %d (%.0f ms), background jobs cancelled %d%s"
+              (if o.preview-check?
+                  #(preview-check path text print)
+                  #(script path text
+                       (fn [label ms longest compiles compile-ms cancelled note ?preview]
+                         (print (string.format "%s %s, %s: %sshown after %.0f ms, longest frame %.0f ms, the player compiled %d (%.0f ms), background jobs cancelled %d%s"
                                                o.scene label
                                                (if (?. play.state.warm :enabled?) "compile helper"
                                                    "compiled in the player")
-                                               ms longest compiles compile-ms cancelled note))))
+                                               (case ?preview
+                                                 p (string.format "preview (%dx%d) after %.0f ms, " p.w p.h p.ms)
+                                                 _ "")
+                                               ms longest compiles compile-ms cancelled note)))))
               #(io.stderr:write (.. "error: " $ "\n"))
               (fn [ok?]
                 (os.remove path)

@@ -24,6 +24,7 @@
 (local params (require :src.scene.params))
 (local panel (require :src.app.panel))
 (local warm (require :src.app.warm))
+(local preview (require :src.app.preview))
 (local codegen (require :src.render.codegen))
 (local uniforms (require :src.render.uniforms))
 
@@ -50,6 +51,11 @@
               ;; load waiting for its helper ({: path : fresh? : key : start}) and the
               ;; last scene and plan drawn ({: scene : plan}), shown meanwhile.
               :warm nil :pending nil :drawn nil :waiting-since nil
+              ;; While a load waits for its helper, the CPU reference's pictures of
+              ;; the new scene (preview.fnl): the previewer, the request in force
+              ;; ({: id : key : cam-key : start}) and the last preview drawn
+              ;; ({: id : w : h : at}).
+              :preview nil :preview-request nil :previewed nil :shown-preview nil
               ;; Before the first picture: the file being opened ({: path : start})
               ;; and when the opening screen was last drawn (see show-opening!).
               :opening nil :opening-shown 0
@@ -202,6 +208,31 @@ first picture of the scene can be sized to come at once."
             (collectgarbage :setpause (pause-for (collectgarbage :count))))
         (default-collector!))))
 
+(fn camera-after-load [scene old fresh?]
+  "The camera once `scene` is loaded over `old` (nil: none; `fresh?`: a new file): the
+file's own for a new file, or when the file's camera changed and the player has not
+moved it since; else the player's."
+  (let [file-cam (camera.from-scene scene)
+        user-moved? (and old state.cam (not (same-camera? state.cam (camera.from-scene old))))]
+    (if (or fresh? (not state.cam)
+            (and (not user-moved?) (not (same-camera? file-cam (camera.from-scene old)))))
+        file-cam
+        state.cam)))
+
+(fn request-preview! [scene reflections cam key]
+  "Ask the preview thread for pictures of `scene` (a load waiting for its helper),
+seen by `cam`, as the player's plan options draw it."
+  (let [(ww wh) (love.graphics.getDimensions)]
+    (case (preview.request! state.preview scene
+                            {:view state.view : reflections :model (when state.classic? :classic)}
+                            cam (/ ww wh))
+      id (set state.preview-request {: id : key :cam-key (adaptive.camera-key state.cam)
+                                     :start (love.timer.getTime) : cam
+                                     :options {:view state.view : reflections
+                                               :model (when state.classic? :classic)}})
+      (nil why) (do (set state.preview-request nil)
+                    (when (not state.quiet?) (io.stderr:write (.. "no preview: " why "\n")))))))
+
 (fn load-unprotected! [path fresh? ?since ?now]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
 file, not an edit) resets the camera and the player's settings; an edit keeps them,
@@ -253,16 +284,17 @@ the helper is done, `?since` the time of the first try."
           (if wait?
               (do (when (not= (?. state.pending :key) plan.key)
                     (say! (.. path ": compiling its shader in a helper process; "
-                              (if old "the last scene stays until it is ready" "please wait"))))
+                              (if old "a preview by the CPU reference meanwhile" "please wait"))))
+                  ;; Over a scene on screen: its pictures by the CPU reference until
+                  ;; the shader is ready.
+                  (when (and state.preview old (not= (?. state.preview-request :key) plan.key))
+                    (request-preview! scene reflections (camera-after-load scene old fresh?) plan.key))
                   (set state.pending {: path : fresh? :key plan.key : start : scene : plan}))
               (not shader)
               (do (set state.error serr)
                   (when (not state.quiet?) (io.stderr:write (.. serr "\n"))))
-              (let [file-cam (camera.from-scene scene)
-                    user-moved? (and old state.cam (not (same-camera? state.cam (camera.from-scene old))))]
-                (when (or fresh? (not state.cam)
-                          (and (not user-moved?) (not (same-camera? file-cam (camera.from-scene old)))))
-                  (set state.cam file-cam))
+              (do
+                (set state.cam (camera-after-load scene old fresh?))
                 ;; A render scale chosen with - and = stays when [ and ] open another
                 ;; scene (on a slow machine, 1 would mean a few frames a second).
                 (when (and (file-changed? #$.render.scale) (not (and fresh? old state.user-scale?)))
@@ -299,6 +331,9 @@ itself is shown like a broken file, and the last good scene keeps running."
   ;; scene before it.
   (set state.pending nil)
   (set state.time-pending nil)
+  (when state.preview
+    (preview.cancel! state.preview)
+    (set state.preview-request nil))
   (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh? ?since ?now)]
     (when (not ok?)
       (set state.error (.. path ": the scene could not be loaded (an internal error): "
@@ -748,11 +783,24 @@ helper has no job running or waiting (the folded shader asked for, when there is
                   (not (?. w.background :running)) (not (?. w.background :queued))
                   (or (not (?. memo :plan :tape)) (not= nil memo.folded)))))))
 
+(fn preview-picture []
+  "The newest preview of the load waiting for its helper, while the camera stays
+where it was when the preview was asked for (a moved camera shows the last scene
+live instead); nil when there is none."
+  (let [r state.preview-request]
+    (when (and r state.pending (= r.key state.pending.key))
+      (case (preview.poll! state.preview)
+        latest (when (and (= latest.id r.id) (= r.cam-key (adaptive.camera-key state.cam)))
+                 latest)))))
+
 (fn hud-lines []
   (let [cam state.cam
         canvas state.canvas
         lines [(string.format "%d fps  %.1f ms" (love.timer.getFPS)
                               (* 1000 (love.timer.getAverageDelta)))]]
+    (case (when state.scene (preview-picture))
+      p (table.insert lines (string.format "preview %dx%d: the new scene by the CPU reference (%.0f ms) while a helper compiles its shader"
+                                           p.w p.h (* 1000 p.seconds))))
     (if (coarse?)
         (table.insert lines
                       (if state.adaptive.out-of-reach?
@@ -1062,7 +1110,23 @@ the shader), the last ones drawn."
              (do (set state.waiting-since nil)
                  (values state.scene (or (folded-plan plan) plan) state.plan-memo.id)))))
 
-(fn draw []
+(fn draw-preview! [p]
+  ;; The preview picture `p` stretched to the window; the first time each is drawn,
+  ;; how long after the load started (the edit read) it came.
+  (draw-stretched p.image)
+  (when (not= (?. state.previewed :image) p.image)
+    (let [ms (* 1000 (- (love.timer.getTime) state.pending.start))
+          now (love.timer.getTime)]
+      (set state.previewed {:id p.id :image p.image :w p.w :h p.h :ms ms :at now
+                            :seconds p.seconds
+                            ;; The request's first picture (edit-latency reports it).
+                            :first (if (= p.id (?. state.previewed :id)) state.previewed.first
+                                       {:at now :w p.w :h p.h})})
+      (when (not state.quiet?)
+        (print (string.format "preview of %s on screen %.0f ms after the edit was read (%dx%d, drawn in %.0f ms by the CPU reference)"
+                              state.pending.path ms p.w p.h (* 1000 p.seconds)))))))
+
+(fn draw-scene-or-last! []
   (when state.scene
     (case (shown)
       (nil err) (set state.error err)
@@ -1080,7 +1144,9 @@ the shader), the last ones drawn."
                         (when (and (or (not= scene (?. state.drawn :scene))
                                        (not= plan (?. state.drawn :plan)))
                                    (gpu.cached? state.cache plan))
-                          (set state.drawn {: scene : plan : id})))))
+                          (set state.drawn {: scene : plan : id}))))))
+
+(fn draw-overlays! []
   (when state.hud?
     (draw-text-box (table.concat (hud-lines) "\n") 8 8 [1 1 1 1]))
   (case (panel-layout)
@@ -1091,6 +1157,13 @@ the shader), the last ones drawn."
                            "\n(the last good scene keeps running; saving the file reloads it)"
                            "\n(saving a fixed file loads it; [ and ] open the other scenes)"))
                    8 (- (love.graphics.getHeight) 120) [1 0.45 0.4 1])))
+
+(fn draw []
+  (case (when state.scene (preview-picture))
+    ;; The cores go to the helper and the preview thread.
+    p (do (love.timer.sleep 0.01) (draw-preview! p) (set state.shown-preview p))
+    _ (do (set state.shown-preview nil) (draw-scene-or-last!)))
+  (draw-overlays!))
 
 (fn shoot-and-quit! [path]
   ;; The captured window includes the HUD and any error overlay: what a player sees.
@@ -1139,6 +1212,8 @@ reached the screen."
   (prepare-font!)
   (prepare-despeckle!)
   (set state.warm (when options.warm? (warm.new)))
+  (set state.preview (when options.warm? (preview.new)))
+  (set love.quit (fn [] (when state.preview (preview.stop! state.preview)) false))
   (set state.interactive-fps (or options.target-fps default-interactive-fps))
   ;; A load waits for the scene worker (up to its deadline of 5 s): escape and the
   ;; window's close button still quit meanwhile (other input is dropped).
@@ -1164,6 +1239,16 @@ reached the screen."
   ;; Not when quitting: LÖVE exiting a few ms after the helper's thread started
   ;; crashed (exit 139, 2 runs of 2 in tools/check-stuck-worker.sh).
   (when (and state.warm (not state.quitting?)) (warm.prepare! state.warm))
+  ;; The preview thread starts now, and draws the first scene's smallest picture at
+  ;; once, unseen: LuaJIT has then compiled the reference's code when the first edit
+  ;; comes (that edit's first preview came after 150-230 ms, the next ones' after
+  ;; 45-90; twisted-tower and organic).
+  (when (and state.preview state.scene (not state.quitting?))
+    (let [(ww wh) (love.graphics.getDimensions)]
+      (preview.request! state.preview state.scene
+                        {:view state.view :reflections state.reflections
+                         :model (when state.classic? :classic)}
+                        state.cam (/ ww wh) 1)))
   (when (and options.shot (not state.scene))
     ;; Nothing to shoot: a script waits on this run, so fail like --render does.
     (io.stderr:write (.. "error: " (or state.error (.. options.scene ": no scene")) "\n"))

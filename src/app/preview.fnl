@@ -1,0 +1,100 @@
+;; A new scene on screen before its shader is compiled (issue 42). A structural edit
+;; needs a new shader, and llvmpipe takes 0.3 to 3 s to compile one (a desktop driver
+;; up to 10 s); a helper process compiles it while the window goes on (warm.fnl). An
+;; interpreter shader that would need no compile is no way out on llvmpipe: it runs
+;; every branch of a dispatch, so each tape instruction would cost every kind of node
+;; (docs/benchmarks.md). The CPU reference needs no compile: LuaJIT runs the tape's
+;; Lua at once. So while the helper compiles, a LÖVE thread draws the new scene with
+;; it (src/reference/picture.fnl), small pictures first (32x18 in 10 to 240 ms for the
+;; showcase scenes, then 64x36, 128x72...), each shown as soon as it is drawn, until
+;; the shader is ready. The reference is what the shader is checked against pixel by
+;; pixel, so the preview shows the state the shader then draws, at a lower resolution.
+;;
+;; The thread lives as long as the player (started at the first request); jobs and
+;; pictures travel as wire bytes over LÖVE channels, and a job runs only while the
+;; `wanted` channel holds its id.
+
+(local wire (require :src.util.wire))
+(local picture (require :src.reference.picture))
+
+;; The largest preview picture: 128x72 on a 16:9 window. A larger one would come
+;; after the shader on most scenes here (128x72 took 0.1-3.8 s).
+(local max-pixels 9300)
+;; The thread holds its own copy of the scene (and builds its own plan): not for a
+;; scene of more than this many bytes on the wire (some 50,000 objects).
+(local max-scene-bytes (* 8 1024 1024))
+
+(fn new []
+  "A previewer with no thread yet (started by the first request)."
+  {:thread nil :jobs nil :results nil :wanted nil :id 0 :latest nil :failed nil})
+
+(fn start! [pv]
+  (let [thread (love.thread.newThread "src/app/preview-thread.lua")]
+    (set pv.jobs (love.thread.newChannel))
+    (set pv.results (love.thread.newChannel))
+    (set pv.wanted (love.thread.newChannel))
+    (thread:start pv.jobs pv.results pv.wanted)
+    (set pv.thread thread)))
+
+(fn prepare! [pv]
+  "Start the thread now (the player's start): it loads its modules while nothing
+waits for it, so the first edit's preview does not pay for that (about 0.2 s)."
+  (when (not pv.thread) (start! pv)))
+
+(fn set-wanted! [pv id]
+  (pv.wanted:performAtomic (fn [c] (c:clear) (c:push id))))
+
+(fn request! [pv scene options cam aspect ?max-pixels]
+  "Start drawing `scene` (plan `options` as plan.scene->plan takes them) seen by `cam`
+for a window of `aspect` (width / height), cancelling any earlier request; pictures
+of `?max-pixels` at most (default max-pixels). The request's id, or nil and the
+reason there is no preview."
+  (if pv.failed (values nil pv.failed)
+      (case (wire.encode {:id (+ pv.id 1) : scene : options :cam cam
+                          :sizes (picture.ladder aspect (or ?max-pixels max-pixels))})
+        (nil err) (values nil err)
+        bytes (if (> (length bytes) max-scene-bytes)
+                  (values nil "the scene is too large for a preview")
+                  (do (when (not pv.thread) (start! pv))
+                      (set pv.id (+ pv.id 1))
+                      (set pv.latest nil)
+                      (set-wanted! pv pv.id)
+                      (pv.jobs:push bytes)
+                      pv.id)))))
+
+(fn cancel! [pv]
+  "No preview is wanted any more: the thread stops the one it draws."
+  (set pv.latest nil)
+  (when pv.thread (set-wanted! pv 0)))
+
+(fn poll! [pv]
+  "The newest picture of the request in force: {:id :w :h :image :bytes (its RGBA
+bytes, rows from the top) :seconds (the drawing's)}, or nil.
+A thread that failed is reported once in pv.failed, and no preview is asked of it
+again."
+  (when pv.thread
+    (var message (pv.results:pop))
+    (while message
+      (case (wire.decode message)
+        result (if result.error
+                   (when (= result.id pv.id) (set pv.failed (.. "preview: " result.error)))
+                   (= result.id pv.id)
+                   (let [data (love.image.newImageData result.w result.h :rgba8 result.bytes)
+                         image (love.graphics.newImage data)]
+                     (data:release)
+                     (image:setFilter :linear :linear)
+                     (when pv.latest (pv.latest.image:release))
+                     (set pv.latest {:id result.id :w result.w :h result.h : image
+                                     :bytes result.bytes :seconds result.seconds}))))
+      (set message (pv.results:pop)))
+    (case (pv.thread:getError)
+      err (set pv.failed (.. "preview thread: " err))))
+  pv.latest)
+
+(fn stop! [pv]
+  "End the thread (the player quits)."
+  (when pv.thread
+    (set-wanted! pv 0)
+    (pv.jobs:push "quit")))
+
+{: new : prepare! : request! : cancel! : poll! : stop! : max-pixels}
