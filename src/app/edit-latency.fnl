@@ -230,7 +230,11 @@ scene cannot be read."
         (do (io.stderr:write (.. "error: " o.scene ": cannot read the scene file\n"))
             (love.event.quit 1))
         (do (write! path text)
-            (love.window.setMode 640 360)
+            ;; EDIT_LATENCY_SIZE=WxH: another window size (default 640x360).
+            (let [[w h] (case (: (or (os.getenv "EDIT_LATENCY_SIZE") "") :match "^(%d+)x(%d+)$")
+                          (w h) [(tonumber w) (tonumber h)]
+                          _ [640 360])]
+              (love.window.setMode w h))
             (set play.state.quiet? true)
             (play.start! {:scene path :frames 0 :warm? (not o.sync-compile?)})
             (scripted.run-per-frame!

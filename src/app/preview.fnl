@@ -26,7 +26,7 @@
 
 (fn new []
   "A previewer with no thread yet (started by the first request)."
-  {:thread nil :jobs nil :results nil :wanted nil :id 0 :latest nil :failed nil})
+  {:thread nil :jobs nil :results nil :wanted nil :id 0 :latest nil :error nil :failed nil})
 
 (fn start! [pv]
   (let [thread (love.thread.newThread "src/app/preview-thread.lua")]
@@ -58,6 +58,7 @@ reason there is no preview."
                   (do (when (not pv.thread) (start! pv))
                       (set pv.id (+ pv.id 1))
                       (set pv.latest nil)
+                      (set pv.error nil)
                       (set-wanted! pv pv.id)
                       (pv.jobs:push bytes)
                       pv.id)))))
@@ -69,15 +70,17 @@ reason there is no preview."
 
 (fn poll! [pv]
   "The newest picture of the request in force: {:id :w :h :image :bytes (its RGBA
-bytes, rows from the top) :seconds (the drawing's)}, or nil.
-A thread that failed is reported once in pv.failed, and no preview is asked of it
+bytes, rows from the top) :seconds (the drawing's)}, or nil. A job that failed says
+why in pv.error; a thread that died, in pv.failed, and no preview is asked of it
 again."
   (when pv.thread
     (var message (pv.results:pop))
     (while message
       (case (wire.decode message)
+        ;; A job that failed (its scene's plan, the reference on it) leaves no
+        ;; picture; the next edit asks again.
         result (if result.error
-                   (when (= result.id pv.id) (set pv.failed (.. "preview: " result.error)))
+                   (when (= result.id pv.id) (set pv.error (.. "preview: " result.error)))
                    (= result.id pv.id)
                    (let [data (love.image.newImageData result.w result.h :rgba8 result.bytes)
                          image (love.graphics.newImage data)]
