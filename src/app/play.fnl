@@ -1112,8 +1112,13 @@ the shader), the last ones drawn."
 
 (fn draw-preview! [p]
   ;; The preview picture `p` stretched to the window; the first time each is drawn,
-  ;; how long after the load started (the edit read) it came.
-  (draw-stretched p.image)
+  ;; how long after the load started (the edit read) it came. Not despeckled as the
+  ;; moving picture is (draw-stretched): that pass, first used on a preview, made
+  ;; llvmpipe build its code for another texture, 80 ms before the first preview
+  ;; showed (gallery), and a preview is on screen for a fraction of a second.
+  (let [(ww wh) (love.graphics.getDimensions)]
+    (love.graphics.setColor 1 1 1 1)
+    (love.graphics.draw p.image 0 0 0 (/ ww p.w) (/ wh p.h)))
   (when (not= (?. state.previewed :image) p.image)
     (let [ms (* 1000 (- (love.timer.getTime) state.pending.start))
           now (love.timer.getTime)]
