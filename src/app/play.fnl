@@ -219,15 +219,16 @@ moved it since; else the player's."
         file-cam
         state.cam)))
 
-(fn request-preview! [scene reflections cam key]
-  "Ask the preview thread for pictures of `scene` (a load waiting for its helper),
-seen by `cam`, as the player's plan options draw it."
+(fn request-preview! [scene reflections cam key since]
+  "Ask the preview thread for pictures of `scene` (whose shader `key` a helper
+compiles: a load's, or a view's or a switch's), seen by `cam`, as the player's plan
+options draw it; `since`: when the change was asked for."
   (let [(ww wh) (love.graphics.getDimensions)]
     (case (preview.request! state.preview scene
                             {:view state.view : reflections :model (when state.classic? :classic)}
                             cam (/ ww wh))
       id (set state.preview-request {: id : key :cam-key (adaptive.camera-key state.cam)
-                                     :start (love.timer.getTime) : cam
+                                     : since : cam
                                      :options {:view state.view : reflections
                                                :model (when state.classic? :classic)}})
       (nil why) (do (set state.preview-request nil)
@@ -288,7 +289,8 @@ the helper is done, `?since` the time of the first try."
                   ;; Over a scene on screen: its pictures by the CPU reference until
                   ;; the shader is ready.
                   (when (and state.preview old (not= (?. state.preview-request :key) plan.key))
-                    (request-preview! scene reflections (camera-after-load scene old fresh?) plan.key))
+                    (request-preview! scene reflections (camera-after-load scene old fresh?) plan.key
+                                      start))
                   (set state.pending {: path : fresh? :key plan.key : start : scene : plan}))
               (not shader)
               (do (set state.error serr)
@@ -783,12 +785,20 @@ helper has no job running or waiting (the folded shader asked for, when there is
                   (not (?. w.background :running)) (not (?. w.background :queued))
                   (or (not (?. memo :plan :tape)) (not= nil memo.folded)))))))
 
+(fn waiting-for? [key]
+  "Whether the state to show next waits for a helper to compile shader `key`: a
+load's, or the new plan's of the scene on screen (a view, a switch)."
+  (if state.pending (= key state.pending.key)
+      state.waiting-since (case (current-plan)
+                            plan (and (= key plan.key) (compile-waits? state.scene plan)))
+      false))
+
 (fn preview-picture []
-  "The newest preview of the load waiting for its helper, while the camera stays
+  "The newest preview of the state waiting for its helper, while the camera stays
 where it was when the preview was asked for (a moved camera shows the last scene
 live instead); nil when there is none."
   (let [r state.preview-request]
-    (when (and r state.pending (= r.key state.pending.key))
+    (when (and r (waiting-for? r.key))
       (case (preview.poll! state.preview)
         latest (when (and (= latest.id r.id) (= r.cam-key (adaptive.camera-key state.cam)))
                  latest)))))
@@ -1105,9 +1115,16 @@ the shader), the last ones drawn."
     (nil err) (values nil err)
     plan (if (compile-waits? state.scene plan)
              (do (when (not state.waiting-since)
-                   (set state.waiting-since (love.timer.getTime)))
+                   (set state.waiting-since (love.timer.getTime))
+                   ;; The new state by the CPU reference until its shader is ready.
+                   (when (and state.preview (not state.pending))
+                     (request-preview! state.scene state.reflections state.cam plan.key
+                                       state.waiting-since)))
                  (values state.drawn.scene state.drawn.plan state.drawn.id))
-             (do (set state.waiting-since nil)
+             (do (when (and state.waiting-since state.preview (not state.pending))
+                   (preview.cancel! state.preview)
+                   (set state.preview-request nil))
+                 (set state.waiting-since nil)
                  (values state.scene (or (folded-plan plan) plan) state.plan-memo.id)))))
 
 (fn draw-preview! [p]
@@ -1120,7 +1137,7 @@ the shader), the last ones drawn."
     (love.graphics.setColor 1 1 1 1)
     (love.graphics.draw p.image 0 0 0 (/ ww p.w) (/ wh p.h)))
   (when (not= (?. state.previewed :image) p.image)
-    (let [ms (* 1000 (- (love.timer.getTime) state.pending.start))
+    (let [ms (* 1000 (- (love.timer.getTime) state.preview-request.since))
           now (love.timer.getTime)]
       (set state.previewed {:id p.id :image p.image :w p.w :h p.h :ms ms :at now
                             :seconds p.seconds
@@ -1128,8 +1145,8 @@ the shader), the last ones drawn."
                             :first (if (= p.id (?. state.previewed :id)) state.previewed.first
                                        {:at now :w p.w :h p.h})})
       (when (not state.quiet?)
-        (print (string.format "preview of %s on screen %.0f ms after the edit was read (%dx%d, drawn in %.0f ms by the CPU reference)"
-                              state.pending.path ms p.w p.h (* 1000 p.seconds)))))))
+        (print (string.format "preview of %s on screen %.0f ms after the change (%dx%d, drawn in %.0f ms by the CPU reference)"
+                              (or (?. state.pending :path) state.path) ms p.w p.h (* 1000 p.seconds)))))))
 
 (fn draw-scene-or-last! []
   (when state.scene
