@@ -5,9 +5,9 @@
 ;; every branch of a dispatch, so each tape instruction would cost every kind of node
 ;; (docs/benchmarks.md). The CPU reference needs no compile: LuaJIT runs the tape's
 ;; Lua at once. So while the helper compiles, a LÖVE thread draws the new scene with
-;; it (src/reference/picture.fnl), small pictures first (32x18 in 10 to 240 ms for the
-;; showcase scenes, then 64x36, 128x72...), each shown as soon as it is drawn, until
-;; the shader is ready. The reference is what the shader is checked against pixel by
+;; it (src/reference/picture.fnl), small pictures first (16x9, 32x18, then 64x36: the
+;; first came 40-240 ms after the edit for the showcase scenes), each shown as soon as
+;; it is drawn, until the shader is ready. The reference is what the shader is checked against pixel by
 ;; pixel, so the preview shows the state the shader then draws, at a lower resolution.
 ;;
 ;; The thread lives as long as the player (started at the first request); jobs and
@@ -17,9 +17,11 @@
 (local wire (require :src.util.wire))
 (local picture (require :src.reference.picture))
 
-;; The largest preview picture: 128x72 on a 16:9 window. A larger one would come
-;; after the shader on most scenes here (128x72 took 0.1-3.8 s).
-(local max-pixels 9300)
+;; The largest preview picture: 64x36 on a 16:9 window. The next rung, 128x72, took
+;; 0.1 to 3.8 s (four times the one before) on this 2-core machine, beside the helper's
+;; compile: with it, the shader's picture came 11% later (median of the eight showcase
+;; scenes' structural edits, one interleaved run), for a preview shown some 0.3 s.
+(local max-pixels 2400)
 ;; The thread holds its own copy of the scene (and builds its own plan): not for a
 ;; scene of more than this many bytes on the wire (some 50,000 objects).
 (local max-scene-bytes (* 8 1024 1024))
