@@ -51,10 +51,10 @@
               ;; load waiting for its helper ({: path : fresh? : key : start}) and the
               ;; last scene and plan drawn ({: scene : plan}), shown meanwhile.
               :warm nil :pending nil :drawn nil :waiting-since nil
-              ;; While a load waits for its helper, the CPU reference's pictures of
-              ;; the new scene (preview.fnl): the previewer, the request in force
-              ;; ({: id : key : cam-key : start}) and the last preview drawn
-              ;; ({: id : w : h : at}).
+              ;; While a state waits for its helper's shader, the CPU reference's
+              ;; pictures of it (preview.fnl): the previewer, the request in force
+              ;; ({: id : key : cam-key : since : cam : options}), the last preview
+              ;; drawn ({: id : image : w : h : at : first}) and this frame's (or nil).
               :preview nil :preview-request nil :previewed nil :shown-preview nil
               ;; Before the first picture: the file being opened ({: path : start})
               ;; and when the opening screen was last drawn (see show-opening!).
@@ -129,11 +129,17 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
 ;; `love . --render` and --record draw the same still by default (src/app/quality.fnl).
 (local still-samples quality.still-samples)
 
+(fn plan-options [reflections]
+  ;; The player's plan options (the view, the reflection count, the model), as a
+  ;; plan and a preview take them.
+  {:view state.view : reflections :model (when state.classic? :classic)})
+
 (fn plan-with [scene reflections ?fold? ?still?]
   (let [still (when ?still? (quality.still-options))]
-    (frame.plan-for scene {:view state.view :reflections reflections
-                           :model (when state.classic? :classic) :fold? ?fold?
-                           :samples (?. still :samples) :adaptive? (?. still :adaptive?)})))
+    (frame.plan-for scene (doto (plan-options reflections)
+                            (tset :fold? ?fold?)
+                            (tset :samples (?. still :samples))
+                            (tset :adaptive? (?. still :adaptive?))))))
 
 (fn warm-source [scene plan]
   ;; What the compile helper gets: the shader's text, after a line for each texture
@@ -223,14 +229,11 @@ moved it since; else the player's."
   "Ask the preview thread for pictures of `scene` (whose shader `key` a helper
 compiles: a load's, or a view's or a switch's), seen by `cam`, as the player's plan
 options draw it; `since`: when the change was asked for."
-  (let [(ww wh) (love.graphics.getDimensions)]
-    (case (preview.request! state.preview scene
-                            {:view state.view : reflections :model (when state.classic? :classic)}
-                            cam (/ ww wh))
+  (let [(ww wh) (love.graphics.getDimensions)
+        options (plan-options reflections)]
+    (case (preview.request! state.preview scene options cam (/ ww wh))
       id (set state.preview-request {: id : key :cam-key (adaptive.camera-key state.cam)
-                                     : since : cam
-                                     :options {:view state.view : reflections
-                                               :model (when state.classic? :classic)}})
+                                     : since : cam : options})
       (nil why) (do (set state.preview-request nil)
                     (when (not state.quiet?) (io.stderr:write (.. "no preview: " why "\n")))))))
 
@@ -1137,8 +1140,8 @@ the shader), the last ones drawn."
     (love.graphics.setColor 1 1 1 1)
     (love.graphics.draw p.image 0 0 0 (/ ww p.w) (/ wh p.h)))
   (when (not= (?. state.previewed :image) p.image)
-    (let [ms (* 1000 (- (love.timer.getTime) state.preview-request.since))
-          now (love.timer.getTime)]
+    (let [now (love.timer.getTime)
+          ms (* 1000 (- now state.preview-request.since))]
       (set state.previewed {:id p.id :image p.image :w p.w :h p.h :ms ms :at now
                             :seconds p.seconds
                             ;; The request's first picture (edit-latency reports it).
@@ -1267,9 +1270,7 @@ reached the screen."
   ;; 45-90; twisted-tower and organic).
   (when (and state.preview state.scene (not state.quitting?))
     (let [(ww wh) (love.graphics.getDimensions)]
-      (preview.request! state.preview state.scene
-                        {:view state.view :reflections state.reflections
-                         :model (when state.classic? :classic)}
+      (preview.request! state.preview state.scene (plan-options state.reflections)
                         state.cam (/ ww wh) 1)))
   (when (and options.shot (not state.scene))
     ;; Nothing to shoot: a script waits on this run, so fail like --render does.
