@@ -60,6 +60,17 @@
           (assert.is_nil (picture.picture s p cam 32 18 (fn [] (set asked (+ asked 1)) (> asked 3))))
           (assert.are.equal 4 asked))))
 
+    (it "refuses a scene of too many objects before encoding it (a million spheres took the player to 2.1 GB)"
+      (fn []
+        (let [preview (require :src.app.preview)
+              pv (preview.new)
+              objects (fcollect [i 1 50001] {:kind :sphere :radius 0.1 :pos [i 0 0]})
+              ;; Encoding it would fail: the refusal must come first.
+              (id why) (preview.request! pv {: objects :render {} :unencodable (fn [])} {} {} 1)]
+          (assert.is_nil id)
+          (assert.truthy (why:find "more than 50000 objects" 1 true) why)
+          (assert.is_nil pv.thread))))
+
     ;; The player, headless: a second or two each.
     (each [_ file (ipairs ["scenes/gallery.fnl" "scenes/organic.fnl"])]
       (it (.. file ": an edit whose shader never comes shows the new scene's previews, alone")

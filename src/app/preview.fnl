@@ -23,7 +23,10 @@
 ;; scenes' structural edits, one interleaved run), for a preview shown some 0.3 s.
 (local max-pixels 2400)
 ;; The thread holds its own copy of the scene (and builds its own plan): not for a
-;; scene of more than this many bytes on the wire (some 50,000 objects).
+;; scene of more objects than this (asked before encoding it: encoding a million
+;; spheres, 160 MB on the wire, took the player to 2.1 GB), nor of more bytes on the
+;; wire than that.
+(local max-objects 50000)
 (local max-scene-bytes (* 8 1024 1024))
 
 (fn new []
@@ -52,11 +55,13 @@ for a window of `aspect` (width / height), cancelling any earlier request; pictu
 of `?max-pixels` at most (default max-pixels). The request's id, or nil and the
 reason there is no preview."
   (if pv.failed (values nil pv.failed)
+      (> (length (or scene.objects [])) max-objects)
+      (values nil (.. "a scene of more than " max-objects " objects is not previewed"))
       (case (wire.encode {:id (+ pv.id 1) : scene : options :cam cam
                           :sizes (picture.ladder aspect (or ?max-pixels max-pixels))})
         (nil err) (values nil err)
         bytes (if (> (length bytes) max-scene-bytes)
-                  (values nil "the scene is too large for a preview")
+                  (values nil (.. "a scene of more than " max-scene-bytes " bytes is not previewed"))
                   (do (when (not pv.thread) (start! pv))
                       (set pv.id (+ pv.id 1))
                       (set pv.latest nil)
