@@ -811,7 +811,8 @@ live instead); nil when there is none."
         canvas state.canvas
         lines [(string.format "%d fps  %.1f ms" (love.timer.getFPS)
                               (* 1000 (love.timer.getAverageDelta)))]]
-    (case (when state.scene (preview-picture))
+    ;; This frame's preview (draw found it before the HUD is drawn).
+    (case state.shown-preview
       p (table.insert lines (string.format "preview %dx%d: the new scene by the CPU reference (%.0f ms) while a helper compiles its shader"
                                            p.w p.h (* 1000 p.seconds))))
     (if (coarse?)
