@@ -66,7 +66,8 @@
     (it "declares the seed's uniforms with the plan's array sizes"
       (fn []
         (let [text (codegen.shader seed-plan)]
-          (each [_ line (ipairs ["uniform vec4 uTape[16];" "uniform int uReflections;"
+          (each [_ line (ipairs ["uniform sampler2D uTape;  // 16 rows, one texel each (see load-once)"
+                                 "uniform int uReflections;"
                                  ;; A few objects are written out one by one, reading the
                                  ;; copies made once per pixel.
                                  "    // objects[5]: sphere\n    {\n        vec3 p1 = opTranslate(p, uTape[11].xyz);\n        float d2 = sdSphere(p1, uTape[11].w);\n        d = min(d, d2);\n    }"
@@ -138,7 +139,8 @@
         (let [text (shader-of "{:objects [{:kind :sphere} {:kind :sphere :pos [1 0 0]} {:kind :box}]}" nil :core)
               many (shader-of (.. "{:objects [" (string.rep "{:kind :sphere :pos [1 0 0]} " 9) "]}") nil :core)]
           (each [_ line (ipairs ["vec4 gTape[7];" "float gDrawDist;" "void loadUniforms() {"
-                                 "    gTape[0] = (uTape[0] + nothing);" "    gTape[6] = (uTape[6] + nothing);"
+                                 "    gTape[0] = (texelFetch(uTape, ivec2(0, 0), 0) + nothing);"
+                                 "    gTape[6] = (texelFetch(uTape, ivec2(6, 0), 0) + nothing);"
                                  "    gDrawDist = (uDrawDist + nothing);" "    gMaxSteps = min(uMaxSteps, opaque);"
                                  "    float nothing = 0.0 / gl_FragCoord.x;"
                                  "void main() {\n    loadUniforms();"])]
@@ -176,10 +178,13 @@
           (assert.are.equal "#endif\n" (text:sub -7))
           (let [body (text:match "void loadUniforms%(%) {(.-)\n}")]
             (assert.is_nil (body:find "%f[%w_]u%u")))
-          ;; Too many for the varyings: the first 28 vec4s, the rest from uniforms.
+          ;; Too many for the varyings: the first 28 vec4s, the rest of the tape's
+          ;; rows fetched by the pixels; the vertex stage fetches those it passes.
           (assert-has many-text "flat out vec4 vLoad27;")
           (assert-lacks many-text "vLoad28")
-          (assert-has many-text "(uTape[23] + nothing)")
+          (assert-has many-text "(texelFetch(uTape, ivec2(23, 0), 0) + nothing)")
+          (assert-has many-text "vec4(texelFetch(uTape, ivec2(0, 0), 0))")
+          (assert-lacks many-text "uniform vec4 uTape[")
           ;; :love-uniforms reads the uniforms, with no vertex stage.
           (assert-lacks plain "vLoad")
           (assert-lacks plain "#ifdef VERTEX")
@@ -345,6 +350,7 @@
                          ;; a secondary ray's first step (march.glsl's startHalf)
                          "^%s*startHalf = i == 0 && "
                          ;; load-once's integer that the compiler cannot fold
+                         "texelFetch%(uTape, ivec2%(%d+, %d+%), 0%)"
                          "^%s*int opaque = 2147483647 %- int%(nothing%);$"
                          "^%s*g%w+ = %(u%w+ && opaque > 0%);$"
                          ;; normals' loops from gZero (prelude.glsl), their turns' axes and signs

@@ -116,11 +116,10 @@
               tape (accumulate [found nil _ u (ipairs us)] (or found (and (= u.name "uTape") u)))]
           (assert.truthy tape)
           ;; Row 0: the translation, minus the camera, and the radius; then the
-          ;; material.
-          (assert.are.same [10 10 10 2] [(. tape.values 1) (. tape.values 2) (. tape.values 3)
-                                         (. tape.values 4)])
-          (assert.are.same [1 1 1 0.5] [(. tape.values 5) (. tape.values 6) (. tape.values 7)
-                                        (. tape.values 8)]))))
+          ;; material. (Read once per pixel, the rows are a texture's texels.)
+          (let [rows tape.texture.data]
+            (assert.are.same [10 10 10 2] [(. rows 1) (. rows 2) (. rows 3) (. rows 4)])
+            (assert.are.same [1 1 1 0.5] [(. rows 5) (. rows 6) (. rows 7) (. rows 8)])))))
 
     (it "knows each node's class, Lipschitz factor and bounds"
       (fn []

@@ -49,7 +49,7 @@
                                 :uCamUp :vec3 :uProjDist :float :uLightPos :vec3
                                 :uEnvColor :vec3 :uMaxSteps :int :uEpsilon :float
                                 :uDrawDist :float :uReflections :int :uShadows :bool
-                                :uGlow :bool :uTape :vec4})]
+                                :uGlow :bool :uTape :texture})]
             (assert.are.equal t (. u name :type) name)))))))
 
 (describe "uniforms: values"
@@ -73,8 +73,10 @@
     (it "packs the seed's objects camera-relative, in the tape's rows"
       (fn []
         (let [u (by-name (pack-scene seed))
-              row (fn [i] (fcollect [k 1 4] (. u.uTape.values (+ (* 4 i) k))))]
+              row (fn [i] (fcollect [k 1 4] (. u.uTape.texture.data (+ (* 4 i) k))))]
           (assert.are.equal 16 u.uTape.count)
+          ;; A row a texel (emit-glsl.tape-texel): 16 rows fit one line.
+          (assert.are.same [16 1] [u.uTape.texture.width u.uTape.texture.height])
           ;; Camera at [20 50 20]. The first box: its place, half size, material
           ;; (colour, a full mirror).
           (assert.are.same [(- -2.7 20) -52 -17.5 0] (row 0))
@@ -99,7 +101,7 @@
                         :light {:pos [100002 3 4]}}")
               cam {:pos [1e5 0 0] :yaw 0 :pitch 0 :fov 60}
               u (by-name (pack-scene s {:bounds? false} cam))
-              row (fn [i] (fcollect [k 1 4] (. u.uTape.values (+ (* 4 i) k))))]
+              row (fn [i] (fcollect [k 1 4] (. u.uTape.texture.data (+ (* 4 i) k))))]
           (assert.are.same [1 0 0 0.5] (row 0))
           (assert.are.same [2 3 4] u.uLightPos.values)
           (assert.are.same [0 0 1 1] (row 6))
@@ -116,7 +118,7 @@
           (camera.elevate! cam 5)
           (let [u (by-name (uniforms.pack seed (assert (plan.scene->plan seed)) cam 10 10))]
             ;; The plane's height, camera-relative.
-            (assert.are.same -25 (. u.uTape.values (+ (* 4 14) 4)))
+            (assert.are.same -25 (. u.uTape.texture.data (+ (* 4 14) 4)))
             (assert.are.same [-50 -30 -5] u.uLightPos.values)
             (assert.are.same [10 10] u.uResolution.values)))))))
 
@@ -163,8 +165,12 @@
           (let [list (pack-scene (load source))
                 arrays (icollect [_ u (ipairs list)] (when (and u.count (not= u.name "uBounds")) u))]
             (each [_ u (ipairs arrays)]
-              (assert.are.equal (* u.count (. uniforms.components u.type)) (length u.values)))
+              (if (= u.type :texture)
+                  (assert.are.equal (* u.count 4) (length u.texture.data))
+                  (assert.are.equal (* u.count (. uniforms.components u.type)) (length u.values))))
             (assert.are.equal (if (source:find ":box") 1 0) (length arrays))))
         (each [_ u (ipairs (pack-scene seed))]
-          (let [n (* (or u.count 1) (. uniforms.components u.type))]
-            (assert.are.equal n (length u.values) u.name)))))))
+          (if (= u.type :texture)
+              (assert.are.equal (* u.count 4) (length u.texture.data) u.name)
+              (let [n (* (or u.count 1) (. uniforms.components u.type))]
+                (assert.are.equal n (length u.values) u.name))))))))

@@ -460,7 +460,7 @@ hit before the view, so that form keeps the march before the loop."
 ;; varyings that a vertex stage fills from the uniforms, four vertices a frame; value
 ;; edits still need no compile. Drivers give a vertex stage 32 vec4 outputs (GL 3.3
 ;; promises only 16) and LÖVE takes 2: up to 28 here, the rest read from the uniforms
-;; as before; a driver that refuses gets the :love-uniforms shader (gpu.compile-plan).
+;; (the tape's rows: from their texture) as before; a driver that refuses gets the :love-uniforms shader (gpu.compile-plan).
 ;; Integers travel as floats (exact below 2^24: step budgets, counts).
 (local max-varyings 28)
 (local varying-sizes {:float 1 :vec2 2 :vec3 3 :vec4 4 :int 1})
@@ -497,7 +497,22 @@ hit before the view, so that form keeps the march before the loop."
 ;; How a declaration is written: as itself, unless the caller says otherwise (the
 (fn default-declaration [d] d.text)
 
-(fn load-once [declarations code rows-read declaration-text ?varyings?]
+;; The tape's rows from a texture (the plan's :tape-texture?): llvmpipe compiles each
+;; uniform element a shader reads into an eight-lane gather, and their compile time
+;; grows faster than their number (a shader reading 70 vec4 uniforms: 160 ms, 140:
+;; 400 ms, 280: 1.2 s; as texel fetches 104 and 211 ms; the same values from one
+;; uniform: 40 ms), where a constant costs nothing: organic's 71 rows were a third of
+;; its compile. The rows that fit in the flat varyings are fetched by the vertex stage
+;; (a broadcast to each pixel, as before; fetched by the pixels they cost 5-8% of a
+;; frame), the rest by the pixels.
+(fn rows-texture-declaration [d]
+  (.. "uniform sampler2D " d.name ";  // " d.count " rows, one texel each (see load-once)"))
+
+(fn row-fetch [name row]
+  (let [(x y) (emit-glsl.tape-texel row)]
+    (string.format "texelFetch(%s, ivec2(%d, %d), 0)" name x y)))
+
+(fn load-once [declarations code rows-read declaration-text ?varyings? ?tape-texture?]
   "The shader's body: `declarations` (items from emit-glsl.declare or a chunk's
 uniform lines, in order, each written by `declaration-text`) first, then the lines
 `code`, each uniform read through a
@@ -507,13 +522,17 @@ the code that follows, the preprocessor's doing: no generated line is rewritten.
 Not copied: samplers, the resolution, arrays that code indexes by a variable (their
 :loop?). Of the tape's rows only those the code reads (`rows-read`). With
 `?varyings?` (LÖVE's entry) as many copies as fit in flat varyings come from a
-vertex stage of their own: returns the lines and the vertex stage's."
+vertex stage of their own: returns the lines and the vertex stage's. With
+`?tape-texture?` the tape's rows (a declaration marked :rows?, written as declared)
+are a texture of that name, each row read by one texelFetch (emit-glsl.tape-texel)."
   (let [out []
         copied []
         reads []]
     (var opaque? false)
     (each [_ {:declare d} (ipairs declarations)]
-      (table.insert out (declaration-text d))
+      ;; Unless the caller writes the rows otherwise (the export: as constants).
+      (local texture? (and ?tape-texture? d.rows? (= (declaration-text d) d.text)))
+      (table.insert out (if texture? (rows-texture-declaration d) (declaration-text d)))
       (when (not (or (. read-directly d.name) (d.type:find "sampler") d.loop?
                      (: (declaration-text d) :find "^const ")))
         (let [copy (.. "g" (d.name:sub 2))]
@@ -523,10 +542,12 @@ vertex stage of their own: returns the lines and the vertex stage's."
               ;; Only the elements the code reads (a folded tape reads only its
               ;; camera-relative rows).
               (for [i 0 (- d.count 1)]
-                (when (or (not= d.name "uTape") (. rows-read i))
+                (when (or (not d.rows?) (. rows-read i))
                   (table.insert reads {:copy (string.format "%s[%d]" copy i) :ty d.type
-                                       :uniform d.name :declaration d.text
-                                       :read (string.format "%s[%d]" d.name i)})))
+                                       :uniform d.name
+                                       :declaration (if texture? (rows-texture-declaration d) d.text)
+                                       :read (if texture? (row-fetch d.name i)
+                                                 (string.format "%s[%d]" d.name i))})))
               (table.insert reads {: copy :ty d.type :uniform d.name :declaration d.text
                                    :read d.name})))))
     (table.insert out "")
@@ -588,7 +609,8 @@ vertex stage of their own: returns the lines and the vertex stage's."
     (let [declarations (icollect [_ l (ipairs body)] (when (= (type l) :table) l))
           code (icollect [_ l (ipairs body)] (when (= (type l) :string) l))
           (lines vertex) (if plan.load-once? (load-once declarations code (emit-glsl.reads cx)
-                                                        declaration-text target.varyings?)
+                                                        declaration-text target.varyings?
+                                                        plan.tape-texture?)
                              (doto (icollect [_ d (ipairs declarations)] (declaration-text d.declare))
                                (table.insert "")
                                (flatten-into "" code)

@@ -19,7 +19,11 @@ Returns the text, or nil and a message."
                               field.min-objects things)))
             ;; Every uniform declared as a constant of its value, but the resolution.
             (let [values-by-name (collect [_ u (ipairs (uniforms.pack scene plan (camera.from-scene scene) 1 1))]
-                                   u.name u)]
+                                   ;; The tape's rows as the array they are in a texture.
+                                   u.name (if (and (= u.type :texture) u.count)
+                                              {:name u.name :type :vec4 :count u.count
+                                               :values u.texture.data}
+                                              u))]
               (var missing nil)
               (let [text (codegen.shader plan :shadertoy
                                          (fn [d]

@@ -295,6 +295,8 @@ shader of `plan` holds, and how its soft shadows march."
   :probe?         for the probe shader: colours and mirror amounts, no lighting
   :load-once?     false: read uniforms where they are used instead of once per pixel
                   (renderer-options picks it by the renderer)
+  :tape-texture?  false: with :load-once?, the tape's rows in a uniform array (the
+                  export, which writes them as constants), not a texture
   :samples        supersampling, N x N rays per pixel (default the scene's)
   :adaptive?      true: with :samples above 1, adaptive (the player's anti-aliased
                   still); false: every pixel N x N; nil: the scene's :adaptive
@@ -344,6 +346,10 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
         shaded? (= view :shaded)
         plan {: view : uber?
               :load-once? (not= false options.load-once?)
+              ;; Read once per pixel, the tape's rows come from a texture: far
+              ;; quicker for llvmpipe to compile than uniforms (codegen's load-once).
+              :tape-texture? (and (not= false options.load-once?)
+                                  (not= false options.tape-texture?))
               ;; The objects in shader order (the numbers gObject gives them): the
               ;; tape's (the field's and an instance group's members in turn).
               :objects (objects-in-order scene tape)

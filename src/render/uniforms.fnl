@@ -7,6 +7,7 @@
 (local bounds (require :src.render.bounds))
 (local strategies (require :src.sdf.strategies))
 (local features (require :src.render.features))
+(local emit-glsl (require :src.sdf.emit-glsl))
 
 (fn hit-threshold [scene plan cam height]
   "The shader's hitThreshold on the CPU: a step under this at `dist` from the camera
@@ -157,8 +158,16 @@ marked :view? true; the others are the scene's settings (see fixed)."
       (append! out (grid-uniforms plan.grids cam.pos)))
     (each [_ [name bank] (ipairs [["uTape" plan.tape] ["uInstances" plan.tape.instances]])]
       (when (and (> (length bank.rows) 0) (not bank.texture?))
-        (table.insert out {: name :type :vec4 :values (tape-values bank cam.pos)
-                           :count (length bank.rows) :view? true})))
+        (let [vals (tape-values bank cam.pos)
+              rows (length bank.rows)]
+          (table.insert out
+                        (if (and plan.tape-texture? (= bank plan.tape))
+                            ;; A row a texel (codegen's load-once, emit-glsl.tape-texel).
+                            {: name :type :texture :count rows :view? true
+                             :texture {:width (math.min rows emit-glsl.tape-texture-width)
+                                       :height (math.ceil (/ rows emit-glsl.tape-texture-width))
+                                       :data vals}}
+                            {: name :type :vec4 :values vals :count rows :view? true})))))
     (when (and plan.bounds (> plan.bounds.count 0))
       (table.insert out {:name "uBounds" :type :vec4 :count plan.bounds.count :view? true
                          :values (bounds.spheres plan cam.pos
@@ -182,7 +191,7 @@ direction. The folded shader writes them as constants (plan :baked)."
   (icollect [_ u (ipairs (pack scene plan (camera.from-scene scene) 1 1))]
     (when (and (not u.view?) u.values) u)))
 
-(local float-literal (. (require :src.sdf.emit-glsl) :float-literal))
+(local float-literal emit-glsl.float-literal)
 
 (fn value-literal [kind vals i]
   (let [n (. components kind)]

@@ -280,11 +280,23 @@ variable (then it is read where used, never copied)."
     {:declare {:type ty : name :count ?count :loop? ?loop? : trailer
                :text (.. "uniform " ty " " name (if ?count (.. "[" ?count "]") "") ";" trailer)}}))
 
+;; The tape's rows as a texture (a plan's :tape-texture?, on llvmpipe): row r is the
+;; texel (r mod width, floor(r / width)) of an rgba32f image this wide (llvmpipe takes
+;; 16384).
+(local tape-texture-width 1024)
+
+(fn tape-texel [row]
+  "The texel that holds the tape's row `row` (0-based) when the rows travel as a
+texture: x, y."
+  (values (% row tape-texture-width) (math.floor (/ row tape-texture-width))))
+
 (fn declarations [tape]
   "The parameter arrays' declarations (see `declare`): the tape's rows, read at
-constant indices, and the instance groups', in loops."
+constant indices (marked :rows?: codegen may read them from a texture), and the
+instance groups', in loops."
   [(if (> (length tape.rows) 0)
-       [(declare "vec4" "uTape" (length tape.rows) "tree parameters and materials")]
+       [(doto (declare "vec4" "uTape" (length tape.rows) "tree parameters and materials")
+          (tset :declare :rows? true))]
        [])
    (if (and (> (length tape.instances.rows) 0) (not tape.instances.texture?))
        [(declare "vec4" "uInstances" (length tape.instances.rows)
@@ -458,7 +470,7 @@ leaf whose primitive is solid below a plane, met in closed form; see plane-block
 
 {: functions : gradient-functions : declarations : declare : new-context : reads
  : distance-terms : others-terms : color-terms : object-terms : gradient-terms : plane-terms
- : exact? : text-lines : float-literal
+ : exact? : text-lines : float-literal : tape-texture-width : tape-texel
  ;; For the strategies' terms (src/sdf/strategies/):
  : derived : emit-code : object-comment : indented : guarded-lines : object-body : open-block
  : minimum-tail : taken-open : color-tail : leaf-gradient : leaf-exact? : plane-block
