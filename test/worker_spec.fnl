@@ -159,6 +159,15 @@
           #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
              (assert.is_nil ok?)
              (assert.are.equal "scenes/organic.fnl: the scene worker's answer was refused: malformed data: bad header (not \"SDW1 \")" err)))
+        ;; A worker that ends on its own: how it ended (limits the fake says it has).
+        (with-command (fake :crash-load)
+          #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
+             (assert.is_nil ok?)
+             (assert.are.equal "scenes/organic.fnl: the scene worker ended while loading the scene (ended by signal 11, SIGSEGV: it crashed; its limits: 1 MB of memory, 1 s of CPU)" err)))
+        (with-command (fake :exit-load)
+          #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
+             (assert.is_nil ok?)
+             (assert.are.equal "scenes/organic.fnl: the scene worker ended while loading the scene (exited with status 3; its limits: 1 MB of memory, 1 s of CPU)" err)))
         (with-command ["false"]
           #(let [(ok? err) (worker.load-file "scenes/organic.fnl")]
              (assert.is_nil ok?)

@@ -147,8 +147,30 @@ nil: wait without calling anything."
 nil when none is running."
   (?. state.worker :info))
 
+;; Signals that end a worker, and what they mean for it (see src/util/confine.fnl).
+(local signal-meanings
+  {6 "SIGABRT: it aborted (LuaJIT's panic: out of memory?)"
+   9 "SIGKILL: killed from outside (the system's out-of-memory killer?)"
+   11 "SIGSEGV: it crashed"
+   7 "SIGBUS: it crashed"
+   24 "SIGXCPU: past its CPU limit"
+   31 "SIGSYS: a system call its filter kills"})
+
+(fn ending [how limits]
+  ;; How a worker that closed its connection ended (process.ended), said in words.
+  (let [past (.. "its limits: " (or (?. limits :memory-mb) "?") " MB of memory, "
+                 (or (?. limits :cpu-seconds) "?") " s of CPU")]
+    (case how
+      {: signal} (.. "ended by signal " signal ", "
+                     (or (. signal-meanings signal) "not one of its limits'") "; " past)
+      {: code} (.. "exited with status " code "; " past)
+      _ (.. "closed its connection and still ran; " past))))
+
 (fn failure [w why file what seconds]
   ;; The message for a request that got no answer; the worker is gone after it.
+  ;; (How it ended is asked before it is killed: a closed connection's worker is
+  ;; ending, or has ended, on its own.)
+  (local how (when (= why :closed) (process.ended w.child 0.5)))
   (process.kill! w.child)
   (set state.worker nil)
   (let [limits (?. w.info :limits)]
@@ -160,9 +182,7 @@ nil when none is running."
                        (= why :cancelled)
                        (.. what " was cancelled; the scene worker was stopped")
                        (= why :closed)
-                       (.. "the scene worker ended while " what " (past its limits: "
-                           (or (?. limits :memory-mb) "?") " MB of memory or "
-                           (or (?. limits :cpu-seconds) "?") " s of CPU)")
+                       (.. "the scene worker ended while " what " (" (ending how limits) ")")
                        (.. "the scene worker's answer was refused: " (tostring why)))))))
 
 (fn settle! [w]

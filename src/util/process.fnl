@@ -279,6 +279,30 @@ cannot be read (the child has ended)."
         (when (and user system) (/ (+ user system) clock-ticks)))
     _ nil))
 
+(local wnohang 1)
+
+(fn ended [child ?wait]
+  "How `child` ended, once it has (it is then reaped): {:code N} when it exited with
+status N, {:signal N} when signal N ended it; nil while it still runs after waiting
+`?wait` seconds (default 0) for it to end. Asked again, the same answer."
+  (when (and (not child.status) (not child.reaped?))
+    (let [st (ffi.new "int[1]")
+          deadline (+ (filestat.monotonic) (or ?wait 0))]
+      (var done? false)
+      (while (not done?)
+        (let [pid (native.waitpid child.pid st wnohang)
+              s (. st 0)]
+          (if (= pid child.pid)
+              (do (set child.reaped? true)
+                  (set child.status (if (= 0 (% s 128))
+                                        {:code (% (math.floor (/ s 256)) 256)}
+                                        {:signal (% s 128)}))
+                  (set done? true))
+              (or (< pid 0) (>= (filestat.monotonic) deadline)) (set done? true)
+              ;; Not yet: 10 ms (poll with no descriptors sleeps).
+              (native.poll nil 0 10))))))
+  child.status)
+
 (fn kill! [child]
   "End `child` at once (SIGKILL), wait for it and close its socket."
   (when (not child.reaped?)
@@ -295,5 +319,5 @@ cannot be read (the child has ended)."
     (native.close child.fd)
     (set child.fd nil)))
 
-{: supported? : self-exe : cpu-seconds : spawn : send! : receive! : kill!
+{: supported? : self-exe : cpu-seconds : spawn : send! : receive! : kill! : ended
  : stderr-summary! : max-frame : escaped}
