@@ -51,7 +51,7 @@
                                 "out-of-steps=surface reflections?=true relaxed?=false samples=1 "
                                 "shadows?=true tape=translate( box ) ; translate( box ) ; "
                                 "translate( box ) ; translate( sphere ) ; translate( sphere ) ; "
-                                "translate( ground ) identity ; rows:16 uber?=false view=shaded")
+                                "translate( ground ) identity ; rows:16 tape-texture?=true uber?=false view=shaded")
                             p.key))))
 
     (it "draws the article's flat objects as the same leaves as tree nodes"
