@@ -9,11 +9,8 @@
 ;; the helpers' output is discarded, so every such line is the player's. About a
 ;; minute here.
 
-(fn run [command]
-  (let [p (io.popen (.. command " 2>&1; echo \"exit:$?\""))
-        text (p:read :*a)]
-    (p:close)
-    (values (tonumber (text:match "exit:(%d+)%s*$")) text)))
+;; A command's exit code and what it printed (standard error in it).
+(local run (. (require :test.support.app) :sh))
 
 (fn lines-matching [text pattern]
   (icollect [line (text:gmatch "[^\n]+")]

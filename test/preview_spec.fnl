@@ -18,11 +18,8 @@
                         b #(math.floor (+ 0.5 (* 255 (math.max 0 (math.min 1 $)))))]
                     (string.char (b cr) (b cg) (b cb) 255)))))
 
-(fn run [command]
-  (let [p (io.popen (.. command " 2>&1; echo \"exit:$?\""))
-        text (p:read :*a)]
-    (p:close)
-    (values (tonumber (text:match "exit:(%d+)%s*$")) text)))
+;; A command's exit code and what it printed (standard error in it).
+(local run (. (require :test.support.app) :sh))
 
 (describe "previews by the CPU reference"
   (fn []
