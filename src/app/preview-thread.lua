@@ -57,4 +57,8 @@ while true do
   else
     results:push((wire.encode({id = 0, error = tostring(err)})))
   end
+  -- The job's scene and plan go now: waiting for the next job allocates nothing, so
+  -- the collector would not run before it.
+  job, message = nil, nil
+  collectgarbage()
 end
