@@ -499,9 +499,9 @@ hit before the view, so that form keeps the march before the loop."
 
 ;; The tape's rows from a texture (the plan's :tape-texture?): llvmpipe compiles each
 ;; uniform element a shader reads into an eight-lane gather, and their compile time
-;; grows faster than their number (a shader reading 70 vec4 uniforms: 171 ms, 140:
-;; 356 ms, 280: 1.1 s; as texel fetches of an rgba32f image 49, 73 and 145 ms; as
-;; constants 33, 43 and 64 ms: tools/uniform-cost), and organic's 71 rows were a
+;; grows faster than their number (a shader reading 70 vec4 uniforms: 145 ms, 140:
+;; 329 ms, 280: 971 ms; as texel fetches of an rgba32f image 46, 70 and 137 ms; as
+;; constants 33, 42 and 60 ms: tools/uniform-cost), and organic's 71 rows were a
 ;; third of its compile. The rows that fit in the flat varyings are fetched by the vertex stage
 ;; (a broadcast to each pixel, as before; fetched by the pixels they cost 5-8% of a
 ;; frame), the rest by the pixels.
