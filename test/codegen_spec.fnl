@@ -4,6 +4,9 @@
 (local scene (require :src.scene.load))
 (local plan (require :src.render.plan))
 (local codegen (require :src.render.codegen))
+(local emit-glsl (require :src.sdf.emit-glsl))
+(local uniforms (require :src.render.uniforms))
+(local camera (require :src.render.camera))
 
 (fn load [source]
   (assert (scene.load-string source "t.fnl")))
@@ -133,6 +136,39 @@
                                  "uniform bool uGlow;" "uniform int uReflections;"
                                  "if (uShadows) {" "if (uGlow) {"])]
             (assert-has text line)))))
+
+    (it "reads the tape's rows from a texture when read once per pixel, else from a uniform array"
+      (fn []
+        (let [texture (codegen.shader seed-plan :core)
+              array (codegen.shader (assert (plan.scene->plan seed {:tape-texture? false})) :core)
+              gpu (codegen.shader (assert (plan.scene->plan seed {:load-once? false})) :core)]
+          (assert.is_true seed-plan.tape-texture?)
+          (assert-has texture "uniform sampler2D uTape;")
+          (assert-has texture "    gTape[15] = (texelFetch(uTape, ivec2(15, 0), 0) + nothing);")
+          (assert-lacks texture "uniform vec4 uTape[")
+          (assert-has array "uniform vec4 uTape[16];")
+          (assert-has array "    gTape[15] = (uTape[15] + nothing);")
+          (assert-lacks array "texelFetch(uTape")
+          ;; A GPU reads the uniform array where it uses it.
+          (assert-has gpu "uniform vec4 uTape[16];")
+          (assert-lacks gpu "gTape")
+          (assert-lacks gpu "texelFetch(uTape"))))
+
+    (it "lays the tape's rows out a texel each, lines of emit-glsl.tape-texture-width"
+      (fn []
+        (let [width emit-glsl.tape-texture-width
+              s (load (.. "{:objects [" (string.rep "{:kind :sphere :pos [1 2 3] :radius 0.5} " 2) "]}"))
+              p (assert (plan.scene->plan s {:grids? false :field? false}))]
+          (assert.are.same [0 0] [(emit-glsl.tape-texel 0)])
+          (assert.are.same [(- width 1) 0] [(emit-glsl.tape-texel (- width 1))])
+          (assert.are.same [2 1] [(emit-glsl.tape-texel (+ width 2))])
+          ;; The texture sent holds the rows in that order, padded to whole lines.
+          (let [us (uniforms.pack s p (camera.from-scene s) 8 8)
+                tape (accumulate [found nil _ u (ipairs us)] (or found (and (= u.name "uTape") u)))]
+            (assert.are.equal :texture tape.type)
+            (assert.are.same [(length p.tape.rows) 1] [tape.texture.width tape.texture.height])
+            (assert.are.same (uniforms.tape-values p.tape (. (camera.from-scene s) :pos))
+                             tape.texture.data)))))
 
     (it "reads each uniform once per pixel, into a global copy, but arrays indexed in a loop"
       (fn []

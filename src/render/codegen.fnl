@@ -460,7 +460,8 @@ hit before the view, so that form keeps the march before the loop."
 ;; varyings that a vertex stage fills from the uniforms, four vertices a frame; value
 ;; edits still need no compile. Drivers give a vertex stage 32 vec4 outputs (GL 3.3
 ;; promises only 16) and LÖVE takes 2: up to 28 here, the rest read from the uniforms
-;; (the tape's rows: from their texture) as before; a driver that refuses gets the :love-uniforms shader (gpu.compile-plan).
+;; (the tape's rows: from their texture) as before; a driver that refuses gets the
+;; :love-uniforms shader (gpu.compile-plan).
 ;; Integers travel as floats (exact below 2^24: step budgets, counts).
 (local max-varyings 28)
 (local varying-sizes {:float 1 :vec2 2 :vec3 3 :vec4 4 :int 1})
@@ -502,9 +503,9 @@ hit before the view, so that form keeps the march before the loop."
 ;; grows faster than their number (a shader reading 70 vec4 uniforms: 145 ms, 140:
 ;; 329 ms, 280: 971 ms; as texel fetches of an rgba32f image 46, 70 and 137 ms; as
 ;; constants 33, 42 and 60 ms: tools/uniform-cost), and organic's 71 rows were a
-;; third of its compile. The rows that fit in the flat varyings are fetched by the vertex stage
-;; (a broadcast to each pixel, as before; fetched by the pixels they cost 5-8% of a
-;; frame), the rest by the pixels.
+;; third of its compile. The rows that fit in the flat varyings are fetched by the
+;; vertex stage (a broadcast to each pixel, as before; fetched by the pixels they cost
+;; 5-8% of a frame), the rest by the pixels.
 (fn rows-texture-declaration [d]
   (.. "uniform sampler2D " d.name ";  // " d.count " rows, one texel each (see load-once)"))
 
@@ -531,8 +532,9 @@ are a texture of that name, each row read by one texelFetch (emit-glsl.tape-texe
     (var opaque? false)
     (each [_ {:declare d} (ipairs declarations)]
       ;; Unless the caller writes the rows otherwise (the export: as constants).
-      (local texture? (and ?tape-texture? d.rows? (= (declaration-text d) d.text)))
-      (table.insert out (if texture? (rows-texture-declaration d) (declaration-text d)))
+      (local texture (when (and ?tape-texture? d.rows? (= (declaration-text d) d.text))
+                       (rows-texture-declaration d)))
+      (table.insert out (or texture (declaration-text d)))
       (when (not (or (. read-directly d.name) (d.type:find "sampler") d.loop?
                      (: (declaration-text d) :find "^const ")))
         (let [copy (.. "g" (d.name:sub 2))]
@@ -545,8 +547,8 @@ are a texture of that name, each row read by one texelFetch (emit-glsl.tape-texe
                 (when (or (not d.rows?) (. rows-read i))
                   (table.insert reads {:copy (string.format "%s[%d]" copy i) :ty d.type
                                        :uniform d.name
-                                       :declaration (if texture? (rows-texture-declaration d) d.text)
-                                       :read (if texture? (row-fetch d.name i)
+                                       :declaration (or texture d.text)
+                                       :read (if texture (row-fetch d.name i)
                                                  (string.format "%s[%d]" d.name i))})))
               (table.insert reads {: copy :ty d.type :uniform d.name :declaration d.text
                                    :read d.name})))))

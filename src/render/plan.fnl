@@ -295,8 +295,6 @@ shader of `plan` holds, and how its soft shadows march."
   :probe?         for the probe shader: colours and mirror amounts, no lighting
   :load-once?     false: read uniforms where they are used instead of once per pixel
                   (renderer-options picks it by the renderer)
-  :tape-texture?  false: with :load-once?, the tape's rows in a uniform array (the
-                  export, which writes them as constants), not a texture
   :samples        supersampling, N x N rays per pixel (default the scene's)
   :adaptive?      true: with :samples above 1, adaptive (the player's anti-aliased
                   still); false: every pixel N x N; nil: the scene's :adaptive
@@ -322,6 +320,8 @@ and `make bench`'s before (test/bench/report.fnl).
                   boxes the scene has; they go into uniform arrays
   :grids?         false: no grids over instance groups or blends (src/sdf/grid.fnl):
                   each loops over all its members, its rows in uniform arrays
+  :tape-texture?  false: with :load-once?, the tape's rows in a uniform array, not a
+                  texture (codegen's load-once)
 Returns the plan, or nil and a message when the scene does not fit the budget."
   (let [options (or ?options {})
         view (or options.view :shaded)

@@ -162,7 +162,7 @@ nil when none is running."
                  (or (?. limits :cpu-seconds) "?") " s of CPU")]
     (case how
       {: signal} (.. "ended by signal " signal ", "
-                     (or (. signal-meanings signal) "not one of its limits'") "; " past)
+                     (or (. signal-meanings signal) "none of its own limits") "; " past)
       {: code} (.. "exited with status " code "; " past)
       _ (.. "closed its connection and still ran; " past))))
 
