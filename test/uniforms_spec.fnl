@@ -42,6 +42,21 @@
             (for [i 2 (length list)]
               (assert.is_true (< (. list (- i 1) :name) (. list i :name))))))))
 
+    (it "packs what the hand-written floor of make bench declares, with the tape's rows an array"
+      (fn []
+        ;; test/bench/seed-analytic.glsl takes the marcher's uniforms; make bench packs
+        ;; them with :tape-texture? false (test/bench/report.fnl).
+        (let [text (with-open [f (assert (io.open "test/bench/seed-analytic.glsl" :rb))] (f:read :*a))
+              u (by-name (pack-scene seed {:tape-texture? false}))
+              declared (icollect [ty name count (text:gmatch "\nuniform (%w+) (u%w+)%[?(%d*)%]?;")]
+                         [ty name count])]
+          (assert.are.equal 12 (length declared))
+          (each [_ [ty name count] (ipairs declared)]
+            (let [v (. u name)]
+              (assert.truthy v name)
+              (assert.are.equal ty v.type name)
+              (when (not= count "") (assert.are.equal (tonumber count) v.count name)))))))
+
     (it "gives every uniform the type the shader declares"
       (fn []
         (let [u (by-name (pack-scene seed {:uber? true}))]
