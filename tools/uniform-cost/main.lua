@@ -9,7 +9,7 @@
 -- llvmpipe the uniform reads cost the most, and more than their number (issue 42;
 -- why codegen's load-once reads the tape's rows from a texture).
 local function source(n, how)
-  local t = {"uniform vec4 uT[300];", "vec4 effect(vec4 c, Image tex, vec2 tc, vec2 sc) {",
+  local t = {string.format("uniform vec4 uT[%d];", math.max(n, 1)), "vec4 effect(vec4 c, Image tex, vec2 tc, vec2 sc) {",
              "    vec4 s = vec4(0.0);"}
   for i = 0, n - 1 do
     local v = how == "uniform" and string.format("uT[%d]", i)
@@ -27,7 +27,9 @@ function love.load(args)
   for _, a in ipairs(args) do if tonumber(a) then counts[#counts + 1] = tonumber(a) end end
   if #counts == 0 then counts = {70, 140, 280} end
   local canvas = love.graphics.newCanvas(16, 16)
-  local image = love.graphics.newImage(love.image.newImageData(300, 1, "rgba32f"))
+  -- A texel for each value of the largest count (texelFetch past the edge reads 0).
+  local width = math.max(unpack(counts))
+  local image = love.graphics.newImage(love.image.newImageData(width, 1, "rgba32f"))
   for _, how in ipairs({"uniform", "texel", "derived", "constant"}) do
     for _, n in ipairs(counts) do
       local times = {}
@@ -38,7 +40,7 @@ function love.load(args)
         love.graphics.push("all")
         love.graphics.setCanvas(canvas)
         love.graphics.setShader(shader)
-        love.graphics.draw(image, 0, 0, 0, 16 / 300, 16)
+        love.graphics.draw(image, 0, 0, 0, 16 / width, 16)
         love.graphics.pop()
         canvas:newImageData(0, 1, 0, 0, 1, 1)
         times[round] = 1000 * (love.timer.getTime() - t0)
