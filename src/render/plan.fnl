@@ -7,6 +7,7 @@
 (local each-pair pairs)
 
 (local lower (require :src.sdf.lower))
+(local interpret (require :src.sdf.interpret))
 (local bounds (require :src.render.bounds))
 (local field (require :src.render.field))
 (local emit-glsl (require :src.sdf.emit-glsl))
@@ -322,8 +323,21 @@ and `make bench`'s before (test/bench/report.fnl).
                   each loops over all its members, its rows in uniform arrays
   :tape-texture?  false: with :load-once?, the tape's rows in a uniform array, not a
                   texture (codegen's load-once)
+  :interpret?     true: the scene drawn by the tape interpreter (src/sdf/interpret.fnl):
+                  one shader for every scene of its instruction set, so a structural
+                  edit needs no compile; no bounds, field, grids or folding. nil and
+                  why when the tape cannot run on it
+  :instructions   with :interpret?, an instruction set the shader holds besides the
+                  scene's (interpret.instruction-set)
 Returns the plan, or nil and a message when the scene does not fit the budget."
-  (let [options (or ?options {})
+  (let [options (if (and ?options ?options.interpret?)
+                    ;; The interpreter draws every object as it is: no field, no
+                    ;; grids, no bounds (their counts would be in the shader), no
+                    ;; values folded into code.
+                    (doto (collect [k v (each-pair ?options)] k v)
+                      (tset :field? false) (tset :bounds? false) (tset :grids? false)
+                      (tset :fold? false))
+                    (or ?options {}))
         view (or options.view :shaded)
         uber? (not (not options.uber?))
         reflections (or options.reflections scene.render.reflections)
@@ -343,6 +357,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                                          :field members
                                          :far-field? options.far-field?
                                          :fold? options.fold?})
+        (interpreted interpret-error) (when (and tape options.interpret?)
+                                        (interpret.tape-of tape options.instructions))
         shaded? (= view :shaded)
         plan {: view : uber?
               :load-once? (not= false options.load-once?)
@@ -353,7 +369,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
               ;; The objects in shader order (the numbers gObject gives them): the
               ;; tape's (the field's and an instance group's members in turn).
               :objects (objects-in-order scene tape)
-              :tape (or tape (lower.lower []))
+              :tape (or interpreted tape (lower.lower []))
               :mirrors? (and tape tape.mirrors?
                              (or options.probe? (and shaded? (or uber? (> reflections 0)))))
               :shadows? (and shaded? (or uber? scene.render.shadows))
@@ -433,6 +449,7 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
         ;; tree): no field then, and the uniform budget decides.
         (scene->plan scene (doto (collect [k v (each-pair options)] k v) (tset :field? false)))
         lower-error (values nil (.. scene.file ": " lower-error))
+        interpret-error (values nil (.. scene.file ": the interpreter cannot draw it: " interpret-error))
         (> (written-nodes plan.tape) max-written-nodes)
         (values nil (nodes-message scene plan.tape))
         (> plan.uniform-vectors limit) (values nil (budget-message scene plan limit))

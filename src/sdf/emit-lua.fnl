@@ -215,6 +215,10 @@
       (each [_ v (ipairs row)] (table.insert out v)))
     out))
 
+(fn banks [tape]
+  "The flat rows the evaluators of `tape` read: {:tape :instances}."
+  {:tape (flat-rows tape.rows) :instances (flat-rows tape.instances.rows)})
+
 (fn object-evaluators [tape o what banks into ?group]
   "Add object `o`'s CPU evaluator of `what` (see compile) to the list `into`: its code
 compiled from Lua source, or false for a gradient its leaf has not; with `?group` (an
@@ -253,7 +257,7 @@ as an estimate of the distance: see :estimates? in lower.fnl; the :distance list
 itself without them] :source text}. Each object's come from its drawing strategy
 (src/sdf/strategies/)."
   (let [sources []
-        banks {:tape (flat-rows tape.rows) :instances (flat-rows tape.instances.rows)}
+        banks (banks tape)
         out {:distance [] :material [] :gradient [] :estimate []}]
     (each [_ what (ipairs (if tape.estimates? [:distance :material :gradient :estimate]
                               [:distance :material :gradient]))]
@@ -266,4 +270,4 @@ itself without them] :source text}. Each object's come from its drawing strategy
     (when (not tape.estimates?) (set out.estimate out.distance))
     out))
 
-{: compile : object-evaluators}
+{: compile : object-evaluators : banks}

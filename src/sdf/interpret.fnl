@@ -1,0 +1,510 @@
+;; The tape interpreter (issue 42): a scene's tape (src/sdf/lower.fnl) as a program
+;; that one shader reads from a texture, so a structural edit needs no compile when
+;; the shader already holds the functions the new tape calls. The third evaluator of
+;; the tape, beside the GLSL (emit-glsl.fnl) and Lua (emit-lua.fnl) emitters; the
+;; shader's side is written here too, from the same descriptors, so the two agree on
+;; every opcode.
+;;
+;; The instruction set of a tape is what its instructions call: each (role, GLSL
+;; function) pair, and the exact gradients of its leaves; sorted, it numbers the
+;; opcodes, and it is the interpreter shader's key: a tape whose set the shader holds
+;; runs on it as it is. A few opcodes are the tape's own (far field, Lipschitz
+;; division, material, the end of a repetition).
+;;
+;; The program is a list of floats, four to a texel of an rgba32f image (uProgram,
+;; `width` texels to a line):
+;;   texel 0           (objects, 0, 0, 0)
+;;   texel 1 + 2k      object k's (pc, end, guard pc or -1, gradient pc or -1)
+;;   texel 2 + 2k      its (distance register, material register, guard's box
+;;                     register, gradient end)
+;;   then the code: an instruction is two texels, (op, r0, r1, r2) and (r3, r4, r5,
+;;   texels it takes), then its arguments two to a texel: (index, index read as an
+;;   estimate, ...), each an index of a float in the tape's rows (row * 4 + offset),
+;;   which the shader reads from the rows' own texture (uTape) as the player sends it.
+;; Registers are numbered per kind (distances, points, materials), reused once dead;
+;; point register 0 is the point the object is evaluated at.
+
+(local primitives (require :src.sdf.primitives))
+
+(local sizes primitives.glsl-types)
+
+;; Registers of each kind an object may use; nesting of repetitions.
+(local max-registers 32)
+(local max-depth 4)
+;; Texels to a line of the program's image.
+(local width 1024)
+;; The tape's own opcodes; a function's are `first-function` on, in set order.
+(local ops {:far 1 :divide 2 :material 3 :cells-end 4})
+(local first-function 8)
+
+(fn each-instruction [code f]
+  (each [_ ins (ipairs code)]
+    (f ins)
+    (when ins.body (each-instruction ins.body f))))
+
+(fn gradient-name [desc]
+  (pick-values 1 (desc.glsl-name:gsub "^sd" "grad")))
+
+(fn entry-key [role desc]
+  (.. role ":" (if (= role :gradient) (gradient-name desc) desc.glsl-name)))
+
+(fn refusal [tape]
+  "Why `tape` cannot run on the interpreter, or nil when it can: every object a tree
+(not an instance group, nor a field), no blend, no repetition drawing its neighbours
+by their boxes, no folded value."
+  (var why nil)
+  (each [_ o (ipairs tape.objects) &until why]
+    (if (not= o.strategy :tree) (set why (.. "objects drawn as " (tostring o.strategy)
+                                              " (many of one structure, or a field)"))
+        (each-instruction o.code
+                          (fn [ins]
+                            (when (not why)
+                              (set why (if (= ins.op :blend) "a union of many children of one structure"
+                                           ins.near? "a repetition whose neighbours are drawn by their boxes"
+                                           ins.literal "values folded into the code"
+                                           (accumulate [lit nil _ a (ipairs (or ins.args [])) &until lit]
+                                             (when a.literal "values folded into the code")))))))))
+  why)
+
+(fn instruction-set [tape ?base]
+  "The instruction set `tape` calls (see the top of this file): a sorted list of
+{:key :role :desc}, with those of `?base` (another set) added."
+  (let [seen {}
+        out []]
+    (fn add [role desc args]
+      (let [key (entry-key role desc)]
+        (when (not (. seen key))
+          (tset seen key true)
+          ;; The arguments' types and estimates (a post step takes its operation's).
+          (table.insert out {: key : role : desc
+                             :args (icollect [_ a (ipairs args)] {:type a.type :estimate? a.estimate?})}))))
+    (each [_ e (ipairs (or ?base []))] (add e.role e.desc e.args))
+    (each [_ o (ipairs tape.objects)]
+      (each-instruction (or o.code [])
+                        (fn [ins]
+                          (when (and ins.desc (not= ins.op :blend)) (add ins.op ins.desc ins.args))))
+      (let [prim (?. o :leaf :prim)]
+        (when (and prim prim.desc.gradient-glsl) (add :gradient prim.desc prim.args))))
+    (doto out (table.sort (fn [a b] (< a.key b.key))))))
+
+(fn set-key [iset]
+  "A text naming instruction set `set`: equal texts, the same shader."
+  (table.concat (icollect [_ e (ipairs iset)] e.key) " "))
+
+(fn opcodes [iset]
+  (collect [i e (ipairs iset)] e.key (+ first-function i -1)))
+
+;;; Registers: a linear scan over the object's code, repetitions' bodies in line.
+
+(fn register-kind [name]
+  ;; d distances (b a guard's box distance, a distance too), p points, m materials.
+  (case (name:sub 1 1) "b" "d" k k))
+
+(fn instruction-registers [ins]
+  ;; What `ins` reads and writes, by register name.
+  (case ins.op
+    :prim {:reads [ins.pin] :writes [ins.dout]}
+    :point {:reads [ins.pin] :writes [ins.pout]}
+    :post {:reads [ins.din ins.pin] :writes [ins.dout]}
+    :distance {:reads [ins.din ins.pin] :writes [ins.dout]}
+    :combine {:reads [ins.da ins.db ins.ma ins.mb] :writes [ins.dout ins.mout]}
+    :far {:reads [ins.din ins.bin] :writes [ins.dout]}
+    :divide {:reads [ins.din] :writes [ins.dout]}
+    :material {:reads [] :writes [ins.mout]}
+    :gradient {:reads [ins.pin] :writes []}
+    _ {:reads [] :writes []}))
+
+(fn linear [code]
+  ;; The code as steps in order: each instruction, a repetition as its start (which
+  ;; writes its cell's point and its outputs), its body, then its end (which reads the
+  ;; body's values). Also each repetition's span of steps.
+  (let [steps []
+        loops []]
+    (fn walk [code]
+      (each [_ ins (ipairs code)]
+        (if (= ins.op :cells)
+            (let [start (+ 1 (length steps))]
+              (table.insert steps {: ins :reads [ins.pin] :writes [ins.cell-p ins.dout ins.mout]})
+              (walk ins.body)
+              (table.insert steps {:end ins :reads [ins.body-d ins.body-m ins.pin ins.cell-p]
+                                   :writes [ins.dout ins.mout]})
+              (table.insert loops {: start :finish (length steps)}))
+            (table.insert steps (doto (instruction-registers ins) (tset :ins ins))))))
+    (walk code)
+    (values steps loops)))
+
+(fn allocate [code outputs]
+  "Register numbers for the names `code` uses (name -> number, and the count of each
+kind), live ranges from a linear scan: a name read inside a repetition but written
+before it lives to the repetition's end (the body runs again); `outputs` (names)
+live to the end. nil and a message when a kind needs more than max-registers."
+  (let [(steps loops) (linear code)
+        first {}
+        last {}]
+    (each [i s (ipairs steps)]
+      (each [_ n (ipairs s.writes)] (when (and n (not (. first n))) (tset first n i)))
+      (each [_ n (ipairs s.reads)]
+        (when n
+          (var at i)
+          (each [_ l (ipairs loops)]
+            (when (and (<= l.start i l.finish) (< (or (. first n) 0) l.start))
+              (set at (math.max at l.finish))))
+          (tset last n (math.max at (or (. last n) 0))))))
+    (each [_ n (ipairs outputs)] (when n (tset last n math.huge)))
+    (let [numbers {:p0 0}
+          free {:d [] :p [] :m []}
+          counts {:d 0 :p 1 :m 0}
+          live []]
+      (var err nil)
+      (each [i s (ipairs steps) &until err]
+        ;; Free what died before this step (not what dies at it: a step reads its
+        ;; inputs after writing a first output).
+        (for [k (length live) 1 -1]
+          (let [n (. live k)]
+            (when (< (or (. last n) (. first n)) i)
+              (table.insert (. free (register-kind n)) (. numbers n))
+              (table.remove live k))))
+        (each [_ n (ipairs s.writes)]
+          (when (and n (not (. numbers n)))
+            (let [kind (register-kind n)
+                  pool (. free kind)]
+              (table.sort pool (fn [a b] (> a b)))
+              (tset numbers n (or (table.remove pool)
+                                  (let [c (. counts kind)]
+                                    (tset counts kind (+ c 1))
+                                    c)))
+              (when (>= (. numbers n) max-registers)
+                (set err (.. "an object needs more than " max-registers " registers of a kind")))
+              (table.insert live n)))))
+      (if err (values nil err) (values numbers counts)))))
+
+;;; The program.
+
+(fn visible-args [args]
+  ;; The arguments a call passes, each {:main ref :alt ref}: an argument marked
+  ;; :estimate? is the one before it as read where the field is an estimate.
+  (let [out []]
+    (each [i a (ipairs args)]
+      (when (not a.estimate?)
+        (let [nxt (. args (+ i 1))]
+          (table.insert out {:main a :alt (if (?. nxt :estimate?) nxt a)}))))
+    out))
+
+(fn index-of [ref] (+ (* 4 ref.row) ref.offset))
+
+(fn program [tape iset]
+  "The program of `tape` for instruction set `set` (see the top of this file):
+{:data [floats] :width :height :objects n :registers {:d :p :m}}, or nil and a
+message (the tape calls what the set lacks, an object needs too many registers)."
+  (let [codes (opcodes iset)
+        header []
+        body []
+        base (+ 1 (* 2 (length tape.objects)))
+        most {:d 1 :p 1 :m 1}]
+    (var err (refusal tape))
+    (fn texel [out a b c d] (each [_ v (ipairs [a b c d])] (table.insert out v)))
+    (fn pc [] (+ base (/ (length body) 4)))
+    (fn emit [numbers ins]
+      (let [r #(if $ (. numbers $) -1)
+            op (if (. ops ins.op) (. ops ins.op)
+                   (. codes (entry-key ins.op ins.desc)))
+            args (visible-args (or ins.args []))
+            texels (+ 2 (math.ceil (/ (length args) 2)))]
+        (if (not op) (set err (.. "the interpreter lacks " (entry-key ins.op ins.desc)))
+            (do
+              (case ins.op
+                :prim (do (texel body op (r ins.dout) (r ins.pin) -1) (texel body -1 -1 -1 texels))
+                :point (do (texel body op (r ins.pout) (r ins.pin) -1) (texel body -1 -1 -1 texels))
+                :post (do (texel body op (r ins.dout) (r ins.din) (r ins.pin)) (texel body -1 -1 -1 texels))
+                :distance (do (texel body op (r ins.dout) (r ins.din) (r ins.pin))
+                              (texel body -1 -1 -1 texels))
+                :combine (do (texel body op (r ins.dout) (r ins.da) (r ins.db))
+                             (texel body (r ins.mout) (r ins.ma) (r ins.mb) texels))
+                :far (do (texel body op (r ins.dout) (r ins.din) (r ins.bin)) (texel body -1 -1 -1 2))
+                :divide (do (texel body op (r ins.dout) (r ins.din) -1) (texel body (/ 1 ins.k) -1 -1 2))
+                :material (do (texel body op (r ins.mout) -1 -1) (texel body -1 -1 -1 3)
+                              (texel body (* 4 ins.row) (* 4 ins.row) -1 -1))
+                :gradient (do (texel body op -1 (r ins.pin) -1) (texel body -1 -1 -1 texels))
+                :cells (do (texel body op (r ins.dout) (r ins.pin) (r ins.cell-p))
+                           (texel body (r ins.mout) -1 ins.count texels)))
+              (when (not= ins.op :material)
+                (for [i 1 (length args) 2]
+                  (let [a (. args i) b (. args (+ i 1))]
+                    (texel body (index-of a.main) (index-of a.alt)
+                           (if b (index-of b.main) -1) (if b (index-of b.alt) -1)))))))))
+    (fn emit-code [numbers code]
+      (each [_ ins (ipairs code) &until err]
+        (if (= ins.op :cells)
+            (let [start (pc)]
+              (emit numbers ins)
+              (emit-code numbers ins.body)
+              (texel body ops.cells-end (. numbers ins.body-d) (. numbers ins.dout) start)
+              (texel body (. numbers ins.body-m) (. numbers ins.mout) -1 2))
+            (emit numbers ins))))
+    (fn note-counts [counts]
+      (each [k n (pairs counts)] (tset most k (math.max (. most k) n))))
+    (texel header (length tape.objects) 0 0 0)
+    (local table-rows [])
+    (each [_ o (ipairs tape.objects) &until err]
+      (let [outputs [o.dout o.mout (?. o :guard :bout)]
+            (numbers counts) (allocate o.code outputs)]
+        (if (not numbers) (set err counts)
+            (let [start (pc)]
+              (var guard-pc -1)
+              (note-counts counts)
+              (each [i ins (ipairs o.code) &until err]
+                (when (and o.guard (= i (+ o.guard.head 1))) (set guard-pc (pc)))
+                (if (= ins.op :cells) (emit-code numbers [ins]) (emit numbers ins)))
+              (when (and o.guard (= guard-pc -1)) (set guard-pc (pc)))
+              (let [finish (pc)
+                    prim (?. o :leaf :prim)
+                    gradient (when (and prim prim.desc.gradient-glsl (not err))
+                               (let [code (doto (icollect [_ p (ipairs o.leaf.points)] p)
+                                            (table.insert {:op :gradient :desc prim.desc
+                                                           :args prim.args :pin prim.pin}))
+                                     (gnumbers gcounts) (allocate code [])]
+                                 (if (not gnumbers) (do (set err gcounts) nil)
+                                     (let [at (pc)]
+                                       (note-counts gcounts)
+                                       (each [_ ins (ipairs code)] (emit gnumbers ins))
+                                       [at (pc)]))))]
+                (table.insert table-rows [[start finish guard-pc (if gradient (. gradient 1) -1)]
+                                          [(. numbers o.dout) (or (. numbers o.mout) -1)
+                                           (if o.guard (. numbers o.guard.bout) -1)
+                                           (if gradient (. gradient 2) -1)]]))))))
+    (if err (values nil err)
+        (let [data header]
+          (each [_ [a b] (ipairs table-rows)]
+            (texel data (unpack a))
+            (texel data (unpack b)))
+          (each [_ v (ipairs body)] (table.insert data v))
+          (let [texels (/ (length data) 4)]
+            {: data :width (math.min texels width) :height (math.ceil (/ texels width))
+             :objects (length tape.objects) :registers most})))))
+
+;;; The shader's side.
+
+(local arg-readers {:float "tapeFloat" :vec2 "tapeVec2" :vec3 "tapeVec3" :vec4 "tapeVec4"})
+
+(fn call-args [args]
+  ;; The argument reads of a call taking `args`, by the instruction at pc.
+  (let [out []]
+    (var k 0)
+    (each [_ a (ipairs args)]
+      (when (not a.estimate?)
+        (table.insert out (.. (. arg-readers a.type) "(pc, " k ")"))
+        (set k (+ k 1))))
+    out))
+
+(fn case-lines [e code material-mix]
+  ;; The switch's case for set entry `e`, opcode `code`.
+  (let [desc e.desc
+        args (call-args e.args)
+        with #(table.concat [$1 (unpack args)] ", ")
+        body (case e.role
+               :prim [(.. "gTapeD[r0] = " desc.glsl-name "(" (with "gTapeP[r1]") ");")]
+               :point [(.. "gTapeP[r0] = " desc.glsl-name "(" (with "gTapeP[r1]") ");")]
+               :post [(.. "gTapeD[r0] = " desc.glsl-name "(" (with "gTapeD[r1], gTapeP[r2]") ");")]
+               :distance [(.. "gTapeD[r0] = " desc.glsl-name "(" (with "gTapeD[r1], gTapeP[r2]") ");")]
+               :combine (let [w (.. "w" (desc.glsl-name:sub 3))]
+                          [(.. "float a = gTapeD[r1], b = gTapeD[r2];")
+                           (.. "gTapeD[r0] = " desc.glsl-name "(" (with "a, b") ");")
+                           (.. "if (materials) gTapeM[int(t.x)] = " material-mix "(gTapeM[int(t.z)], "
+                               "gTapeM[int(t.y)], " w "(" (with "a, b") "));")])
+               :gradient [(.. "gTapeGradient = " (gradient-name desc) "(" (with "gTapeP[r1]") ");")]
+               :cells ["if (depth == 0 || loopStart[depth - 1] != pc) {"
+                       "    loopStart[depth] = pc;"
+                       "    loopCell[depth] = 0;"
+                       "    depth++;"
+                       "    gTapeD[r0] = 10000000000.0;"
+                       "    if (materials) gTapeM[int(t.x)] = kTapeNoMaterial;"
+                       "}"
+                       (.. "gTapeP[r2] = " desc.glsl-name "(" (with "gTapeP[r1]")
+                           ", loopCell[depth - 1]);")])]
+    (doto (icollect [_ l (ipairs body)] (.. "    " l))
+      (table.insert 1 (.. "case " code ": {  // " e.key))
+      (table.insert "    break;")
+      (table.insert "}"))))
+
+(fn shader-lines [iset material-size]
+  "The interpreter's GLSL for instruction set `set` (the functions it calls already
+written before it): the registers, the program's
+reader, tapeRun (one object's code between two pcs), and the queries tapeMin,
+tapeColor and tapeGradient. Materials are vec4, or mat2x4 with `material-size` 8.
+Every program of the set runs on it: max-registers of each kind."
+  (let [modern? (= material-size 8)
+        mt (if modern? "mat2x4" "vec4")
+        zero (if modern? "mat2x4(0.0)" "vec4(0.0)")
+        mix (if modern? "mixMaterial" "mix")
+        codes (opcodes iset)
+        cases []]
+    (each [_ e (ipairs iset)]
+      (each [_ l (ipairs (case-lines e (. codes e.key) mix))] (table.insert cases l)))
+    [(.. "// The tape interpreter (src/sdf/interpret.fnl): " (length iset) " functions.")
+     (.. "const int kTapeWidth = " width ";")
+     (.. "const " mt " kTapeNoMaterial = " zero ";")
+     (.. "float gTapeD[" max-registers "];")
+     (.. "vec3 gTapeP[" max-registers "];")
+     (.. mt " gTapeM[" max-registers "];")
+     "vec3 gTapeGradient;"
+     ""
+     "vec4 tapeCode(int i) {"
+     "    return texelFetch(uProgram, ivec2(i % kTapeWidth, i / kTapeWidth), 0);"
+     "}"
+     ""
+     "// Argument k of the instruction at pc: an index of a float in the tape's rows."
+     "int tapeArg(int pc, int k) {"
+     "    vec4 t = tapeCode(pc + 2 + k / 2);"
+     "    vec2 a = (k % 2 == 0) ? t.xy : t.zw;"
+     "    return int(gEstimate ? a.y : a.x);"
+     "}"
+     ""
+     "vec4 tapeRowAt(int i) {"
+     "    int row = i / 4;"
+     "    return texelFetch(uTape, ivec2(row % kTapeWidth, row / kTapeWidth), 0);"
+     "}"
+     ""
+     "float tapeFloat(int pc, int k) { int i = tapeArg(pc, k); return tapeRowAt(i)[i % 4]; }"
+     "vec2 tapeVec2(int pc, int k) {"
+     "    int i = tapeArg(pc, k);"
+     "    vec4 r = tapeRowAt(i);"
+     "    int o = i % 4;"
+     "    return vec2(r[o], r[o + 1]);"
+     "}"
+     "vec3 tapeVec3(int pc, int k) {"
+     "    int i = tapeArg(pc, k);"
+     "    vec4 r = tapeRowAt(i);"
+     "    return i % 4 == 0 ? r.xyz : r.yzw;"
+     "}"
+     "vec4 tapeVec4(int pc, int k) { return tapeRowAt(tapeArg(pc, k)); }"
+     ""
+     "// Runs the code from pc to end on the registers. At guardPc (an object's guard:"
+     "// its box's distance in register box), stops when the box is no nearer than dmin:"
+     "// returns false then (the object cannot lower dmin)."
+     "bool tapeRun(int pc, int end, int guardPc, int box, float dmin, bool materials) {"
+     (.. "    int loopStart[" max-depth "];")
+     (.. "    int loopCell[" max-depth "];")
+     "    int depth = 0;"
+     "    while (pc < end) {"
+     "        if (pc == guardPc && gTapeD[box] >= dmin) return false;"
+     "        vec4 head = tapeCode(pc);"
+     "        vec4 t = tapeCode(pc + 1);"
+     "        int op = int(head.x);"
+     "        int r0 = int(head.y), r1 = int(head.z), r2 = int(head.w);"
+     "        switch (op) {"
+     (.. "        case " ops.far ": gTapeD[r0] = max(gTapeD[r1], gTapeD[r2]); break;")
+     (.. "        case " ops.divide ": gTapeD[r0] = gTapeD[r1] * t.x; break;")
+     (.. "        case " ops.material ": {")
+     "            if (materials) {"
+     "                int row = int(tapeCode(pc + 2).x);"
+     (if modern?
+         "                gTapeM[r0] = mat2x4(tapeRowAt(row), tapeRowAt(row + 4));"
+         "                gTapeM[r0] = tapeRowAt(row);")
+     "            }"
+     "            break;"
+     "        }"
+     (.. "        case " ops.cells-end ": {")
+     "            // r0: the body's distance, r1: the repetition's; t.x, t.y: materials."
+     "            if (materials) {"
+     "                if (gTapeD[r0] < gTapeD[r1]) {"
+     "                    gTapeD[r1] = gTapeD[r0];"
+     "                    gTapeM[int(t.y)] = gTapeM[int(t.x)];"
+     "                }"
+     "            } else {"
+     "                gTapeD[r1] = min(gTapeD[r1], gTapeD[r0]);"
+     "            }"
+     "            int cell = loopCell[depth - 1] + 1;"
+     "            if (cell < int(tapeCode(r2 + 1).z)) {"
+     "                loopCell[depth - 1] = cell;"
+     "                pc = r2;"
+     "                continue;"
+     "            }"
+     "            depth--;"
+     "            break;"
+     "        }"
+     (icollect [_ l (ipairs cases)] (.. "        " l))
+     "        }"
+     "        pc += int(t.w);"
+     "    }"
+     "    return !(guardPc == end && gTapeD[box] >= dmin);"
+     "}"
+     ""
+     "// d lowered by the program's objects at p: only object `only` (all when -1),"
+     "// none of them object `skip`."
+     "float tapeMin(vec3 p, float d, int only, int skip) {"
+     "    int count = int(tapeCode(0).x);"
+     "    for (int k = 0; k < count; k++) {"
+     "        if (k == skip || (only >= 0 && k != only)) continue;"
+     "        vec4 span = tapeCode(1 + 2 * k);"
+     "        vec4 regs = tapeCode(2 + 2 * k);"
+     "        gTapeP[0] = p;"
+     "        if (tapeRun(int(span.x), int(span.y), int(span.z), int(regs.z), d, false)) {"
+     "            d = min(d, gTapeD[int(regs.x)]);"
+     "        }"
+     "    }"
+     "    return d;"
+     "}"
+     ""
+     "// The nearest object below d at p (its number in object, -1 when none is) and"
+     "// its material."
+     (.. "float tapeColor(vec3 p, float d, out " mt " material, out int object) {")
+     "    int count = int(tapeCode(0).x);"
+     "    object = -1;"
+     "    material = kTapeNoMaterial;"
+     "    for (int k = 0; k < count; k++) {"
+     "        vec4 span = tapeCode(1 + 2 * k);"
+     "        vec4 regs = tapeCode(2 + 2 * k);"
+     "        gTapeP[0] = p;"
+     "        if (tapeRun(int(span.x), int(span.y), int(span.z), int(regs.z), d, true)) {"
+     "            float dk = gTapeD[int(regs.x)];"
+     "            if (dk < d) {"
+     "                d = dk;"
+     "                object = k;"
+     "                material = gTapeM[int(regs.y)];"
+     "            }"
+     "        }"
+     "    }"
+     "    return d;"
+     "}"
+     ""
+     "// Whether object k has its exact gradient in closed form; that gradient at p."
+     "bool tapeExact(int k) { return tapeCode(1 + 2 * k).w >= 0.0; }"
+     "vec3 tapeGradient(vec3 p, int k) {"
+     "    vec4 span = tapeCode(1 + 2 * k);"
+     "    vec4 regs = tapeCode(2 + 2 * k);"
+     "    gTapeP[0] = p;"
+     "    gTapeGradient = vec3(0.0, 0.0, 1.0);"
+     "    tapeRun(int(span.w), int(regs.w), -1, 0, 0.0, false);"
+     "    return gTapeGradient;"
+     "}"]))
+
+(fn tape-of [tape ?base]
+  "`tape` drawn by the interpreter: a tape of one object, of strategy :interpreted
+(src/sdf/strategies/interpreted.fnl), that holds `tape` (:tape), its instruction set
+with `?base`'s (:set) and its program (:program); no rows of its own (the
+interpreter reads `tape`'s from their texture). Its key names the set alone: any
+tape of that set draws with the same shader. nil and why when `tape` cannot run on
+the interpreter."
+  (case (refusal tape)
+    why (values nil why)
+    _ (let [iset (instruction-set tape ?base)
+            (prog err) (program tape iset)
+            used {}]
+        (if (not prog) (values nil err)
+            {:objects [{:strategy :interpreted :id 0 :tape tape :set iset :program prog
+                        :info {:kind :interpreted :path "interpreted" :implicit? true
+                               :children []}}]
+             :count tape.count :rows [] :relative [] :inner [] :derived [] :blends []
+             :instances {:rows [] :relative [] :inner [] :derived []}
+             :mirrors? tape.mirrors? :estimates? tape.estimates?
+             :material-size tape.material-size
+             ;; The functions the set calls, each once (what emit-glsl writes).
+             :used (icollect [_ e (ipairs iset)]
+                     (when (and (not= e.role :gradient) (not (. used e.desc.glsl-name)))
+                       (tset used e.desc.glsl-name true)
+                       {:name e.desc.glsl-name :desc e.desc}))
+             :key (.. "interpreted " (set-key iset) " materials:" tape.material-size
+                      (if tape.estimates? " estimates" ""))}))))
+
+{: refusal : instruction-set : tape-of : set-key : program : shader-lines : width : max-registers
+ : gradient-name}

@@ -1,0 +1,89 @@
+;; The interpreted strategy: a whole tape run by the tape interpreter (src/sdf/
+;; interpret.fnl), one shader for every tape of its instruction set. Its one tape
+;; object stands for the tape's objects (its :tape), numbered as they are; the CPU
+;; evaluators, bounds and the reference's queries are theirs. See
+;; src/sdf/strategies.fnl for the interface.
+
+(local glsl (require :src.sdf.emit-glsl))
+(local emit-lua (require :src.sdf.emit-lua))
+(local interpret (require :src.sdf.interpret))
+(local runs (require :src.reference.distance))
+
+(fn members [o] o.tape.objects)
+
+(fn strategy [m]
+  ;; A member's own strategy (a tree's; see interpret.refusal).
+  ((. (require :src.sdf.strategies) :of) m))
+
+(fn first-of [first o]
+  ;; The first number of `o`'s objects, and the bound past its last.
+  (values first (+ first (length (members o)))))
+
+(fn selected [first o]
+  ;; A condition: gObject is one of `o`'s objects.
+  (let [(lo hi) (first-of first o)]
+    (.. "gObject >= " lo " && gObject < " hi)))
+
+(fn color-term [cx o ?first mirrors? modern?]
+  (let [mt (if modern? "mat2x4" "vec4")
+        row (if modern? "tapeMaterial[0]" "tapeMaterial")]
+    ["{  // every object, by the interpreter"
+     (glsl.indented
+      [(.. mt " tapeMaterial;")
+       "int tapeObject;"
+       (.. "float tapeD = tapeColor(" (if cx.group "pg" "p") ", d, tapeMaterial, tapeObject);")
+       (.. "if (tapeObject >= 0) { d = tapeD; color = " row ".rgb;"
+           (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
+           (if modern? " gMaterial = tapeMaterial[1];" "")
+           (if ?first (.. " gObject = " ?first " + tapeObject;") "") " }")])
+     "}"]))
+
+{:name :interpreted
+ :doc "a whole tape run by the interpreter shader (no compile for a new tape of its set)"
+ :count (fn [o] (length (members o)))
+ :folds? false
+ :marched? (fn [_] true)
+ :infos (fn [o] (icollect [_ m (ipairs (members o))] m.info))
+ :describe (fn [o] (.. " (" (length o.set) " functions)"))
+ :glsl {:distance (fn [_ _] ["d = tapeMin(p, d, -1, -1);  // every object, by the interpreter"])
+        :others (fn [_ _ first] [(.. "d = tapeMin(p, d, -1, gObject - " first ");")])
+        :color color-term
+        :object (fn [_ _ first] [(.. "d = tapeMin(p, d, all ? -1 : gObject - " first ", -1);")])
+        :gradient (fn [_ o first action]
+                    (when (accumulate [any? false _ m (ipairs (members o))]
+                            (or any? (glsl.leaf-exact? m)))
+                      [(.. "if (" (selected first o) " && tapeExact(gObject - " first ")) {")
+                       (.. "    " action "tapeGradient(p, gObject - " first ");")
+                       "}"]))
+        :planes (fn [_ _] nil)
+        :exact? (fn [o] (accumulate [all? true _ m (ipairs (members o))]
+                          (and all? (glsl.leaf-exact? m))))}
+ :lua (fn [_ o what _ into]
+        (let [banks (emit-lua.banks o.tape)
+              sources (icollect [_ m (ipairs (members o))]
+                        ((. (strategy m) :lua) o.tape m what banks into))]
+          (when (> (length sources) 0) (table.concat sources "\n"))))
+ :spheres (fn [plan o at out]
+            (accumulate [at at _ m (ipairs (members o))]
+              ((. (strategy m) :spheres) plan m at out)))
+ :run (fn [_ _ run] run)
+ :reference {:min runs.each-min :color runs.each-color :near runs.each-near}
+ :uniforms (fn [plan o cam-pos]
+             ;; The tape's rows (camera-relative where they hold positions) and the
+             ;; program, each an rgba32f image.
+             (let [uniforms (require :src.render.uniforms)
+                   rows (length o.tape.rows)
+                   prog o.program]
+               [{:name "uTape" :type :texture :count rows
+                 :texture {:width (math.max 1 (math.min rows interpret.width))
+                           :height (math.max 1 (math.ceil (/ rows interpret.width)))
+                           :data (uniforms.tape-values o.tape cam-pos)}}
+                {:name "uProgram" :type :texture
+                 :texture {:width prog.width :height prog.height :data prog.data}}]))
+ :shader {:functions (fn [plan o _ defined]
+                       (let [gradients (icollect [_ e (ipairs o.set)]
+                                         (when (= e.role :gradient) {:leaf {:prim {:desc e.desc}}}))]
+                         [[(glsl.declare "sampler2D" "uTape" nil "the tape's rows, a texel each")
+                           (glsl.declare "sampler2D" "uProgram" nil "the interpreter's program")]
+                          (glsl.gradient-functions {:objects gradients} #true defined)
+                          (interpret.shader-lines o.set plan.tape.material-size)]))}}
