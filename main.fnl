@@ -18,7 +18,7 @@
         codegen (require :src.render.codegen)
         (scene err) (frame.load-scene o.scene)]
     (if (not scene) (fail! err)
-        (let [(plan perr) (frame.plan-for scene {:view o.view})]
+        (let [(plan perr) (frame.plan-for scene ((. (require :src.app.bench) :plan-options) o))]
           (if (not plan) (fail! perr)
               (case (codegen.shader plan (or o.target :love))
                 text (do (io.write text) (love.event.quit 0))

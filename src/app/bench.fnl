@@ -64,11 +64,18 @@ through gpu.compile-plan)."
   (status.done!)
   (each [_ v (ipairs variants)] (set v.median (median v.times))))
 
+(fn plan-options [o]
+  "The plan options of `love . --bench` and `--print-shader` for command-line options
+`o`: its view; with --interpret, the tape interpreter holding every kind
+(interpret.catalogue), as the player's."
+  {:view o.view :interpret? o.interpret?
+   :instructions (when o.interpret? ((. (require :src.sdf.interpret) :catalogue)))})
+
 (fn run-scene [o]
   "`love . --bench SCENE`: median milliseconds per frame of one scene."
   (let [size (or o.size [1920 1080])]
     (case (make-variant {:label o.scene :scene-path o.scene :size size
-                         :plan-options {:view o.view}})
+                         :plan-options (plan-options o)})
       (nil err) (values nil err)
       v (let [(_ version _ device) (love.graphics.getRendererInfo)]
           (print (.. "renderer: " device " (OpenGL " version ")"))
@@ -82,4 +89,4 @@ through gpu.compile-plan)."
                                 (if v.plan.load-once? "read once per pixel" "read where used")))
           true))))
 
-{: make-variant : run-rounds! : run-scene}
+{: make-variant : run-rounds! : run-scene : plan-options}

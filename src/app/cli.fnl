@@ -24,8 +24,8 @@
                       [--adaptive E]         a mesh of the scene's finite objects (N cells along
                                              the longest side, 128), or of all of them cut by a box;
                                              --adaptive: triangles merged while within E of the surface
-       love . --print-shader SCENE [--view VIEW] [--target love|core]
-       love . --bench SCENE [--size WxH] [--frames N]   median ms per frame
+       love . --print-shader SCENE [--view VIEW] [--target love|core] [--interpret]
+       love . --bench SCENE [--size WxH] [--frames N] [--interpret]   median ms per frame
        love . --probe SCENE [--gpu]          distance and material at points `x y z` read from stdin
        love . --tree SCENE                   the lowered scene tree, each node's class and bounds
        love . --kinds                        every primitive and operation, with parameters
@@ -37,7 +37,9 @@ Q (--render, --record) is one of
           where the pixel holds an edge or a second ray disagrees
   final   N x N rays (4) in every pixel: slowest, catches what the edge tests miss
 --samples N (1 to 16): N x N rays at most a pixel; --samples 1 is draft, the one-ray picture.
-Only the shaded view has the still's edge tests: other views are drafts unless Q or N says.")
+Only the shaded view has the still's edge tests: other views are drafts unless Q or N says.
+--interpret (--bench, --print-shader): the tape interpreter's shader, which draws any scene
+of its instruction set (every kind, and the scene's own forms) without a compile.")
 
 (local dev-usage
   "developers' modes (tests, benchmarks and the player's own helpers):
@@ -119,6 +121,8 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
       (values nil "--preview-check only goes with --edit-latency (and the compile helper)")
       (and o.shot (not= o.mode :play))
       (values nil "--shot only goes with playing a scene")
+      (and o.interpret? (not= o.mode :bench) (not= o.mode :print-shader))
+      (values nil "--interpret only goes with --bench or --print-shader")
       (and o.gpu? (not= o.mode :probe) (not= o.mode :mesh))
       (values nil "--gpu only goes with --probe or --mesh")
       (and o.view (not (plan.view? o.view)))
@@ -142,6 +146,7 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
 {:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:input-check|:probe|:tree|:kinds|:help
  |:help-dev|:export-shader|:record|:edit-latency|:mesh
  :scene :out :size [w h] :frames n :view v :target t :gpu? (probe or mesh on the GPU)
+ :interpret? (bench, print-shader: the tape interpreter's shader)
  :resolution n :region {:lo :hi} :adaptive e (--mesh) :quality \"draft\"|\"still\"|\"final\" :samples n
  (--render, --record; absent when not given) :time t (--render)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]
@@ -161,6 +166,7 @@ Only the shaded view has the still's edge tests: other views are drafts unless Q
             (= a "--turntable") (set o.turntable? true)
             (= a "--sync-compile") (set o.sync-compile? true)
             (= a "--preview-check") (set o.preview-check? true)
+            (= a "--interpret") (set o.interpret? true)
             (or (= a "--help") (= a "-h"))
             (set o.mode :help)
             (= a "--help-dev")

@@ -25,6 +25,8 @@
 ;; point register 0 is the point the object is evaluated at.
 
 (local primitives (require :src.sdf.primitives))
+(local operations (require :src.sdf.operations))
+(local large-sphere (require :src.sdf.large-sphere))
 
 (local sizes primitives.glsl-types)
 
@@ -86,6 +88,25 @@ by their boxes, no folded value."
       (let [prim (?. o :leaf :prim)]
         (when (and prim prim.desc.gradient-glsl) (add :gradient prim.desc prim.args))))
     (doto out (table.sort (fn [a b] (< a.key b.key))))))
+
+(fn catalogue []
+  "An instruction set of every primitive (and its exact gradient), every operation in
+its general form and its kernels (:variants), with their post steps: what the
+player's interpreter holds besides a scene's own, so that an edit to another kind
+needs no compile. Forms an operation takes for particular values (a repetition along
+some axes, a rotation that permutes them, a plane facing up) are not in it: a tape
+that calls one adds it (instruction-set)."
+  (let [out []]
+    (each [_ d (ipairs (doto (icollect [_ d (ipairs primitives.all)] d)
+                         (table.insert large-sphere.descriptor)))]
+      (table.insert out {:role :prim :desc d :args d.args})
+      (when d.gradient-glsl (table.insert out {:role :gradient :desc d :args d.args})))
+    (each [_ d (ipairs operations.all)]
+      (each [_ form (ipairs (if d.variants (icollect [_ v (pairs d.variants)] v) [d]))]
+        (let [args (if form.args form.args d.args)]
+          (table.insert out {:role d.role :desc form : args})
+          (when d.post (table.insert out {:role :post :desc d.post : args})))))
+    (instruction-set {:objects []} out)))
 
 (fn set-key [iset]
   "A text naming instruction set `set`: equal texts, the same shader."
@@ -494,7 +515,9 @@ the interpreter."
             {:objects [{:strategy :interpreted :id 0 :tape tape :set iset :program prog
                         :info {:kind :interpreted :path "interpreted" :implicit? true
                                :children []}}]
-             :count tape.count :rows [] :relative [] :inner [] :derived [] :blends []
+             ;; No object is written in the code (:count, codegen's comment): the text
+             ;; depends on the set alone.
+             :count 0 :rows [] :relative [] :inner [] :derived [] :blends []
              :instances {:rows [] :relative [] :inner [] :derived []}
              :mirrors? tape.mirrors? :estimates? tape.estimates?
              :material-size tape.material-size
@@ -506,5 +529,5 @@ the interpreter."
              :key (.. "interpreted " (set-key iset) " materials:" tape.material-size
                       (if tape.estimates? " estimates" ""))}))))
 
-{: refusal : instruction-set : tape-of : set-key : program : shader-lines : width : max-registers
+{: refusal : instruction-set : catalogue : tape-of : set-key : program : shader-lines : width : max-registers
  : gradient-name}

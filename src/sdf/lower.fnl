@@ -423,16 +423,20 @@ reads only its children's distances."
             {: dout :mout child.mout :children [child.info]})
           :combine
           (or (blend! st code node desc form args-values pin material)
+              ;; Each child from the second on is folded in right after its code: its
+              ;; distance and material die there (the interpreter's registers, see
+              ;; src/sdf/interpret.fnl, stay few however many children there are).
               (let [args (alloc-args! st desc-args args-values)
-                    lowered (icollect [_ c (ipairs node.children)]
-                              (lower-node st code c pin material))]
+                    lowered [(lower-node st code (. node.children 1) pin material)]]
                 (use! st form.glsl-name form)
                 (var (d m) (values (. lowered 1 :dout) (. lowered 1 :mout)))
-                (for [i 2 (length lowered)]
-                  (let [dout (fresh! st "d") mout (fresh! st "m")]
+                (for [i 2 (length node.children)]
+                  (let [child (lower-node st code (. node.children i) pin material)
+                        dout (fresh! st "d") mout (fresh! st "m")]
+                    (table.insert lowered child)
                     (table.insert code {:op :combine :desc form : args
-                                        :da d :db (. lowered i :dout)
-                                        :ma m :mb (. lowered i :mout) : dout : mout})
+                                        :da d :db child.dout
+                                        :ma m :mb child.mout : dout : mout})
                     (set (d m) (values dout mout))))
                 {:dout d :mout m :children (icollect [_ c (ipairs lowered)] c.info)}))
           :cells

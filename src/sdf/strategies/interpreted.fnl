@@ -15,14 +15,10 @@
   ;; A member's own strategy (a tree's; see interpret.refusal).
   ((. (require :src.sdf.strategies) :of) m))
 
-(fn first-of [first o]
-  ;; The first number of `o`'s objects, and the bound past its last.
-  (values first (+ first (length (members o)))))
-
-(fn selected [first o]
-  ;; A condition: gObject is one of `o`'s objects.
-  (let [(lo hi) (first-of first o)]
-    (.. "gObject >= " lo " && gObject < " hi)))
+(fn selected [first]
+  ;; A condition: gObject is one of the program's objects (their count is the
+  ;; program's, not in the text: any tape of the set draws with the same shader).
+  (.. "gObject >= " first " && gObject < " first " + int(tapeCode(0).x)"))
 
 (fn color-term [cx o ?first mirrors? modern?]
   (let [mt (if modern? "mat2x4" "vec4")
@@ -50,9 +46,11 @@
         :color color-term
         :object (fn [_ _ first] [(.. "d = tapeMin(p, d, all ? -1 : gObject - " first ", -1);")])
         :gradient (fn [_ o first action]
-                    (when (accumulate [any? false _ m (ipairs (members o))]
-                            (or any? (glsl.leaf-exact? m)))
-                      [(.. "if (" (selected first o) " && tapeExact(gObject - " first ")) {")
+                    ;; Written as the set says (the text is the set's alone); the
+                    ;; program says which objects have one (tapeExact).
+                    (when (accumulate [any? false _ e (ipairs o.set)]
+                            (or any? (= e.role :gradient)))
+                      [(.. "if (" (selected first) " && tapeExact(gObject - " first ")) {")
                        (.. "    " action "tapeGradient(p, gObject - " first ");")
                        "}"]))
         :planes (fn [_ _] nil)

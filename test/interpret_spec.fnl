@@ -1,0 +1,164 @@
+;; The tape interpreter (issue 42, src/sdf/interpret.fnl): a scene's tape as a program
+;; in a texture, run by one shader for every tape of its instruction set. Its pictures
+;; are held to the compiled shader's GPU-against-CPU budgets (test/support/budgets.fnl),
+;; through OSMesa, and a fault put into one of its opcodes must break them.
+
+(local headless (require :src.backend.headless))
+(local load (require :src.scene.load))
+(local plan-mod (require :src.render.plan))
+(local codegen (require :src.render.codegen))
+(local uniforms (require :src.render.uniforms))
+(local camera (require :src.render.camera))
+(local interpret (require :src.sdf.interpret))
+(local {: budget-for} (require :test.support.budgets))
+(local {: prepare : gpu-render : compare-image : passes? : describe-failures : report-line}
+  (require :test.support.gpu-check))
+
+;; Small pictures: llvmpipe runs every case of the interpreter's switch for every
+;; instruction (it masks branches; it does not skip them), so a picture costs seconds.
+;; 96x84 still gives the 512 sampled pixels the budgets count.
+(local size [96 84])
+
+(fn plan-of [text ?options]
+  ;; The plan (or nil and why) and the scene of scene file text `text`.
+  (let [(s err) (load.load-string text "interpret.fnl")
+        _ (assert s err)
+        (p perr) (plan-mod.scene->plan s ?options)]
+    (values p perr s)))
+
+(local two-objects
+  "{:objects [{:kind :smooth-union :radius 0.3 :pos [0 0 1] :color [1 0.5 0.2]
+               :children [{:kind :sphere :radius 1} {:kind :box :size [1.5 1.5 1.5] :pos [0.8 0 0]}]}
+              {:kind :plane :normal [0 0 1] :height 0}]}")
+
+;; A sphere added to the blend, and the ground's kind as a second object.
+(local three-objects
+  "{:objects [{:kind :smooth-union :radius 0.3 :pos [0 0 1] :color [1 0.5 0.2]
+               :children [{:kind :sphere :radius 1} {:kind :box :size [1.5 1.5 1.5] :pos [0.8 0 0]}
+                          {:kind :sphere :radius 0.4 :pos [0 0 1.2] :color [1 0 1]}]}
+              {:kind :plane :normal [0 0 1] :height 0}
+              {:kind :plane :normal [0 0 1] :height -2 :color [0 0 1]}]}")
+
+;; Then a box, a torus and a twist of a capsule, each an object of its own: kinds
+;; the scene did not call, but the catalogue holds.
+(local other-kinds
+  "{:objects [{:kind :smooth-union :radius 0.3 :pos [0 0 1] :color [1 0.5 0.2]
+               :children [{:kind :sphere :radius 1} {:kind :box :size [1.5 1.5 1.5] :pos [0.8 0 0]}]}
+              {:kind :plane :normal [0 0 1] :height 0}
+              {:kind :box :size [0.5 0.5 0.5] :pos [2 2 0.25] :color [0 0 1]}
+              {:kind :torus :radius 0.5 :thickness 0.1 :pos [-2 0 0.5]}
+              {:kind :twist :angle 90 :pos [0 -2 0.5] :children [{:kind :capsule :a [0 0 0] :b [0 0 1] :radius 0.2}]}]}")
+
+(describe "the tape interpreter"
+  (fn []
+    (it "draws a structural edit with the same shader: objects added of kinds the set holds"
+      (fn []
+        (let [a (plan-of two-objects {:interpret? true})
+              b (plan-of three-objects {:interpret? true})
+              ;; The compiled shaders differ, as they must.
+              ca (plan-of two-objects)
+              cb (plan-of three-objects)]
+          (assert.are_not.equal ca.key cb.key)
+          (assert.are.equal a.key b.key)
+          (assert.are.equal (codegen.shader a :core) (codegen.shader b :core))
+          ;; Other kinds, with the catalogue as the player holds it.
+          (let [all (interpret.catalogue)
+                (c cerr) (plan-of other-kinds {:interpret? true :instructions all})]
+            (assert.is_truthy c cerr)
+            (assert.are.equal (. (plan-of two-objects {:interpret? true :instructions all}) :key) c.key))
+          ;; What differs travels as the program and the rows: textures.
+          (let [s (select 3 (plan-of three-objects))
+                us (uniforms.pack s b (camera.from-scene s) 8 8)
+                by-name (collect [_ u (ipairs us)] u.name u)]
+            (assert.are.equal :texture (. by-name "uProgram" :type))
+            (assert.are.equal :texture (. by-name "uTape" :type))
+            (assert.are.equal 3 (. by-name "uProgram" :texture :data 1))))))
+
+    (it "numbers its opcodes by a sorted set: the same set, the same text"
+      (fn []
+        (let [all (interpret.catalogue)
+              keys (icollect [_ e (ipairs all)] e.key)
+              sorted (doto (icollect [_ k (ipairs keys)] k) table.sort)]
+          (assert.are.same sorted keys)
+          ;; Every primitive and every operation is in the catalogue.
+          (each [_ k (ipairs [:prim:sdSphere :prim:sdVesica :prim:sdLargeSphere :gradient:gradBox
+                              :combine:opSmoothUnionExp :cells:opRepeat :cells:opPolar
+                              :post:opTwistDistance :distance:opDisplace :point:opRotate])]
+            (assert.is_truthy (accumulate [found? false _ key (ipairs keys)] (or found? (= key k)))
+                              (.. k " missing")))
+          ;; A scene's forms beyond it extend it: a plane facing up is the ground form.
+          (let [p (plan-of two-objects {:interpret? true :instructions all})]
+            (assert.truthy (p.key:find "prim:sdGround" 1 true))
+            (assert.truthy (p.key:find "prim:sdVesica" 1 true))))))
+
+    (it "refuses what it cannot run, saying what"
+      (fn []
+        ;; colonnade's columns: repetitions whose neighbour cells are drawn by boxes.
+        (let [(s) (load.load-file "scenes/colonnade.fnl")
+              (p err) (plan-mod.scene->plan s {:interpret? true})]
+          (assert.is_nil p)
+          (assert.truthy (err:find "colonnade.fnl: the interpreter cannot draw it: a repetition whose neighbours" 1 true)
+                         err))
+        (let [spheres (.. "{:objects ["
+                          (table.concat (fcollect [i 1 12]
+                                          (.. "{:kind :sphere :radius 0.3 :pos [" i " 0 0]}")) " ")
+                          "]}")
+              (p err) (plan-of spheres {:interpret? true})]
+          (assert.is_nil p)
+          (assert.truthy (err:find "objects drawn as group" 1 true) err))))
+
+    (it "keeps an object's registers few: dead ones are reused"
+      (fn []
+        ;; Twelve children of one smooth union: each is folded in right after its
+        ;; code (lower.fnl), so its distance dies there.
+        (let [children (table.concat (fcollect [i 1 12]
+                                       (.. "{:kind :sphere :radius 0.3 :pos [" (* 0.5 i) " 0 0]}")) " ")
+              p (plan-of (.. "{:objects [{:kind :smooth-union :radius 0.2 :children [" children "]}]}")
+                         {:interpret? true})
+              prog (. p.tape.objects 1 :program)]
+          (assert.is_true (<= prog.registers.d 4) (.. "distance registers " prog.registers.d))
+          (assert.is_true (<= prog.registers.p 3) (.. "point registers " prog.registers.p)))))
+
+    (let [(ctx why) (headless.context)]
+      (if (not ctx)
+          (it "draws scenes within the compiled shader's budgets"
+            (fn [] (pending (.. "OSMesa is not available: " (tostring why)))))
+          (let [prepared-for (fn [file view]
+                               (prepare file {: view :size size :plan {:interpret? true}}))
+                check (fn [prepared label ?source]
+                        (let [budget (budget-for prepared.scene.name (or prepared.plan.view :shaded))
+                              st (compare-image prepared (gpu-render ctx prepared {:source ?source}))]
+                          (print (report-line (.. "interpreted " label) st))
+                          (values (passes? st budget) st budget)))]
+            ;; Each scene calls different parts: seed (no object normals), organic
+            ;; (smooth blends, displacement, Lipschitz division, far fields, guards),
+            ;; twisted-tower (a twist's post step), flower (repetitions: the loop),
+            ;; lighting (the modern model's two-row materials), custom (Fennel
+            ;; functions, estimates), flat in the normals view (exact gradients).
+            (each [_ [file view] (ipairs [["scenes/seed.fnl" :shaded] ["scenes/organic.fnl" :shaded]
+                                          ["scenes/twisted-tower.fnl" :shaded]
+                                          ["scenes/flower.fnl" :shaded] ["scenes/lighting.fnl" :shaded]
+                                          ["scenes/custom.fnl" :shaded] ["scenes/flat.fnl" :normals]])]
+              (it (.. "draws " file " (" view ") within the compiled shader's budget")
+                (fn []
+                  (let [prepared (prepared-for file view)
+                        (ok? st budget) (check prepared (.. file " " view))]
+                    (assert.is_true (= 1 (length prepared.plan.tape.objects)))
+                    (assert.is_true ok? (describe-failures (.. "interpreted " file) st budget true))))))
+
+            (it "fails when an opcode is broken: the far field, a repetition's loop, a material"
+              (fn []
+                (each [_ [file pattern replacement]
+                       (ipairs [;; The far field as a min: the box's distance wins far away.
+                                ["scenes/organic.fnl" "gTapeD%[r0%] = max%(gTapeD%[r1%], gTapeD%[r2%]%)"
+                                 "gTapeD[r0] = min(gTapeD[r1], gTapeD[r2])"]
+                                ;; A repetition's cells each one off.
+                                ["scenes/flower.fnl" ", loopCell%[depth %- 1%]%);"
+                                 ", loopCell[depth - 1] + 1);"]
+                                ;; A material read one row off.
+                                ["scenes/lighting.fnl" "mat2x4%(tapeRowAt%(row%), tapeRowAt%(row %+ 4%)%)"
+                                 "mat2x4(tapeRowAt(row + 4), tapeRowAt(row))"]])]
+                  (let [prepared (prepared-for file :shaded)
+                        (broken n) (: (codegen.shader prepared.plan :core) :gsub pattern replacement)]
+                    (assert.is_true (>= n 1))
+                    (assert.is_false (check prepared (.. file " broken") #broken)))))))))))
