@@ -49,6 +49,12 @@ of its instruction set (every kind, and the scene's own forms) without a compile
        love . --edit-latency SCENE [--sync-compile]   the player's delay in showing an edit
        love . --edit-latency SCENE --preview-check   a structural edit whose shader never comes:
                                              its CPU preview must show the new scene, alone
+       love . --edit-latency SCENE --interpret-check   a structural edit drawn by the tape interpreter
+                                             (its shader built first, the helper then held): the new
+                                             scene at once, the reference's picture, then its own shader
+       love . [SCENE] --interpret-edits      draw structural edits with the tape interpreter while the
+                                             helper compiles (the default on a GPU, not on llvmpipe;
+                                             also with --edit-latency)
        love . --warm-shader FILE.glsl        compile a shader and draw it once (the player's helper;
                                              conf.lua runs it before anything else)
        love . --warm-server DIR PID          the player's compile helper, serving DIR until PID ends
@@ -123,6 +129,10 @@ of its instruction set (every kind, and the scene's own forms) without a compile
       (values nil "--shot only goes with playing a scene")
       (and o.interpret? (not= o.mode :bench) (not= o.mode :print-shader))
       (values nil "--interpret only goes with --bench or --print-shader")
+      (and o.interpret-check? (or o.sync-compile? o.preview-check? (not= o.mode :edit-latency)))
+      (values nil "--interpret-check only goes with --edit-latency (and the compile helper)")
+      (and o.interpret-edits? (or o.sync-compile? (and (not= o.mode :play) (not= o.mode :edit-latency))))
+      (values nil "--interpret-edits only goes with playing a scene or --edit-latency (and the compile helper)")
       (and o.gpu? (not= o.mode :probe) (not= o.mode :mesh))
       (values nil "--gpu only goes with --probe or --mesh")
       (and o.view (not (plan.view? o.view)))
@@ -167,6 +177,8 @@ of its instruction set (every kind, and the scene's own forms) without a compile
             (= a "--sync-compile") (set o.sync-compile? true)
             (= a "--preview-check") (set o.preview-check? true)
             (= a "--interpret") (set o.interpret? true)
+            (= a "--interpret-edits") (set o.interpret-edits? true)
+            (= a "--interpret-check") (set o.interpret-check? true)
             (or (= a "--help") (= a "-h"))
             (set o.mode :help)
             (= a "--help-dev")

@@ -224,6 +224,110 @@ holds (or there is no helper to hold)."
                                                         (* 1000 (- state.previewed.first.at start))))
                                  true)))))))))
 
+(fn byte-differences [a b]
+  ;; Of two RGBA byte strings of one size: the largest channel difference, and how
+  ;; many pixels differ by more than 2 (of 255) in a channel.
+  (var (most over) (values 0 0))
+  (for [i 1 (length a) 4]
+    (var pixel 0)
+    (for [k 0 2]
+      (set pixel (math.max pixel (math.abs (- (a:byte (+ i k)) (b:byte (+ i k)))))))
+    (set most (math.max most pixel))
+    (when (> pixel 2) (set over (+ over 1))))
+  (values most over))
+
+(fn interpret-check [path text report]
+  "A structural edit drawn by the tape interpreter (play.fnl's interpret-edits?): once
+the interpreter's shader is built, the helper is held (its jobs never finish) and a
+ball is added ahead of the camera. The new scene must be on screen within the frame
+after the load, drawn by the interpreter, with no frame of the last scene after its
+first; its picture must be the CPU reference's picture of the new scene (the
+interpreter's plan; 1 pixel in 50 may differ by more than 2/255, a grazing ray or
+shadow flipped) and not the last scene's. Then the helper is let go: the scene's own
+shader must replace the interpreter's. `report` gets a line; true when all holds."
+  (let [state play.state
+        limit (or (tonumber (os.getenv "EDIT_LATENCY_LIMIT")) 600)
+        frames []
+        ;; The first whole picture of the new scene (a low-resolution one: the
+        ;; interpreter's full resolution would take minutes on llvmpipe): its bytes.
+        captured {}
+        wait (fn [] (coroutine.yield)
+               (table.insert frames {:scene (?. state.drawn :scene) :key (?. state.drawn :plan :key)
+                                     :at (love.timer.getTime)})
+               (when (and captured.scene (not captured.bytes) (play.coarse?)
+                          (= (?. state.drawn :scene) captured.scene))
+                 (let [canvas state.picture.canvas
+                       data (canvas:newImageData)]
+                   (set (captured.w captured.h) (canvas:getDimensions))
+                   (set captured.bytes (data:getString))
+                   (data:release))))
+        until-true (fn [ok?]
+                     (let [stop (+ (love.timer.getTime) limit)]
+                       (while (and (not (ok?)) (< (love.timer.getTime) stop)) (wait))
+                       (ok?)))
+        fail (fn [why] (report (.. "interpret check: failed: " why)) false)
+        held []]
+    (if (not (?. state.warm :enabled?))
+        (do (report "interpret check: no compile helper here") true)
+        (not (until-true #(play.interpreter-ready state.scene state.reflections)))
+        (fail (.. "the interpreter's shader was not built within " limit " s"))
+        (do
+          (for [_ 1 3] (wait))
+          ;; Every job a helper is given from now on waits until let go.
+          (set state.warm.start! (fn [lane key _ _]
+                                   (let [job {: key :check #(when job.done? :done)}]
+                                     (table.insert held job)
+                                     (set lane.running job))
+                                   true))
+          (let [old state.scene
+                start (love.timer.getTime)
+                first (+ (length frames) 1)]
+            (write! path (with-ball-ahead text state.cam))
+            (play.poll-file! (+ (filestat.now) 0.05))
+            (play.poll-file! (+ (filestat.now) 0.3))
+            (let [new state.scene
+                  iplan (play.current-plan)]
+              (if (= new old) (fail "the edit was not loaded at once")
+                  (not state.pending) (fail "the edit's shader did not wait for a helper")
+                  (not= state.interpreting state.pending.key)
+                  (fail "the new scene is not drawn by the interpreter")
+                  (not (do (set captured.scene new) (until-true #captured.bytes)))
+                  (fail "no whole picture of the new scene")
+                  (let [shown (icollect [i f (ipairs frames)] (when (>= i first) f))
+                        first-new (accumulate [at nil i f (ipairs shown) &until at]
+                                    (when (= f.scene new) i))
+                        mixed (accumulate [at nil i f (ipairs shown) &until at]
+                                (when (and (> i first-new) (not= f.scene new)) i))
+                        {: w : h : bytes} captured
+                        options {:view state.view :reflections state.reflections}
+                        expected (reference-picture new {:options {:view state.view
+                                                                   :reflections state.reflections
+                                                                   :interpret? true
+                                                                   :instructions (. iplan.tape.objects 1 :set)}
+                                                         :cam state.cam}
+                                                    w h)
+                        (most over) (byte-differences bytes expected)
+                        (_ over-old) (byte-differences bytes (reference-picture old {: options :cam state.cam}
+                                                                                w h))]
+                    (if mixed (fail (string.format "frame %d after the new scene's first showed the last scene" mixed))
+                        (not= (. shown first-new :key) iplan.key)
+                        (fail "the new scene's first frame was not the interpreter's")
+                        (> (* 50 over) (* w h))
+                        (fail (string.format "%d of %d pixels differ from the reference's picture of the new scene by more than 2/255 (at most %d/255)"
+                                             over (* w h) most))
+                        (<= over-old over)
+                        (fail "the picture is as near the last scene's as the new one's")
+                        (let [ms (* 1000 (- (. shown first-new :at) start))]
+                          ;; Let the helper go: the scene's own shader comes next.
+                          (each [_ job (ipairs held)] (set job.done? true))
+                          (if (not (until-true #(and (= nil state.interpreting)
+                                                     (= (?. state.drawn :plan :key)
+                                                        (?. (play.current-plan) :key)))))
+                              (fail "the scene's own shader did not replace the interpreter's")
+                              (do (report (string.format "interpret check: ok: the new scene drawn by the interpreter %.0f ms after the edit (%dx%d, %d of %d pixels over 2/255 against the reference, at most %d/255), then by its own shader"
+                                                         ms w h over (* w h) most))
+                                  true))))))))))))
+
 (fn run [o]
   "Play a copy of `o.scene`, edit it and print the latencies; quits 0, or 1 when the
 scene cannot be read."
@@ -239,10 +343,13 @@ scene cannot be read."
                           _ [640 360])]
               (love.window.setMode w h))
             (set play.state.quiet? true)
-            (play.start! {:scene path :frames 0 :warm? (not o.sync-compile?)})
+            (play.start! {:scene path :frames 0 :warm? (not o.sync-compile?)
+                          :interpret-edits? (or o.interpret-edits? o.interpret-check?)})
             (scripted.run-per-frame!
               (if o.preview-check?
                   #(preview-check path text print)
+                  o.interpret-check?
+                  #(interpret-check path text print)
                   #(script path text
                        (fn [label ms longest compiles compile-ms cancelled note ?preview]
                          (print (string.format "%s %s, %s: %sshown after %.0f ms, longest frame %.0f ms, the player compiled %d (%.0f ms), background jobs cancelled %d%s"

@@ -56,6 +56,11 @@
               ;; ({: id : key : cam-key : since : cam : options}), the last preview
               ;; drawn ({: id : image : w : h : at : first}) and this frame's (or nil).
               :preview nil :preview-request nil :previewed nil :shown-preview nil
+              ;; On a GPU the tape interpreter (src/sdf/interpret.fnl) draws a
+              ;; structural edit at once, while the helper compiles its shader:
+              ;; whether this player does (interpret-edits?), and the key of the
+              ;; shader awaited while it draws (interpreting).
+              :interpret-edits? false :interpreting nil
               ;; Before the first picture: the file being opened ({: path : start})
               ;; and when the opening screen was last drawn (see show-opening!).
               :opening nil :opening-shown 0
@@ -134,12 +139,35 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
   ;; plan and a preview take them.
   {:view state.view : reflections :model (when state.classic? :classic)})
 
-(fn plan-with [scene reflections ?fold? ?still?]
+(var catalogue nil)
+
+(fn plan-with [scene reflections ?fold? ?still? ?interpret?]
+  ;; With `?interpret?`, the tape interpreter's plan, holding every kind (the
+  ;; catalogue): one shader for the scene and its edits.
+  (when (and ?interpret? (not catalogue))
+    (set catalogue ((. (require :src.sdf.interpret) :catalogue))))
   (let [still (when ?still? (quality.still-options))]
     (frame.plan-for scene (doto (plan-options reflections)
                             (tset :fold? ?fold?)
                             (tset :samples (?. still :samples))
-                            (tset :adaptive? (?. still :adaptive?))))))
+                            (tset :adaptive? (?. still :adaptive?))
+                            (tset :interpret? ?interpret?)
+                            (tset :instructions (when ?interpret? catalogue))))))
+
+(fn interpreter-plan [scene reflections]
+  "The interpreter's plan of `scene`, when this player draws edits with it and the
+scene can run on it; else nil."
+  (when state.interpret-edits?
+    (pick-values 1 (plan-with scene reflections nil nil true))))
+
+(fn interpreter-ready [scene reflections]
+  "The interpreter's plan of `scene` when its shader can be drawn now (compiled here,
+or built by the helper: the player's compile is then a hit in the driver's cache);
+else nil."
+  (case (interpreter-plan scene reflections)
+    iplan (when (or (gpu.cached? state.cache iplan)
+                    (= :done (?. state.warm :settled iplan.key)))
+            iplan)))
 
 (fn warm-source [scene plan]
   ;; What the compile helper gets: the shader's text, after a line for each texture
@@ -164,6 +192,13 @@ screen yet, or when the shader is compiled already."
 ;; draw), then two sizes timed, small enough for any scene (colonnade, about 11 us a
 ;; pixel on llvmpipe, takes 30 ms for both) and apart enough to fit a line.
 (local probe-sizes [[1 1] [16 9] [64 36]])
+
+(fn warm-interpreter! [scene reflections]
+  "Have the helper build the interpreter's shader for `scene`'s plan in the background,
+unless it is built: the next structural edit is then drawn with it at once."
+  (case (interpreter-plan scene reflections)
+    iplan (when (and (?. state.warm :enabled?) (not (gpu.cached? state.cache iplan)))
+            (warm.ready? state.warm iplan.key #(warm-source scene iplan) true))))
 
 (fn probe! [scene plan]
   "Draw `plan`'s shader into small canvases, timed: the driver builds the code it runs
@@ -281,11 +316,16 @@ the helper is done, `?since` the time of the first try."
               (plan perr) (plan-with scene reflections)
               _ (when plan (show-opening! "generating and compiling the shader" true))
               wait? (and plan (compile-waits? scene plan))
+              ;; An edit whose shader the helper compiles is drawn by the tape
+              ;; interpreter meanwhile, when its shader is ready; the load stays
+              ;; pending and runs again when the helper is done.
+              interp (when (and wait? old (not fresh?)) (interpreter-ready scene reflections))
+              drawn-plan (or interp plan)
               compiles-before state.cache.compiles
-              (shader serr) (if wait? (values nil nil)
-                                plan (gpu.shader-for state.cache plan)
+              (shader serr) (if (and wait? (not interp)) (values nil nil)
+                                plan (gpu.shader-for state.cache drawn-plan)
                                 (values nil perr))]
-          (if wait?
+          (if (and wait? (not interp))
               (do (when (not= (?. state.pending :key) plan.key)
                     (say! (.. path ": compiling its shader in a helper process; "
                               (if old "a preview by the CPU reference meanwhile" "please wait"))))
@@ -309,6 +349,7 @@ the helper is done, `?since` the time of the first try."
                 (if fresh? (set state.time 0)
                     (scene-mod.animated? scene) (worker.animate scene state.time))
                 (set state.scene scene)
+                (set state.interpreting (when interp plan.key))
                 (changed!)
                 (set state.path path)
                 (set state.error nil)
@@ -318,15 +359,21 @@ the helper is done, `?since` the time of the first try."
                 ;; first picture.
                 (when (> state.cache.compiles compiles-before)
                   (show-opening! "the driver builds the shader's code at its first draw" true)
-                  (probe! scene plan))
+                  (probe! scene drawn-plan))
                 (set state.first-picture {:since (love.timer.getTime) : path})
                 (let [ms (* 1000 (- (love.timer.getTime) start))
                       compiled? (> state.cache.compiles compiles-before)]
-                  (set state.last-load {:ms ms :compiled? compiled? :helper? (not= ?since nil)})
+                  (set state.last-load {:ms ms :compiled? compiled? :helper? (not= ?since nil)
+                                        :interpreted? (not= nil interp)})
                   (say! (string.format "%s %s in %.0f ms (%s)" (if fresh? "loaded" "reloaded")
-                                       path ms (if (not compiled?) "uniforms only"
+                                       path ms (if interp "drawn by the tape interpreter while a helper compiles its shader"
+                                                   (not compiled?) "uniforms only"
                                                    ?since "shader compiled by a helper process"
                                                    "shader compiled")))
+                  (if interp
+                      ;; The helper's shader replaces the interpreter's when it is done.
+                      (set state.pending {: path : fresh? :key plan.key : start : scene : plan})
+                      (warm-interpreter! scene reflections))
                   (settle-collector!))))))))
 
 (fn load! [path fresh? ?since ?now]
@@ -470,14 +517,17 @@ past its deadline) shows its message, keeps the last values and pauses the clock
 the reflection count changed (not every frame)."
   (let [memo state.plan-memo]
     (if (and memo (= memo.scene state.scene) (= memo.view state.view)
-             (= memo.reflections state.reflections) (= memo.classic? state.classic?))
+             (= memo.reflections state.reflections) (= memo.classic? state.classic?)
+             (= memo.interpreting state.interpreting))
         (values memo.plan memo.err)
-        (let [(plan err) (plan-with state.scene state.reflections)]
+        (let [(plan err) (plan-with state.scene state.reflections nil nil
+                                    (not= nil state.interpreting))]
           ;; New values (an edit, a slider, the clock): the uniform shader draws them
           ;; at once; the folded one waits until they settle (see folded-plan).
           (set state.plan-id (+ state.plan-id 1))
           (set state.plan-memo {:scene state.scene :view state.view :classic? state.classic?
                                 :reflections state.reflections : plan : err
+                                :interpreting state.interpreting
                                 :since (love.timer.getTime) :id state.plan-id})
           (values plan err)))))
 
@@ -496,6 +546,7 @@ plan without scene trees (nothing to fold)."
   (let [memo state.plan-memo
         scene state.scene]
     (when (and plan.tape state.warm state.warm.enabled? memo (= memo.plan plan)
+               (not state.interpreting)
                (not (and (scene-mod.animated? scene) (not state.paused?)))
                (>= (- (love.timer.getTime) memo.since) fold-after))
       (when (= nil memo.folded)
@@ -865,7 +916,8 @@ live instead); nil when there is none."
     (when state.last-load
       (table.insert lines (string.format "last load: %.0f ms (%s)%s, %d so far"
                                          state.last-load.ms
-                                         (if (not state.last-load.compiled?) "uniforms only"
+                                         (if state.last-load.interpreted? "drawn by the tape interpreter"
+                                             (not state.last-load.compiled?) "uniforms only"
                                              state.last-load.helper? "shader compiled by a helper"
                                              "shader compiled")
                                          (case state.last-load.first-ms
@@ -873,8 +925,11 @@ live instead); nil when there is none."
                                            _ "")
                                          state.reloads)))
     (case (or (?. state.pending :start) state.waiting-since)
-      since (table.insert lines (string.format "compiling the new shader in a helper process (%.1f s)"
-                                               (- (love.timer.getTime) since))))
+      since (table.insert lines (string.format "compiling the new shader in a helper process (%.1f s)%s"
+                                               (- (love.timer.getTime) since)
+                                               (if state.interpreting
+                                                   "; the tape interpreter draws the new scene meanwhile"
+                                                   ""))))
     (let [now (love.timer.getTime)]
       (each [_ m (ipairs state.messages)]
         (when (< now m.until) (table.insert lines m.text))))
@@ -1046,6 +1101,8 @@ compile in the window's process would freeze it), a failed build."
     (if (or (not memo) (> (or plan.samples 1) 1) (not= plan.view :shaded)
             (not (?. state.warm :enabled?)))
         false
+        ;; None for the interpreter's picture: the helper's shader comes next.
+        state.interpreting nil
         (do
           (when (= nil memo.still)
             (let [(still) (plan-with scene state.reflections (not= nil plan.base-key) true)]
@@ -1239,6 +1296,15 @@ reached the screen."
   (prepare-despeckle!)
   (set state.warm (when options.warm? (warm.new)))
   (set state.preview (when options.warm? (preview.new)))
+  ;; The interpreter draws edits on a GPU, where a branch all pixels take alike costs
+  ;; only its own case. Not on a software renderer: llvmpipe runs every case of the
+  ;; interpreter's switch for each instruction (organic at 64x36: 4 s a frame,
+  ;; docs/benchmarks.md); there the CPU previews show an edit. --interpret-edits
+  ;; forces it (the tests).
+  (set state.interpret-edits?
+       (and (not= nil state.warm)
+            (or (= true options.interpret-edits?)
+                (not (plan-mod.software-renderer? (select 4 (love.graphics.getRendererInfo)))))))
   (set love.quit (fn [] (when state.preview (preview.stop! state.preview)) false))
   (set state.interactive-fps (or options.target-fps default-interactive-fps))
   ;; A load waits for the scene worker (up to its deadline of 5 s): escape and the
@@ -1306,4 +1372,5 @@ reached the screen."
   (set love.mousereleased mousereleased)
   (set love.joystickadded (fn [j] (when (j:isGamepad) (set state.gamepad j)))))
 
-{: start! : state : load! : poll-file! : current-plan : whole? : still-whole? : background-done?}
+{: start! : state : load! : poll-file! : current-plan : whole? : still-whole? : background-done?
+ : interpreter-ready : coarse?}
