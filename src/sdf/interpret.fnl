@@ -42,7 +42,8 @@
 (fn each-instruction [code f]
   (each [_ ins (ipairs code)]
     (f ins)
-    (when ins.body (each-instruction ins.body f))))
+    (when ins.body (each-instruction ins.body f))
+    (when ins.near? (each-instruction ins.near?.code f))))
 
 (fn gradient-name [desc]
   (pick-values 1 (desc.glsl-name:gsub "^sd" "grad")))
@@ -50,22 +51,43 @@
 (fn entry-key [role desc]
   (.. role ":" (if (= role :gradient) (gradient-name desc) desc.glsl-name)))
 
+(fn members-of [tape]
+  "The objects the program runs, in tape order (their object numbers): each tape
+object, an instance group's members one each, each {:o tape-object :shift rows}: its
+code reads rows `shift` further on in the interpreter's rows (the tape's, then the
+instance bank's)."
+  (let [out []
+        tape-rows (length tape.rows)]
+    (each [_ o (ipairs tape.objects)]
+      (if o.instances
+          (for [j 0 (- o.instances.count 1)]
+            (table.insert out {: o :shift (+ tape-rows o.instances.base (* j o.instances.stride))}))
+          (table.insert out {: o :shift 0})))
+    out))
+
+;; Objects a program may hold: each pixel's every step visits all of them.
+(local max-objects 1024)
+
 (fn refusal [tape]
   "Why `tape` cannot run on the interpreter, or nil when it can: every object a tree
-(not an instance group, nor a field), no blend, no repetition drawing its neighbours
-by their boxes, no folded value."
+or an instance group's member (not a field), at most max-objects of them, no blend
+(a union of many children of one structure), no folded value."
   (var why nil)
   (each [_ o (ipairs tape.objects) &until why]
-    (if (not= o.strategy :tree) (set why (.. "objects drawn as " (tostring o.strategy)
-                                              " (many of one structure, or a field)"))
+    (if (and (not= o.strategy :tree) (not= o.strategy :group))
+        (set why (.. "objects drawn as " (tostring o.strategy)))
+        (?. o :instances :texture?) (set why "an instance group read from a texture")
         (each-instruction o.code
                           (fn [ins]
                             (when (not why)
                               (set why (if (= ins.op :blend) "a union of many children of one structure"
-                                           ins.near? "a repetition whose neighbours are drawn by their boxes"
                                            ins.literal "values folded into the code"
                                            (accumulate [lit nil _ a (ipairs (or ins.args [])) &until lit]
                                              (when a.literal "values folded into the code")))))))))
+  (let [n (length (members-of tape))]
+    (when (and (not why) (> n max-objects))
+      (set why (string.format "%d objects (at most %d: every step of every pixel visits each)"
+                              n max-objects))))
   why)
 
 (fn instruction-set [tape ?base]
@@ -144,12 +166,21 @@ that calls one adds it (instruction-set)."
     (fn walk [code]
       (each [_ ins (ipairs code)]
         (if (= ins.op :cells)
-            (let [start (+ 1 (length steps))]
+            (let [start (+ 1 (length steps))
+                  near ins.near?]
               (table.insert steps {: ins :reads [ins.pin] :writes [ins.cell-p ins.dout ins.mout]})
               (walk ins.body)
               (table.insert steps {:end ins :reads [ins.body-d ins.body-m ins.pin ins.cell-p]
                                    :writes [ins.dout ins.mout]})
-              (table.insert loops {: start :finish (length steps)}))
+              (table.insert loops {: start :finish (length steps)})
+              ;; The neighbours drawn by their boxes: a second loop, from cell 1.
+              (when near
+                (let [start (+ 1 (length steps))]
+                  (table.insert steps {: ins :reads [ins.pin ins.dout ins.cell-p] :writes [near.p]})
+                  (walk near.code)
+                  (table.insert steps {:end ins :reads [near.bout near.p ins.cell-p ins.dout ins.pin]
+                                       :writes [ins.dout]})
+                  (table.insert loops {: start :finish (length steps)}))))
             (table.insert steps (doto (instruction-registers ins) (tset :ins ins))))))
     (walk code)
     (values steps loops)))
@@ -211,7 +242,6 @@ live to the end. nil and a message when a kind needs more than max-registers."
           (table.insert out {:main a :alt (if (?. nxt :estimate?) nxt a)}))))
     out))
 
-(fn index-of [ref] (+ (* 4 ref.row) ref.offset))
 
 (fn program [tape iset]
   "The program of `tape` for instruction set `set` (see the top of this file):
@@ -220,9 +250,14 @@ message (the tape calls what the set lacks, an object needs too many registers).
   (let [codes (opcodes iset)
         header []
         body []
-        base (+ 1 (* 2 (length tape.objects)))
-        most {:d 1 :p 1 :m 1}]
+        members (members-of tape)
+        base (+ 1 (* 2 (length members)))
+        most {:d 1 :p 1 :m 1}
+        allocated {}]
     (var err (refusal tape))
+    ;; Rows the member being emitted reads its arguments at (members-of).
+    (var shift 0)
+    (fn index-of [ref] (+ (* 4 (+ shift ref.row)) ref.offset))
     (fn texel [out a b c d] (each [_ v (ipairs [a b c d])] (table.insert out v)))
     (fn pc [] (+ base (/ (length body) 4)))
     (fn emit [numbers ins]
@@ -243,11 +278,16 @@ message (the tape calls what the set lacks, an object needs too many registers).
                              (texel body (r ins.mout) (r ins.ma) (r ins.mb) texels))
                 :far (do (texel body op (r ins.dout) (r ins.din) (r ins.bin)) (texel body -1 -1 -1 2))
                 :divide (do (texel body op (r ins.dout) (r ins.din) -1) (texel body (/ 1 ins.k) -1 -1 2))
-                :material (do (texel body op (r ins.mout) -1 -1) (texel body -1 -1 -1 3)
-                              (texel body (* 4 ins.row) (* 4 ins.row) -1 -1))
+                :material (let [at (* 4 (+ shift ins.row))]
+                            (texel body op (r ins.mout) -1 -1) (texel body -1 -1 -1 3)
+                            (texel body at at -1 -1))
                 :gradient (do (texel body op -1 (r ins.pin) -1) (texel body -1 -1 -1 texels))
-                :cells (do (texel body op (r ins.dout) (r ins.pin) (r ins.cell-p))
-                           (texel body (r ins.mout) -1 ins.count texels)))
+                ;; A loop's first cell and count; a loop from cell 1 (a near
+                ;; repetition's neighbours) keeps the value the first one left.
+                :cells (let [first (or ins.first-cell 0)
+                             count (if ins.near? (if (= first 0) 1 ins.count) ins.count)]
+                         (texel body op (r ins.dout) (r ins.pin) (r (if (= first 0) ins.cell-p ins.near?.p)))
+                         (texel body (r ins.mout) first count texels)))
               (when (not= ins.op :material)
                 (for [i 1 (length args) 2]
                   (let [a (. args i) b (. args (+ i 1))]
@@ -256,19 +296,35 @@ message (the tape calls what the set lacks, an object needs too many registers).
     (fn emit-code [numbers code]
       (each [_ ins (ipairs code) &until err]
         (if (= ins.op :cells)
-            (let [start (pc)]
+            (let [start (pc)
+                  near ins.near?]
               (emit numbers ins)
               (emit-code numbers ins.body)
               (texel body ops.cells-end (. numbers ins.body-d) (. numbers ins.dout) start)
-              (texel body (. numbers ins.body-m) (. numbers ins.mout) -1 2))
+              (texel body (. numbers ins.body-m) (. numbers ins.mout) 0 2)
+              ;; Near: each neighbour's copy by its box, but where a neighbour is the
+              ;; own cell (clamped past a limited repetition's end).
+              (when near
+                (let [start (pc)]
+                  (emit numbers (doto (collect [k v (pairs ins)] k v) (tset :first-cell 1)))
+                  (emit-code numbers near.code)
+                  (texel body ops.cells-end (. numbers near.bout) (. numbers ins.dout) start)
+                  (texel body (. numbers near.p) (. numbers ins.cell-p) 1 2))))
             (emit numbers ins))))
     (fn note-counts [counts]
       (each [k n (pairs counts)] (tset most k (math.max (. most k) n))))
-    (texel header (length tape.objects) 0 0 0)
+    (texel header (length members) 0 0 0)
     (local table-rows [])
-    (each [_ o (ipairs tape.objects) &until err]
-      (let [outputs [o.dout o.mout (?. o :guard :bout)]
-            (numbers counts) (allocate o.code outputs)]
+    (each [_ m (ipairs members) &until err]
+      (set shift m.shift)
+      (let [o m.o
+            outputs [o.dout o.mout (?. o :guard :bout)]
+            ;; A group's members share their code, and so its registers.
+            (numbers counts) (case (. allocated o)
+                               a (values (. a 1) (. a 2))
+                               _ (let [(n c) (allocate o.code outputs)]
+                                   (tset allocated o [n c])
+                                   (values n c)))]
         (if (not numbers) (set err counts)
             (let [start (pc)]
               (var guard-pc -1)
@@ -284,6 +340,7 @@ message (the tape calls what the set lacks, an object needs too many registers).
                                             (table.insert {:op :gradient :desc prim.desc
                                                            :args prim.args :pin prim.pin}))
                                      (gnumbers gcounts) (allocate code [])]
+                                 ;; (A group's members each have their own copy.)
                                  (if (not gnumbers) (do (set err gcounts) nil)
                                      (let [at (pc)]
                                        (note-counts gcounts)
@@ -301,7 +358,7 @@ message (the tape calls what the set lacks, an object needs too many registers).
           (each [_ v (ipairs body)] (table.insert data v))
           (let [texels (/ (length data) 4)]
             {: data :width (math.min texels width) :height (math.ceil (/ texels width))
-             :objects (length tape.objects) :registers most})))))
+             :objects (length members) :registers most})))))
 
 ;;; The shader's side.
 
@@ -335,10 +392,13 @@ message (the tape calls what the set lacks, an object needs too many registers).
                :gradient [(.. "gTapeGradient = " (gradient-name desc) "(" (with "gTapeP[r1]") ");")]
                :cells ["if (depth == 0 || loopStart[depth - 1] != pc) {"
                        "    loopStart[depth] = pc;"
-                       "    loopCell[depth] = 0;"
+                       "    loopCell[depth] = int(t.y);"
                        "    depth++;"
-                       "    gTapeD[r0] = 10000000000.0;"
-                       "    if (materials) gTapeM[int(t.x)] = kTapeNoMaterial;"
+                       "    // From cell 1 (a near repetition's neighbours) the value stays."
+                       "    if (t.y < 0.5) {"
+                       "        gTapeD[r0] = 10000000000.0;"
+                       "        if (materials) gTapeM[int(t.x)] = kTapeNoMaterial;"
+                       "    }"
                        "}"
                        (.. "gTapeP[r2] = " desc.glsl-name "(" (with "gTapeP[r1]")
                            ", loopCell[depth - 1]);")])]
@@ -426,7 +486,11 @@ Every program of the set runs on it: max-registers of each kind."
      "        }"
      (.. "        case " ops.cells-end ": {")
      "            // r0: the body's distance, r1: the repetition's; t.x, t.y: materials."
-     "            if (materials) {"
+     "            // With t.z 1, a neighbour's box (r0) at its cell's point (t.x), but"
+     "            // where that is the own cell's point (t.y)."
+     "            if (t.z > 0.5) {"
+     "                gTapeD[r1] = min(gTapeD[r1], gTapeP[int(t.x)] == gTapeP[int(t.y)] ? 10000000000.0 : gTapeD[r0]);"
+     "            } else if (materials) {"
      "                if (gTapeD[r0] < gTapeD[r1]) {"
      "                    gTapeD[r1] = gTapeD[r0];"
      "                    gTapeM[int(t.y)] = gTapeM[int(t.x)];"

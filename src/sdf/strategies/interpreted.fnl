@@ -36,10 +36,16 @@
 
 {:name :interpreted
  :doc "a whole tape run by the interpreter shader (no compile for a new tape of its set)"
- :count (fn [o] (length (members o)))
+ ;; Its objects are its tape's, each counted by its own strategy (a group's members
+ ;; one each).
+ :count (fn [o] (accumulate [n 0 _ m (ipairs (members o))] (+ n ((. (strategy m) :count) m))))
  :folds? false
  :marched? (fn [_] true)
- :infos (fn [o] (icollect [_ m (ipairs (members o))] m.info))
+ :infos (fn [o] (let [out []]
+                  (each [_ m (ipairs (members o))]
+                    (each [_ info (ipairs (or ((. (strategy m) :infos) m) []))]
+                      (table.insert out info)))
+                  out))
  :describe (fn [o] (.. " (" (length o.set) " functions)"))
  :glsl {:distance (fn [_ _] ["d = tapeMin(p, d, -1, -1);  // every object, by the interpreter"])
         :others (fn [_ _ first] [(.. "d = tapeMin(p, d, -1, gObject - " first ");")])
@@ -69,13 +75,17 @@
  :uniforms (fn [plan o cam-pos]
              ;; The tape's rows (camera-relative where they hold positions) and the
              ;; program, each an rgba32f image.
+             ;; The tape's rows, then the instance bank's (interpret.members-of).
              (let [uniforms (require :src.render.uniforms)
-                   rows (length o.tape.rows)
+                   data (uniforms.tape-values o.tape cam-pos)
+                   _ (each [_ v (ipairs (uniforms.tape-values o.tape.instances cam-pos))]
+                       (table.insert data v))
+                   rows (/ (length data) 4)
                    prog o.program]
                [{:name "uTape" :type :texture :count rows
                  :texture {:width (math.max 1 (math.min rows interpret.width))
                            :height (math.max 1 (math.ceil (/ rows interpret.width)))
-                           :data (uniforms.tape-values o.tape cam-pos)}}
+                           : data}}
                 {:name "uProgram" :type :texture
                  :texture {:width prog.width :height prog.height :data prog.data}}]))
  :shader {:functions (fn [plan o _ defined]
