@@ -25,6 +25,9 @@
 ;; point register 0 is the point the object is evaluated at.
 
 (local primitives (require :src.sdf.primitives))
+;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
+;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
+(local each-pair pairs)
 (local operations (require :src.sdf.operations))
 (local large-sphere (require :src.sdf.large-sphere))
 
@@ -124,7 +127,7 @@ that calls one adds it (instruction-set)."
       (table.insert out {:role :prim :desc d :args d.args})
       (when d.gradient-glsl (table.insert out {:role :gradient :desc d :args d.args})))
     (each [_ d (ipairs operations.all)]
-      (each [_ form (ipairs (if d.variants (icollect [_ v (pairs d.variants)] v) [d]))]
+      (each [_ form (ipairs (if d.variants (icollect [_ v (each-pair d.variants)] v) [d]))]
         (let [args (if form.args form.args d.args)]
           (table.insert out {:role d.role :desc form : args})
           (when d.post (table.insert out {:role :post :desc d.post : args})))))
@@ -306,13 +309,13 @@ message (the tape calls what the set lacks, an object needs too many registers).
               ;; own cell (clamped past a limited repetition's end).
               (when near
                 (let [start (pc)]
-                  (emit numbers (doto (collect [k v (pairs ins)] k v) (tset :first-cell 1)))
+                  (emit numbers (doto (collect [k v (each-pair ins)] k v) (tset :first-cell 1)))
                   (emit-code numbers near.code)
                   (texel body ops.cells-end (. numbers near.bout) (. numbers ins.dout) start)
                   (texel body (. numbers near.p) (. numbers ins.cell-p) 1 2))))
             (emit numbers ins))))
     (fn note-counts [counts]
-      (each [k n (pairs counts)] (tset most k (math.max (. most k) n))))
+      (each [k n (each-pair counts)] (tset most k (math.max (. most k) n))))
     (texel header (length members) 0 0 0)
     (local table-rows [])
     (each [_ m (ipairs members) &until err]
