@@ -103,6 +103,14 @@
           (assert.is_nil p)
           (assert.truthy (err:find "interpret.fnl: the interpreter cannot draw it: a union of many children of one structure" 1 true)
                          err))
+        ;; Five repetitions one inside another: the shader's loop stack holds four.
+        (let [nest (fn nest [n]
+                     (if (= n 0) "{:kind :sphere :radius 0.2}"
+                         (.. "{:kind :repeat :period [" (* n 3) " 0 0] :children [" (nest (- n 1)) "]}")))]
+          (assert.is_truthy (plan-of (.. "{:objects [" (nest 4) "]}") {:interpret? true}))
+          (let [(p err) (plan-of (.. "{:objects [" (nest 5) "]}") {:interpret? true})]
+            (assert.is_nil p)
+            (assert.truthy (err:find "repetitions nested more than 4 deep" 1 true) err)))
         ;; city's 10,001 objects: every step of every pixel would visit each.
         (let [(s) (load.load-file "scenes/city.fnl")
               (p err) (plan-mod.scene->plan s {:interpret? true})]

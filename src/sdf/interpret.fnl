@@ -91,6 +91,13 @@ or an instance group's member (not a field), at most max-objects of them, no ble
     (when (and (not why) (> n max-objects))
       (set why (string.format "%d objects (at most %d: every step of every pixel visits each)"
                               n max-objects))))
+  ;; Repetitions inside repetitions: the shader's loop stack holds max-depth.
+  (fn depth [code]
+    (accumulate [most 0 _ ins (ipairs code)]
+      (math.max most (if ins.body (+ 1 (depth ins.body)) 0))))
+  (each [_ o (ipairs tape.objects) &until why]
+    (when (> (depth (or o.code [])) max-depth)
+      (set why (.. "repetitions nested more than " max-depth " deep"))))
   why)
 
 (fn instruction-set [tape ?base]
@@ -596,5 +603,5 @@ the interpreter."
              :key (.. "interpreted " (set-key iset) " materials:" tape.material-size
                       (if tape.estimates? " estimates" ""))}))))
 
-{: refusal : instruction-set : catalogue : tape-of : set-key : program : shader-lines : width : max-registers
+{: refusal : instruction-set : catalogue : tape-of : max-objects : set-key : program : shader-lines : width : max-registers
  : gradient-name}
