@@ -180,6 +180,33 @@
                     (assert.is_true (= 1 (length prepared.plan.tape.objects)))
                     (assert.is_true ok? (describe-failures (.. "interpreted " file) st budget true))))))
 
+            ;; 600 spheres of one structure (an instance group) on a floor: the
+            ;; program takes 10 lines of its texture and the rows 2 (1,024 texels a
+            ;; line), each member reads its own rows. Plain diffuse spheres, no
+            ;; mirror: measured over 0, max 0.2/255; one grazing flip allowed.
+            (it "draws 600 objects, its program and rows over several lines of their textures"
+              (fn []
+                (let [path (.. (os.tmpname) ".fnl")
+                      spheres (fcollect [k 0 599]
+                                (let [i (math.floor (/ k 20)) j (% k 20)]
+                                  (string.format "{:kind :sphere :radius %.2f :pos [%.1f %.1f 0.3] :color [%.2f 0.5 %.2f]}"
+                                                 (+ 0.2 (* 0.05 (% (+ i j) 3))) (- (* i 0.8) 12) (- (* j 0.8) 8)
+                                                 (/ i 30) (/ j 20))))]
+                  (with-open [f (io.open path "w")]
+                    (f:write "{:camera {:pos [0 -22 9] :yaw 90 :pitch -20 :fov 60} :render {:reflections 0}\n"
+                             " :objects [{:kind :plane :height 0 :color [0.6 0.6 0.6]}\n"
+                             (table.concat spheres "\n") "]}\n"))
+                  (let [prepared (prepared-for path :shaded [64 36])
+                        o (. prepared.plan.tape.objects 1)
+                        st (compare-image prepared (gpu-render ctx prepared))]
+                    (os.remove path)
+                    (print (report-line "interpreted 600 spheres" st))
+                    (assert.are.equal 601 o.program.objects)
+                    (assert.is_true (> o.program.height 1))
+                    (assert.is_true (> (+ (length o.tape.rows) (length o.tape.instances.rows)) 1024))
+                    (assert.is_true (passes? st {:over 1 :max 40})
+                                    (describe-failures "600 spheres" st {:over 1 :max 40} true))))))
+
             (it "fails when an opcode is broken: the far field, a repetition's loop, a material"
               (fn []
                 (each [_ [file pattern replacement]
