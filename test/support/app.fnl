@@ -36,4 +36,20 @@ comes third."
 ;; The project's folder, where the specs run (for commands run from another one).
 (local root (with-open [p (io.popen "pwd")] (p:read :*l)))
 
-{: sh : love : root : hang-seconds}
+(fn edit-latency-check [scene flag label]
+  "Run `love . --edit-latency SCENE FLAG`, a check mode of src/app/edit-latency.fnl
+that prints one line starting with `label` (': ok' when all held), and print that
+line. Returns :ok, :pending (the driver keeps no shared cache: no compile helper) or
+:failed, then the line (or all it printed)."
+  ;; The limits only catch a hang.
+  (let [(code out) (sh (.. "SDL_VIDEODRIVER=offscreen EDIT_LATENCY_LIMIT=600 timeout 1200 love . --edit-latency "
+                           scene " " flag))
+        line (out:match (.. label ": [^\n]*"))]
+    (print (.. "\n" (or line out)))
+    (values (if (not (and (= code 0) line)) :failed
+                (line:find "no compile helper here" 1 true) :pending
+                (line:find (.. label ": ok") 1 true) :ok
+                :failed)
+            (if line (.. line (if (= code 0) "" (.. " (exit " (tostring code) ")"))) out))))
+
+{: sh : love : root : hang-seconds : edit-latency-check}
