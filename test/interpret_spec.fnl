@@ -174,6 +174,16 @@
                     (assert.is_true (= 1 (length prepared.plan.tape.objects)))
                     (assert.is_true ok? (describe-failures (.. "interpreted " file) st budget true))))))
 
+            ;; A GPU's plan reads uniforms where it uses them (plan.renderer-options);
+            ;; the interpreter's textures are the same there.
+            (it "draws in a GPU's form too (uniforms read where used)"
+              (fn []
+                (let [prepared (prepare "scenes/organic.fnl"
+                                        {:size small :plan {:interpret? true :load-once? false}})
+                      (ok? st budget) (check prepared "scenes/organic.fnl, a GPU's form")]
+                  (assert.is_false prepared.plan.load-once?)
+                  (assert.is_true ok? (describe-failures "interpreted organic, a GPU's form" st budget true)))))
+
             ;; 600 spheres of one structure (an instance group) on a floor: the
             ;; program takes 10 lines of its texture and the rows 2 (1,024 texels a
             ;; line), each member reads its own rows. Plain diffuse spheres, no
