@@ -2,30 +2,8 @@
 -- (written by tools/ab-dump.fnl, in any checkout), drawn in turn, frame by frame, in
 -- one process: the ratio of two versions of the code on a shared, noisy machine.
 -- AB_COMPARE=1 also counts the pixels that differ from the first dump's picture.
-local comps = {float=1, int=1, bool=1, vec2=2, vec3=3, vec4=4}
-local function send(shader, us)
-  for _, u in ipairs(us) do
-    if shader:hasUniform(u.name) then
-      if u.texture then
-        local t = u.texture
-        local data = love.image.newImageData(t.width, t.height, "rgba32f")
-        local ffi = require("ffi")
-        local ptr = ffi.cast("float *", data:getFFIPointer())
-        for i = 0, 4 * t.width * t.height - 1 do ptr[i] = t.data[i + 1] or 0 end
-        local img = love.graphics.newImage(data)
-        img:setFilter("nearest", "nearest")
-        shader:send(u.name, img)
-      else
-        local n = comps[u.type]
-        local vals = {}
-        if u.type == "bool" then for i, v in ipairs(u.values) do vals[i] = v ~= 0 end
-        elseif n == 1 then vals = u.values
-        else for i = 1, #u.values, n do local t = {} for j = 0, n - 1 do t[j + 1] = u.values[i + j] end vals[#vals + 1] = t end end
-        shader:send(u.name, unpack(vals))
-      end
-    end
-  end
-end
+-- (run from the project root: tools/send-uniforms.lua)
+local send = require("tools.send-uniforms")
 function love.load(args)
   local w, h, frames = tonumber(args[1]), tonumber(args[2]), tonumber(args[3])
   local vs = {}
