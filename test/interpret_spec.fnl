@@ -118,6 +118,48 @@
           (assert.truthy (err:find "city.fnl: the interpreter cannot draw it: 10001 objects (at most 1024" 1 true)
                          err))))
 
+    ;; The program run on the CPU (test/support/program.fnl: the shader's tapeRun with
+    ;; the descriptors' CPU forms) against the tape's own CPU evaluators (emit-lua),
+    ;; both in double: the encoding alone is checked, under plain LuaJIT.
+    (it "computes what the tape's CPU evaluators compute, in every scene it runs"
+      (fn []
+        (let [emit-lua (require :src.sdf.emit-lua)
+              {: runner} (require :test.support.program)
+              files (with-open [p (io.popen "ls scenes/*.fnl")] (icollect [l (p:lines)] l))]
+          (var (seed checked) (values 7 0))
+          (fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))
+          (each [_ file (ipairs files)]
+            (let [scene (assert (load.load-file file))]
+              (case (plan-mod.scene->plan scene {:interpret? true})
+                p (let [o (. p.tape.objects 1)
+                        ev (emit-lua.compile o.tape)
+                        run (runner o)]
+                    (set checked (+ checked 1))
+                    (for [_ 1 30]
+                      (let [x (* 20 (- (rnd) 0.5)) y (* 20 (- (rnd) 0.5)) z (* 8 (rnd))
+                            got (run x y z false true)
+                            estimates (run x y z true false)]
+                        (assert.are.equal (length ev.distance) (length got))
+                        (each [k r (ipairs got)]
+                          (let [at (string.format "%s object %d at %.3f %.3f %.3f" file k x y z)
+                                [_ & material] [((. ev.material k) x y z)]]
+                            (assert.are.equal ((. ev.distance k) x y z) r.d at)
+                            (assert.are.equal ((. ev.estimate k) x y z) (. estimates k :d) at)
+                            (each [j v (ipairs r.m)] (assert.are.equal (. material j) v at))
+                            (let [g (. ev.gradient k)]
+                              (if g (assert.are.same [(g x y z)] r.gradient at)
+                                  (assert.is_nil r.gradient at)))))))))))
+          (assert.are.equal 14 checked)
+          ;; A program whose first argument reads one float on is caught.
+          (let [p (plan-of two-objects {:interpret? true})
+                o (. p.tape.objects 1)
+                ev (emit-lua.compile o.tape)
+                data o.program.data
+                first-arg (+ 1 (* 4 (+ 1 (* 2 o.program.objects) 2)))]
+            (tset data first-arg (+ 1 (. data first-arg)))
+            (let [got ((runner o) 0.3 0.2 1.1)]
+              (assert.are_not.equal ((. ev.distance 1) 0.3 0.2 1.1) (. got 1 :d)))))))
+
     (it "keeps an object's registers few: dead ones are reused"
       (fn []
         ;; Twelve children of one smooth union: each is folded in right after its

@@ -603,5 +603,5 @@ the interpreter."
              :key (.. "interpreted " (set-key iset) " materials:" tape.material-size
                       (if tape.estimates? " estimates" ""))}))))
 
-{: refusal : instruction-set : catalogue : tape-of : max-objects : set-key : program : shader-lines : width : max-registers
+{: refusal : instruction-set : catalogue : tape-of : max-objects : ops : first-function : members-of : set-key : program : shader-lines : width : max-registers
  : gradient-name}
