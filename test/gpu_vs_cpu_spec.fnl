@@ -3,7 +3,7 @@
 ;; beside silhouettes, shadow edges and reflected edges.
 
 ;; The budgets, and what they were measured on: test/support/budgets.fnl (the tape
-;; interpreter's pictures are held to the same ones: test/interpret_spec.fnl).
+;; interpreter's pictures are held to the same ones: test/interpret_gpu_spec.fnl).
 (local {: budget-for} (require :test.support.budgets))
 
 (local headless (require :src.backend.headless))

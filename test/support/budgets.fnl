@@ -1,5 +1,5 @@
 ;; The GPU-against-CPU budgets of every scene in scenes/ (test/gpu_vs_cpu_spec.fnl,
-;; and the tape interpreter's pictures in test/interpret_spec.fnl).
+;; and the tape interpreter's pictures in test/interpret_gpu_spec.fnl).
 
 ;; A pixel passes when its largest channel difference is at most 2/255 (piglit's probe
 ;; tolerance for floats rounded to 8 bits). A scene passes when at most :over sampled
