@@ -79,10 +79,24 @@
                               :post:opTwistDistance :distance:opDisplace :point:opRotate])]
             (assert.is_truthy (accumulate [found? false _ key (ipairs keys)] (or found? (= key k)))
                               (.. k " missing")))
-          ;; A scene's forms beyond it extend it: a plane facing up is the ground form.
-          (let [p (plan-of two-objects {:interpret? true :instructions all})]
-            (assert.truthy (p.key:find "prim:sdGround" 1 true))
-            (assert.truthy (p.key:find "prim:sdVesica" 1 true))))))
+          ;; The interpreter's tapes take general forms (a plane, not the ground
+          ;; form of one facing up; opRepeat, not one along x): every scene holds
+          ;; nothing beyond the catalogue but its custom nodes' functions.
+          (let [key (. (plan-of two-objects {:interpret? true :instructions all}) :key)]
+            (assert.is_nil (key:find "prim:sdGround" 1 true))
+            (assert.truthy (key:find "prim:sdPlane" 1 true))
+            (assert.truthy (key:find "prim:sdVesica" 1 true)))
+          (let [files (with-open [p (io.popen "ls scenes/*.fnl")] (icollect [l (p:lines)] l))
+                held (collect [_ e (ipairs all)] e.key true)]
+            (each [_ file (ipairs files)]
+              (case (plan-mod.scene->plan (assert (load.load-file file))
+                                          {:interpret? true :instructions all})
+                p (let [iset (. p.tape.objects 1 :set)
+                        beyond (icollect [_ e (ipairs iset)]
+                                 (when (not (. held e.key)) e.key))]
+                    (if (= file "scenes/custom.fnl")
+                        (assert.is_true (> (length beyond) 0))
+                        (assert.are.same [] beyond file)))))))))
 
     (it "refuses what it cannot run, saying what"
       (fn []

@@ -356,7 +356,9 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                                         {:modern? (not= nil scene.lighting)
                                          :field members
                                          :far-field? options.far-field?
-                                         :fold? options.fold?})
+                                         :fold? options.fold?
+                                         ;; One shader for every scene: general forms.
+                                         :general-forms? options.interpret?})
         (interpreted interpret-error) (when (and tape options.interpret?)
                                         (interpret.tape-of tape options.instructions))
         shaded? (= view :shaded)

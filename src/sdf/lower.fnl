@@ -198,7 +198,9 @@ translate(rotate(scale(node)))."
 (local min-blend (. (require :src.sdf.grid) :min-members))
 
 (fn lower-primitive [st code node desc pin material]
-  (let [desc (or (and desc.variant (desc.variant node)) desc)
+  ;; A primitive's form for particular values (a plane facing up), unless the tape
+  ;; is for the interpreter (st.general?: general forms only).
+  (let [desc (or (and desc.variant (not st.general?) (desc.variant node)) desc)
         dout (fresh! st "d")
         mout (fresh! st "m")]
     (use! st desc.glsl-name desc)
@@ -283,7 +285,8 @@ first when `?centre?` (else the box is taken as centred); return the register."
 (fn child-info [st child]
   (when (= nil (. st.infos child))
     (tset st.infos child
-          (. (lower-node (doto (new-state st.modern? st.far-field? st.infos st.blends) (tset :aside? true)) [] child "p0"
+          (. (lower-node (doto (new-state st.modern? st.far-field? st.infos st.blends)
+                           (tset :aside? true) (tset :general? st.general?)) [] child "p0"
                          (if st.modern? modern-material default-material))
              :info)))
   (. st.infos child))
@@ -379,8 +382,10 @@ reads only its children's distances."
                  (and ok? (= true (?. c :symmetric i)))))))))
 
 (fn lower-operation [st code node desc pin material]
-  (let [form (operations.variant desc node (when desc.variant-reads-child?
-                                             (child-info st (. node.children 1))))
+  (let [form (if st.general?
+                 (operations.general desc node)
+                 (operations.variant desc node (when desc.variant-reads-child?
+                                                 (child-info st (. node.children 1)))))
         ;; A form packed its own way (a polar fold's lines).
         desc-args (if form.args form desc)
         _ (table.insert st.key (.. desc.kind (if node.kernel (.. "/" node.kernel) "")
@@ -874,7 +879,8 @@ own fields) the same leaf as a node, placed by :pos and coloured by :color."
 
 (fn lower-one [options infos node blends]
   ;; Object `node` lowered alone: its state (rows from 0) and its tape object.
-  (let [st (new-state options.modern? options.far-field? infos blends)
+  (let [st (doto (new-state options.modern? options.far-field? infos blends)
+             (tset :general? options.general-forms?))
         large? (and (large-sphere.large? node) (= nil node.scale))
         o (if large? (lower-large-sphere st node) (lower-object st node))]
     (set o.leaf (leaf-of o.code o.dout))
@@ -887,7 +893,8 @@ own fields) the same leaf as a node, placed by :pos and coloured by :color."
 index, and :path; see node-of) into a tape (see the top of this file), or nil and a
 message naming the node when a node cannot be lowered (a twist of an unbounded
 child), then that node and the reason alone. Option :modern? gives every material two
-rows (:material-size 8); :far-field? false leaves out far fields and guards (the
+rows (:material-size 8); :general-forms? lowers each operation and primitive to its
+general form (operations.general: the tape interpreter's); :far-field? false leaves out far fields and guards (the
 benchmark's before); :fold? true writes every value but the camera-relative rows (and
 those of `hand-in`) into the code as constants (:literal on arguments and materials),
 and into the key; an instance group's values stay in its bank. Option :field, a list

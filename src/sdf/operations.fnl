@@ -79,6 +79,14 @@ lowered info `?child` is when `d` has :variant-reads-child?). A form with its ow
       d.variant-of (or (d.variant-of o ?child) d)
       d))
 
+(fn general [d o]
+  "The form of operation `d` for node `o` that holds whatever its values: its kernel's
+(:variants), never one made for particular values (:variant-of: a repetition along
+some axes, a rotation that permutes them, a polar fold of a symmetric child). The
+tape interpreter's (one shader for every scene): the same values, so the same
+distances."
+  (if d.variants (. d.variants (or o.kernel :poly)) d))
+
 (fn lookup [kind]
   "The descriptor of operation `kind`, or nil."
   (. by-kind kind))
@@ -87,4 +95,4 @@ lowered info `?child` is when `d` has :variant-reads-child?). A form with its ow
   "The operation kinds, sorted."
   (doto (icollect [_ d (ipairs operations)] d.kind) table.sort))
 
-{:all operations : lookup : kind-names : variant}
+{:all operations : lookup : kind-names : variant : general}
