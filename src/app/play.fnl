@@ -61,6 +61,9 @@
               ;; whether this player does (interpret-edits?), and the key of the
               ;; shader awaited while it draws (interpreting).
               :interpret-edits? false :interpreting nil
+              ;; When the helper was last asked for the interpreter's shader (see
+              ;; warm-interpreter-when-idle!).
+              :interpreter-asked nil
               ;; Before the first picture: the file being opened ({: path : start})
               ;; and when the opening screen was last drawn (see show-opening!).
               :opening nil :opening-shown 0
@@ -372,10 +375,9 @@ the helper is done, `?since` the time of the first try."
                                                    (not compiled?) "uniforms only"
                                                    ?since "shader compiled by a helper process"
                                                    "shader compiled")))
-                  (if interp
-                      ;; The helper's shader replaces the interpreter's when it is done.
-                      (set state.pending {: path : fresh? :key plan.key : start : scene : plan})
-                      (warm-interpreter! scene reflections))
+                  ;; The helper's shader replaces the interpreter's when it is done.
+                  (when interp
+                    (set state.pending {: path : fresh? :key plan.key : start : scene : plan}))
                   (settle-collector!))))))))
 
 (fn load! [path fresh? ?since ?now]
@@ -840,6 +842,24 @@ helper has no job running or waiting (the folded shader asked for, when there is
              (and (not w.running) (not w.queued)
                   (not (?. w.background :running)) (not (?. w.background :queued))
                   (or (not (?. memo :plan :tape)) (not= nil memo.folded)))))))
+
+(fn warm-interpreter-when-idle! []
+  "Once the scene on screen has nothing left to do (its still drawn and the helper
+idle, or its clock runs: no still then), have the helper build the interpreter's
+shader for it, if it is not built: after the still and the folded shader, which the
+window shows, not before them."
+  ;; Asked once per load, view, model and reflection count (a value edit or the
+  ;; clock makes a new scene, not another shader).
+  (local asked (.. state.reloads " " state.view " " (tostring state.classic?) " " state.reflections))
+  (when (and state.interpret-edits? state.scene (not= state.interpreter-asked asked)
+             (not state.interpreting)
+             (or (background-done?)
+                 (let [w state.warm]
+                   (and (scene-mod.animated? state.scene) (not state.paused?)
+                        (not state.pending) w (not w.running) (not w.queued)
+                        (not (?. w.background :running)) (not (?. w.background :queued))))))
+    (set state.interpreter-asked asked)
+    (warm-interpreter! state.scene state.reflections)))
 
 (fn waiting-for? [key]
   "Whether the state to show next waits for a helper to compile shader `key`: a
@@ -1352,6 +1372,7 @@ reached the screen."
                      (frame-measured! dt)
                      (poll-file!)
                      (finish-pending!)
+                     (warm-interpreter-when-idle!)
                      (mesh-pending!)
                      (advance-time! dt)
                      (when state.cam
