@@ -1321,8 +1321,8 @@ reached the screen."
   ;; The interpreter draws edits on a GPU, where a branch all pixels take alike costs
   ;; only its own case. Not on a software renderer: llvmpipe runs every case of the
   ;; interpreter's switch for each instruction (organic at 160x90: 10.7 s a frame
-  ;; against 16 ms compiled, docs/benchmarks.md); there the CPU previews show an edit. --interpret-edits
-  ;; forces it (the tests).
+  ;; against 16 ms compiled, docs/benchmarks.md); there the CPU previews show an
+  ;; edit. --interpret-edits forces it (the tests).
   (set state.interpret-edits?
        (and (not= nil state.warm)
             (or (= true options.interpret-edits?)
