@@ -88,10 +88,10 @@
                            : data}}
                 {:name "uProgram" :type :texture
                  :texture {:width prog.width :height prog.height :data prog.data}}]))
- :shader {:functions (fn [plan o _ defined]
+ ;; The exact gradients its set holds, then the interpreter (its chunk).
+ :shader {:functions (fn [plan o fill defined]
                        (let [gradients (icollect [_ e (ipairs o.set)]
                                          (when (= e.role :gradient) {:leaf {:prim {:desc e.desc}}}))]
-                         [[(glsl.declare "sampler2D" "uTape" nil "the tape's rows, a texel each")
-                           (glsl.declare "sampler2D" "uProgram" nil "the interpreter's program")]
-                          (glsl.gradient-functions {:objects gradients} #true defined)
-                          (interpret.shader-lines o.set plan.tape.material-size)]))}}
+                         [(glsl.gradient-functions {:objects gradients} #true defined)
+                          (fill "shaders/strategies/interpreted.glsl"
+                                (interpret.shader-slots o.set plan.tape.material-size))]))}}
