@@ -249,6 +249,7 @@ written here are added to it)."
       lines)))
 
 (fn gradient-name [desc]
+  "The GLSL name of primitive `desc`'s exact gradient (sdX -> gradX)."
   (pick-values 1 (desc.glsl-name:gsub "^sd" "grad")))
 
 (fn gradient-functions [tape which ?defined]
@@ -470,7 +471,7 @@ leaf whose primitive is solid below a plane, met in closed form; see plane-block
 
 {: functions : gradient-functions : declarations : declare : new-context : reads
  : distance-terms : others-terms : color-terms : object-terms : gradient-terms : plane-terms
- : exact? : text-lines : float-literal : tape-texture-width : tape-texel
+ : exact? : text-lines : float-literal : tape-texture-width : tape-texel : gradient-name
  ;; For the strategies' terms (src/sdf/strategies/):
  : derived : emit-code : object-comment : indented : guarded-lines : object-body : open-block
  : minimum-tail : taken-open : color-tail : leaf-gradient : leaf-exact? : plane-block

@@ -31,8 +31,6 @@
 (local operations (require :src.sdf.operations))
 (local large-sphere (require :src.sdf.large-sphere))
 
-(local sizes primitives.glsl-types)
-
 ;; Registers of each kind an object may use; nesting of repetitions.
 (local max-registers 32)
 (local max-depth 4)
@@ -48,8 +46,7 @@
     (when ins.body (each-instruction ins.body f))
     (when ins.near? (each-instruction ins.near?.code f))))
 
-(fn gradient-name [desc]
-  (pick-values 1 (desc.glsl-name:gsub "^sd" "grad")))
+(local {: gradient-name} (require :src.sdf.emit-glsl))
 
 (fn entry-key [role desc]
   (.. role ":" (if (= role :gradient) (gradient-name desc) desc.glsl-name)))
@@ -473,5 +470,5 @@ the interpreter."
              :key (.. "interpreted " (set-key iset) " materials:" tape.material-size
                       (if tape.estimates? " estimates" ""))}))))
 
-{: refusal : instruction-set : catalogue : tape-of : max-objects : ops : first-function : members-of : set-key : program : shader-slots : width : max-registers
- : gradient-name}
+{: refusal : instruction-set : catalogue : tape-of : set-key : program : shader-slots
+ : members-of : max-objects : max-registers : width : ops : first-function}
