@@ -303,6 +303,7 @@ shader must replace the interpreter's. `report` gets a line; true when all holds
                         expected (reference-picture new {:options {:view state.view
                                                                    :reflections state.reflections
                                                                    :interpret? true
+                                                                   ;; The set the player's shader holds.
                                                                    :instructions (. iplan.tape.objects 1 :set)}
                                                          :cam state.cam}
                                                     w h)

@@ -20,14 +20,14 @@
   ;; program's, not in the text: any tape of the set draws with the same shader).
   (.. "gObject >= " first " && gObject < " first " + int(tapeCode(0).x)"))
 
-(fn color-term [cx o ?first mirrors? modern?]
+(fn color-term [_ _ ?first mirrors? modern?]
   (let [mt (if modern? "mat2x4" "vec4")
         row (if modern? "tapeMaterial[0]" "tapeMaterial")]
     ["{  // every object, by the interpreter"
      (glsl.indented
       [(.. mt " tapeMaterial;")
        "int tapeObject;"
-       (.. "float tapeD = tapeColor(" (if cx.group "pg" "p") ", d, tapeMaterial, tapeObject);")
+       "float tapeD = tapeColor(p, d, tapeMaterial, tapeObject);"
        (.. "if (tapeObject >= 0) { d = tapeD; color = " row ".rgb;"
            (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
            (if modern? " gMaterial = tapeMaterial[1];" "")
