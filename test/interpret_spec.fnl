@@ -58,7 +58,12 @@
           (let [all (interpret.catalogue)
                 (c cerr) (plan-of other-kinds {:interpret? true :instructions all})]
             (assert.is_truthy c cerr)
-            (assert.are.equal (. (plan-of two-objects {:interpret? true :instructions all}) :key) c.key))
+            (assert.are.equal (. (plan-of two-objects {:interpret? true :instructions all}) :key) c.key)
+            ;; Objects that all have an exact normal (a sphere, the ground), where the
+            ;; compiled shader takes normal-exact.glsl: the same shader too.
+            (let [exact "{:objects [{:kind :sphere :radius 1 :pos [0 0 1]} {:kind :plane :normal [0 0 1] :height 0}]}"]
+              (assert.is_true (. (plan-of exact) :exact-normals?))
+              (assert.are.equal c.key (. (plan-of exact {:interpret? true :instructions all}) :key))))
           ;; What differs travels as the program and the rows: textures.
           (let [s (select 3 (plan-of three-objects))
                 us (uniforms.pack s b (camera.from-scene s) 8 8)
@@ -124,6 +129,39 @@
           (assert.truthy (err:find "city.fnl: the interpreter cannot draw it: 10001 objects (at most 1024" 1 true)
                          err))))
 
+    (it "marches by the compiled form's bounds, from an image whose count is not in the text"
+      (fn []
+        (let [distance (require :src.reference.distance)
+              all (interpret.catalogue)]
+          (each [_ file (ipairs ["scenes/organic.fnl" "scenes/gallery.fnl" "scenes/lighting.fnl"])]
+            (let [s (assert (load.load-file file))
+                  ;; The compiled plan without grids or a field, which bound their
+                  ;; members as one.
+                  c (assert (plan-mod.scene->plan s {:grids? false :field? false}))
+                  p (assert (plan-mod.scene->plan s {:interpret? true :instructions all}))
+                  cam (camera.from-scene s)
+                  by-name #(collect [_ u (ipairs (uniforms.pack s $ cam 64 56))] u.name u)
+                  spheres (. (by-name c) "uBounds" :values)
+                  image (. (by-name p) "uBounds" :texture)]
+              (assert.are.same {:texture? true} p.bounds)
+              (assert.are.equal (/ (length spheres) 4) (. image.data 1) file)
+              (assert.are.same spheres (icollect [i v (ipairs image.data)] (when (> i 4) v)) file)
+              ;; The CPU reference meets the same half-spaces in closed form.
+              (assert.are.same (distance.half-spaces c) (distance.half-spaces p) file)
+              (assert.is_true (accumulate [any? false _ h (pairs (distance.half-spaces p))] (or any? h)))
+              (let [text (codegen.shader p :core)]
+                (assert.truthy (text:find "boundsCount()" 1 true))
+                (assert.truthy (text:find "tapePlanesHit(p, rd, t)" 1 true))
+                (assert.is_nil (text:find "uBounds[" 1 true)))))
+          ;; An object without a bound (an endless repetition): no bounds, as the
+          ;; compiled form; the other shader text of the view.
+          (let [endless "{:objects [{:kind :repeat :period [3 3 0] :children [{:kind :sphere :radius 0.5}]}]}"
+                bounded "{:objects [{:kind :sphere :radius 0.5}]}"
+                p (plan-of endless {:interpret? true :instructions all})]
+            (assert.is_nil (. (plan-of endless) :bounds))
+            (assert.is_nil p.bounds)
+            (assert.are_not.equal p.key (. (plan-of bounded {:interpret? true :instructions all}) :key))))))
+
     ;; The program run on the CPU (test/support/program.fnl: the shader's tapeRun with
     ;; the descriptors' CPU forms) against the tape's own CPU evaluators (emit-lua),
     ;; both in double: the encoding alone is checked, under plain LuaJIT.
@@ -132,14 +170,15 @@
         (let [emit-lua (require :src.sdf.emit-lua)
               {: runner} (require :test.support.program)
               files (with-open [p (io.popen "ls scenes/*.fnl")] (icollect [l (p:lines)] l))]
-          (var (seed checked) (values 7 0))
+          (var (seed checked half-spaces) (values 7 0 0))
           (fn rnd [] (set seed (% (+ (* seed 1103515245) 12345) 2147483648)) (/ seed 2147483648))
           (each [_ file (ipairs files)]
             (let [scene (assert (load.load-file file))]
               (case (plan-mod.scene->plan scene {:interpret? true})
                 p (let [o (. p.tape.objects 1)
                         ev (emit-lua.compile o.tape)
-                        run (runner o)]
+                        run (runner o)
+                        members (interpret.members-of o.tape)]
                     (set checked (+ checked 1))
                     (for [_ 1 30]
                       (let [x (* 20 (- (rnd) 0.5)) y (* 20 (- (rnd) 0.5)) z (* 8 (rnd))
@@ -152,16 +191,20 @@
                             (assert.are.equal ((. ev.distance k) x y z) r.d at)
                             (assert.are.equal ((. ev.estimate k) x y z) (. estimates k :d) at)
                             (each [j v (ipairs r.m)] (assert.are.equal (. material j) v at))
+                            (assert.are.equal (= true (. members k :o :half-space?)) r.half-space? at)
+                            (when r.half-space? (set half-spaces (+ half-spaces 1)))
                             (let [g (. ev.gradient k)]
                               (if g (assert.are.same [(g x y z)] r.gradient at)
                                   (assert.is_nil r.gradient at)))))))))))
           (assert.are.equal 14 checked)
+          ;; The ground planes among them, marked for tapePlanesHit.
+          (assert.is_true (> half-spaces 0))
           ;; A program whose first argument reads one float on is caught.
           (let [p (plan-of two-objects {:interpret? true})
                 o (. p.tape.objects 1)
                 ev (emit-lua.compile o.tape)
                 data o.program.data
-                first-arg (+ 1 (* 4 (+ 1 (* 2 o.program.objects) 2)))]
+                first-arg (+ 1 (* 4 (+ 1 (* 3 o.program.objects) 2)))]
             (tset data first-arg (+ 1 (. data first-arg)))
             (let [got ((runner o) 0.3 0.2 1.1)]
               (assert.are_not.equal ((. ev.distance 1) 0.3 0.2 1.1) (. got 1 :d)))))))

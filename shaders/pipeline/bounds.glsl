@@ -25,6 +25,17 @@ float planesHit(vec3 ro, vec3 rd) {
     return t;
 }
 
+// @part spheres-texture
+// The bounding spheres from an image (the interpreter's: their count is not in the
+// text): texel 0 holds the count, texels 1 to n the spheres, a line @{width} wide.
+int boundsCount() {
+    return int(texelFetch(uBounds, ivec2(0, 0), 0).x);
+}
+
+vec4 boundsSphere(int i) {
+    return texelFetch(uBounds, ivec2((i + 1) % @{width}, (i + 1) / @{width}), 0);
+}
+
 // @part span
 // Where the ray is inside some bounding sphere: the first entry and the last exit,
 // or (draw distance, 0) when it meets none. From the point of closest approach, so
@@ -38,10 +49,10 @@ vec2 boundsSpan(vec3 ro, vec3 rd) {
 
 // @part span-loop
 for (int i = 0; i < @{count}; i++) {
-    vec3 q = ro - uBounds[i].xyz;
+    vec3 q = ro - @{sphere}.xyz;
     float b = dot(q, rd);
     vec3 a = q - b * rd;
-    float disc = uBounds[i].w * uBounds[i].w - dot(a, a);
+    float disc = @{sphere}.w * @{sphere}.w - dot(a, a);
     if (disc >= 0.0) {
         float s = sqrt(disc);
         if (s - b > 0.0) {
@@ -63,8 +74,8 @@ vec2 boundsSpanGrown(vec3 ro, vec3 rd, float grow) {
 
 // @part span-grown-loop
 for (int i = 0; i < @{count}; i++) {
-    vec3 q = ro - uBounds[i].xyz;
-    float r = uBounds[i].w + grow * (length(q) + uBounds[i].w);
+    vec3 q = ro - @{sphere}.xyz;
+    float r = @{sphere}.w + grow * (length(q) + @{sphere}.w);
     float b = dot(q, rd);
     vec3 a = q - b * rd;
     float disc = r * r - dot(a, a);

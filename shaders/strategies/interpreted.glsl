@@ -100,14 +100,18 @@ bool tapeRun(int pc, int end, int guardPc, int box, float dmin, bool materials) 
     return !(guardPc == end && gTapeD[box] >= dmin);
 }
 
+// Whether object k is a half-space, met in closed form by a bounded march.
+bool tapeHalfSpace(int k) { return tapeCode(3 + 3 * k).x > 0.5; }
+
 // d lowered by the program's objects at p: only object `only` (all when -1), none of
-// them object `skip`.
-float tapeMin(vec3 p, float d, int only, int skip) {
+// them object `skip`; with `finite`, none of the half-spaces (a bounded march's
+// mapFinite).
+float tapeMin(vec3 p, float d, int only, int skip, bool finite) {
     int count = int(tapeCode(0).x);
     for (int k = 0; k < count; k++) {
-        if (k == skip || (only >= 0 && k != only)) continue;
-        vec4 span = tapeCode(1 + 2 * k);
-        vec4 regs = tapeCode(2 + 2 * k);
+        if (k == skip || (only >= 0 && k != only) || (finite && tapeHalfSpace(k))) continue;
+        vec4 span = tapeCode(1 + 3 * k);
+        vec4 regs = tapeCode(2 + 3 * k);
         gTapeP[0] = p;
         if (tapeRun(int(span.x), int(span.y), int(span.z), int(regs.z), d, false)) {
             d = min(d, gTapeD[int(regs.x)]);
@@ -123,8 +127,8 @@ float tapeColor(vec3 p, float d, out @{material-type} material, out int object) 
     object = -1;
     material = kTapeNoMaterial;
     for (int k = 0; k < count; k++) {
-        vec4 span = tapeCode(1 + 2 * k);
-        vec4 regs = tapeCode(2 + 2 * k);
+        vec4 span = tapeCode(1 + 3 * k);
+        vec4 regs = tapeCode(2 + 3 * k);
         gTapeP[0] = p;
         if (tapeRun(int(span.x), int(span.y), int(span.z), int(regs.z), d, true)) {
             float dk = gTapeD[int(regs.x)];
@@ -139,12 +143,34 @@ float tapeColor(vec3 p, float d, out @{material-type} material, out int object) 
 }
 
 // Whether object k has its exact gradient in closed form; that gradient at p.
-bool tapeExact(int k) { return tapeCode(1 + 2 * k).w >= 0.0; }
+bool tapeExact(int k) { return tapeCode(1 + 3 * k).w >= 0.0; }
 vec3 tapeGradient(vec3 p, int k) {
-    vec4 span = tapeCode(1 + 2 * k);
-    vec4 regs = tapeCode(2 + 2 * k);
+    vec4 span = tapeCode(1 + 3 * k);
+    vec4 regs = tapeCode(2 + 3 * k);
     gTapeP[0] = p;
     gTapeGradient = vec3(0.0, 0.0, 1.0);
     tapeRun(int(span.w), int(regs.w), -1, 0, 0.0, false);
     return gTapeGradient;
+}
+
+// planesHit's t lowered by the program's half-spaces along the ray ro + t rd: a
+// half-space's distance s at ro over the ray's rate v along its normal (its
+// gradient); 0 from inside it, -s / v ahead (emit-glsl.fnl's plane-block).
+float tapePlanesHit(vec3 ro, vec3 rd, float t) {
+    int count = int(tapeCode(0).x);
+    for (int k = 0; k < count; k++) {
+        if (!tapeHalfSpace(k)) continue;
+        vec4 span = tapeCode(1 + 3 * k);
+        vec4 regs = tapeCode(2 + 3 * k);
+        gTapeP[0] = ro;
+        tapeRun(int(span.x), int(span.y), -1, 0, 0.0, false);
+        float s = gTapeD[int(regs.x)];
+        float v = dot(rd, tapeGradient(ro, k));
+        if (s <= 0.0) {
+            t = 0.0;
+        } else if (v < 0.0) {
+            t = min(t, -s / v);
+        }
+    }
+    return t;
 }

@@ -38,8 +38,8 @@ Q (--render, --record) is one of
   final   N x N rays (4) in every pixel: slowest, catches what the edge tests miss
 --samples N (1 to 16): N x N rays at most a pixel; --samples 1 is draft, the one-ray picture.
 Only the shaded view has the still's edge tests: other views are drafts unless Q or N says.
---interpret (--bench, --print-shader): the tape interpreter's shader, which draws any scene
-of its instruction set (every kind, and the scene's own forms) without a compile.")
+--interpret (--render, --bench, --print-shader): the tape interpreter's shader, which draws
+any scene of its instruction set (every kind, and the scene's own forms) without a compile.")
 
 (local dev-usage
   "developers' modes (tests, benchmarks and the player's own helpers):
@@ -127,8 +127,8 @@ of its instruction set (every kind, and the scene's own forms) without a compile
       (values nil "--preview-check only goes with --edit-latency (and the compile helper)")
       (and o.shot (not= o.mode :play))
       (values nil "--shot only goes with playing a scene")
-      (and o.interpret? (not= o.mode :bench) (not= o.mode :print-shader))
-      (values nil "--interpret only goes with --bench or --print-shader")
+      (and o.interpret? (not= o.mode :bench) (not= o.mode :print-shader) (not= o.mode :render))
+      (values nil "--interpret only goes with --render, --bench or --print-shader")
       (and o.interpret-check? (or o.sync-compile? o.preview-check? (not= o.mode :edit-latency)))
       (values nil "--interpret-check only goes with --edit-latency (and the compile helper)")
       (and o.interpret-edits? (or o.sync-compile? (and (not= o.mode :play) (not= o.mode :edit-latency))))
@@ -156,7 +156,7 @@ of its instruction set (every kind, and the scene's own forms) without a compile
 {:mode :play|:render|:print-shader|:bench|:bench-report|:soak|:input-check|:probe|:tree|:kinds|:help
  |:help-dev|:export-shader|:record|:edit-latency|:mesh
  :scene :out :size [w h] :frames n :view v :target t :gpu? (probe or mesh on the GPU)
- :interpret? (bench, print-shader: the tape interpreter's shader)
+ :interpret? (render, bench, print-shader: the tape interpreter's shader)
  :resolution n :region {:lo :hi} :adaptive e (--mesh) :quality \"draft\"|\"still\"|\"final\" :samples n
  (--render, --record; absent when not given) :time t (--render)} or nil and a message (the usage text follows it)."
   (let [o {:mode :play :frames 5 :cycles 300}]

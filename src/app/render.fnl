@@ -117,9 +117,11 @@ o.samples (see quality.resolve), its functions of time at o.time seconds (0). Pr
     (case (load-at o.scene o.time)
       (nil err) (values nil err)
       scene
-      ;; One frame of values that never change: the trees' values as constants.
+      ;; One frame of values that never change: the trees' values as constants (but
+      ;; with --interpret: the tape interpreter's shader, for its own set).
       (let [rays (quality.resolve o scene)]
-        (case (frame.plan-for scene (quality.plan-options o scene {:view o.view :fold? true}))
+        (case (frame.plan-for scene (quality.plan-options o scene {:view o.view :fold? true
+                                                                   :interpret? o.interpret?}))
           (nil err) (values nil err)
           plan
           (let [[w h] (or o.size [512 448])

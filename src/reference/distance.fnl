@@ -10,7 +10,7 @@
 bounds."
   (let [out {}]
     (var j 0)
-    (each [_ o (ipairs plan.tape.objects)]
+    (each [_ o (ipairs (strategies.queried plan.tape))]
       (for [_ 1 (strategies.count o)]
         (set j (+ j 1))
         (tset out j o.half-space?)))
@@ -23,7 +23,7 @@ plan.objects) :unmarched? (not in a bounded march: a half-space or a field) :min
 strategy adds (a group's :grid, a field's :field)."
   (let [out []]
     (var j 0)
-    (each [_ o (ipairs plan.tape.objects)]
+    (each [_ o (ipairs (strategies.queried plan.tape))]
       (let [s (strategies.of o)
             n (s.count o)]
         (table.insert out (s.run plan o {:first (+ j 1) :last (+ j n)

@@ -86,6 +86,21 @@ per object."
         (each [_ v (ipairs [(. rel 1) (. rel 2) (. rel 3) grown])] (table.insert out v))))
     out))
 
+;; Texels to a line of the bounding spheres' image (a plan whose bounds have
+;; :texture?: the interpreter's).
+(local texture-width 1024)
+
+(fn texture [flat]
+  "The image of the bounding spheres in `flat` (spheres' list x y z r ...): texel 0
+holds their count, texels 1 to n the spheres (shaders/pipeline/bounds.glsl's
+spheres-texture), `texture-width` to a line."
+  (let [n (/ (length flat) 4)
+        data [n 0 0 0]
+        texels (+ n 1)]
+    (each [_ v (ipairs flat)] (table.insert data v))
+    {:width (math.min texels texture-width) :height (math.ceil (/ texels texture-width))
+     : data}))
+
 (fn span [spheres ox oy oz dx dy dz far ?grow]
   "Where the ray o + t d (d a unit vector) is inside some bounding sphere of the flat
 list `spheres`: enter and exit t, the union's first entry and last exit, or far and
@@ -111,4 +126,4 @@ o is grown by g (q + r): a soft shadow's penumbra, which widens with the distanc
             (set exit (math.max exit t1)))))))
   (values enter (math.min exit far)))
 
-{: plan-bounds : spheres : span : object-sphere : grid-sphere}
+{: plan-bounds : spheres : span : object-sphere : grid-sphere : texture : texture-width}

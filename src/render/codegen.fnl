@@ -3,6 +3,7 @@
 ;; always gives the same text.
 
 (local emit-glsl (require :src.sdf.emit-glsl))
+(local bounds (require :src.render.bounds))
 (local strategies (require :src.sdf.strategies))
 (local features (require :src.render.features))
 
@@ -15,11 +16,6 @@
   ;; Normals from the nearest object's own distance (see map-object.glsl).
   (and (not= nil plan.normals) (= plan.normals-of :object)))
 
-(fn marched? [o]
-  ;; Whether a bounded march steps by tape object `o`'s distance (mapFinite): not
-  ;; a half-space (met in closed form, planesHit) nor a field (its grid is walked).
-  ((. (strategies.of o) :marched?) o))
-
 (fn modern-materials? [plan]
   (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8))))
 
@@ -31,10 +27,12 @@
     (when plan.grids
       (table.insert lines (emit-glsl.declare "vec4" "uGrids" (* 3 (length plan.grids.list))
                                              "per grid: low corner, reach; cell, first cell; cells along each axis")))
-    (when (and plan.bounds (> plan.bounds.count 0))
-      (table.insert lines (emit-glsl.declare "vec4" "uBounds" plan.bounds.count
-                                             "bounding spheres of the finite objects (camera-relative)"
-                                             true)))
+    (if (?. plan :bounds :texture?)
+        (table.insert lines "uniform sampler2D uBounds;  // their count, then the bounding spheres of the finite objects (camera-relative)")
+        (and plan.bounds (> plan.bounds.count 0))
+        (table.insert lines (emit-glsl.declare "vec4" "uBounds" plan.bounds.count
+                                               "bounding spheres of the finite objects (camera-relative)"
+                                               true)))
     (when (object-normals? plan)
       (table.insert lines "int gObject = -1;  // the object mapColor found nearest last (-1: none)"))
     (let [modern? (modern-materials? plan)]
@@ -67,28 +65,31 @@
   ;; See plan.lighting.soft-bounded? in src/render/plan.fnl.
   (= true (?. plan :lighting :soft-bounded?)))
 
-(fn span-lines [n grown?]
+(fn span-lines [b grown?]
   ;; boundsSpan, and with `grown?` boundsSpanGrown (soft shadows): the same loop over
-  ;; the n bounding spheres, the second growing each (shaders/pipeline/bounds.glsl).
+  ;; the bounding spheres, the second growing each (shaders/pipeline/bounds.glsl):
+  ;; uBounds' n, or with :texture? as many as its first texel says (the
+  ;; interpreter's: the count is not in the text).
   (let [path "shaders/pipeline/bounds.glsl"
-        part (if grown? :span-grown :span)]
-    (fill-part path part {:spheres (if (> n 0) (fill-part path (.. part "-loop") {:count (tostring n)})
+        part (if grown? :span-grown :span)
+        loop #(fill-part path (.. part "-loop") $)]
+    (fill-part path part {:spheres (if b.texture? (loop {:count "boundsCount()" :sphere "boundsSphere(i)"})
+                                       (> b.count 0) (loop {:count (tostring b.count)
+                                                                 :sphere "uBounds[i]"})
                                        [])})))
 
 (fn bounded-lines [cx plan]
   "mapFinite, planesHit and boundsSpan: what the bounded march reads (see
 src/render/bounds.fnl and shaders/pipeline/bounds.glsl)."
-  (let [n plan.bounds.count
-        path "shaders/pipeline/bounds.glsl"
-        planes? (accumulate [any? false _ o (ipairs plan.tape.objects)] (or any? o.half-space?))]
-    [(fill-part path :map-finite {:distance-terms (emit-glsl.distance-terms cx plan.tape marched?)})
+  (let [path "shaders/pipeline/bounds.glsl"
+        planes (emit-glsl.plane-terms cx plan.tape)]
+    [(fill-part path :map-finite {:distance-terms (emit-glsl.distance-terms cx plan.tape true)})
      ""
-     (fill-part path :planes-hit {:plane-terms (if planes?
-                                                   ["vec3 p = ro;" (emit-glsl.plane-terms cx plan.tape)]
-                                                   [])})
+     (fill-part path :planes-hit {:plane-terms (if (> (length planes) 0) ["vec3 p = ro;" planes] [])})
      ""
-     (span-lines n false)
-     (if (soft-bounded? plan) ["" (span-lines n true)] [])]))
+     (if plan.bounds.texture? [(fill-part path :spheres-texture {:width (tostring bounds.texture-width)}) ""] [])
+     (span-lines plan.bounds false)
+     (if (soft-bounded? plan) ["" (span-lines plan.bounds true)] [])]))
 
 (fn color-terms [cx plan]
   [(if (modern-materials? plan) "gMirror = 0.0; gMaterial = vec4(0.5, 0.0, 0.0, 0.0);"
@@ -138,7 +139,7 @@ along the ray (see gridCellAlong in shaders/pipeline/grid.glsl)."
       (let [bounded? (not= nil plan.bounds)]
         (fill-part "shaders/pipeline/bounds.glsl" :along
                    {:name (if bounded? "mapFiniteAlong" "mapAlong")
-                    :distance-terms (emit-glsl.distance-terms cx plan.tape (when bounded? marched?) true)}))
+                    :distance-terms (emit-glsl.distance-terms cx plan.tape bounded? true)}))
       []))
 
 (fn march-map [plan]

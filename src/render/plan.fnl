@@ -325,18 +325,18 @@ and `make bench`'s before (test/bench/report.fnl).
                   texture (codegen's load-once)
   :interpret?     true: the scene drawn by the tape interpreter (src/sdf/interpret.fnl):
                   one shader for every scene of its instruction set, so a structural
-                  edit needs no compile; no bounds, field, grids or folding. nil and
-                  why when the tape cannot run on it
+                  edit needs no compile; no field, grids or folding, its bounds (when
+                  every finite object has one) from an image. nil and why when the
+                  tape cannot run on it
   :instructions   with :interpret?, an instruction set the shader holds besides the
                   scene's (interpret.instruction-set)
 Returns the plan, or nil and a message when the scene does not fit the budget."
   (let [options (if (and ?options ?options.interpret?)
                     ;; The interpreter draws every object as it is: no field, no
-                    ;; grids, no bounds (their counts would be in the shader), no
-                    ;; values folded into code.
+                    ;; grids (their counts would be in the shader), no values folded
+                    ;; into code; its bounds from an image (see below).
                     (doto (collect [k v (each-pair ?options)] k v)
-                      (tset :field? false) (tset :bounds? false) (tset :grids? false)
-                      (tset :fold? false))
+                      (tset :field? false) (tset :grids? false) (tset :fold? false))
                     (or ?options {}))
         view (or options.view :shaded)
         uber? (not (not options.uber?))
@@ -405,10 +405,12 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                                      (* 3 (length plan.grids.list))
                                      (length plan.tape.instances.rows))))
     ;; Bounds take a vector each: a scene that fits only without them goes without.
+    ;; The interpreter's come in an image with their count, which is not in its text.
     (let [b (bounds.plan-bounds plan scene options)]
-      (when (and b (<= (+ plan.uniform-vectors b.count) limit))
-        (set plan.bounds b)
-        (set plan.uniform-vectors (+ plan.uniform-vectors b.count))))
+      (if (and b options.interpret?) (set plan.bounds {:texture? true})
+          (and b (<= (+ plan.uniform-vectors b.count) limit))
+          (do (set plan.bounds b)
+              (set plan.uniform-vectors (+ plan.uniform-vectors b.count)))))
     ;; The modern lighting model (a :lighting section): which of its features the
     ;; shader holds.
     (when (and shaded? scene.lighting (not options.probe?) (not= options.model :classic))
@@ -434,7 +436,9 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
     ;; When every object has its exact normal in closed form (a field's, and the
     ;; tape's leaves whose primitive has its gradient), normals need no differences
     ;; (shaders/pipeline/normal-exact.glsl).
-    (set plan.exact-normals? (and (= plan.normals-of :object)
+    ;; (Never the interpreter's: whether every object of the program has one is not
+    ;; in its text; normal-crease.glsl's exact slot asks the program per object.)
+    (set plan.exact-normals? (and (= plan.normals-of :object) (not options.interpret?)
                                   (accumulate [all? true _ o (ipairs plan.tape.objects)]
                                     (and all? (emit-glsl.exact? o)))))
     ;; Folded: the settings and lighting values as constants too (what no view

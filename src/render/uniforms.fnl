@@ -168,10 +168,14 @@ marked :view? true; the others are the scene's settings (see fixed)."
                                        :height (math.ceil (/ rows emit-glsl.tape-texture-width))
                                        :data vals}}
                             {: name :type :vec4 :values vals :count rows :view? true})))))
-    (when (and plan.bounds (> plan.bounds.count 0))
-      (table.insert out {:name "uBounds" :type :vec4 :count plan.bounds.count :view? true
-                         :values (bounds.spheres plan cam.pos
-                                                 (hit-threshold scene plan cam height))}))
+    (when (and plan.bounds (or plan.bounds.texture? (> plan.bounds.count 0)))
+      (let [flat (bounds.spheres plan cam.pos (hit-threshold scene plan cam height))]
+        (table.insert out (if plan.bounds.texture?
+                              ;; Their count with them (the interpreter's: not in the text).
+                              {:name "uBounds" :type :texture :view? true
+                               :texture (bounds.texture flat)}
+                              {:name "uBounds" :type :vec4 :count plan.bounds.count :view? true
+                               :values flat}))))
     (table.sort out (fn [a b] (< a.name b.name)))
     out))
 

@@ -420,11 +420,14 @@ run when gObject is its object's number): :distance, :others, :color, :gradient 
 (fn glsl-of [o]
   (. (strategies.of o) :glsl))
 
-(fn distance-terms [cx tape ?which ?along?]
-  "Lines for map(), emitted with context `cx` (see new-context): each tree object's
-distance (each for which `?which` is true), folded into d. With `?along?`, a march's:
-rd is its ray's direction, and a grid's bound reaches along it (see gridCellAlong)."
-  (let [cx (derived cx :along? (= true ?along?))]
+(fn distance-terms [cx tape ?finite? ?along?]
+  "Lines for map(), emitted with context `cx` (see new-context): each tape object's
+distance, folded into d. With `?finite?`, mapFinite's: each object a bounded march
+steps by (its strategy's :marched?), and cx.finite? set for one that stands for
+several (the interpreter's: not its half-spaces). With `?along?`, a march's: rd is
+its ray's direction, and a grid's bound reaches along it (see gridCellAlong)."
+  (let [cx (doto (derived cx :along? (= true ?along?)) (tset :finite? (= true ?finite?)))
+        ?which (when ?finite? #((. (strategies.of $) :marched?) $))]
     (icollect [_ o (ipairs (objects-of tape ?which))]
       ((. (glsl-of o) :distance) cx o))))
 

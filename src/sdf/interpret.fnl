@@ -14,9 +14,11 @@
 ;; The program is a list of floats, four to a texel of an rgba32f image (uProgram,
 ;; `width` texels to a line):
 ;;   texel 0           (objects, 0, 0, 0)
-;;   texel 1 + 2k      object k's (pc, end, guard pc or -1, gradient pc or -1)
-;;   texel 2 + 2k      its (distance register, material register, guard's box
+;;   texel 1 + 3k      object k's (pc, end, guard pc or -1, gradient pc or -1)
+;;   texel 2 + 3k      its (distance register, material register, guard's box
 ;;                     register, gradient end)
+;;   texel 3 + 3k      (1 for a half-space, met in closed form by a bounded march
+;;                     (tapePlanesHit), else 0; 0, 0, 0)
 ;;   then the code: an instruction is two texels, (op, r0, r1, r2) and (r3, r4, r5,
 ;;   texels it takes), then its arguments two to a texel: (index, index read as an
 ;;   estimate, ...), each an index of a float in the tape's rows (row * 4 + offset),
@@ -258,7 +260,7 @@ message (the tape calls what the set lacks, an object needs too many registers).
         header []
         body []
         members (members-of tape)
-        base (+ 1 (* 2 (length members)))
+        base (+ 1 (* 3 (length members)))
         most {:d 1 :p 1 :m 1}
         allocated {}]
     (var err (refusal tape))
@@ -356,12 +358,14 @@ message (the tape calls what the set lacks, an object needs too many registers).
                 (table.insert table-rows [[start finish guard-pc (if gradient (. gradient 1) -1)]
                                           [(. numbers o.dout) (or (. numbers o.mout) -1)
                                            (if o.guard (. numbers o.guard.bout) -1)
-                                           (if gradient (. gradient 2) -1)]]))))))
+                                           (if gradient (. gradient 2) -1)]
+                                          [(if o.half-space? 1 0) 0 0 0]]))))))
     (if err (values nil err)
         (let [data header]
-          (each [_ [a b] (ipairs table-rows)]
+          (each [_ [a b c] (ipairs table-rows)]
             (texel data (unpack a))
-            (texel data (unpack b)))
+            (texel data (unpack b))
+            (texel data (unpack c)))
           (each [_ v (ipairs body)] (table.insert data v))
           (let [texels (/ (length data) 4)]
             {: data :width (math.min texels width) :height (math.ceil (/ texels width))

@@ -61,6 +61,9 @@
 ;;              after its objects, the nearest's material winning; :near (fn [run x y
 ;;              z reach tape-distance]) -> how many come within reach}
 ;;              (src/reference/distance.fnl)
+;;   :members   optional (fn [o]) -> the tape objects it stands for, in order (the
+;;              interpreter's): the CPU reference queries each through its own
+;;              strategy (`queried`), so such a strategy needs no :run nor :reference
 
 ;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
 ;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
@@ -74,15 +77,17 @@
   (fn need [ok? what] (assert ok? (.. file ": strategy " what)))
   (need (= (type d.name) :string) "needs a :name")
   (need (= (type d.doc) :string) "needs :doc")
-  (each [_ key (ipairs [:count :marched? :infos :describe :lua :spheres :run])]
+  (each [_ key (ipairs [:count :marched? :infos :describe :lua :spheres])]
     (need (= (type (. d key)) :function) (.. "needs :" key)))
+  (need (or d.members (= (type d.run) :function)) "needs :run (or :members)")
   (need (= (type d.folds?) :boolean) "needs :folds?")
   (need (= (type d.glsl) :table) "needs :glsl")
   (each [_ key (ipairs [:distance :others :color :object :gradient :planes :exact?])]
     (need (= (type (. d.glsl key)) :function) (.. "needs :glsl :" key)))
-  (need (= (type d.reference) :table) "needs :reference")
-  (each [_ key (ipairs [:min :color :near])]
-    (need (= (type (. d.reference key)) :function) (.. "needs :reference :" key)))
+  (when (not d.members)
+    (need (= (type d.reference) :table) "needs :reference (or :members)")
+    (each [_ key (ipairs [:min :color :near])]
+      (need (= (type (. d.reference key)) :function) (.. "needs :reference :" key))))
   d)
 
 ;; The descriptors by name, loaded on first use: they require the emitters, which
@@ -118,4 +123,14 @@
   "How many objects tape object `o` draws (an object number each)."
   ((. (of o) :count) o))
 
-{: all : of : count : chosen-in-lowering}
+(fn queried [tape]
+  "The objects of `tape` the CPU reference queries, in order: each tape object, or
+the ones it stands for (its strategy's :members), their object numbers the same."
+  (let [out []]
+    (each [_ o (ipairs tape.objects)]
+      (case (. (of o) :members)
+        members (each [_ m (ipairs (members o))] (table.insert out m))
+        _ (table.insert out o)))
+    out))
+
+{: all : of : count : chosen-in-lowering : queried}

@@ -60,17 +60,19 @@ timed ones (\"melt@3\": scenes/melt.fnl at t = 3 s)."
     (base t) (.. "scenes/" base ".fnl at t = " t " s")
     _ (.. "scenes/" name ".fnl")))
 
-(fn render! [name out]
+(fn render! [name out ?interpret?]
   "Render golden NAME (scenes/NAME.fnl, or NAME@T: at T seconds) with the real app into
-`out`. True, or nil and its output."
+`out` (with `?interpret?`, by the tape interpreter's shader). True, or nil and its
+output."
   ;; LuaJIT's popen close does not give the exit status, so the shell prints it last.
   ;; --samples 1: the goldens are the one-ray picture (--render's default is the
   ;; player's anti-aliased still).
   (let [(scene t) (let [(base at) (name:match "^(.-)@([%d.]+)$")]
                     (if base (values base at) (values name nil)))
-        cmd (string.format "SDL_VIDEODRIVER=offscreen timeout 600 love . --render %s --out %s --size %dx%d --samples 1%s 2>&1; echo \"exit:$?\""
+        cmd (string.format "SDL_VIDEODRIVER=offscreen timeout 600 love . --render %s --out %s --size %dx%d --samples 1%s%s 2>&1; echo \"exit:$?\""
                            (shell-quote (.. "scenes/" scene ".fnl")) (shell-quote out)
-                           (. size 1) (. size 2) (if t (.. " --time " t) ""))
+                           (. size 1) (. size 2) (if t (.. " --time " t) "")
+                           (if ?interpret? " --interpret" ""))
         text (with-open [p (io.popen cmd)] (p:read :*a))]
     (if (text:match "exit:0%s*$")
         true
@@ -109,14 +111,18 @@ image (red where over, a half-bright grey copy of `a` elsewhere)."
   (let [budget (budget-for name)]
     (and (<= result.over budget.max-pixels) (<= result.max budget.max-diff))))
 
-(fn check [name]
+(fn check [name ?options]
   "Render scene NAME and compare it with its golden. Returns {:status :ok|:missing|:failed
 :message :new-path :diff-path :result}. Writes the new render and a diff image under
-test/out/ (git-ignored); never touches test/golden/."
+test/out/ (git-ignored); never touches test/golden/. `?options`: {:interpret? true}
+draws it by the tape interpreter (the same golden and budget; its files are
+NAME.interpreted.png and NAME.interpreted.diff.png)."
   (os.execute (.. "mkdir -p " out-dir "/stress"))
-  (let [new-path (.. out-dir "/" name ".png")
-        diff-path (.. out-dir "/" name ".diff.png")
-        (ok? err) (render! name new-path)]
+  (let [interpret? (?. ?options :interpret?)
+        base (.. out-dir "/" name (if interpret? ".interpreted" ""))
+        new-path (.. base ".png")
+        diff-path (.. base ".diff.png")
+        (ok? err) (render! name new-path interpret?)]
     (if (not ok?)
         {:status :failed :message err}
         (case (png.read-file (golden-path name))
@@ -136,7 +142,8 @@ test/out/ (git-ignored); never touches test/golden/."
                                  {:status :failed : result :new-path new-path :diff-path diff-path
                                   :message (string.format
                                             "%s differs from %s: %d pixels over %d/255 (budget %d), largest channel difference %d (budget %d) at pixel %s; new image %s, diff image %s (red: over)"
-                                            (label name) (golden-path name) result.over channel-tolerance
+                                            (.. (label name) (if interpret? " drawn by the tape interpreter" ""))
+                                            (golden-path name) result.over channel-tolerance
                                             budget.max-pixels result.max budget.max-diff
                                             (if result.worst (.. (. result.worst 1) "," (. result.worst 2)) "-")
                                             new-path diff-path)})))))))))

@@ -17,8 +17,9 @@
 
 (fn runner [o]
   "A function of x y z (and `estimate?`, `materials?`): each object's distance (and
-material, a list of its numbers) as interpreted object `o` (the :interpreted tape
-object of a plan) computes them, with no guard skipping any."
+material, a list of its numbers; its exact gradient; whether the program marks it a
+half-space) as interpreted object `o` (the :interpreted tape object of a plan)
+computes them, with no guard skipping any."
   (let [{: program :set iset : tape} o
         data program.data
         rows (rows-of tape)
@@ -99,8 +100,9 @@ object of a plan) computes them, with no guard skipping any."
     (fn [x y z ?estimate? ?materials?]
       (let [(count) (texel 0)]
         (fcollect [k 0 (- count 1)]
-          (let [(start end _ grad) (texel (+ 1 (* 2 k)))
-                (dout mout _ grad-end) (texel (+ 2 (* 2 k)))
+          (let [(start end _ grad) (texel (+ 1 (* 3 k)))
+                (dout mout _ grad-end) (texel (+ 2 (* 3 k)))
+                half-space (texel (+ 3 (* 3 k)))
                 regs {:D {} :P {0 [x y z]} :M {}}]
             (run start end regs ?estimate? ?materials?)
             (local gradient
@@ -108,6 +110,7 @@ object of a plan) computes them, with no guard skipping any."
                 (let [gregs {:D {} :P {0 [x y z]} :M {}}]
                   (run grad grad-end gregs false false)
                   gregs.gradient)))
-            {:d (. regs.D dout) :m (when ?materials? (. regs.M mout)) : gradient}))))))
+            {:d (. regs.D dout) :m (when ?materials? (. regs.M mout)) : gradient
+             :half-space? (= half-space 1)}))))))
 
 {: runner}

@@ -1,13 +1,12 @@
 ;; The interpreted strategy: a whole tape run by the tape interpreter (src/sdf/
 ;; interpret.fnl), one shader for every tape of its instruction set. Its one tape
 ;; object stands for the tape's objects (its :tape), numbered as they are; the CPU
-;; evaluators, bounds and the reference's queries are theirs. See
+;; evaluators, bounds and the reference's queries (its :members) are theirs. See
 ;; src/sdf/strategies.fnl for the interface.
 
 (local glsl (require :src.sdf.emit-glsl))
 (local emit-lua (require :src.sdf.emit-lua))
 (local interpret (require :src.sdf.interpret))
-(local runs (require :src.reference.distance))
 
 (fn members [o] o.tape.objects)
 
@@ -47,10 +46,13 @@
                       (table.insert out info)))
                   out))
  :describe (fn [o] (.. " (" (length o.set) " functions)"))
- :glsl {:distance (fn [_ _] ["d = tapeMin(p, d, -1, -1);  // every object, by the interpreter"])
-        :others (fn [_ _ first] [(.. "d = tapeMin(p, d, -1, gObject - " first ");")])
+ :glsl {:distance (fn [cx _]
+                    ;; In mapFinite (cx.finite?), not the half-spaces: planesHit meets them.
+                    [(.. "d = tapeMin(p, d, -1, -1, " (if cx.finite? "true" "false")
+                         ");  // every object, by the interpreter")])
+        :others (fn [_ _ first] [(.. "d = tapeMin(p, d, -1, gObject - " first ", false);")])
         :color color-term
-        :object (fn [_ _ first] [(.. "d = tapeMin(p, d, all ? -1 : gObject - " first ", -1);")])
+        :object (fn [_ _ first] [(.. "d = tapeMin(p, d, all ? -1 : gObject - " first ", -1, false);")])
         :gradient (fn [_ o first action]
                     ;; Written as the set says (the text is the set's alone); the
                     ;; program says which objects have one (tapeExact).
@@ -59,7 +61,8 @@
                       [(.. "if (" (selected first) " && tapeExact(gObject - " first ")) {")
                        (.. "    " action "tapeGradient(p, gObject - " first ");")
                        "}"]))
-        :planes (fn [_ _] nil)
+        ;; Any program may hold half-spaces: the program says which (tapeHalfSpace).
+        :planes (fn [_ _] ["t = tapePlanesHit(p, rd, t);  // the half-spaces, by the interpreter"])
         :exact? (fn [o] (accumulate [all? true _ m (ipairs (members o))]
                           (and all? (glsl.leaf-exact? m))))}
  :lua (fn [_ o what _ into]
@@ -70,8 +73,8 @@
  :spheres (fn [plan o at out]
             (accumulate [at at _ m (ipairs (members o))]
               ((. (strategy m) :spheres) plan m at out)))
- :run (fn [_ _ run] run)
- :reference {:min runs.each-min :color runs.each-color :near runs.each-near}
+ ;; The CPU reference queries its objects each (strategies.queried).
+ :members members
  :uniforms (fn [plan o cam-pos]
              ;; The tape's rows (camera-relative where they hold positions) and the
              ;; program, each an rgba32f image.
