@@ -2,8 +2,9 @@
 ;; edit of the scene file, and how long its window stops answering meanwhile. The
 ;; player runs SCENE (a copy in a temporary file) in a 640x360 window; the edits add
 ;; small spheres to the scene's objects (each one more: a new shader, and a new
-;; still's), in turn at three moments, then change their colour (values only) when
-;; idle:
+;; still's), in turn at three moments (when idle, the first also changed to a box,
+;; then twisted: a kind changed, an operation added), then change their colour
+;; (values only) when idle:
 ;;
 ;;   idle           everything of the last state drawn, the still too, and the compile
 ;;                  helper has nothing left to do
@@ -31,11 +32,19 @@
 (local camera (require :src.render.camera))
 (local plan (require :src.render.plan))
 
-(fn with-spheres [text n color]
-  ;; The scene's own text, evaluated as it is, with `n` more top-level objects.
-  (.. "(let [scene (do " text "\n)]\n  (for [i 1 " n "]\n"
-      "    (table.insert scene.objects {:kind :sphere :radius 0.05 :pos [i 0 -50] :color "
-      color "}))\n  scene)\n"))
+(fn with-spheres [text n color ?form]
+  ;; The scene's own text, evaluated as it is, with `n` more top-level objects, small
+  ;; spheres; with `?form` :box the last a box instead (a kind changed), :twist that
+  ;; box twisted (an operation added).
+  (let [object #(.. "{:kind :" $1 " " $2 " :pos [i 0 -50] :color " color "}")
+        last (case ?form
+               :box (object :box ":size [0.1 0.1 0.1]")
+               :twist (.. "{:kind :twist :angle 30 :pos [i 0 -50] :children [{:kind :box :size [0.1 0.1 0.1] :color "
+                          color "}]}")
+               _ (object :sphere ":radius 0.05"))]
+    (.. "(let [scene (do " text "\n)]\n  (for [i 1 " n "]\n"
+        "    (table.insert scene.objects (if (< i " n ") " (object :sphere ":radius 0.05") " " last ")))\n"
+        "  scene)\n")))
 
 (fn script [path text report]
   (let [state play.state
@@ -90,9 +99,9 @@
                   p (when (and (not= p (?. previewed :first)) (> p.at start))
                       {:ms (* 1000 (- p.at start)) :w p.w :h p.h})))
         (shown?)))
-    (fn structural! [label n]
+    (fn structural! [label n ?form]
       (let [old state.scene]
-        (edit! label (with-spheres text n "[1 1 1]")
+        (edit! label (with-spheres text n "[1 1 1]" ?form)
                #(and (not= state.scene old) (= (?. state.drawn :scene) state.scene)))))
     (fn warm-state []
       ;; What the player and its helpers were doing, for a wait that did not end.
@@ -123,6 +132,12 @@
     ;; An edit that never shows ends the script: what follows would wait for it.
     (and (until-true play.background-done? limit "the first state's background work's end")
          (structural! "structural edit when idle" 1)
+         ;; Issue 42's other structural edits: the object's kind changed, then an
+         ;; operation added about it, each when idle.
+         (until-true play.background-done? limit "the background work's end")
+         (structural! "structural edit when idle (a kind changed)" 1 :box)
+         (until-true play.background-done? limit "the background work's end")
+         (structural! "structural edit when idle (an operation added)" 1 :twist)
          ;; Without the helper there is no still to be made during. Each structural
          ;; edit is a new shader, so its still's is new too: a helper builds it.
          (or (not (?. state.warm :enabled?))
@@ -144,8 +159,10 @@
                                       (string.format "  (no still was drawn within %d s)" (math.min limit 180))))))))
          (until-true play.background-done? limit "the background work's end")
          (let [before state.scene
-               n (if (?. state.warm :enabled?) 3 1)]
-           (edit! "value edit when idle" (with-spheres text n "[0.5 0.9 0.2]")
+               ;; The last state's objects (without the helper: the twisted box's).
+               helper? (?. state.warm :enabled?)
+               n (if helper? 3 1)]
+           (edit! "value edit when idle" (with-spheres text n "[0.5 0.9 0.2]" (when (not helper?) :twist))
                   #(and (not= state.scene before) (= (?. state.drawn :scene) state.scene)))))
     nil))
 
