@@ -239,11 +239,12 @@
           (assert-lacks text "mapOthers")
           ;; A tree takes differences and the crease; the leaves return first.
           (assert-has trees "        return gradSphere(p1, uTape[0].w);")
-          (assert-has trees "float d = mapOthers(p + s * e);")
-          ;; One call of each in the crease normal: loops from gZero, not unrolled.
-          (let [normal (trees:match "vec3 objectNormal.-\n}.-vec3 calcNormal.-\n}")]
-            (assert.equal 1 (select 2 (normal:gsub "mapOthers%(" "")))
-            (assert.equal 1 (select 2 (normal:gsub "mapObject%(" ""))))
+          (assert-has trees "float d = mapObject(p + e, crease ? -1 : object, crease ? gObject : -1);")
+          ;; One call in the crease normal, for the others and the object: one loop
+          ;; from gZero, not unrolled.
+          (let [normal (trees:match "vec3 calcNormal.-\n}")]
+            (assert.equal 1 (select 2 (normal:gsub "mapObject%(" "")))
+            (assert-lacks trees "mapOthers"))
           ;; The whole scene's normal is differences of map, as the article's.
           (assert-lacks scene-normals "gradBox"))))
 
@@ -251,7 +252,8 @@
       (fn []
         ;; Written out, four to six calls each inline the whole scene four to six
         ;; times: colonnade's compile took 11 s on llvmpipe against 2.4 s in loops.
-        (each [method calls (pairs {:tetrahedron 1 :central 1 :one-sided 2})]
+        ;; (The one-sided method's own point is a tap of its loop too.)
+        (each [method calls (pairs {:tetrahedron 1 :central 1 :one-sided 1})]
           (let [text (shader-of (.. "{:render {:normals-of :scene :normals :" method "}"
                                     " :objects [{:kind :sphere} {:kind :box :pos [3 0 0]}]}")
                                 nil :core)
@@ -379,6 +381,10 @@
                          "^int gObject = %-1;" "^%s*gObject = %-1;$" " gObject = [%d i%+]+; }$"
                          "^%s*if %(gObject == %d+%) " "^%s*if %(gObject >= %d+ && gObject < %d+%) {$"
                          "^%s*int i = gObject %- %d+;$" "^%s*if %(gObject != [%d i%+]+%) "
+                         ;; mapObject(p, only, skip)'s object numbers
+                         "^%s*if %(%(all || only == %d+%) && skip != %d+%) {$"
+                         "^%s*if %(skip != [%d i%+]+%) {$" "^%s*if %(only >= %d+ && only < %d+%) {"
+                         "^%s*int i = only %- %d+;$" "^%s*bool all = only < 0;$"
                          ;; compile-time counts: lights, samples, shadow steps
                          "^const int k%w+ = %d+;"
                          "^%s*for %(int %w+ = %d+; %w+ <=? %w+; %w+%+%+%) {$"
@@ -397,7 +403,17 @@
                          "^%s*if %(i == 0%) {$"
                          "^%s*int axis = i / 2;$" "^%s*float s = i == 2 %* axis %? 1%.0 : %-1%.0;$"
                          "^%s*return vec3%(axis == 0 %? h : 0%.0, axis == 1 %? h : 0%.0, axis == 2 %? h : 0%.0%);$"
-                         "^%s*vec3 k = vec3%(float%(%(%(i %+ 3%) / 2%) %% 2%), float%(%(i / 2%) %% 2%), float%(i %% 2%)%) %* 2%.0 %- 1%.0;$"]]
+                         "^%s*vec3 k = vec3%(float%(%(%(j %+ 3%) / 2%) %% 2%), float%(%(j / 2%) %% 2%), float%(j %% 2%)%) %* 2%.0 %- 1%.0;$"
+                         ;; the normal methods' taps (normalTap) and the crease's turns
+                         "^%s*int axis = j / 2;$" "^%s*float s = j == 2 %* axis %? 1%.0 : %-1%.0;$"
+                         "^%s*w = j == 0 %? vec3%(1%.0%) : %-axisStep%(j %- 1, 1%.0%);$"
+                         "^%s*return j == 0 %? vec3%(0%.0%) : %-axisStep%(j %- 1, h%);$"
+                         "^%s*int object = gObject < gZero %? %-1 : gObject;"
+                         "^%s*for %(int i = gZero; i < 7 %+ kNormalTaps; i%+%+%) {$"
+                         "^%s*bool crease = i < 7;$"
+                         "^%s*vec3 e = crease %? s %* axisStep%(axis, h%) : normalTap%(max%(i %- 7, 0%), h, w%);$"
+                         "^%s*float d = mapObject%(p %+ e, crease %? %-1 : object, crease %? gObject : %-1%);$"
+                         "^%s*if %(other >= 2%.0 %* h%) i = 6;" "^%s*if %(i == 6%) {$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]
               (let [masked (-> line (: :gsub "%d+%.%d+" "F") (: :gsub "%[%d+%]" "[N]"))]

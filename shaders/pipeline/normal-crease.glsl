@@ -3,27 +3,40 @@
 // point pushed out of that reach, away from the others. An object standing on the
 // floor, or on another, then gets its side face's normal, not a blend with its own
 // bottom edge, which lies in the crease.
+//
+// One loop from gZero, one call of mapObject: the scene's one copy for both queries
+// (GLSL compilers inline every call). Turn 0 finds how near the others come (every
+// object but gObject); only when that is within reach, turns 1-6 take their central
+// differences, and the point is pushed out. Turns 7 on are the method's taps
+// (normalTap) of the nearest object's own distance at that point.
 vec3 calcNormal(vec3 p) {
     // @slot exact
     float h = normalDelta(p);
-    // Turn 0 finds how near the others come; only when that is within reach, turns
-    // 1-6 take their central differences. One loop from gZero: one copy of mapOthers.
+    int object = gObject < gZero ? -1 : gObject;  // -1: no object found, every one
     float other = 0.0;
     vec3 g = vec3(0.0);
-    for (int i = gZero; i < 7; i++) {
+    vec3 n = vec3(0.0);
+    for (int i = gZero; i < 7 + kNormalTaps; i++) {
+        bool crease = i < 7;
         int axis = i > 0 ? (i - 1) / 2 : 3;
         float s = i > 0 && i == 2 * axis + 1 ? 1.0 : -1.0;
-        vec3 e = axisStep(axis, h);
-        float d = mapOthers(p + s * e);
+        vec3 w;
+        vec3 e = crease ? s * axisStep(axis, h) : normalTap(max(i - 7, 0), h, w);
+        float d = mapObject(p + e, crease ? -1 : object, crease ? gObject : -1);
         if (i == 0) {
             other = d;
-            if (other >= 2.0 * h) break;
-        } else {
+            if (other >= 2.0 * h) i = 6;  // no other within reach: on to the taps
+        } else if (crease) {
             g[axis] += s * d;
+        } else {
+            n += w * d;
+        }
+        if (i == 6) {
+            if (other < 2.0 * h) {
+                p += safeNormalize(g) * (2.0 * h - other);
+            }
+            h = normalDelta(p);
         }
     }
-    if (other < 2.0 * h) {
-        p += safeNormalize(g) * (2.0 * h - other);
-    }
-    return objectNormal(p);
+    return safeNormalize(n);
 }

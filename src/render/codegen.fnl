@@ -98,10 +98,6 @@ src/render/bounds.fnl and shaders/pipeline/bounds.glsl)."
    (if (object-normals? plan) "gObject = -1;" [])
    (emit-glsl.color-terms cx plan.tape plan.mirrors? (when (object-normals? plan) 0))])
 
-(fn others-terms [cx plan]
-  ;; mapOthers' terms: map's, each but gObject's.
-  (emit-glsl.others-terms cx plan.tape 0))
-
 (fn gradient-terms [cx plan action]
   ;; Each object's exact normal in closed form, when gObject is its number (a field
   ;; member's, a leaf's its primitive's gradient); `action` is "n = "
@@ -109,7 +105,8 @@ src/render/bounds.fnl and shaders/pipeline/bounds.glsl)."
   (emit-glsl.gradient-terms cx plan.tape 0 action))
 
 (fn object-terms [cx plan]
-  ;; mapObject's cases: each tape object (a field's member) by number.
+  ;; mapObject's cases: each tape object (a field's member) by number, or every one
+  ;; but one.
   (emit-glsl.object-terms cx plan.tape 0))
 
 ;;; Features
@@ -344,8 +341,7 @@ hit before the view, so that form keeps the march before the loop."
       (table.insert sections (fill "shaders/pipeline/map-color.glsl" {:color-terms (color-terms cx plan)})))
     (when (and (object-normals? plan) (not plan.exact-normals?))
       (table.insert sections (fill "shaders/pipeline/map-object.glsl"
-                                   {:object-terms (object-terms cx plan)
-                                    :others-terms (others-terms cx plan)})))
+                                   {:object-terms (object-terms cx plan)})))
     (when plan.bounds
       (table.insert sections (bounded-lines cx plan)))
     (when plan.grids
@@ -355,14 +351,13 @@ hit before the view, so that form keeps the march before the loop."
                          ["steps = i + 1;"] [])]
       (table.insert sections (march-lines plan count-step (out-of-steps-lines plan))))
     (when normals?
+      ;; The method's taps differentiate the scene's map (normal-scene.glsl), or with
+      ;; object normals the nearest object's (mapObject, normal-crease.glsl).
       (table.insert sections (fill "shaders/pipeline/normal.glsl"
-                                   ;; The method differentiates the scene's map, or with
-                                   ;; object normals the nearest object's (mapObject).
                                    {:method (if plan.exact-normals? []
-                                                (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl")
-                                                      (if (object-normals? plan)
-                                                          {:normal "objectNormal" :map "mapObject"}
-                                                          {:normal "calcNormal" :map "map"})))}))
+                                                (fill (.. "shaders/pipeline/normal/" plan.normals ".glsl") {}))}))
+      (when (not (object-normals? plan))
+        (table.insert sections (fill "shaders/pipeline/normal-scene.glsl" {})))
       (when (and (object-normals? plan) plan.exact-normals?)
         (table.insert sections (fill "shaders/pipeline/normal-exact.glsl"
                                      {:gradients (gradient-terms cx plan "n = ")})))

@@ -354,8 +354,8 @@ id)` (lines using its distance); `id` is its number as GLSL."
 
 (fn taken-open [id]
   "An opening for object-body in mapObject: taken when every object is (`all`) or
-gObject is this one."
-  ["take = all;" (.. "if (gObject == " id ") take = true;") "if (take) {"])
+`only` is this one, and `skip` is not."
+  (.. "if ((all || only == " id ") && skip != " id ") {"))
 
 (fn color-tail [o ?first mirrors? modern?]
   "A tail for object-body in mapColor: the nearest keeps its colour (with `mirrors?`
@@ -400,11 +400,9 @@ origin."
   "The :glsl terms of a strategy that writes its objects' code out (a tree, an
 instance group), from its `block` (fn [cx o first materials? open tail]: an object's
 block in a minimum, see object-body) and `selected` (fn [cx o first lines-fn]: lines
-run when gObject is its object's number): :distance, :others, :color, :gradient and
-:exact?; the strategy adds :object and :planes."
+run when gObject is its object's number): :distance, :color, :gradient and :exact?;
+the strategy adds :object and :planes."
   {:distance (fn [cx o] (block cx o 0 false open-block (minimum-tail o)))
-   :others (fn [cx o first]
-             (block cx o first false #(.. "if (gObject != " $ ") {") (minimum-tail o)))
    :color (fn [cx o ?first mirrors? modern?]
             (block cx o (or ?first 0) true open-block (color-tail o ?first mirrors? modern?)))
    :gradient (fn [cx o first action]
@@ -431,12 +429,6 @@ its ray's direction, and a grid's bound reaches along it (see gridCellAlong)."
     (icollect [_ o (ipairs (objects-of tape ?which))]
       ((. (glsl-of o) :distance) cx o))))
 
-(fn others-terms [cx tape first]
-  "Lines for mapOthers(): map's minimum, each object but the one gObject numbers
-(objects counted from `first`, as color-terms does)."
-  (icollect [_ o (ipairs tape.objects)]
-    ((. (glsl-of o) :others) cx o first)))
-
 (fn color-terms [cx tape mirrors? ?first]
   "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
 its mirror amount in gMirror when `mirrors?`; with two-row materials, always, and
@@ -448,11 +440,12 @@ objects are numbered from it in tape order, an instance group's members one each
       ((. (glsl-of o) :color) cx o ?first mirrors? modern?))))
 
 (fn object-terms [cx tape first]
-  "Lines for mapObject(): the distance of the object gObject numbers (numbered from
-`first` as color-terms does) alone, set in d; with no object found (`all`, gObject
--1) every object's, folded into d as map() folds them. A tree object is written once
-for both cases (GLSL compilers inline every call: each copy of the scene is its share
-of the compile)."
+  "Lines for mapObject(p, only, skip): the distance of the object `only` numbers
+(numbered from `first` as color-terms does) alone, set in d; with `only` -1 (`all`)
+every object's but the one `skip` numbers (-1: none), folded into d as map() folds
+them. Each object is written once for every case (GLSL compilers inline every call:
+each copy of the scene is its share of the compile, and normal-crease.glsl calls it
+in one loop)."
   (icollect [_ o (ipairs tape.objects)]
     ((. (glsl-of o) :object) cx o first)))
 
@@ -473,7 +466,7 @@ leaf whose primitive is solid below a plane, met in closed form; see plane-block
     ((. (glsl-of o) :planes) cx o)))
 
 {: functions : gradient-functions : declarations : declare : new-context : reads
- : distance-terms : others-terms : color-terms : object-terms : gradient-terms : plane-terms
+ : distance-terms : color-terms : object-terms : gradient-terms : plane-terms
  : exact? : text-lines : float-literal : tape-texture-width : tape-texel : gradient-name
  ;; For the strategies' terms (src/sdf/strategies/):
  : derived : emit-code : object-comment : indented : guarded-lines : object-body : open-block

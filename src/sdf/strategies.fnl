@@ -28,9 +28,11 @@
 ;;   :describe  (fn [o]) -> what --tree adds after its root's kind
 ;;   :glsl      the lines it gives each of the shader's queries (emit-glsl.fnl's
 ;;              context cx; `first`, the number of the tape's first object):
-;;              :distance (fn [cx o]) map's term; :others (fn [cx o first]) mapOthers';
+;;              :distance (fn [cx o]) map's term (mapFinite's with cx.finite?);
 ;;              :color (fn [cx o ?first mirrors? modern?]) mapColor's (with ?first it
-;;              sets gObject); :object (fn [cx o first]) mapObject's; :gradient (fn [cx o
+;;              sets gObject); :object (fn [cx o first]) mapObject(p, only, skip)'s:
+;;              object `only` alone, or with `all` (only -1) every object but
+;;              `skip`; :gradient (fn [cx o
 ;;              first action]) its exact normal (nil: none); :planes (fn [cx o])
 ;;              planesHit's (nil: not a half-space); :exact? (fn [o]) whether it has an
 ;;              exact normal in closed form
@@ -82,7 +84,7 @@
   (need (or d.members (= (type d.run) :function)) "needs :run (or :members)")
   (need (= (type d.folds?) :boolean) "needs :folds?")
   (need (= (type d.glsl) :table) "needs :glsl")
-  (each [_ key (ipairs [:distance :others :color :object :gradient :planes :exact?])]
+  (each [_ key (ipairs [:distance :color :object :gradient :planes :exact?])]
     (need (= (type (. d.glsl key)) :function) (.. "needs :glsl :" key)))
   (when (not d.members)
     (need (= (type d.reference) :table) "needs :reference (or :members)")

@@ -1,13 +1,12 @@
-// Surface normal by central differences: second-order accurate. Six map evaluations,
-// in a loop from gZero so that the compiler keeps one copy of map, not six.
-vec3 @{normal}(vec3 p) {
-    float h = normalDelta(p);
-    vec3 g = vec3(0.0);
-    for (int i = gZero; i < 6; i++) {
-        int axis = i / 2;
-        float s = i == 2 * axis ? 1.0 : -1.0;
-        vec3 e = axisStep(axis, h);
-        g[axis] += s * @{map}(p + s * e);
-    }
-    return safeNormalize(g);
+// Surface normal by central differences: second-order accurate, six distance
+// evaluations, a step h forward and back along each axis. Tap j of kNormalTaps: the
+// sample's offset from the point, and in w its weight in the gradient's sum (see
+// tetrahedron.glsl).
+const int kNormalTaps = 6;
+
+vec3 normalTap(int j, float h, out vec3 w) {
+    int axis = j / 2;
+    float s = j == 2 * axis ? 1.0 : -1.0;
+    w = axisStep(axis, s);
+    return s * axisStep(axis, h);
 }

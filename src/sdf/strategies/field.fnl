@@ -16,15 +16,18 @@
   ;; A member's number `expr` (from 0) as an object's number.
   (if (= first 0) expr (.. expr " + " first)))
 
-(fn field-index [first]
-  ;; gObject as the number of a member (from 0).
-  (if (= first 0) "gObject" (.. "gObject - " first)))
+(fn field-index [first ?var]
+  ;; gObject (or the int `?var`) as the number of a member (from 0).
+  (let [v (or ?var "gObject")]
+    (if (= first 0) v (.. v " - " first))))
 
-(fn field-selected [o first action]
-  ;; `action` (a GLSL expression's prefix) on member gObject when it is the field's.
-  (let [id (+ first o.id)]
-    [(.. "if (gObject >= " id " && gObject < " (+ id o.field.count) ") " action "(p, "
-         (field-index id) ");")]))
+(fn field-selected [o first action ?var]
+  ;; `action` (a GLSL expression's prefix) on member gObject (or `?var`) when it is
+  ;; the field's.
+  (let [id (+ first o.id)
+        v (or ?var "gObject")]
+    [(.. "if (" v " >= " id " && " v " < " (+ id o.field.count) ") " action "(p, "
+         (field-index id v) ");")]))
 
 (local chunk "shaders/strategies/field.glsl")
 
@@ -194,7 +197,6 @@
  :infos (fn [_] nil)
  :describe (fn [o] (.. " of " o.field.count " objects (a grid in textures)"))
  :glsl {:distance (fn [_ _] (field-minimum "-1"))
-        :others (fn [_ o first] (field-minimum (field-index (+ first o.id))))
         ;; (Its members are matte: the mirror amount and material stay.)
         :color (fn [_ o ?first]
                  (chunks.fill-part chunk :color
@@ -202,9 +204,10 @@
                                                 [(.. "gObject = best >= 0 ? " (field-number "best" (+ ?first o.id))
                                                      " : -1;")]
                                                 [])}))
+        ;; Every member but `skip`, or member `only` alone.
         :object (fn [_ o first]
-                  ["if (all) {" (glsl.indented (field-minimum "-1")) "}"
-                   (field-selected o first "d = fieldObject")])
+                  ["if (all) {" (glsl.indented (field-minimum (field-index (+ first o.id) "skip"))) "}"
+                   (field-selected o first "d = fieldObject" "only")])
         :gradient (fn [_ o first action]
                     (when (exact? o) (field-selected o first (.. action "fieldNormal"))))
         :planes (fn [_ _] nil)

@@ -56,12 +56,13 @@
   (let [id (.. (+ first o.id) " + i")]
     (looped cx o #(glsl.object-body $ o id materials? open tail))))
 
-(fn selected [cx o first lines-fn]
-  ;; `(lines-fn cx2)`, run when gObject is one of the group's numbers, with `i` its
-  ;; member's.
-  (let [id (+ first o.id)]
-    [(.. "if (gObject >= " id " && gObject < " (+ id o.instances.count) ") {  " (group-comment o))
-     (glsl.indented [(.. "int i = gObject" (if (= id 0) "" (.. " - " id)) ";")
+(fn selected [cx o first lines-fn ?var]
+  ;; `(lines-fn cx2)`, run when gObject (or the int `?var`) is one of the group's
+  ;; numbers, with `i` its member's.
+  (let [id (+ first o.id)
+        v (or ?var "gObject")]
+    [(.. "if (" v " >= " id " && " v " < " (+ id o.instances.count) ") {  " (group-comment o))
+     (glsl.indented [(.. "int i = " v (if (= id 0) "" (.. " - " id)) ";")
                      (bank-point o)
                      (in-group cx o lines-fn)])
      "}"]))
@@ -85,13 +86,16 @@
  :infos (fn [o] o.infos)
  :describe (fn [o] (.. " x" o.instances.count " (instance group: a loop)"))
  :glsl (doto (glsl.written-terms block selected)
-         ;; Two forms: the whole group's minimum, and one member's.
+         ;; Two forms: the whole group's minimum but member `skip`, and member
+         ;; `only`'s distance.
          (tset :object (fn [cx o first]
                          ["if (all) {"
-                          (glsl.indented (block cx o 0 false glsl.open-block (glsl.minimum-tail o)))
+                          (glsl.indented (block cx o first false #(.. "if (skip != " $ ") {")
+                                                (glsl.minimum-tail o)))
                           "}"
                           (selected cx o first
-                                    #[(glsl.emit-code $ [] o.code false) (.. "d = " o.dout ";")])]))
+                                    #[(glsl.emit-code $ [] o.code false) (.. "d = " o.dout ";")]
+                                    "only")]))
          (tset :planes (fn [cx o] (when o.half-space? (looped cx o (glsl.plane-block o))))))
  :lua (fn [tape o what banks into] (emit-lua.object-evaluators tape o what banks into o.instances))
  :spheres (fn [plan o at out]

@@ -50,9 +50,11 @@
                     ;; In mapFinite (cx.finite?), not the half-spaces: planesHit meets them.
                     [(.. "d = tapeMin(p, d, -1, -1, " (if cx.finite? "true" "false")
                          ");  // every object, by the interpreter")])
-        :others (fn [_ _ first] [(.. "d = tapeMin(p, d, -1, gObject - " first ", false);")])
         :color color-term
-        :object (fn [_ _ first] [(.. "d = tapeMin(p, d, all ? -1 : gObject - " first ", -1, false);")])
+        :object (fn [_ _ first]
+                  (let [minus #(if (= first 0) $ (.. $ " - " first))]
+                    [(.. "d = tapeMin(p, d, all ? -1 : " (minus "only") ", skip < 0 ? -1 : "
+                         (minus "skip") ", false);")]))
         :gradient (fn [_ o first action]
                     ;; Written as the set says (the text is the set's alone); the
                     ;; program says which objects have one (tapeExact).
