@@ -1,5 +1,5 @@
 ;; The CPU reference's distance field: the tape's objects folded as the shader folds
-;; them (map, mapFinite, mapColor, mapOthers and planesHit), each tape object's run
+;; them (map, mapFinite, mapColor, mapObject and planesHit), each tape object's run
 ;; of objects through its drawing strategy's queries (src/sdf/strategies/).
 
 (local grid (require :src.sdf.grid))
