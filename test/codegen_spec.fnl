@@ -239,11 +239,13 @@
           (assert-lacks text "mapOthers")
           ;; A tree takes differences and the crease; the leaves return first.
           (assert-has trees "        return gradSphere(p1, uTape[0].w);")
-          (assert-has trees "float d = mapObject(p + e, crease ? -1 : object, crease ? gObject : -1);")
-          ;; One call in the crease normal, for the others and the object: one loop
-          ;; from gZero, not unrolled.
-          (let [normal (trees:match "vec3 calcNormal.-\n}")]
-            (assert.equal 1 (select 2 (normal:gsub "mapObject%(" "")))
+          (assert-has trees "float d = mapObject(p + e, crease ? -1 : object, i < 0 ? -1 : crease ? gObject : -1, i < 0, color);")
+          ;; One call for a hit's colour, the others and the object's normal: one
+          ;; loop from gZero, not unrolled; mapColor and calcNormal are not called.
+          (let [surface (trees:match "vec3 surfaceAt.-\n}")]
+            (assert.equal 1 (select 2 (surface:gsub "mapObject%(" "")))
+            (assert-has trees "vec3 n = surfaceAt(p, surface);")
+            (assert-lacks trees "calcNormal")
             (assert-lacks trees "mapOthers"))
           ;; The whole scene's normal is differences of map, as the article's.
           (assert-lacks scene-normals "gradBox"))))
@@ -413,7 +415,14 @@
                          "^%s*bool crease = i < 7;$"
                          "^%s*vec3 e = crease %? s %* axisStep%(axis, h%) : normalTap%(max%(i %- 7, 0%), h, w%);$"
                          "^%s*float d = mapObject%(p %+ e, crease %? %-1 : object, crease %? gObject : %-1%);$"
-                         "^%s*if %(other >= 2%.0 %* h%) i = 6;" "^%s*if %(i == 6%) {$"]]
+                         "^%s*if %(other >= 2%.0 %* h%) i = 6;" "^%s*if %(i == 6%) {$"
+                         ;; surfaceAt's colour turn (-1), mapObject's colour query
+                         "^%s*for %(int i = gZero %- 1; i < 7 %+ kNormalTaps; i%+%+%) {$"
+                         "^%s*vec3 e = i < 0 %? vec3%(0%.0%) : crease %? s %* axisStep%(axis, h%) : normalTap%(max%(i %- 7, 0%), h, w%);$"
+                         "^%s*float d = mapObject%(p %+ e, crease %? %-1 : object, i < 0 %? %-1 : crease %? gObject : %-1, i < 0, color%);$"
+                         "^%s*int object = %-1;" "^%s*if %(i < 0%) {$" "^%s*} else if %(i == 0%) {$"
+                         "^%s*return mapObject%(p, %-1, %-1, true, color%);$"
+                         " gObject = [%d i%+]+;$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]
               (let [masked (-> line (: :gsub "%d+%.%d+" "F") (: :gsub "%[%d+%]" "[N]"))]

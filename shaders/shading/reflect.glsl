@@ -15,8 +15,7 @@ for (int bounce = 1; bounce <= uReflections; bounce++) {
     }
     p = origin + r * tr;
     vec3 hitColor;
-    mapColor(p, hitColor);
-    n = calcNormal(p);
+    n = surfaceAt(p, hitColor);
     dir = r;
     color = (color + hitColor * lightness(p, n) * 0.5) * 0.66;
     // @slot mirror-mix

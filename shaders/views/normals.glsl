@@ -2,5 +2,4 @@
 if (t >= uDrawDist) {
     return vec3(0.0);
 }
-// @slot nearest
-return calcNormal(ro + rd * t) * 0.5 + 0.5;
+// @slot normal

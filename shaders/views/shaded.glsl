@@ -6,8 +6,7 @@ if (t >= uDrawDist) {
 }
 vec3 p = ro + rd * t;
 vec3 surface;
-mapColor(p, surface);  // first: calcNormal may read the object it found
-vec3 n = calcNormal(p);
+vec3 n = surfaceAt(p, surface);
 vec3 color = surface * lightness(p, n);
 // @slot reflections
 return color;

@@ -91,12 +91,21 @@ src/render/bounds.fnl and shaders/pipeline/bounds.glsl)."
      (span-lines plan.bounds false)
      (if (soft-bounded? plan) ["" (span-lines plan.bounds true)] [])]))
 
-(fn color-terms [cx plan]
+(fn color-start [plan]
+  ;; What mapColor's query sets first: no mirror and the default material, no object.
   [(if (modern-materials? plan) "gMirror = 0.0; gMaterial = vec4(0.5, 0.0, 0.0, 0.0);"
        plan.mirrors? "gMirror = 1.0;"
        [])
-   (if (object-normals? plan) "gObject = -1;" [])
+   (if (object-normals? plan) "gObject = -1;" [])])
+
+(fn color-terms [cx plan]
+  [(color-start plan)
    (emit-glsl.color-terms cx plan.tape plan.mirrors? (when (object-normals? plan) 0))])
+
+(fn crease? [plan]
+  ;; Object normals by differences (normal-crease.glsl): mapObject answers every
+  ;; query of a hit, mapColor's too, written once.
+  (and (object-normals? plan) (not plan.exact-normals?)))
 
 (fn gradient-terms [cx plan action]
   ;; Each object's exact normal in closed form, when gObject is its number (a field
@@ -106,8 +115,8 @@ src/render/bounds.fnl and shaders/pipeline/bounds.glsl)."
 
 (fn object-terms [cx plan]
   ;; mapObject's cases: each tape object (a field's member) by number, or every one
-  ;; but one.
-  (emit-glsl.object-terms cx plan.tape 0))
+  ;; but one, or mapColor's query.
+  (emit-glsl.object-terms cx plan.tape 0 plan.mirrors?))
 
 ;;; Features
 
@@ -276,9 +285,10 @@ hit before the view, so that form keeps the march before the loop."
                                     (fill "shaders/shading/reflect.glsl" (mirror-slots plan))
                                     [])}))
     :normals (fill "shaders/views/normals.glsl"
-                   {:nearest (if (object-normals? plan)
-                                 ["vec3 surface;" "mapColor(ro + rd * t, surface);  // sets gObject"]
-                                 [])})
+                   ;; The nearest object's normal needs it found first (surfaceAt).
+                   {:normal (if (object-normals? plan)
+                                ["vec3 surface;" "return surfaceAt(ro + rd * t, surface) * 0.5 + 0.5;"]
+                                ["return calcNormal(ro + rd * t) * 0.5 + 0.5;"])})
     view (fill (.. "shaders/views/" view ".glsl") {})))
 
 (fn out-of-steps-lines [plan]
@@ -336,12 +346,16 @@ hit before the view, so that form keeps the march before the loop."
     (each [_ f (ipairs (shader-hooks plan :sections))]
       (table.insert sections (f)))
     (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms cx plan)}))
-    ;; mapColor only where the view has a use for colours.
-    (when colors?
-      (table.insert sections (fill "shaders/pipeline/map-color.glsl" {:color-terms (color-terms cx plan)})))
-    (when (and (object-normals? plan) (not plan.exact-normals?))
+    ;; mapColor only where the view has a use for colours: with crease normals, through
+    ;; mapObject, which writes the scene once for every query of a hit.
+    (when (crease? plan)
       (table.insert sections (fill "shaders/pipeline/map-object.glsl"
-                                   {:object-terms (object-terms cx plan)})))
+                                   {:color-start (color-start plan)
+                                    :object-terms (object-terms cx plan)})))
+    (when colors?
+      (table.insert sections (if (crease? plan)
+                                 (fill "shaders/pipeline/map-color-object.glsl" {})
+                                 (fill "shaders/pipeline/map-color.glsl" {:color-terms (color-terms cx plan)}))))
     (when plan.bounds
       (table.insert sections (bounded-lines cx plan)))
     (when plan.grids
@@ -361,12 +375,15 @@ hit before the view, so that form keeps the march before the loop."
       (when (and (object-normals? plan) plan.exact-normals?)
         (table.insert sections (fill "shaders/pipeline/normal-exact.glsl"
                                      {:gradients (gradient-terms cx plan "n = ")})))
-      (when (and (object-normals? plan) (not plan.exact-normals?))
-        ;; The grouped and field objects have their exact gradient; the trees' take
-        ;; differences.
-        (table.insert sections
-                      (fill "shaders/pipeline/normal-crease.glsl"
-                            {:exact (gradient-terms cx plan "return ")}))))
+      ;; surfaceAt: a hit's colour and normal. With crease normals one loop of
+      ;; mapObject (the grouped and field objects have their exact gradient; the
+      ;; trees' take differences); else mapColor, then calcNormal.
+      (if (crease? plan)
+          (table.insert sections
+                        (fill "shaders/pipeline/normal-crease.glsl"
+                              {:exact (gradient-terms cx plan "return ")}))
+          colors?
+          (table.insert sections (fill "shaders/pipeline/surface.glsl" {}))))
     (when (and (= view :shaded) (not plan.lighting))
       (table.insert sections
                     (fill "shaders/shading/light.glsl"

@@ -185,38 +185,50 @@ row -> true."
       (add 1 (.. ins.dout " = min(" ins.dout ", b" n ");"))
       (add 0 "}"))))
 
+(fn emit-material [cx out ins]
+  ;; A material's rows read into its register.
+  (let [lit ins.literal
+        row (fn [k] (if lit (literal (fcollect [i 1 4] (. lit (+ (* 4 k) i))))
+                        (row-expr cx (+ ins.row k))))]
+    (table.insert out (if (= cx.mt.type "vec4")
+                          (.. "vec4 " ins.mout " = " (row 0) ";")
+                          (.. "mat2x4 " ins.mout " = mat2x4(" (row 0) ", " (row 1)
+                              ");")))))
+
+(fn emit-mix [cx out ins]
+  ;; A combination's material: its operands' blended by its weight.
+  (table.insert out (.. cx.mt.type " " ins.mout " = " cx.mt.mix "(" ins.mb ", " ins.ma ", "
+                        (call cx (weight-name ins.desc) (.. ins.da ", " ins.db) ins.args)
+                        ");")))
+
 (fn emit-instr [cx out ins materials?]
-  (case ins.op
-    :prim (table.insert out (.. "float " ins.dout " = "
-                                (call cx ins.desc.glsl-name (reg cx ins.pin) ins.args) ";"))
-    :material (when materials?
-                (let [lit ins.literal
-                      row (fn [k] (if lit (literal (fcollect [i 1 4] (. lit (+ (* 4 k) i))))
-                                      (row-expr cx (+ ins.row k))))]
-                  (table.insert out (if (= cx.mt.type "vec4")
-                                        (.. "vec4 " ins.mout " = " (row 0) ";")
-                                        (.. "mat2x4 " ins.mout " = mat2x4(" (row 0) ", " (row 1)
-                                            ");")))))
-    :point (table.insert out (.. "vec3 " ins.pout " = "
-                                 (call cx ins.desc.glsl-name (reg cx ins.pin) ins.args) ";"))
-    :post (table.insert out (.. "float " ins.dout " = "
-                                (call cx ins.desc.glsl-name (.. ins.din ", " (reg cx ins.pin)) ins.args) ";"))
-    :distance (table.insert out (.. "float " ins.dout " = "
-                                    (call cx ins.desc.glsl-name
-                                          (.. ins.din ", " (reg cx ins.pin)) ins.args) ";"))
-    :far (table.insert out (.. "float " ins.dout " = max(" ins.din ", " ins.bin ");"))
-    :divide (table.insert out (string.format "float %s = %s * %.9g;  // Lipschitz %.6g"
-                                             ins.dout ins.din (/ 1 ins.k) ins.k))
-    :combine (do
-               (table.insert out (.. "float " ins.dout " = "
-                                     (call cx ins.desc.glsl-name (.. ins.da ", " ins.db) ins.args) ";"))
-               (when materials?
-                 (table.insert out (.. cx.mt.type " " ins.mout " = " cx.mt.mix "(" ins.mb ", " ins.ma ", "
-                                       (call cx (weight-name ins.desc) (.. ins.da ", " ins.db) ins.args)
-                                       ");"))))
-    :cells (if ins.near? (emit-near-cells cx out ins materials?) (emit-cells cx out ins materials?))
-    :blend (emit-blend cx out ins materials?)
-    _ (error (.. "emit-glsl: unknown instruction " (tostring ins.op)))))
+  ;; With `materials?` :only, the material lines alone (an object's materials
+  ;; computed after its distance: see deferred-materials?).
+  (if (= materials? :only)
+      (case ins.op
+        :material (emit-material cx out ins)
+        :combine (emit-mix cx out ins))
+      (case ins.op
+        :prim (table.insert out (.. "float " ins.dout " = "
+                                    (call cx ins.desc.glsl-name (reg cx ins.pin) ins.args) ";"))
+        :material (when materials? (emit-material cx out ins))
+        :point (table.insert out (.. "vec3 " ins.pout " = "
+                                     (call cx ins.desc.glsl-name (reg cx ins.pin) ins.args) ";"))
+        :post (table.insert out (.. "float " ins.dout " = "
+                                    (call cx ins.desc.glsl-name (.. ins.din ", " (reg cx ins.pin)) ins.args) ";"))
+        :distance (table.insert out (.. "float " ins.dout " = "
+                                        (call cx ins.desc.glsl-name
+                                              (.. ins.din ", " (reg cx ins.pin)) ins.args) ";"))
+        :far (table.insert out (.. "float " ins.dout " = max(" ins.din ", " ins.bin ");"))
+        :divide (table.insert out (string.format "float %s = %s * %.9g;  // Lipschitz %.6g"
+                                                 ins.dout ins.din (/ 1 ins.k) ins.k))
+        :combine (do
+                   (table.insert out (.. "float " ins.dout " = "
+                                         (call cx ins.desc.glsl-name (.. ins.da ", " ins.db) ins.args) ";"))
+                   (when materials? (emit-mix cx out ins)))
+        :cells (if ins.near? (emit-near-cells cx out ins materials?) (emit-cells cx out ins materials?))
+        :blend (emit-blend cx out ins materials?)
+        _ (error (.. "emit-glsl: unknown instruction " (tostring ins.op))))))
 
 (set emit-code
      (fn [cx out code materials?]
@@ -357,15 +369,49 @@ id)` (lines using its distance); `id` is its number as GLSL."
 `only` is this one, and `skip` is not."
   (.. "if ((all || only == " id ") && skip != " id ") {"))
 
+(fn color-taken [o id mirrors? modern?]
+  ;; The nearest so far keeps its distance and colour (with `mirrors?` or two-row
+  ;; materials, its mirror amount; with those, its second row), and with `id` its
+  ;; number in gObject.
+  (let [row (when o.mout (if modern? (.. o.mout "[0]") o.mout))]
+    (.. "d = " o.dout "; color = " row ".rgb;"
+        (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
+        (if modern? (.. " gMaterial = " o.mout "[1];") "")
+        (if id (.. " gObject = " id ";") ""))))
+
 (fn color-tail [o ?first mirrors? modern?]
   "A tail for object-body in mapColor: the nearest keeps its colour (with `mirrors?`
 or two-row materials, its mirror amount; with those, its second row), and with
 `?first` its number in gObject."
-  (let [row (when o.mout (if modern? (.. o.mout "[0]") o.mout))]
-    #[(.. "if (" o.dout " < d) { d = " o.dout "; color = " row ".rgb;"
-          (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
-          (if modern? (.. " gMaterial = " o.mout "[1];") "")
-          (if ?first (.. " gObject = " $ ";") "") " }")]))
+  #[(.. "if (" o.dout " < d) { " (color-taken o (when ?first $) mirrors? modern?) " }")])
+
+(fn deferred-materials? [o]
+  "Whether object `o`'s materials may be computed after its distance, at the end of
+its code, only where it is the nearest so far: no repetition or blend in it (those
+keep the nearest cell's or member's material inside their loop)."
+  (accumulate [ok? true _ ins (ipairs o.code)]
+    (and ok? (not= ins.op :cells) (not= ins.op :blend))))
+
+(fn either-tail [cx o mirrors? modern?]
+  "A tail for object-body in mapObject(p, only, skip, materials, color): with
+`materials` (mapColor's query, every object) the nearest keeps its colour and its
+number in gObject, its materials computed then (deferred-materials?: else its code
+computes them as it goes); without, its distance folded into d. Its code is then
+written once for both."
+  (let [cx (derived cx :mt (or cx.mt (. material-types (if modern? 8 4))))
+        later (if (deferred-materials? o) (emit-code cx [] o.code :only) [])]
+    #["if (materials) {"
+      (indented [(.. "if (" o.dout " < d) {")
+                 (indented [later (color-taken o $ mirrors? modern?)])
+                 "}"])
+      "} else {"
+      (indented [(.. "d = min(d, " o.dout ");")])
+      "}"]))
+
+(fn either-terms [color-lines object-lines]
+  "A strategy's term in mapObject(p, only, skip, materials, color) from its mapColor
+lines and its distance-only lines, when it has no form that serves both."
+  ["if (materials) {" (indented color-lines) "} else {" (indented object-lines) "}"])
 
 (fn leaf-gradient [cx o action]
   "A leaf object's exact normal: its translations, then its primitive's gradient
@@ -439,15 +485,19 @@ objects are numbered from it in tape order, an instance group's members one each
     (icollect [_ o (ipairs tape.objects)]
       ((. (glsl-of o) :color) cx o ?first mirrors? modern?))))
 
-(fn object-terms [cx tape first]
-  "Lines for mapObject(p, only, skip): the distance of the object `only` numbers
-(numbered from `first` as color-terms does) alone, set in d; with `only` -1 (`all`)
-every object's but the one `skip` numbers (-1: none), folded into d as map() folds
-them. Each object is written once for every case (GLSL compilers inline every call:
-each copy of the scene is its share of the compile, and normal-crease.glsl calls it
-in one loop)."
-  (icollect [_ o (ipairs tape.objects)]
-    ((. (glsl-of o) :object) cx o first)))
+(fn object-terms [cx tape first mirrors?]
+  "Lines for mapObject(p, only, skip, materials, color): the distance of the object
+`only` numbers (numbered from `first` as color-terms does) alone, set in d; with
+`only` -1 (`all`) every object's but the one `skip` numbers (-1: none), folded into d
+as map() folds them; with `materials`, mapColor's query (as color-terms, with
+`mirrors?`, numbering the objects in gObject). Each object is written once for every
+case where its strategy can (GLSL compilers inline every call: each copy of the scene
+is its share of the compile, and normal-crease.glsl's surfaceAt calls it in one
+loop)."
+  (let [cx (derived cx :mt (. material-types tape.material-size))
+        modern? (= tape.material-size 8)]
+    (icollect [_ o (ipairs tape.objects)]
+      ((. (glsl-of o) :object) cx o first mirrors? modern?))))
 
 (fn exact? [o]
   "Whether object `o` has its exact normal in closed form (its strategy's :exact?)."
@@ -470,5 +520,5 @@ leaf whose primitive is solid below a plane, met in closed form; see plane-block
  : exact? : text-lines : float-literal : tape-texture-width : tape-texel : gradient-name
  ;; For the strategies' terms (src/sdf/strategies/):
  : derived : emit-code : object-comment : indented : guarded-lines : object-body : open-block
- : minimum-tail : taken-open : color-tail : leaf-gradient : leaf-exact? : plane-block
+ : minimum-tail : taken-open : color-tail : either-tail : either-terms : deferred-materials? : leaf-gradient : leaf-exact? : plane-block
  : written-terms}

@@ -30,9 +30,11 @@
 ;;              context cx; `first`, the number of the tape's first object):
 ;;              :distance (fn [cx o]) map's term (mapFinite's with cx.finite?);
 ;;              :color (fn [cx o ?first mirrors? modern?]) mapColor's (with ?first it
-;;              sets gObject); :object (fn [cx o first]) mapObject(p, only, skip)'s:
-;;              object `only` alone, or with `all` (only -1) every object but
-;;              `skip`; :gradient (fn [cx o
+;;              sets gObject); :object (fn [cx o first mirrors? modern?])
+;;              mapObject(p, only, skip, materials, color)'s: object `only` alone,
+;;              or with `all` (only -1) every object but `skip`, or with `materials`
+;;              mapColor's query (emit-glsl's either-tail writes a tree's code once
+;;              for all; either-terms wraps two forms); :gradient (fn [cx o
 ;;              first action]) its exact normal (nil: none); :planes (fn [cx o])
 ;;              planesHit's (nil: not a half-space); :exact? (fn [o]) whether it has an
 ;;              exact normal in closed form

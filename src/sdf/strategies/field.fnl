@@ -35,6 +35,14 @@
   ;; The field's part of a minimum, skipping its member `skip` (a GLSL int).
   (chunks.fill-part chunk :minimum {: skip}))
 
+(fn color-lines [o ?first]
+  ;; mapColor's term: the nearest member's colour (and with ?first its number).
+  (chunks.fill-part chunk :color
+                    {:object (if ?first
+                                 [(.. "gObject = best >= 0 ? " (field-number "best" (+ ?first o.id))
+                                      " : -1;")]
+                                 [])}))
+
 (fn exact? [o]
   ;; Spheres and boxes only: their round boxes have their inner box's normal; with
   ;; marched members, differences are taken for all of them.
@@ -198,16 +206,14 @@
  :describe (fn [o] (.. " of " o.field.count " objects (a grid in textures)"))
  :glsl {:distance (fn [_ _] (field-minimum "-1"))
         ;; (Its members are matte: the mirror amount and material stay.)
-        :color (fn [_ o ?first]
-                 (chunks.fill-part chunk :color
-                                   {:object (if ?first
-                                                [(.. "gObject = best >= 0 ? " (field-number "best" (+ ?first o.id))
-                                                     " : -1;")]
-                                                [])}))
+        :color (fn [_ o ?first] (color-lines o ?first))
         ;; Every member but `skip`, or member `only` alone.
+        ;; With `materials`, mapColor's term.
         :object (fn [_ o first]
-                  ["if (all) {" (glsl.indented (field-minimum (field-index (+ first o.id) "skip"))) "}"
-                   (field-selected o first "d = fieldObject" "only")])
+                  (glsl.either-terms
+                   (color-lines o first)
+                   ["if (all) {" (glsl.indented (field-minimum (field-index (+ first o.id) "skip"))) "}"
+                    (field-selected o first "d = fieldObject" "only")]))
         :gradient (fn [_ o first action]
                     (when (exact? o) (field-selected o first (.. action "fieldNormal"))))
         :planes (fn [_ _] nil)

@@ -67,6 +67,9 @@
                      (in-group cx o lines-fn)])
      "}"]))
 
+;; Its terms as a tree's, from its blocks (each member's, in a loop).
+(local written (glsl.written-terms block selected))
+
 (fn grid-of [plan o]
   ;; The group's grid (src/sdf/grid.fnl), or nil.
   (let [g o.instances.grid]
@@ -85,17 +88,20 @@
  :marched? (fn [o] (not o.half-space?))
  :infos (fn [o] o.infos)
  :describe (fn [o] (.. " x" o.instances.count " (instance group: a loop)"))
- :glsl (doto (glsl.written-terms block selected)
+ :glsl (doto written
          ;; Two forms: the whole group's minimum but member `skip`, and member
          ;; `only`'s distance.
-         (tset :object (fn [cx o first]
-                         ["if (all) {"
-                          (glsl.indented (block cx o first false #(.. "if (skip != " $ ") {")
-                                                (glsl.minimum-tail o)))
-                          "}"
-                          (selected cx o first
-                                    #[(glsl.emit-code $ [] o.code false) (.. "d = " o.dout ";")]
-                                    "only")]))
+         ;; With `materials`, mapColor's term.
+         (tset :object (fn [cx o first mirrors? modern?]
+                         (glsl.either-terms
+                          (written.color cx o first mirrors? modern?)
+                          ["if (all) {"
+                           (glsl.indented (block cx o first false #(.. "if (skip != " $ ") {")
+                                                 (glsl.minimum-tail o)))
+                           "}"
+                           (selected cx o first
+                                     #[(glsl.emit-code $ [] o.code false) (.. "d = " o.dout ";")]
+                                     "only")])))
          (tset :planes (fn [cx o] (when o.half-space? (looped cx o (glsl.plane-block o))))))
  :lua (fn [tape o what banks into] (emit-lua.object-evaluators tape o what banks into o.instances))
  :spheres (fn [plan o at out]

@@ -51,10 +51,13 @@
                     [(.. "d = tapeMin(p, d, -1, -1, " (if cx.finite? "true" "false")
                          ");  // every object, by the interpreter")])
         :color color-term
-        :object (fn [_ _ first]
+        ;; With `materials`, mapColor's term.
+        :object (fn [_ _ first mirrors? modern?]
                   (let [minus #(if (= first 0) $ (.. $ " - " first))]
-                    [(.. "d = tapeMin(p, d, all ? -1 : " (minus "only") ", skip < 0 ? -1 : "
-                         (minus "skip") ", false);")]))
+                    (glsl.either-terms
+                     (color-term nil nil first mirrors? modern?)
+                     [(.. "d = tapeMin(p, d, all ? -1 : " (minus "only") ", skip < 0 ? -1 : "
+                          (minus "skip") ", false);")])))
         :gradient (fn [_ o first action]
                     ;; Written as the set says (the text is the set's alone); the
                     ;; program says which objects have one (tapeExact).

@@ -30,8 +30,11 @@
  :infos (fn [o] [o.info])
  :describe (fn [_] "")
  :glsl (doto (glsl.written-terms block selected)
-         (tset :object (fn [cx o first]
-                         [(block cx o first false glsl.taken-open (glsl.minimum-tail o))]))
+         ;; Its code once for mapObject's every query: its materials computed only
+         ;; for the colour query, where it is the nearest so far (glsl.either-tail).
+         (tset :object (fn [cx o first mirrors? modern?]
+                         [(block cx o first (not (glsl.deferred-materials? o)) glsl.taken-open
+                                 (glsl.either-tail cx o mirrors? modern?))]))
          (tset :planes (fn [cx o]
                          (when o.half-space?
                            [(glsl.object-comment o) ((glsl.plane-block o) cx)]))))
