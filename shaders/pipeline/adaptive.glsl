@@ -29,12 +29,18 @@ bool needsSamples(vec3 rd, float t) {
     // The whole scene's normal a footprint further along the ray: across an edge or
     // onto another object it turns; past the limb of a curved surface seen edge-on it
     // turns a little, which matters only when the view grazes the surface.
+    // Central differences of map, in a loop from gZero: one copy of the scene, where
+    // six calls written out were six.
     float e = t / (uProjDist * uResolution.y);
     vec3 q = p + rd * e;
-    vec2 h = vec2(0.5 * e, 0.0);
-    vec3 ahead = safeNormalize(vec3(map(q + h.xyy) - map(q - h.xyy),
-                                    map(q + h.yxy) - map(q - h.yxy),
-                                    map(q + h.yyx) - map(q - h.yyx)));
+    float h = 0.5 * e;
+    vec3 g = vec3(0.0);
+    for (int i = gZero; i < 6; i++) {
+        int axis = i / 2;
+        float s = i == 2 * axis ? 1.0 : -1.0;
+        g[axis] += s * map(q + s * axisStep(axis, h));
+    }
+    vec3 ahead = safeNormalize(g);
     float turn = 1.0 - dot(n, ahead);
     float facing = dot(n, -rd);
     return turn > kEdgeTurn || (facing < kGrazing && turn > kLimbTurn);
@@ -60,22 +66,41 @@ bool priorEdge(vec2 pixel) {
     return m > kContrast;
 }
 
+// One loop over one call of renderSample (GLSL compilers inline every call: four
+// calls were four copies of the whole picture's code): turn 0 the centre ray, turn 1
+// the second, turns 2 on the grid's, as gridSamples orders and sums them.
 vec3 render(vec2 pixel) {
-    if (uPriorPass > 1.5 && priorEdge(pixel)) {
-        return gridSamples(pixel);
-    }
-    gCentre = true;
-    vec3 centre = clamp(renderSample(pixel), 0.0, 1.0);
-    gCentre = false;
-    if (uPriorPass > 0.5 && uPriorPass < 1.5) {
-        return centre;
-    }
-    if (!gNeedsSamples) {
-        vec3 second = clamp(renderSample(pixel + kSecond), 0.0, 1.0);
-        vec3 luma = vec3(0.2126, 0.7152, 0.0722);
-        if (abs(dot(second - centre, luma)) <= kContrast) {
-            return 0.5 * (centre + second);
+    int grid = kSamples * kSamples;
+    vec3 centre = vec3(0.0);
+    vec3 sum = vec3(0.0);
+    for (int k = uPriorPass > 1.5 && priorEdge(pixel) ? 2 : 0; k < 2 + grid; k++) {
+        vec2 at = pixel;
+        if (k == 1) {
+            at += kSecond;
+        } else if (k >= 2) {
+            int i = (k - 2) % kSamples;
+            int j = (k - 2) / kSamples;
+            at += (vec2(float(i), float(j)) + 0.5) / float(kSamples) - 0.5;
+        }
+        gCentre = k == 0;
+        vec3 c = clamp(renderSample(at), 0.0, 1.0);
+        gCentre = false;
+        if (k == 0) {
+            centre = c;
+            if (uPriorPass > 0.5 && uPriorPass < 1.5) {
+                return centre;
+            }
+            if (gNeedsSamples) {
+                k = 1;  // an edge: on to the grid
+            }
+        } else if (k == 1) {
+            vec3 luma = vec3(0.2126, 0.7152, 0.0722);
+            if (abs(dot(c - centre, luma)) <= kContrast) {
+                return 0.5 * (centre + c);
+            }
+        } else {
+            sum += c;
         }
     }
-    return gridSamples(pixel);
+    return sum / float(grid);
 }

@@ -428,7 +428,8 @@ hit before the view, so that form keeps the march before the loop."
       (let [grid (parts "shaders/pipeline/supersample.glsl")]
         (table.insert sections
                       [(if plan.adaptive? [] [(.. "const int kSamples = " plan.samples ";")])
-                       grid.grid
+                       ;; (The adaptive render takes the grid's rays in its own loop.)
+                       (if plan.adaptive? [] grid.grid)
                        (if plan.adaptive?
                            (. (parts "shaders/pipeline/adaptive.glsl") :render)
                            grid.render)])))
