@@ -207,8 +207,8 @@
  :glsl {:distance (fn [_ _] (field-minimum "-1"))
         ;; (Its members are matte: the mirror amount and material stay.)
         :color (fn [_ o ?first] (color-lines o ?first))
-        ;; Every member but `skip`, or member `only` alone.
-        ;; With `materials`, mapColor's term.
+        ;; Every member but `skip`, or member `only` alone; with `materials`,
+        ;; mapColor's term.
         :object (fn [_ o first]
                   (glsl.either-terms
                    (color-lines o first)

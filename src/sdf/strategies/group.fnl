@@ -90,8 +90,7 @@
  :describe (fn [o] (.. " x" o.instances.count " (instance group: a loop)"))
  :glsl (doto written
          ;; Two forms: the whole group's minimum but member `skip`, and member
-         ;; `only`'s distance.
-         ;; With `materials`, mapColor's term.
+         ;; `only`'s distance; with `materials`, mapColor's term.
          (tset :object (fn [cx o first mirrors? modern?]
                          (glsl.either-terms
                           (written.color cx o first mirrors? modern?)
