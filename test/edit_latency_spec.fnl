@@ -56,7 +56,10 @@
                                                 "the player compiled 0 "
                                                 "the player compiled 1 ")
                                             1 true)
-                                 line))
+                                 line)
+                  ;; The scene file runs once an edit: a load that waited for its
+                  ;; helper takes the scene it read (it ran twice before).
+                  (assert.truthy (line:find "the scene file run 1" 1 true) line))
                 ;; The edit made while the helper compiled the still's shader cancelled it.
                 (let [[during] (lines-matching out "structural edit during the still")
                       cancelled (tonumber (during:match "background jobs cancelled (%d+)"))]

@@ -14,12 +14,13 @@
 
 (describe "the scene file watcher"
   (fn []
-    (it "loads an edit once the file has not been written for 0.2 s, once"
+    (it "loads an edit once the file has not been written for 0.05 s, once"
       (fn []
+        (assert.are.equal 0.05 watch.settle-seconds)
         (let [w (watch.new (info "a" 0))]
-          (assert.are.same [[10.3 :changed]]
-                           (run w [[10 (info "b" 10)] [10.1 (info "b" 10)] [10.3 (info "b" 10)]
-                                   [10.5 (info "b" 10)] [10.9 (info "b" 10)]])))))
+          (assert.are.same [[10.06 :changed]]
+                           (run w [[10 (info "b" 10)] [10.02 (info "b" 10)] [10.04 (info "b" 10)]
+                                   [10.06 (info "b" 10)] [10.1 (info "b" 10)] [10.9 (info "b" 10)]])))))
 
     (it "sees an edit of the same size within the same second (by content)"
       (fn []
@@ -29,7 +30,7 @@
 
     (it "never loads a file that is still being written, however rarely it looks"
       (fn []
-        ;; A writer rewrites the file every 50 ms (truncate, then write); the player
+        ;; A writer rewrites the file every 40 ms (truncate, then write); the player
         ;; looks once a second and each time sees the half-written text, the same
         ;; every time. Nothing loads until the writing stops.
         (let [w (watch.new (info "old" 0))]
@@ -41,15 +42,15 @@
     (it "with whole-second times, waits until the second after the stamp is over"
       (fn []
         (let [w (watch.new (info "old" 0))]
-          (assert.are.same [[11.3 :changed]]
-                           (run w [[10.5 (info "new" 10 true)] [11.1 (info "new" 10 true)]
-                                   [11.3 (info "new" 10 true)]])))))
+          (assert.are.same [[11.06 :changed]]
+                           (run w [[10.5 (info "new" 10 true)] [11.02 (info "new" 10 true)]
+                                   [11.06 (info "new" 10 true)]])))))
 
     (it "does not report a file briefly missing while an editor renames over it"
       (fn []
         (let [w (watch.new (info "old" 0))]
-          (assert.are.same [[10.5 :changed]]
-                           (run w [[10 nil] [10.1 nil] [10.2 (info "new" 10.15)] [10.5 (info "new" 10.15)]])))))
+          (assert.are.same [[10.22 :changed]]
+                           (run w [[10 nil] [10.1 nil] [10.18 (info "new" 10.15)] [10.22 (info "new" 10.15)]])))))
 
     (it "reports a deleted file once, after a second, and a restored one as a change"
       (fn []
@@ -95,15 +96,16 @@
       (fn []
         ;; A scene written in two halves 50 ms apart; a load read the first half at
         ;; 10.02 (it failed, and did not stand): the file is loaded again at the first
-        ;; poll 0.15 s after the second half (10.21), never before, and once.
+        ;; poll the settle time after the second half (10.11, a new version), never
+        ;; before, and once.
         (let [first-half (info "{:objects [" 10)
               whole (info "{:objects []}" 10.05)
               w (watch.new (info "old" 0))]
           (watch.loaded! w first-half)
           (assert.is_false (watch.failure-stands? first-half first-half 10.02))
           (watch.retry! w)
-          (assert.are.same [[10.21 :changed]]
-                           (run w [[10.03 first-half] [10.1 whole] [10.15 whole] [10.21 whole]
+          (assert.are.same [[10.11 :changed]]
+                           (run w [[10.03 first-half] [10.07 whole] [10.09 whole] [10.11 whole]
                                    [10.3 whole] [10.6 whole]]))
           ;; A retry of a file that did not change after the failed read: loaded
           ;; again all the same, once it is 0.15 s old.

@@ -13,7 +13,7 @@
 ;;                  folded one)
 ;;   during bands   the still's bands are being drawn
 ;;
-;; The watcher's 0.2 s of settling is skipped, as in the soak test. Prints, for each
+;; The watcher's 0.05 s of settling is skipped, as in the soak test. Prints, for each
 ;; edit, the time from the write to the end of the first frame drawn with it, the
 ;; longest frame in between (the window's freeze), and the shaders the player compiled
 ;; itself meanwhile, with the time their newShader calls took (after the helper, a hit
@@ -74,9 +74,10 @@
             compiles state.cache.compiles
             compile-seconds state.cache.compile-seconds
             cancelled (or (?. state.warm :cancelled) 0)
+            runs state.scene-runs
             previewed state.previewed]
         (write! path new-text)
-        (play.poll-file! (+ (filestat.now) 0.05))
+        (play.poll-file! (+ (filestat.now) 0.01))
         (play.poll-file! (+ (filestat.now) 0.3))
         ;; The frame that drew the edit ended (LÖVE presents it) before the update in
         ;; which shown? first holds: that update's start, the last time wait took, is
@@ -93,6 +94,7 @@
                 (- state.cache.compiles compiles)
                 (* 1000 (- state.cache.compile-seconds compile-seconds))
                 (- (or (?. state.warm :cancelled) 0) cancelled)
+                (- state.scene-runs runs)
                 (if (shown?) "" (string.format "  (not shown within %d s)" limit))
                 ;; The first preview of the new scene (preview.fnl), when one came.
                 (case (?. state.previewed :first)
@@ -143,7 +145,7 @@
          (or (not (?. state.warm :enabled?))
              (and (if (until-true still-building? limit "a helper building the still")
                       (structural! "structural edit during the still" 2)
-                      (report "structural edit during the still" 0 0 0 0 0 "  (no still was built)"))
+                      (report "structural edit during the still" 0 0 0 0 0 0 "  (no still was built)"))
                   ;; The wait ends too when the still is given up (its helper failed).
                   ;; At most 180 s: twice in four full-suite runs the still of the
                   ;; state shown after an edit made during the still never came
@@ -153,7 +155,7 @@
                            (bands?))
                       (structural! "structural edit during its bands" 3)
                       (do (io.stderr:write (.. "edit-latency: no still's bands: " (warm-state) "\n"))
-                          (report "structural edit during its bands" 0 0 0 0 0
+                          (report "structural edit during its bands" 0 0 0 0 0 0
                                   (if (= false (?. state.refine :still))
                                       "  (no still was drawn: its shader failed)"
                                       (string.format "  (no still was drawn within %d s)" (math.min limit 180))))))))
@@ -222,7 +224,7 @@ holds (or there is no helper to hold)."
           (do (report "preview check: no compile helper here (the driver keeps no shared cache)")
               true)
           (do (write! path (with-ball-ahead text state.cam))
-              (play.poll-file! (+ (filestat.now) 0.05))
+              (play.poll-file! (+ (filestat.now) 0.01))
               (play.poll-file! (+ (filestat.now) 0.3))
               (if (not state.pending)
                   (fail "the edit did not wait for a helper")
@@ -300,7 +302,7 @@ shader must replace the interpreter's. `report` gets a line; true when all holds
                 start (love.timer.getTime)
                 first (+ (length frames) 1)]
             (write! path (with-ball-ahead text state.cam))
-            (play.poll-file! (+ (filestat.now) 0.05))
+            (play.poll-file! (+ (filestat.now) 0.01))
             (play.poll-file! (+ (filestat.now) 0.3))
             (let [new state.scene
                   iplan (play.current-plan)]
@@ -369,15 +371,15 @@ scene cannot be read."
                   o.interpret-check?
                   #(interpret-check path text print)
                   #(script path text
-                       (fn [label ms longest compiles compile-ms cancelled note ?preview]
-                         (print (string.format "%s %s, %s: %sshown after %.0f ms, longest frame %.0f ms, the player compiled %d (%.0f ms), background jobs cancelled %d%s"
+                       (fn [label ms longest compiles compile-ms cancelled runs note ?preview]
+                         (print (string.format "%s %s, %s: %sshown after %.0f ms, longest frame %.0f ms, the player compiled %d (%.0f ms), background jobs cancelled %d, the scene file run %d%s"
                                                o.scene label
                                                (if (?. play.state.warm :enabled?) "compile helper"
                                                    "compiled in the player")
                                                (case ?preview
                                                  p (string.format "preview (%dx%d) after %.0f ms, " p.w p.h p.ms)
                                                  _ "")
-                                               ms longest compiles compile-ms cancelled note)))))
+                                               ms longest compiles compile-ms cancelled runs note)))))
               #(io.stderr:write (.. "error: " $ "\n"))
               (fn [ok?]
                 (os.remove path)

@@ -164,7 +164,7 @@ then reloaded as a value edit."
       (check (= saved expected)
              (.. "Save writes only the three literals into the file"
                  (if (= saved expected) "" (.. "; it reads:\n" (tostring saved))))))
-    ;; The watcher loads a file once it has settled (0.2 s); the wait ends as soon
+    ;; The watcher loads a file once it has settled (0.05 s); the wait ends as soon
     ;; as it has, and its cap is generous so that a loaded CI machine cannot fail it.
     (wait-while cx #(= state.reloads reloads) 20)
     (check (and (> state.reloads reloads) (not state.last-load.compiled?) (= state.error nil))
@@ -182,7 +182,7 @@ shader compiled once. Whether the driver's cache really fills does not matter he
         reloads state.reloads
         text (files.read-user path)]
     (scripted.write! path (pick-values 1 (text:gsub ":objects %[" ":objects [{:kind :box :size [1 1 1] :pos [2 0 0.5] :color [0.2 0.4 0.9]}\n")))
-    (play.poll-file! (+ (filestat.now) 0.05))
+    (play.poll-file! (+ (filestat.now) 0.01))
     (play.poll-file! (+ (filestat.now) 0.3))
     (check (and w.enabled? state.pending (= state.scene old) (= state.cache.compiles compiles))
            (string.format "a structural edit waits for the compile helper, the last scene on screen (%s, %s)"
@@ -252,7 +252,7 @@ compiling nothing. A scene tree (a torus) gives it values to fold."
   (let [text (files.read-user path)
         reloads state.reloads]
     (scripted.write! path (pick-values 1 (text:gsub ":objects %[" ":objects [{:kind :torus :radius 1 :thickness 0.2 :pos [-2 0 1]}\n")))
-    (play.poll-file! (+ (filestat.now) 0.05))
+    (play.poll-file! (+ (filestat.now) 0.01))
     (play.poll-file! (+ (filestat.now) 0.3))
     (wait-while cx #(not (and (> state.reloads reloads) (not state.pending))) 240)
     ;; A whole picture is not drawn again while its state stays: the camera
@@ -267,7 +267,7 @@ compiling nothing. A scene tree (a torus) gives it values to fold."
           reloads state.reloads
           text (files.read-user path)]
       (scripted.write! path (pick-values 1 (text:gsub ":radius 1 :thickness 0.2" ":radius 1.25 :thickness 0.2")))
-      (play.poll-file! (+ (filestat.now) 0.05))
+      (play.poll-file! (+ (filestat.now) 0.01))
       (play.poll-file! (+ (filestat.now) 0.3))
       (wait 2)
       (check (and (= nil state.drawn.plan.base-key) (= state.cache.compiles compiles)

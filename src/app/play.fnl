@@ -61,6 +61,8 @@
               ;; whether this player does (interpret-edits?), and the key of the
               ;; shader awaited while it draws (interpreting).
               :interpret-edits? false :interpreting nil
+              ;; How many times a load ran the scene file (in the worker).
+              :scene-runs 0
               ;; When the helper was last asked for the interpreter's shader (see
               ;; warm-interpreter-when-idle!).
               :interpreter-asked nil
@@ -110,6 +112,12 @@ ten times a second unless `?force?` (a new step)."
   (set state.generation (+ state.generation 1)))
 
 ;;; Loading and hot reload
+
+;; With RAYMARCH_FRAME_LOG (see log-frame!): each loaded scene's text, and a serial
+;; number for each text drawn.
+(local frame-log-path (case (os.getenv "RAYMARCH_FRAME_LOG") "" nil path path))
+(local scene-texts (setmetatable {} {:__mode :k}))
+(local frame-serials {})
 
 (fn file-info [path]
   "The watched file's modification time, size and text; {:problem why} when it is
@@ -277,7 +285,7 @@ options draw it; `since`: when the change was asked for."
       (nil why) (do (set state.preview-request nil)
                     (when (not state.quiet?) (io.stderr:write (.. "no preview: " why "\n")))))))
 
-(fn load-unprotected! [path fresh? ?since ?now]
+(fn load-unprotected! [path fresh? ?since ?now ?pending]
   "Load the scene at `path` and switch to it once its shader is ready. `fresh?` (a new
 file, not an edit) resets the camera and the player's settings; an edit keeps them,
 unless the file's own camera or settings changed and the player left them alone.
@@ -286,7 +294,9 @@ read may have caught the file mid-write (watch.failure-stands?, judged at `?now`
 the wall clock): then nothing is said and the watcher loads it again once it has
 stayed the same for a moment (watch.retry!). A shader that a helper process is
 compiling leaves the load pending (state.pending); update loads the file again once
-the helper is done, `?since` the time of the first try."
+the helper is done, `?since` the time of the first try, `?pending` that load: its
+scene is taken again when the file still holds its text and no value changed since
+(the scene file is not run again: 50-100 ms of the worker's)."
   (set state.retry-fresh? nil)
   ;; The collector's defaults while loading (see settle-collector!).
   (default-collector!)
@@ -297,7 +307,12 @@ the helper is done, `?since` the time of the first try."
         ;; Slider positions not yet saved survive an edit of the file (params drops
         ;; one whose literal the edit changed); a new file starts from its own values.
         _ (when fresh? (set state.panel.overrides {}))
-        (scene err) (frame.load-scene path {:overrides state.panel.overrides})]
+        (scene err) (if (and ?pending (= ?pending.generation state.generation)
+                             (= ?pending.text (?. info :content)))
+                        ?pending.scene
+                        (do (set state.scene-runs (+ state.scene-runs 1))
+                            (frame.load-scene path {:overrides state.panel.overrides})))]
+    (when (and scene frame-log-path) (tset scene-texts scene (?. info :content)))
     (when (or fresh? (not state.watch))
       (set state.watch (watch.new info)))
     (watch.loaded! state.watch info)
@@ -339,7 +354,8 @@ the helper is done, `?since` the time of the first try."
                   (when (and state.preview old (not= (?. state.preview-request :key) plan.key))
                     (request-preview! scene reflections (camera-after-load scene old fresh?) plan.key
                                       start))
-                  (set state.pending {: path : fresh? :key plan.key : start : scene : plan}))
+                  (set state.pending {: path : fresh? :key plan.key : start : scene : plan
+                                      :generation state.generation :text (?. info :content)}))
               (not shader)
               (do (set state.error serr)
                   (when (not state.quiet?) (io.stderr:write (.. serr "\n"))))
@@ -377,10 +393,11 @@ the helper is done, `?since` the time of the first try."
                                                    "shader compiled")))
                   ;; The helper's shader replaces the interpreter's when it is done.
                   (when interp
-                    (set state.pending {: path : fresh? :key plan.key : start : scene : plan}))
+                    (set state.pending {: path : fresh? :key plan.key : start : scene : plan
+                                        :generation state.generation :text (?. info :content)}))
                   (settle-collector!))))))))
 
-(fn load! [path fresh? ?since ?now]
+(fn load! [path fresh? ?since ?now ?pending]
   "Load the scene at `path` (see load-unprotected!); a failure inside the loader
 itself is shown like a broken file, and the last good scene keeps running."
   ;; A newer load replaces the one waiting for its helper, and values asked for the
@@ -390,7 +407,7 @@ itself is shown like a broken file, and the last good scene keeps running."
   (when state.preview
     (preview.cancel! state.preview)
     (set state.preview-request nil))
-  (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh? ?since ?now)]
+  (let [(ok? err) (xpcall load-unprotected! debug.traceback path fresh? ?since ?now ?pending)]
     (when (not ok?)
       (set state.error (.. path ": the scene could not be loaded (an internal error): "
                            (tostring err))))))
@@ -408,10 +425,10 @@ cache hit in the driver, or a plain compile when the helper failed)."
       ;; a new view, replaced it while it waited) asks again. Before issue 42 a
       ;; background request could replace it, and the edit never showed.
       p (if (warm.settled? state.warm p.key)
-            (load! p.path p.fresh? p.start)
+            (load! p.path p.fresh? p.start nil p)
             (= nil (warm.status state.warm p.key))
             (when (warm.ready? state.warm p.key #(warm-source p.scene p.plan))
-              (load! p.path p.fresh? p.start))))))
+              (load! p.path p.fresh? p.start nil p))))))
 
 (fn apply-parameters! []
   "The panel moved a value: evaluate the scene's text again with the panel's values
@@ -460,15 +477,17 @@ file watcher then reloads it as a value edit."
   (when (and state.panel.open? (?. state.scene :params))
     (panel.layout state.scene.params (love.graphics.getWidth))))
 
+(local poll-seconds 0.02)   ; with watch.settle-seconds, an edit is read 50-70 ms after its save
+
 (fn poll-file! [?now]
-  "Look at the watched file, ten times a second at most (quick enough to feel
-immediate, and it costs nothing). `?now` overrides the wall clock (the soak test
+  "Look at the watched file, poll-seconds apart at most (a stat and a read of a
+small file: tens of microseconds). `?now` overrides the wall clock (the soak test
 moves it forward instead of waiting)."
   (let [clock (filestat.now)]
     ;; While another file's load waits for its helper, state.watch is that file's.
     (when (and state.path state.watch (not (?. state.pending :fresh?))
                (or ?now (>= clock state.poll-at)))
-      (set state.poll-at (+ clock 0.1))
+      (set state.poll-at (+ clock poll-seconds))
       (let [info (file-info state.path)]
         (case (watch.poll! state.watch info (or ?now (filestat.now)))
           ;; A retry of a new file that was caught mid-write is still a new file.
@@ -1270,6 +1289,30 @@ the shader), the last ones drawn."
     _ (do (set state.shown-preview nil) (draw-scene-or-last!)))
   (draw-overlays!))
 
+(var frame-serial 0)
+
+(fn log-frame! [out]
+  "One line on `out` for the frame just drawn (RAYMARCH_FRAME_LOG, read by
+tools/edit-window.sh): the wall-clock time (filestat.now, the clock of a file's
+mtime), what drew it (preview: the CPU reference's picture of the new scene while
+its shader is compiled; interpreter; shader) and the serial number of the scene
+it shows (each text of the file gets the next one when it is first drawn: a load
+that waits for its helper reads the file twice, and makes two tables of one scene)."
+  (let [scene (if state.shown-preview (or (?. state.pending :scene) state.scene)
+                  (?. state.drawn :scene))
+        source (when scene (. scene-texts scene))
+        serial (when source
+                 (when (not (. frame-serials source))
+                   (set frame-serial (+ frame-serial 1))
+                   (tset frame-serials source frame-serial))
+                 (. frame-serials source))]
+    (out:write (string.format "%.6f %s %d\n" (filestat.now)
+                              (if state.shown-preview :preview
+                                  state.interpreting :interpreter
+                                  :shader)
+                              (or serial 0)))
+    (out:flush)))
+
 (fn shoot-and-quit! [path]
   ;; The captured window includes the HUD and any error overlay: what a player sees.
   (love.graphics.captureScreenshot
@@ -1379,8 +1422,12 @@ reached the screen."
                        (handle-keyboard dt)
                        (handle-gamepad dt))))
   (var frames 0)
+  (local frame-log (when frame-log-path
+                     (or (io.open frame-log-path :w)
+                         (error (.. "RAYMARCH_FRAME_LOG: cannot write " frame-log-path)))))
   (set love.draw (fn []
                    (draw)
+                   (when frame-log (log-frame! frame-log))
                    (set frames (+ frames 1))
                    ;; Shoot once N frames are drawn and the image is whole (a
                    ;; progressive image needs every band drawn).

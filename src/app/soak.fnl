@@ -89,7 +89,7 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
       ;; The clock moved forward instead of waiting: first too soon (nothing loads),
       ;; then past the settle time.
       (write! path text)
-      (play.poll-file! (+ (filestat.now) 0.05))
+      (play.poll-file! (+ (filestat.now) 0.01))
       (play.poll-file! (+ (filestat.now) 0.3))
       (case (play.current-plan)
         plan (frame.render-to-canvas! state.cache canvas state.scene plan state.cam))
@@ -180,7 +180,7 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
       ;; The file replaced by a directory: said so (not 'deleted'), the scene stays.
       (os.remove path)
       (os.execute (.. "mkdir '" path "'"))
-      (play.poll-file! (+ (filestat.now) 0.05))
+      (play.poll-file! (+ (filestat.now) 0.01))
       (play.poll-file! (+ (filestat.now) 1.5))
       (let [image5 (do (case (play.current-plan)
                          plan (frame.render-to-canvas! state.cache canvas state.scene plan state.cam))
@@ -220,7 +220,7 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
     (fn settle! []
       ;; Two polls, the clock moved forward instead of waiting: too soon after the
       ;; write (nothing loads), then past the settle time (it loads).
-      (play.poll-file! (+ (filestat.now) 0.05))
+      (play.poll-file! (+ (filestat.now) 0.01))
       (play.poll-file! (+ (filestat.now) 0.3)))
     (write! path (scene-text {: spheres : shade}))
     (set state.quiet? true)
@@ -284,7 +284,7 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
       (print (string.format "soak: %d edits (%d value, %d structural, %d broken)"
                             cycles counts.value counts.structural counts.broken))
       (when (> (length times.value) 0)
-        (print (string.format "reload time (file read, validate, plan, shader): value edit median %.1f ms, structural edit median %.1f ms; the watcher adds 0.2 s of settling"
+        (print (string.format "reload time (file read, validate, plan, shader): value edit median %.1f ms, structural edit median %.1f ms; the watcher adds 0.05-0.07 s of settling"
                               (median times.value) (median times.structural))))
       (when memory-warm
         (print (string.format "Lua memory after cycle %d: %.0f KB, at the end: %.0f KB (the most of %d and %d readings)"

@@ -1,0 +1,107 @@
+;; luajit tools/fnl.lua tools/edit-window.fnl DIR LOG SCENE EDIT
+;; Reads what tools/edit-window.sh left in DIR for one edit of one scene and prints
+;; one line of the table:
+;;   LOG              the player's RAYMARCH_FRAME_LOG: "time kind serial" a frame
+;;   DIR/save         the wall-clock time just before the edit was written
+;;   DIR/grabs        "index start end" for each window grab DIR/NNNN.xwd
+;; From the log: the first frame after the save that shows another scene (the new
+;; one) and what drew it, the first frame its own shader drew, the longest time
+;; between two frames from the save until then, and frames that went back to the old
+;; scene. From the grabs, as a person would see it: the first grab that differs from
+;; the last one before the save (over `changed-fraction` of its pixels by more than
+;; `changed-step` in a channel; the message area at the bottom left out), and grabs
+;; after it that match the old picture again.
+
+(local states (require :src.verify.states))
+
+(local changed-step 40)        ; of 255: well above llvmpipe's noise (none: a picture
+                               ; drawn twice is the same bytes) and a coarse
+                               ; picture's blur of an unchanged edge is below it
+(local changed-fraction 0.001) ; of the pixels: the added object covers 1-3% of them
+(local message-rows 100)       ; the player's messages are drawn at the bottom
+
+(fn read-lines [path]
+  (let [f (assert (io.open path :r))
+        lines (icollect [line (f:lines)] line)]
+    (f:close)
+    lines))
+
+(fn frames-of [path]
+  (icollect [_ line (ipairs (read-lines path))]
+    (let [(t kind serial) (line:match "^(%S+) (%S+) (%S+)$")]
+      (when t {:t (tonumber t) : kind :serial (tonumber serial)}))))
+
+(fn grabs-of [dir]
+  (icollect [_ line (ipairs (read-lines (.. dir "/grabs")))]
+    (let [(i t0 t1) (line:match "^(%d+) (%S+) (%S+)$")]
+      (when i {:path (string.format "%s/%04d.xwd" dir (tonumber i))
+               :t0 (tonumber t0) :t1 (tonumber t1)}))))
+
+(fn changed? [a b]
+  "True when pictures `a` and `b` differ in more than changed-fraction of their
+pixels above the message rows."
+  (let [rows (- a.height message-rows)
+        limit (* changed-fraction a.width rows)]
+    (var n 0)
+    (for [i 0 (- (* 4 a.width rows) 1) 4]
+      (when (or (> (math.abs (- (. a.pixels i) (. b.pixels i))) changed-step)
+                (> (math.abs (- (. a.pixels (+ i 1)) (. b.pixels (+ i 1)))) changed-step)
+                (> (math.abs (- (. a.pixels (+ i 2)) (. b.pixels (+ i 2)))) changed-step))
+        (set n (+ n 1))))
+    (> n limit)))
+
+(fn from-log [frames save]
+  (let [before (icollect [_ f (ipairs frames)] (when (< f.t save) f))
+        old (. before (length before) :serial)
+        after (icollect [_ f (ipairs frames)] (when (>= f.t save) f))
+        first (accumulate [found nil _ f (ipairs after)]
+                (or found (when (not= f.serial old) f)))
+        own (when first
+              (accumulate [found nil _ f (ipairs after)]
+                (or found (when (and (= f.serial first.serial) (= f.kind :shader)) f))))
+        stop (or (?. own :t) (. after (length after) :t))]
+    (var longest 0)
+    (var prev (. before (length before) :t))
+    (var back 0)
+    (each [_ f (ipairs after)]
+      (when (<= f.t stop)
+        (set longest (math.max longest (- f.t prev)))
+        (set prev f.t))
+      (when (and first (> f.t first.t) (= f.serial old)) (set back (+ back 1))))
+    {: first : own : longest : back}))
+
+(fn from-grabs [grabs save]
+  ;; The last grab that ended before the save is the old picture.
+  (let [ref (accumulate [r nil _ g (ipairs grabs)] (if (< g.t1 save) g r))
+        old (when ref (assert (states.read-xwd ref.path)))]
+    (var first nil)
+    (var back 0)
+    (var seen 0)
+    (when old
+      (each [_ g (ipairs grabs)]
+        (when (> g.t0 ref.t1)
+          (let [img (states.read-xwd g.path)]
+            (when img
+              (set seen (+ seen 1))
+              (if (changed? old img)
+                  (when (not first) (set first g))
+                  (when first (set back (+ back 1)))))))))
+    {: first : back : seen}))
+
+(fn ms [t save] (if t (string.format "%.0f" (* 1000 (- t save))) "-"))
+
+(let [[dir log-path scene edit] arg
+      save (tonumber (. (read-lines (.. dir "/save")) 1))
+      log (from-log (frames-of log-path) save)
+      screen (from-grabs (grabs-of dir) save)]
+  (print (string.format "%-16s %-15s %9s %-12s %9s %9s %6s %15s %6s"
+                        scene edit
+                        (ms (?. log.first :t) save) (or (?. log.first :kind) "none")
+                        (ms (?. log.own :t) save) (string.format "%.0f" (* 1000 log.longest))
+                        log.back
+                        (if screen.first
+                            (.. (ms screen.first.t0 save) "-" (ms screen.first.t1 save))
+                            "-")
+                        screen.back))
+  (when (or (not log.first) (not screen.first) (> log.back 0) (> screen.back 0))
+    (os.exit 1)))
