@@ -7,18 +7,20 @@
 ;; From the log: the first frame after the save that shows another scene (the new
 ;; one) and what drew it, the first frame its own shader drew, the longest time
 ;; between two frames from the save until then, and frames that went back to the old
-;; scene. From the grabs, as a person would see it: the first grab that differs from
-;; the last one before the save (over `changed-fraction` of its pixels by more than
-;; `changed-step` in a channel; the message area at the bottom left out), and grabs
-;; after it that match the old picture again.
+;; scene. From the grabs, as a person would see it: the first grab whose middle (half
+;; the width and height, where the edited object is) differs from the last grab
+;; before the save (over `changed-fraction` of its pixels by more than `changed-step`
+;; in a channel), and grabs after it that match the old picture again. Only the
+;; middle: the player's messages show at the top (with the HUD, even while it is
+;; hidden) and at the bottom.
 
 (local states (require :src.verify.states))
 
 (local changed-step 40)        ; of 255: well above llvmpipe's noise (none: a picture
                                ; drawn twice is the same bytes) and a coarse
                                ; picture's blur of an unchanged edge is below it
-(local changed-fraction 0.001) ; of the pixels: the added object covers 1-3% of them
-(local message-rows 100)       ; the player's messages are drawn at the bottom
+(local changed-fraction 0.001) ; of the middle's pixels: the added object covers a
+                               ; fifth of them or more
 
 (fn read-lines [path]
   (let [f (assert (io.open path :r))
@@ -38,16 +40,18 @@
                :t0 (tonumber t0) :t1 (tonumber t1)}))))
 
 (fn changed? [a b]
-  "True when pictures `a` and `b` differ in more than changed-fraction of their
-pixels above the message rows."
-  (let [rows (- a.height message-rows)
-        limit (* changed-fraction a.width rows)]
+  "True when pictures `a` and `b` differ in more than changed-fraction of the pixels
+of their middle (from a quarter to three quarters of the width and the height)."
+  (let [x0 (math.floor (/ a.width 4)) x1 (math.floor (* 3 (/ a.width 4)))
+        y0 (math.floor (/ a.height 4)) y1 (math.floor (* 3 (/ a.height 4)))
+        limit (* changed-fraction (- x1 x0) (- y1 y0))
+        differs? (fn [i] (> (math.abs (- (. a.pixels i) (. b.pixels i))) changed-step))]
     (var n 0)
-    (for [i 0 (- (* 4 a.width rows) 1) 4]
-      (when (or (> (math.abs (- (. a.pixels i) (. b.pixels i))) changed-step)
-                (> (math.abs (- (. a.pixels (+ i 1)) (. b.pixels (+ i 1)))) changed-step)
-                (> (math.abs (- (. a.pixels (+ i 2)) (. b.pixels (+ i 2)))) changed-step))
-        (set n (+ n 1))))
+    (for [y y0 (- y1 1)]
+      (for [x x0 (- x1 1)]
+        (let [i (* 4 (+ x (* y a.width)))]
+          (when (or (differs? i) (differs? (+ i 1)) (differs? (+ i 2)))
+            (set n (+ n 1))))))
     (> n limit)))
 
 (fn from-log [frames save]

@@ -115,7 +115,11 @@ for s in $SCENES; do
   [ -f "$s" ] || die "no scene $s"
   cp "$s" "$dir/original.fnl"
   cp "$s" "$dir/scene.fnl"
-  (cd "$PLAYER" && RAYMARCH_FRAME_LOG="$dir/frames.log" exec love . "$dir/scene.fnl" ${PLAYER_ARGS:-}) \
+  # An empty shader cache for each scene: an edit's shader is a new one, as for a
+  # person editing (a cache hit skips the helper and its preview).
+  rm -rf "$dir/mesa"
+  (cd "$PLAYER" && MESA_SHADER_CACHE_DIR="$dir/mesa" RAYMARCH_FRAME_LOG="$dir/frames.log" \
+     exec love . "$dir/scene.fnl" ${PLAYER_ARGS:-}) \
     > "$dir/player.log" 2>&1 &
   LOVE_PID=$!
   WID=""
@@ -143,6 +147,7 @@ for s in $SCENES; do
     [ "${KEEP:-0}" = 1 ] || rm -f "$e"/*.xwd
     wait_still "$dir"
   done
+  rm -rf "$dir/mesa"
   kill "$LOVE_PID" 2>/dev/null || true
   wait "$LOVE_PID" 2>/dev/null || true
   LOVE_PID=""
