@@ -4,7 +4,7 @@
 SCENE ?= scenes/seed.fnl
 HEADLESS = SDL_VIDEODRIVER=offscreen
 
-.PHONY: deps build run test check bench golden report report-quick dist clean check-states
+.PHONY: deps build run test check bench golden report report-quick dist clean check-states edit-window
 
 deps:
 	@bash tools/install-deps.sh
@@ -52,6 +52,12 @@ report-quick: deps
 check-states:
 	@bash tools/install-deps.sh xvfb xdotool x11-apps bc
 	bash tools/check-states.sh $(PLAYER)
+
+# Under Xvfb: the time from saving an edit of each showcase scene to its picture
+# (about 5 minutes; PLAYER=DIR times another checkout's player; see docs/testing.md).
+edit-window:
+	@bash tools/install-deps.sh xvfb xdotool x11-apps bc
+	PLAYER=$(or $(PLAYER),.) bash tools/edit-window.sh
 
 golden: deps
 	$(HEADLESS) luajit tools/fnl.lua tools/golden.fnl

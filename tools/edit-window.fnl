@@ -1,3 +1,13 @@
+;; luajit tools/fnl.lua tools/edit-window.fnl --edit FILE EDIT
+;; The text of scene FILE after EDIT, as a person would type it: an object written
+;; into the file's :objects vector (the scene stays plain data when it was), 4 units
+;; in front of the camera (src/render/camera.fnl's forward):
+;;   added      a magenta sphere
+;;   kind       the same made a box
+;;   operation  that box twisted
+;;   value      that box green (a value edit: the same shader)
+;; A file whose objects are not a literal vector gets the object from code around it.
+;;
 ;; luajit tools/fnl.lua tools/edit-window.fnl DIR LOG SCENE EDIT
 ;; Reads what tools/edit-window.sh left in DIR for one edit of one scene and prints
 ;; one line of the table:
@@ -15,6 +25,8 @@
 ;; hidden) and at the bottom.
 
 (local states (require :src.verify.states))
+(local scene-load (require :src.scene.load))
+(local camera (require :src.render.camera))
 
 (local changed-step 40)        ; of 255: well above llvmpipe's noise (none: a picture
                                ; drawn twice is the same bytes) and a coarse
@@ -93,6 +105,32 @@ of their middle (from a quarter to three quarters of the width and the height)."
     {: first : back : seen}))
 
 (fn ms [t save] (if t (string.format "%.0f" (* 1000 (- t save))) "-"))
+
+(fn edited [path edit]
+  (let [f (assert (io.open path :r))
+        text (f:read :*a)
+        _ (f:close)
+        scene (assert (scene-load.load-string text path))
+        cam scene.camera
+        f (camera.forward cam)
+        p (fcollect [i 1 3] (+ (. cam.pos i) (* 4 (. f i))))
+        pos (string.format "[%.3f %.3f %.3f]" (. p 1) (. p 2) (. p 3))
+        object (case edit
+                 :added (.. "{:kind :sphere :radius 0.6 :pos " pos " :color [1 0 1]}")
+                 :kind (.. "{:kind :box :size [0.5 0.5 0.5] :pos " pos " :color [1 0 1]}")
+                 :operation (.. "{:kind :twist :angle 90 :pos " pos
+                                " :children [{:kind :box :size [0.3 0.3 0.7] :color [1 0 1]}]}")
+                 :value (.. "{:kind :twist :angle 90 :pos " pos
+                            " :children [{:kind :box :size [0.3 0.3 0.7] :color [0 0.8 0.2]}]}")
+                 _ (error (.. "no edit " (tostring edit))))
+        (at stop) (text:find ":objects%s*%[")]
+    (if at
+        (.. (text:sub 1 stop) object "\n  " (text:sub (+ stop 1)))
+        (.. "(let [scene (do\n" text "\n)]\n  (table.insert scene.objects " object ")\n  scene)\n"))))
+
+(when (= (. arg 1) "--edit")
+  (io.write (edited (. arg 2) (. arg 3)))
+  (os.exit 0))
 
 (let [[dir log-path scene edit] arg
       save (tonumber (. (read-lines (.. dir "/save")) 1))

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # The time from saving a scene file to its new picture on screen, in a real window
-# (Xvfb, 1280x720), for each showcase scene and three structural edits made when the
-# player is idle (its still drawn, its helper done):
-#   added     a magenta sphere 4 units in front of the camera
-#   kind      that sphere made a box
-#   operation that box twisted
-# Each edit is saved as an editor saves (written beside the file, renamed over it),
-# through the player's own file watcher. The player writes a line a frame
+# (Xvfb, 1280x720), for each showcase scene and four edits made when the player is
+# idle (its still drawn, its helper done), each typed into the file's :objects vector
+# as a person would (tools/edit-window.fnl --edit):
+#   added     a magenta sphere 4 units in front of the camera (a structural edit)
+#   kind      that sphere made a box (structural)
+#   operation that box twisted (structural)
+#   value     that box made green (the same shader, new uniforms)
+# Each is saved as an editor saves (written beside the file, renamed over it), and
+# read by the player's own file watcher. The player writes a line a frame
 # (RAYMARCH_FRAME_LOG: the time, what drew it, the scene it shows) and the window is
 # grabbed (xwd) every GRAB_S seconds meanwhile; tools/edit-window.fnl reads both and
 # prints a line an edit:
@@ -54,28 +56,6 @@ cleanup() {
   wait 2>/dev/null || true
 }
 trap cleanup EXIT
-
-# The scene's own text with one more object, OBJECT, 4 units along the camera's
-# forward vector (src/render/camera.fnl's forward) and called `p` there.
-edited() { # FILE OBJECT
-  printf '(let [scene (do\n'
-  cat "$1"
-  cat <<EOF
-
-)
-      c scene.camera
-      r (/ math.pi 180)
-      f [(* (math.cos (* c.yaw r)) (math.cos (* c.pitch r)))
-         (* (math.sin (* c.yaw r)) (math.cos (* c.pitch r)))
-         (- (math.sin (* c.pitch r)))]
-      p [(+ (. c.pos 1) (* 4 (. f 1))) (+ (. c.pos 2) (* 4 (. f 2))) (+ (. c.pos 3) (* 4 (. f 3)))]]
-  (table.insert scene.objects $2)
-  scene)
-EOF
-}
-OBJECT_added='{:kind :sphere :radius 0.6 :pos p :color [1 0 1]}'
-OBJECT_kind='{:kind :box :size [0.5 0.5 0.5] :pos p :color [1 0 1]}'
-OBJECT_operation='{:kind :twist :angle 90 :pos p :children [{:kind :box :size [0.3 0.3 0.7] :color [1 0 1]}]}'
 
 # A file edit as an editor saves it: written beside it, then renamed over it.
 write_scene() { cat > "$1.tmp"; mv "$1.tmp" "$1"; }
@@ -133,10 +113,10 @@ for s in $SCENES; do
   # The HUD's figures change every frame: hidden, the picture settles.
   xdotool key --window "$WID" h
   wait_still "$dir"
-  for edit in added kind operation; do
+  for edit in added kind operation value; do
     e="$dir/$edit"; mkdir -p "$e"; : > "$e/grabs"
-    object_var="OBJECT_$edit"
-    edited "$dir/original.fnl" "${!object_var}" > "$dir/next.fnl"
+    (cd "$REPO" && luajit tools/fnl.lua tools/edit-window.fnl --edit "$dir/original.fnl" "$edit") \
+      > "$dir/next.fnl" || die "cannot make the edit $edit of $s"
     grab "$e" 2.5
     sleep 0.4
     echo "$EPOCHREALTIME" > "$e/save"

@@ -28,6 +28,8 @@ float planesHit(vec3 ro, vec3 rd) {
 // @part spheres-texture
 // The bounding spheres from an image (the interpreter's: their count is not in the
 // text): texel 0 holds the count, texels 1 to n the spheres, a line @{width} wide.
+uniform sampler2D uBounds;  // their count, then the bounding spheres of the finite objects (camera-relative)
+
 int boundsCount() {
     return int(texelFetch(uBounds, ivec2(0, 0), 0).x);
 }

@@ -27,12 +27,12 @@
     (when plan.grids
       (table.insert lines (emit-glsl.declare "vec4" "uGrids" (* 3 (length plan.grids.list))
                                              "per grid: low corner, reach; cell, first cell; cells along each axis")))
-    (if (?. plan :bounds :texture?)
-        (table.insert lines "uniform sampler2D uBounds;  // their count, then the bounding spheres of the finite objects (camera-relative)")
-        (and plan.bounds (> plan.bounds.count 0))
-        (table.insert lines (emit-glsl.declare "vec4" "uBounds" plan.bounds.count
-                                               "bounding spheres of the finite objects (camera-relative)"
-                                               true)))
+    ;; The interpreter's spheres come in an image, declared with the functions that
+    ;; read it (bounds.glsl's spheres-texture part).
+    (when (and plan.bounds (not plan.bounds.texture?) (> plan.bounds.count 0))
+      (table.insert lines (emit-glsl.declare "vec4" "uBounds" plan.bounds.count
+                                             "bounding spheres of the finite objects (camera-relative)"
+                                             true)))
     (when (object-normals? plan)
       (table.insert lines "int gObject = -1;  // the object mapColor found nearest last (-1: none)"))
     (let [modern? (modern-materials? plan)]
