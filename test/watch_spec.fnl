@@ -14,11 +14,11 @@
 
 (describe "the scene file watcher"
   (fn []
-    (it "loads an edit once the file has not been written for 0.05 s, once"
+    (it "loads an edit once the file has not been written for 0.03 s, once"
       (fn []
-        (assert.are.equal 0.05 watch.settle-seconds)
+        (assert.are.equal 0.03 watch.settle-seconds)
         (let [w (watch.new (info "a" 0))]
-          (assert.are.same [[10.06 :changed]]
+          (assert.are.same [[10.04 :changed]]
                            (run w [[10 (info "b" 10)] [10.02 (info "b" 10)] [10.04 (info "b" 10)]
                                    [10.06 (info "b" 10)] [10.1 (info "b" 10)] [10.9 (info "b" 10)]])))))
 
@@ -30,13 +30,13 @@
 
     (it "never loads a file that is still being written, however rarely it looks"
       (fn []
-        ;; A writer rewrites the file every 40 ms (truncate, then write); the player
+        ;; A writer rewrites the file every 20 ms (truncate, then write); the player
         ;; looks once a second and each time sees the half-written text, the same
         ;; every time. Nothing loads until the writing stops.
         (let [w (watch.new (info "old" 0))]
           (assert.are.same [[14.25 :changed]]
-                           (run w [[10 (info "{:obj" 9.98)] [11 (info "{:obj" 10.97)]
-                                   [12 (info "{:obj" 11.99)] [13 (info "{:obj" 12.96)]
+                           (run w [[10 (info "{:obj" 9.98)] [11 (info "{:obj" 10.99)]
+                                   [12 (info "{:obj" 11.99)] [13 (info "{:obj" 12.98)]
                                    [14 (info "{:objects []}" 14)] [14.25 (info "{:objects []}" 14)]])))))
 
     (it "with whole-second times, waits until the second after the stamp is over"
@@ -50,7 +50,7 @@
       (fn []
         (let [w (watch.new (info "old" 0))]
           (assert.are.same [[10.22 :changed]]
-                           (run w [[10 nil] [10.1 nil] [10.18 (info "new" 10.15)] [10.22 (info "new" 10.15)]])))))
+                           (run w [[10 nil] [10.1 nil] [10.17 (info "new" 10.15)] [10.22 (info "new" 10.15)]])))))
 
     (it "reports a deleted file once, after a second, and a restored one as a change"
       (fn []
@@ -96,7 +96,7 @@
       (fn []
         ;; A scene written in two halves 50 ms apart; a load read the first half at
         ;; 10.02 (it failed, and did not stand): the file is loaded again at the first
-        ;; poll the settle time after the second half (10.11, a new version), never
+        ;; poll the settle time after the second half (10.09, a new version), never
         ;; before, and once.
         (let [first-half (info "{:objects [" 10)
               whole (info "{:objects []}" 10.05)
@@ -104,7 +104,7 @@
           (watch.loaded! w first-half)
           (assert.is_false (watch.failure-stands? first-half first-half 10.02))
           (watch.retry! w)
-          (assert.are.same [[10.11 :changed]]
+          (assert.are.same [[10.09 :changed]]
                            (run w [[10.03 first-half] [10.07 whole] [10.09 whole] [10.11 whole]
                                    [10.3 whole] [10.6 whole]]))
           ;; A retry of a file that did not change after the failed read: loaded

@@ -284,7 +284,7 @@ recolour a sphere, add a sphere, break the file, fix it. Prints one line per ste
       (print (string.format "soak: %d edits (%d value, %d structural, %d broken)"
                             cycles counts.value counts.structural counts.broken))
       (when (> (length times.value) 0)
-        (print (string.format "reload time (file read, validate, plan, shader): value edit median %.1f ms, structural edit median %.1f ms; the watcher adds 0.05-0.07 s of settling"
+        (print (string.format "reload time (file read, validate, plan, shader): value edit median %.1f ms, structural edit median %.1f ms; the watcher adds 0.03-0.04 s of settling"
                               (median times.value) (median times.structural))))
       (when memory-warm
         (print (string.format "Lua memory after cycle %d: %.0f KB, at the end: %.0f KB (the most of %d and %d readings)"
