@@ -113,6 +113,26 @@
           (watch.retry! w)
           (assert.are.same [[10.25 :changed]] (run w [[10.15 whole] [10.25 whole] [10.5 whole]])))))
 
+    (it "reads the file again only when its stat may hide a change"
+      (fn []
+        (let [st {:kind :file :mtime 10 :size 5 :ino 7 :dev 1}
+              read {:mtime 10 :size 5 :ino 7 :dev 1 :read-at 10.5}
+              with (fn [t k v] (doto (collect [key value (pairs t)] key value) (tset k v)))]
+          (assert.is_false (watch.read-again? read st))
+          ;; Nothing read yet, the file missing, or not a file.
+          (assert.is_true (watch.read-again? nil st))
+          (assert.is_true (watch.read-again? read nil))
+          (assert.is_true (watch.read-again? read (with st :kind :directory)))
+          ;; A new time, size, inode (renamed over) or device.
+          (assert.is_true (watch.read-again? read (with st :mtime 10.001)))
+          (assert.is_true (watch.read-again? read (with st :size 6)))
+          (assert.is_true (watch.read-again? read (with st :ino 8)))
+          (assert.is_true (watch.read-again? read (with st :dev 2)))
+          ;; Read within a clock tick of its time: a second write may share it.
+          (assert.is_true (watch.read-again? (with read :read-at 10.01) st))
+          ;; Whole-second times say too little.
+          (assert.is_true (watch.read-again? read (with st :coarse? true))))))
+
     (it "starts afresh after loaded!"
       (fn []
         (let [w (watch.new (info "a" 0))]

@@ -481,17 +481,10 @@ file watcher then reloads it as a value edit."
 
 (fn polled-info [path]
   "file-info for the watcher, which looks a hundred times a second: the file is read
-again unless its time, size and inode are those of the last read and that read began
-over 20 ms after that time. (The kernel stamps a write with a clock that ticks every
-few milliseconds: a write after such a read has a later time; two writes within one
-tick may share one, and the second is caught by reading again.) A file whose time has
-whole seconds only is read every time."
+again only when its stat says it may have changed (watch.read-again?)."
   (let [st (filestat.stat path)
-        last state.polled
-        same? (and st last (= st.kind :file) (not st.coarse?) (= st.mtime last.mtime)
-                   (= st.size last.size) (= st.ino last.ino) (= st.dev last.dev)
-                   (> last.read-at (+ st.mtime 0.02)))]
-    (if same?
+        last state.polled]
+    (if (not (watch.read-again? last st))
         last.info
         (let [read-at (filestat.now)
               info (file-info path)]

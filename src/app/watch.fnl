@@ -49,6 +49,20 @@ written for retry-seconds."
       (and (= (signature before) (signature after))
            (settled? after now retry-seconds))))
 
+(local tick-seconds 0.02)   ; longer than the kernel's clock tick for file times
+
+(fn read-again? [last st]
+  "Whether a look at the file must read its text again: `st` is its stat now
+({:kind :mtime :size :ino :dev :coarse?}, nil when missing), `last` what the last
+read saw ({:mtime :size :ino :dev :read-at}, the wall-clock time the read began;
+nil when there was none). Not when its time, size and inode are those of that read
+and the read began tick-seconds after that time: the kernel stamps a write with a
+clock that ticks every few milliseconds, so a later write has a later time, but two
+writes within one tick may share one. Always with whole-second times."
+  (not (and st last (= st.kind :file) (not st.coarse?) (= st.mtime last.mtime)
+            (= st.size last.size) (= st.ino last.ino) (= st.dev last.dev)
+            (> last.read-at (+ st.mtime tick-seconds)))))
+
 (fn retry! [w]
   "The last load read the file mid-write (see failure-stands?): poll! says :changed
 once the file has stayed the same for retry-seconds, even when its text is the one
@@ -88,5 +102,5 @@ the time, so a write during the read shows in the time."
   (set w.reported-missing? false)
   (set w.retry? false))
 
-{: new : poll! : loaded! : failure-stands? : retry! : settle-seconds : missing-seconds
- : retry-seconds}
+{: new : poll! : loaded! : failure-stands? : retry! : read-again? : settle-seconds
+ : missing-seconds : retry-seconds}
