@@ -15,7 +15,7 @@ vec3 dir = rd;
     }
     vec3 p = origin + dir * t;
     vec3 albedo;
-    vec3 n = surfaceAt(p, albedo);
+    vec3 n = surfaceAt(p, albedo, true);
     albedo = pow(albedo, vec3(2.2));
     float mirror = gMirror;
     float roughness = gMaterial.x;

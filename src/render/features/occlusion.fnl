@@ -11,9 +11,11 @@
  :uniforms (fn [l] [{:name "uAo" :type :vec2 :values [l.ao l.ao-radius]}])
  :chunk "shaders/shading/modern/occlusion.glsl"
  :slot :occlusion
- :lines ["occ *= occlusion(p, n);"]
+ ;; Its samples are surface taps: surfaceAt takes them and leaves gOcclusion.
+ :taps {:count 5 :point "occlusionTap" :taken "occlusionTaken"}
+ :lines ["occ *= gOcclusion;"]
  :reach (fn [l] l.ao-radius)
- ;; occlusion() in the chunk: nearer samples weigh more.
+ ;; The chunk's taps: nearer samples weigh more.
  :cpu (fn [l T]
         (fn [px py pz nx ny nz]
           (var occ 0)
