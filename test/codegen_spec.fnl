@@ -239,12 +239,12 @@
           (assert-lacks text "mapOthers")
           ;; A tree takes differences and the crease; the leaves return first.
           (assert-has trees "        return gradSphere(p1, uTape[0].w);")
-          (assert-has trees "float d = mapObject(q, crease || around ? -1 : object, i < 0 || around ? -1 : crease ? gObject : -1, i < 0, color);")
+          (assert-has trees "float d = mapObject(p + e, crease ? -1 : object, i < 0 ? -1 : crease ? gObject : -1, i < 0, color);")
           ;; One call for a hit's colour, the others and the object's normal: one
           ;; loop from gZero, not unrolled; mapColor and calcNormal are not called.
           (let [surface (trees:match "vec3 surfaceAt.-\n}")]
             (assert.equal 1 (select 2 (surface:gsub "mapObject%(" "")))
-            (assert-has trees "vec3 n = surfaceAt(p, surface, true);")
+            (assert-has trees "vec3 n = surfaceAt(p, surface);")
             (assert-lacks trees "calcNormal")
             (assert-lacks trees "mapOthers"))
           ;; The whole scene's normal is differences of map, as the article's.
@@ -435,17 +435,6 @@
                          "^%s*float d = mapObject%(p %+ e, crease %? %-1 : object, i < 0 %? %-1 : crease %? gObject : %-1, i < 0, color%);$"
                          "^%s*int object = %-1;" "^%s*if %(i < 0%) {$" "^%s*} else if %(i == 0%) {$"
                          "^%s*return mapObject%(p, %-1, %-1, true, color%);$"
-                         ;; the surface taps after the normal's (surface-taps.glsl)
-                         "^%s*int first = 7 %+ kNormalTaps;"
-                         "^%s*for %(int i = gZero %- 1; i < first %+ %(taps %? kSurfaceTaps : 0%); i%+%+%) {$"
-                         "^%s*for %(int j = gZero; j < %(taps %? kSurfaceTaps : 0%); j%+%+%) {$"
-                         "^%s*vec3 q = i < 0 %? p : around %? surfaceTap%(i %- first, hit, normal%)$"
-                         "^%s*float d = mapObject%(q, crease || around %? %-1 : object, i < 0 || around %? %-1 : crease %? gObject : %-1, i < 0, color%);$"
-                         "^%s*if %(normal != vec3%(0%.0%)%) i = first %- 1;"
-                         "^%s*: p %+ %(crease %? s %* axisStep%(axis, h%) : normalTap%(i %- 7, h, w%)%);$"
-                         "^%s*if %(j >= %d+ && j < %d+%) "
-                         "^%s*if %(j == 0%) {$"
-                         "float%(j %+ 1%)"
                          " gObject = [%d i%+]+;$"
                          ;; the adaptive render's turns: centre (0), second (1), the grid (2 on)
                          "^%s*for %(int k = uPriorPass > 1%.5 && priorEdge%(pixel%) %? 2 : 0; k < 2 %+ grid; k%+%+%) {$"

@@ -93,14 +93,14 @@
     (it "classic scenes have no modern code"
       (fn []
         (let [text (assert (codegen.shader (assert (plan.scene->plan (assert (scene.load-file "scenes/gallery.fnl")))) :core))]
-          (each [_ name (ipairs ["vec3 sky(" "directLight(" "occlusionTap(" "fogTransmittance(" "visibility("
+          (each [_ name (ipairs ["vec3 sky(" "directLight(" "occlusion(" "fogTransmittance(" "visibility("
                                  "kLightCount" "gMaterial" "shininess"])]
             (assert.is_nil (text:find name 1 true) name)))))
 
     (it "each feature appears only when switched on"
       (fn []
         (let [bare (shader-of (modern "{:ao 0 :specular false :lights [{:kind :sun :softness 0}]}"))
-              features {"vec3 occlusionTap(" "{:ao 0.5}"
+              features {"float occlusion(" "{:ao 0.5}"
                         "float fogTransmittance(" "{:fog 0.01 :ao 0}"
                         "shininess" "{:specular true :ao 0}"
                         "kShadowSteps" "{:ao 0 :lights [{:kind :sun :softness 0.1}]}"}]
@@ -189,9 +189,7 @@
 ;; at the GPU-vs-CPU size. With the feature's lines cut from the GLSL (the reference
 ;; unchanged), the comparison must fail.
 (local mutations
-  [["ambient occlusion" "occ *= gOcclusion;" ""]
-   ;; The samples come from surfaceAt's loop (surface-taps.glsl).
-   ["ambient occlusion's samples" "surfaceTaken(i - first, d);" ""]
+  [["ambient occlusion" "occ *= occlusion(p, n);" ""]
    ["fog" "through *= fogThrough;" ""]
    ["specular" "return radiance * mix(vec3(1.0), albedo, mirror)" "return 0.0 * mix(vec3(1.0), albedo, mirror)"]
    ["soft shadows" "seen = min(seen, closest / (softness * along));" ""]

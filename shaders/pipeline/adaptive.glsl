@@ -25,7 +25,7 @@ bool needsSamples(vec3 rd, float t) {
     }
     vec3 p = rd * t;
     vec3 surface;
-    vec3 n = surfaceAt(p, surface, false);
+    vec3 n = surfaceAt(p, surface);
     // The whole scene's normal a footprint further along the ray: across an edge or
     // onto another object it turns; past the limb of a curved surface seen edge-on it
     // turns a little, which matters only when the view grazes the surface.

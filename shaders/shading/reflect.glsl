@@ -15,7 +15,7 @@ for (int bounce = 1; bounce <= uReflections; bounce++) {
     }
     p = origin + r * tr;
     vec3 hitColor;
-    n = surfaceAt(p, hitColor, true);
+    n = surfaceAt(p, hitColor);
     dir = r;
     color = (color + hitColor * lightness(p, n) * 0.5) * 0.66;
     // @slot mirror-mix

@@ -15,7 +15,7 @@ vec3 dir = rd;
     }
     vec3 p = origin + dir * t;
     vec3 albedo;
-    vec3 n = surfaceAt(p, albedo, true);
+    vec3 n = surfaceAt(p, albedo);
     albedo = pow(albedo, vec3(2.2));
     float mirror = gMirror;
     float roughness = gMaterial.x;

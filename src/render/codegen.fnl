@@ -234,9 +234,7 @@ only when the plan has it."
                   "float ts = raymarchTo(o, l, reach, shadowSteps);"
                   "float ts = raymarch(o, l, shadowSteps);")]
     [(fill "shaders/shading/modern/sky.glsl" {})
-     ;; A feature with surface taps has its chunk before surfaceAt (surface-taps-lines).
-     (icollect [_ name (ipairs l.features)]
-       (let [d (features.lookup name)] (when (not d.taps) (fill d.chunk {}))))
+     (icollect [_ name (ipairs l.features)] (fill (. (features.lookup name) :chunk) {}))
      (if (not plan.shadows?) []
          l.soft? (fill "shaders/shading/modern/shadow-soft.glsl"
                        {:hard-shadow (if l.hard?
@@ -260,25 +258,6 @@ only when the plan has it."
      (fill "shaders/shading/modern/lights.glsl"
            {:shadow (if plan.shadows? ["visible = visibility(origin, l, reach, uLightColors[i].w);"] [])
             :light (features.slot-lines l.features :light)})]))
-
-(fn surface-taps-lines [plan]
-  "surfaceTap and surfaceTaken (shaders/pipeline/surface-taps.glsl): the taps of the
-plan's features that read the scene around a hit, one after another, each feature's
-chunk first."
-  (let [with (features.with-taps (or (?. plan :lighting :features) []))
-        points []
-        taken []]
-    (var first 0)
-    (each [_ d (ipairs with)]
-      (let [range (string.format "if (j >= %d && j < %d) " first (+ first d.taps.count))
-            j (if (= first 0) "j" (.. "j - " first))]
-        (table.insert points (.. range "return " d.taps.point "(" j ", p, n);"))
-        (table.insert taken (.. range d.taps.taken "(" j ", d);"))
-        (set first (+ first d.taps.count))))
-    (fill "shaders/pipeline/surface-taps.glsl"
-          {:count (tostring first)
-           :features (icollect [_ d (ipairs with)] (fill d.chunk {}))
-           : points : taken})))
 
 (fn primary-in-loop? [plan]
   "Whether the primary ray is marched as turn 0 of the modern view's bounce loop: one
@@ -308,7 +287,7 @@ hit before the view, so that form keeps the march before the loop."
     :normals (fill "shaders/views/normals.glsl"
                    ;; The nearest object's normal needs it found first (surfaceAt).
                    {:normal (if (object-normals? plan)
-                                ["vec3 surface;" "return surfaceAt(ro + rd * t, surface, false) * 0.5 + 0.5;"]
+                                ["vec3 surface;" "return surfaceAt(ro + rd * t, surface) * 0.5 + 0.5;"]
                                 ["return calcNormal(ro + rd * t) * 0.5 + 0.5;"])})
     view (fill (.. "shaders/views/" view ".glsl") {})))
 
@@ -399,8 +378,6 @@ hit before the view, so that form keeps the march before the loop."
       ;; surfaceAt: a hit's colour and normal. With crease normals one loop of
       ;; mapObject (the grouped and field objects have their exact gradient; the
       ;; trees' take differences); else mapColor, then calcNormal.
-      (when (or (crease? plan) colors?)
-        (table.insert sections (surface-taps-lines plan)))
       (if (crease? plan)
           (table.insert sections
                         (fill "shaders/pipeline/normal-crease.glsl"

@@ -30,13 +30,6 @@
 ;;              segment, and r g b it adds (before the path's weight)
 ;;   :reach     optional (fn [lighting]) -> how far from a surface its distance
 ;;              queries look (a field lists objects at least that near each cell)
-;;   :taps      optional {:count N :point NAME :taken NAME}: the feature reads the
-;;              whole scene's distance at N points around a hit, which surfaceAt
-;;              queries in its own loop (shaders/pipeline/surface-taps.glsl): the
-;;              chunk's `vec3 POINT(int j, vec3 p, vec3 n)` gives tap j's point from
-;;              the hit and its normal, `void TAKEN(int j, float d)` takes its
-;;              distance (an estimate), j in order from 0. Such a chunk comes before
-;;              surfaceAt; its :lines read what TAKEN left.
 
 ;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
 ;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
@@ -59,10 +52,6 @@
   (need (. slots d.slot) "needs a :slot: occlusion, surface, segment or light")
   (need (= (type d.lines) :table) "needs :lines")
   (need (= (type d.cpu) :function) "needs :cpu")
-  (when d.taps
-    (need (and (= (type d.taps.count) :number) (> d.taps.count 0)
-               (= (type d.taps.point) :string) (= (type d.taps.taken) :string))
-          ":taps needs :count, :point and :taken"))
   d)
 
 (local all
@@ -101,9 +90,4 @@ name order."
         (when (= d.slot slot) (each [_ l (ipairs d.lines)] (table.insert out l)))))
     out))
 
-(fn with-taps [names]
-  "The descriptors of the features `names` that have surface taps, in order."
-  (icollect [_ name (ipairs names)]
-    (let [d (. by-name name)] (when d.taps d))))
-
-{: all : settings : active : lookup : slot-lines : slots : with-taps}
+{: all : settings : active : lookup : slot-lines : slots}

@@ -1,27 +1,21 @@
 // Ambient occlusion: five samples along the normal out to uAo.y; each finds how much
 // nearer the surfaces are than its own height, the nearer samples weighing more.
-// uAo.x scales the darkening. The samples are surface taps (surface-taps.glsl):
-// surfaceAt takes them in its own loop, in order, and leaves the factor in gOcclusion.
+// uAo.x scales the darkening.
 uniform vec2 uAo;                      // strength, radius
 
-float gOcclusion = 1.0;        // the factor of the last hit's samples
-float gOcclusionSum = 0.0;     // the weighted samples so far
-float gOcclusionTotal = 0.0;   // their weights
-float gOcclusionWeight = 1.0;  // the next one's
-
-vec3 occlusionTap(int j, vec3 p, vec3 n) {
-    return p + n * (uAo.y * float(j + 1) / 5.0);
-}
-
-void occlusionTaken(int j, float d) {
-    if (j == 0) {
-        gOcclusionSum = 0.0;
-        gOcclusionTotal = 0.0;
-        gOcclusionWeight = 1.0;
+float occlusion(vec3 p, vec3 n) {
+    float occ = 0.0;
+    float weight = 1.0;
+    float total = 0.0;
+    // The distances are estimates here, not steps (see gEstimate).
+    gEstimate = true;
+    for (int i = 1; i <= 5; i++) {
+        float h = uAo.y * float(i) / 5.0;
+        float d = map(p + n * h);
+        occ += weight * clamp((h - d) / h, 0.0, 1.0);
+        total += weight;
+        weight *= 0.5;
     }
-    float h = uAo.y * float(j + 1) / 5.0;
-    gOcclusionSum += gOcclusionWeight * clamp((h - d) / h, 0.0, 1.0);
-    gOcclusionTotal += gOcclusionWeight;
-    gOcclusionWeight *= 0.5;
-    gOcclusion = clamp(1.0 - uAo.x * gOcclusionSum / gOcclusionTotal, 0.0, 1.0);
+    gEstimate = false;
+    return clamp(1.0 - uAo.x * occ / total, 0.0, 1.0);
 }

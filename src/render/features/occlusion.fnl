@@ -11,11 +11,9 @@
  :uniforms (fn [l] [{:name "uAo" :type :vec2 :values [l.ao l.ao-radius]}])
  :chunk "shaders/shading/modern/occlusion.glsl"
  :slot :occlusion
- ;; Its samples are surface taps: surfaceAt takes them and leaves gOcclusion.
- :taps {:count 5 :point "occlusionTap" :taken "occlusionTaken"}
- :lines ["occ *= gOcclusion;"]
+ :lines ["occ *= occlusion(p, n);"]
  :reach (fn [l] l.ao-radius)
- ;; The chunk's taps: nearer samples weigh more.
+ ;; occlusion() in the chunk: nearer samples weigh more.
  :cpu (fn [l T]
         (fn [px py pz nx ny nz]
           (var occ 0)
