@@ -35,7 +35,7 @@ OUT=${OUT:-$REPO/out/edit-window}
 GRAB_S=${GRAB_S:-0.03}
 PLAYER=$(cd "${PLAYER:-$REPO}" 2>/dev/null && pwd) || die "no player directory $PLAYER"
 TITLE="Fennel raymarcher"
-SCENES=${*:-"scenes/gallery.fnl scenes/lighting.fnl scenes/twisted-tower.fnl scenes/machined-part.fnl scenes/organic.fnl scenes/platonic-shelf.fnl scenes/flower.fnl scenes/colonnade.fnl"}
+SCENES=${*:-$(for n in gallery lighting twisted-tower machined-part organic platonic-shelf flower colonnade; do printf '%s ' "$REPO/scenes/$n.fnl"; done)}
 
 for tool in love luajit xvfb-run xdotool xwd; do
   command -v "$tool" >/dev/null || die "$tool is not installed (tools/install-deps.sh xvfb xdotool x11-apps)"
@@ -48,6 +48,7 @@ if [ -z "${EDIT_WINDOW_DISPLAY:-}" ]; then
 fi
 
 mkdir -p "$OUT"
+OUT=$(cd "$OUT" && pwd)
 LOVE_PID=""
 GRAB_PID=""
 cleanup() {

@@ -494,8 +494,8 @@ again only when its stat says it may have changed (watch.read-again?)."
           info))))
 
 (fn poll-file! [?now]
-  "Look at the watched file, poll-seconds apart at most (a stat and a read of a
-small file: tens of microseconds). `?now` overrides the wall clock (the soak test
+  "Look at the watched file, poll-seconds apart at most (a stat; the file is read
+only when that changed: polled-info). `?now` overrides the wall clock (the soak test
 moves it forward instead of waiting)."
   (let [clock (filestat.now)]
     ;; While another file's load waits for its helper, state.watch is that file's.
@@ -1311,7 +1311,7 @@ tools/edit-window.sh): the wall-clock time (filestat.now, the clock of a file's
 mtime), what drew it (preview: the CPU reference's picture of the new scene while
 its shader is compiled; interpreter; shader) and the serial number of the scene
 it shows (each text of the file gets the next one when it is first drawn: a load
-that waits for its helper reads the file twice, and makes two tables of one scene)."
+that waited for its helper may run the file again, another table of the same scene)."
   (let [scene (if state.shown-preview (or (?. state.pending :scene) state.scene)
                   (?. state.drawn :scene))
         source (when scene (. scene-texts scene))
