@@ -1436,9 +1436,13 @@ reached the screen."
                        (handle-keyboard dt)
                        (handle-gamepad dt))))
   (var frames 0)
+  ;; A log that cannot be written ends the run: a measurement without it is none.
   (local frame-log (when frame-log-path
-                     (or (io.open frame-log-path :w)
-                         (error (.. "RAYMARCH_FRAME_LOG: cannot write " frame-log-path)))))
+                     (case (io.open frame-log-path :w)
+                       f f
+                       (nil err) (do (io.stderr:write (.. "error: RAYMARCH_FRAME_LOG: " err "\n"))
+                                     (love.event.quit 1)
+                                     nil))))
   (set love.draw (fn []
                    (draw)
                    (when frame-log (log-frame! frame-log))
