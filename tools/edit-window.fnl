@@ -112,8 +112,8 @@ of their middle (from a quarter to three quarters of the width and the height)."
         _ (f:close)
         scene (assert (scene-load.load-string text path))
         cam scene.camera
-        f (camera.forward cam)
-        p (fcollect [i 1 3] (+ (. cam.pos i) (* 4 (. f i))))
+        ahead (camera.forward cam)
+        p (fcollect [i 1 3] (+ (. cam.pos i) (* 4 (. ahead i))))
         pos (string.format "[%.3f %.3f %.3f]" (. p 1) (. p 2) (. p 3))
         object (case edit
                  :added (.. "{:kind :sphere :radius 0.6 :pos " pos " :color [1 0 1]}")
