@@ -96,7 +96,7 @@
             (each [_ file (ipairs files)]
               (case (plan-mod.scene->plan (assert (load.load-file file))
                                           {:interpret? true :instructions all})
-                p (let [iset (. p.tape.objects 1 :set)
+                p (let [iset (. (interpret.program-object p.tape) :set)
                         beyond (icollect [_ e (ipairs iset)]
                                  (when (not (. held e.key)) e.key))]
                     (if (= file "scenes/custom.fnl")
@@ -122,12 +122,35 @@
           (let [(p err) (plan-of (.. "{:objects [" (nest 5) "]}") {:interpret? true})]
             (assert.is_nil p)
             (assert.truthy (err:find "repetitions nested more than 4 deep" 1 true) err)))
-        ;; city's 10,001 objects: every step of every pixel would visit each.
-        (let [(s) (load.load-file "scenes/city.fnl")
-              (p err) (plan-mod.scene->plan s {:interpret? true})]
+        ;; 1,025 objects the program would run: every step of every pixel would
+        ;; visit each. (As a field, the spheres are walked through its grid: below.)
+        (let [spheres (fcollect [i 1 1025] (.. "{:kind :sphere :radius 0.1 :pos [" i " 0 0]}"))
+              text (.. "{:objects [" (table.concat spheres " ") "]}")
+              (p err) (plan-of text {:interpret? true :field? false})]
           (assert.is_nil p)
-          (assert.truthy (err:find "city.fnl: the interpreter cannot draw it: 10001 objects (at most 1024" 1 true)
-                         err))))
+          (assert.truthy (err:find "interpret.fnl: the interpreter cannot draw it: 1025 objects (at most 1024" 1 true)
+                         err)
+          (assert.is_truthy (plan-of text {:interpret? true})))))
+
+    (it "keeps a field (city's 10,000 blocks), numbering the program's objects after its members"
+      (fn []
+        (let [(s) (load.load-file "scenes/city.fnl")
+              c (assert (plan-mod.scene->plan s {}))
+              p (assert (plan-mod.scene->plan s {:interpret? true}))
+              [field program] p.tape.objects]
+          (assert.are.equal 2 (length p.tape.objects))
+          (assert.are.equal :field field.strategy)
+          (assert.are.equal :interpreted program.strategy)
+          ;; The ground, after the 10,000 members, as in the compiled plan.
+          (assert.are.equal 10000 program.id)
+          (assert.are.equal (. c.tape.objects 2 :id) program.id)
+          (assert.are.same c.field.kinds p.field.kinds)
+          ;; mapObject, mapColor and the normals name the ground by its number.
+          (let [src (assert (codegen.shader p :love))]
+            (assert.truthy (src:find "gObject = 10000 + tapeObject;" 1 true))
+            (assert.truthy (src:find "only - 10000" 1 true))
+            ;; The walk marches other objects when the bounds' image holds some.
+            (assert.truthy (src:find "#define fieldOthers() (boundsCount() > 0)" 1 true))))))
 
     (it "marches by the compiled form's bounds, from an image whose count is not in the text"
       (fn []
@@ -175,7 +198,7 @@
           (each [_ file (ipairs files)]
             (let [scene (assert (load.load-file file))]
               (case (plan-mod.scene->plan scene {:interpret? true})
-                p (let [o (. p.tape.objects 1)
+                p (let [o (interpret.program-object p.tape)
                         ev (emit-lua.compile o.tape)
                         run (runner o)
                         members (interpret.members-of o.tape)]
@@ -196,7 +219,7 @@
                             (let [g (. ev.gradient k)]
                               (if g (assert.are.same [(g x y z)] r.gradient at)
                                   (assert.is_nil r.gradient at)))))))))))
-          (assert.are.equal 14 checked)
+          (assert.are.equal 15 checked)
           ;; The ground planes among them, marked for tapePlanesHit.
           (assert.is_true (> half-spaces 0))
           ;; A program whose first argument reads one float on is caught.

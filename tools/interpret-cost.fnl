@@ -31,4 +31,4 @@
     (table.sort times)
     (print (string.format "%s %s %dx%d: compile %.0f ms, first frame %.0f ms, frame %.0f ms (median of 3)%s"
                           file label W H (* 1000 (- t1 t0)) (* 1000 (- t2 t1)) (* 1000 (. times 2))
-                          (if opts.interpret? (.. ", " (length (. p.tape.objects 1 :set)) " functions") "")))))
+                          (if opts.interpret? (.. ", " (length (. (interpret.program-object p.tape) :set)) " functions") "")))))

@@ -172,6 +172,7 @@ ivec3 stepDir = ivec3(sign(safe));
 vec3 tDelta = uFieldCell * abs(inv);
 vec3 tNext = vec3(0.0);
 int evals = 0;
+bool others = fieldOthers();
 
 // @part cell-enter
 if (state == 0 && t >= gridIn) {
@@ -181,7 +182,7 @@ if (state == 0 && t >= gridIn) {
 }
 
 // @part step-field
-bool evaluated = kFieldOthers;
+bool evaluated = others;
 if (state == 1) {
     vec4 list = fieldRead(uFieldCells, uFieldRows.x, fieldCellIndex(cell));
     if (list.y > 0.0) {

@@ -31,6 +31,7 @@
 (local picture (require :src.reference.picture))
 (local camera (require :src.render.camera))
 (local plan (require :src.render.plan))
+(local interpret (require :src.sdf.interpret))
 
 (fn with-spheres [text n color ?form]
   ;; The scene's own text, evaluated as it is, with `n` more top-level objects, small
@@ -323,7 +324,7 @@ shader must replace the interpreter's. `report` gets a line; true when all holds
                                                                    :reflections state.reflections
                                                                    :interpret? true
                                                                    ;; The set the player's shader holds.
-                                                                   :instructions (. iplan.tape.objects 1 :set)}
+                                                                   :instructions (. (interpret.program-object iplan.tape) :set)}
                                                          :cam state.cam}
                                                     w h)
                         (most over) (byte-differences bytes expected)

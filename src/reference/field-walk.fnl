@@ -23,8 +23,8 @@ field) over `parts` (the tracer's distance field, hit tests and :bound-spheres):
             _ (set field-hit.t0 t0)
             t-plane (planes-hit ox oy oz dx dy dz)
             (enter exit) (bounds.span bound-spheres ox oy oz dx dy dz draw)
-            ;; kFieldOthers: finite objects beside the field.
-            others? (> plan.bounds.count 0)
+            ;; fieldOthers(): finite objects beside the field (their bounding spheres).
+            others? (> (length bound-spheres) 0)
             ;; A field of spheres alone walks lists of its own (march.glsl's spheres' walk).
             walk (when (and fd.walk? (not others?)) fd.walk)
             cell-count (if walk walk.count fd.cell-count)

@@ -126,4 +126,10 @@ o is grown by g (q + r): a soft shadow's penumbra, which widens with the distanc
             (set exit (math.max exit t1)))))))
   (values enter (math.min exit far)))
 
-{: plan-bounds : spheres : span : object-sphere : grid-sphere : texture : texture-width}
+(fn others? [plan]
+  "Whether `plan` marches finite objects of their own bounding spheres (beside a
+field's members and the half-spaces): some counted, or any from an image (the
+interpreter's bounds: their count is not in the code)."
+  (and (not= nil plan.bounds) (or plan.bounds.texture? (> plan.bounds.count 0))))
+
+{: plan-bounds : others? : spheres : span : object-sphere : grid-sphere : texture : texture-width}

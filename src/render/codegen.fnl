@@ -158,7 +158,7 @@ along the ray (see gridCellAlong in shaders/pipeline/grid.glsl)."
   ;; finite objects (:field), or a lean walk of the field alone: one cell a turn
   ;; (:cells), or a field of spheres only, one texel a turn (:spheres).
   (if (not plan.field) :trace
-      (< 0 plan.bounds.count) :field
+      (bounds.others? plan) :field
       plan.field.walk? :spheres
       :cells))
 

@@ -325,18 +325,23 @@ and `make bench`'s before (test/bench/report.fnl).
                   texture (codegen's load-once)
   :interpret?     true: the scene drawn by the tape interpreter (src/sdf/interpret.fnl):
                   one shader for every scene of its instruction set, so a structural
-                  edit needs no compile; no field, grids or folding, its bounds (when
+                  edit needs no compile; no grids or folding, its bounds (when
                   every finite object has one) from an image. nil and why when the
                   tape cannot run on it
   :instructions   with :interpret?, an instruction set the shader holds besides the
                   scene's (interpret.instruction-set)
 Returns the plan, or nil and a message when the scene does not fit the budget."
   (let [options (if (and ?options ?options.interpret?)
-                    ;; The interpreter draws every object as it is: no field, no
-                    ;; grids (their counts would be in the shader), no values folded
-                    ;; into code; its bounds from an image (see below).
+                    ;; The interpreter draws every object as it is: no grids
+                    ;; (their counts would be in the shader), no values folded into
+                    ;; code; its bounds from an image (see below). A field only
+                    ;; where the objects are more than it runs (interpret's
+                    ;; max-objects): its structure, its count too, is in the key,
+                    ;; so an object added to it needs a compile.
                     (doto (collect [k v (each-pair ?options)] k v)
-                      (tset :field? false) (tset :grids? false) (tset :fold? false))
+                      (tset :grids? false) (tset :fold? false)
+                      (tset :field? (and (not= false ?options.field?)
+                                         (> (length (or scene.objects [])) interpret.max-objects))))
                     (or ?options {}))
         view (or options.view :shaded)
         uber? (not (not options.uber?))

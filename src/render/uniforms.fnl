@@ -168,7 +168,7 @@ marked :view? true; the others are the scene's settings (see fixed)."
                                        :height (math.ceil (/ rows emit-glsl.tape-texture-width))
                                        :data vals}}
                             {: name :type :vec4 :values vals :count rows :view? true})))))
-    (when (and plan.bounds (or plan.bounds.texture? (> plan.bounds.count 0)))
+    (when (bounds.others? plan)
       (let [flat (bounds.spheres plan cam.pos (hit-threshold scene plan cam height))]
         (table.insert out (if plan.bounds.texture?
                               ;; Their count with them (the interpreter's: not in the text).

@@ -449,30 +449,49 @@ runs on it), of the loop stack and of a line of the program's texture."
 (src/sdf/strategies/interpreted.fnl), that holds `tape` (:tape), its instruction set
 with `?base`'s (:set) and its program (:program); no rows of its own (the
 interpreter reads `tape`'s from their texture). Its key names the set alone: any
-tape of that set draws with the same shader. nil and why when `tape` cannot run on
-the interpreter."
-  (case (refusal tape)
-    why (values nil why)
-    _ (let [iset (instruction-set tape ?base)
-            (prog err) (program tape iset)
-            used {}]
-        (if (not prog) (values nil err)
-            {:objects [{:strategy :interpreted :id 0 :tape tape :set iset :program prog
-                        :info {:kind :interpreted :path "interpreted" :implicit? true
-                               :children []}}]
-             ;; No object is written in the code (:count, codegen's comment): the text
-             ;; depends on the set alone.
-             :count 0 :rows [] :relative [] :inner [] :derived [] :blends []
-             :instances {:rows [] :relative [] :inner [] :derived []}
-             :mirrors? tape.mirrors? :estimates? tape.estimates?
-             :material-size tape.material-size
-             ;; The functions the set calls, each once (what emit-glsl writes).
-             :used (icollect [_ e (ipairs iset)]
-                     (when (and (not= e.role :gradient) (not (. used e.desc.glsl-name)))
-                       (tset used e.desc.glsl-name true)
-                       {:name e.desc.glsl-name :desc e.desc}))
-             :key (.. "interpreted " (set-key iset) " materials:" tape.material-size
-                      (if tape.estimates? " estimates" ""))}))))
+tape of that set draws with the same shader. A field (`tape`'s first object when
+it has one) stays before it, as it is (program-object finds the interpreted one).
+nil and why when `tape` cannot run on the interpreter."
+  (let [;; A field (the first object when the scene has one: lower.fnl) keeps its
+        ;; own strategy: its members are data in its textures, walked through its
+        ;; grid (what the interpreter would visit one by one at every step).
+        field (let [o (. tape.objects 1)] (when (and o (= o.strategy :field)) o))
+        tape (if field
+                 (collect [k v (pairs tape) &into {:objects (icollect [i o (ipairs tape.objects)]
+                                                              (when (> i 1) o))}]
+                   (when (not= k :objects) (values k v)))
+                 tape)]
+    (case (refusal tape)
+      why (values nil why)
+      _ (let [iset (instruction-set tape ?base)
+              (prog err) (program tape iset)
+              used {}]
+          (if (not prog) (values nil err)
+              {:objects (doto (if field [field] [])
+                          (table.insert {:strategy :interpreted :tape tape
+                                         ;; Numbered after the field's members.
+                                         :id (if field field.field.count 0)
+                                         :set iset :program prog
+                                         :info {:kind :interpreted :path "interpreted"
+                                                :implicit? true :children []}}))
+               ;; No object is written in the code (:count, codegen's comment): the text
+               ;; depends on the set alone (and a field's structure: the plan's key).
+               :count 0 :rows [] :relative [] :inner [] :derived [] :blends []
+               :instances {:rows [] :relative [] :inner [] :derived []}
+               :mirrors? tape.mirrors? :estimates? tape.estimates?
+               :material-size tape.material-size
+               ;; The functions the set calls, each once (what emit-glsl writes).
+               :used (icollect [_ e (ipairs iset)]
+                       (when (and (not= e.role :gradient) (not (. used e.desc.glsl-name)))
+                         (tset used e.desc.glsl-name true)
+                         {:name e.desc.glsl-name :desc e.desc}))
+               :key (.. "interpreted " (set-key iset) " materials:" tape.material-size
+                        (if tape.estimates? " estimates" ""))})))))
 
-{: refusal : instruction-set : catalogue : tape-of : set-key : program : shader-slots
+(fn program-object [tape]
+  "The object of `tape` (as tape-of gives it) that the interpreter runs: its last,
+after a field."
+  (. tape.objects (length tape.objects)))
+
+{: refusal : instruction-set : catalogue : tape-of : program-object : set-key : program : shader-slots
  : members-of : max-objects : max-registers : width : ops : first-function}

@@ -10,6 +10,7 @@
 (local lower (require :src.sdf.lower))
 (local runs (require :src.reference.distance))
 (local primitives (require :src.sdf.primitives))
+(local bounds (require :src.render.bounds))
 (local box-gradient (. (primitives.lookup :box) :gradient))
 
 (fn field-number [expr first]
@@ -105,8 +106,12 @@
                    spheres? "fieldSphereEntry(q0, rd, a)"
                    boxes? box)
         march "fieldMarchedEntry(q0, rd, a, int(-b.x), int(b.w), t0)"]
-    [(.. "const bool kFieldOthers = " (tostring (> plan.bounds.count 0))
-         ";  // finite objects beside the field (mapFinite)")
+    [;; Finite objects beside the field (mapFinite): counted in the code, or as many
+     ;; as the bounds' image holds (the interpreter's: boundsCount, defined after
+     ;; this, where the march reads it).
+     (.. "#define fieldOthers() "
+         (if plan.bounds.texture? "(boundsCount() > 0)" (tostring (bounds.others? plan)))
+         "  // finite objects beside the field (mapFinite)")
      (string.format "const float kFieldTiny = %.6f;  // a ray direction's smallest component"
                     field.tiny)
      (.. "const int kFieldObjectTexels = " (field.object-texels plan.field)

@@ -19,7 +19,11 @@
   ;; program's, not in the text: any tape of the set draws with the same shader).
   (.. "gObject >= " first " && gObject < " first " + int(tapeCode(0).x)"))
 
-(fn color-term [_ _ ?first mirrors? modern?]
+(fn number [first o]
+  ;; The number in gObject of its first object: after those before it (a field's).
+  (+ first o.id))
+
+(fn color-term [_ o ?first mirrors? modern?]
   (let [mt (if modern? "mat2x4" "vec4")
         row (if modern? "tapeMaterial[0]" "tapeMaterial")]
     ["{  // every object, by the interpreter"
@@ -30,7 +34,7 @@
        (.. "if (tapeObject >= 0) { d = tapeD; color = " row ".rgb;"
            (if (or mirrors? modern?) (.. " gMirror = " row ".a;") "")
            (if modern? " gMaterial = tapeMaterial[1];" "")
-           (if ?first (.. " gObject = " ?first " + tapeObject;") "") " }")])
+           (if ?first (.. " gObject = " (number ?first o) " + tapeObject;") "") " }")])
      "}"]))
 
 {:name :interpreted
@@ -52,20 +56,22 @@
                          ");  // every object, by the interpreter")])
         :color color-term
         ;; With `materials`, mapColor's term.
-        :object (fn [_ _ first mirrors? modern?]
-                  (let [minus #(if (= first 0) $ (.. $ " - " first))]
+        :object (fn [_ o first mirrors? modern?]
+                  (let [n (number first o)
+                        minus #(if (= n 0) $ (.. $ " - " n))]
                     (glsl.either-terms
-                     (color-term nil nil first mirrors? modern?)
+                     (color-term nil o first mirrors? modern?)
                      [(.. "d = tapeMin(p, d, all ? -1 : " (minus "only") ", skip < 0 ? -1 : "
                           (minus "skip") ", false);")])))
         :gradient (fn [_ o first action]
                     ;; Written as the set says (the text is the set's alone); the
                     ;; program says which objects have one (tapeExact).
-                    (when (accumulate [any? false _ e (ipairs o.set)]
-                            (or any? (= e.role :gradient)))
-                      [(.. "if (" (selected first) " && tapeExact(gObject - " first ")) {")
-                       (.. "    " action "tapeGradient(p, gObject - " first ");")
-                       "}"]))
+                    (let [n (number first o)]
+                      (when (accumulate [any? false _ e (ipairs o.set)]
+                              (or any? (= e.role :gradient)))
+                        [(.. "if (" (selected n) " && tapeExact(gObject - " n ")) {")
+                         (.. "    " action "tapeGradient(p, gObject - " n ");")
+                         "}"])))
         ;; Any program may hold half-spaces: the program says which (tapeHalfSpace).
         :planes (fn [_ _] ["t = tapePlanesHit(p, rd, t);  // the half-spaces, by the interpreter"])
         :exact? (fn [o] (accumulate [all? true _ m (ipairs (members o))]
