@@ -145,12 +145,28 @@
           (assert.are.equal 10000 program.id)
           (assert.are.equal (. c.tape.objects 2 :id) program.id)
           (assert.are.same c.field.kinds p.field.kinds)
-          ;; mapObject, mapColor and the normals name the ground by its number.
-          (let [src (assert (codegen.shader p :love))]
-            (assert.truthy (src:find "gObject = 10000 + tapeObject;" 1 true))
-            (assert.truthy (src:find "only - 10000" 1 true))
+          ;; mapObject, mapColor and the normals name the ground by its number,
+          ;; the field's count read from a uniform.
+          (let [src (assert (codegen.shader p :love))
+                us (uniforms.pack s p (camera.from-scene s) 16 16)]
+            (assert.truthy (src:find "gObject = uFieldCount + tapeObject;" 1 true))
+            (assert.truthy (src:find "only - uFieldCount" 1 true))
+            (assert.is_nil (src:find "[^%d.]10000[^%d.]"))
+            (assert.are.same [10000] (. (icollect [_ u (ipairs us)] (when (= u.name "uFieldCount") u)) 1 :values))
             ;; The walk marches other objects when the bounds' image holds some.
-            (assert.truthy (src:find "#define fieldOthers() (boundsCount() > 0)" 1 true))))))
+            (assert.truthy (src:find "#define fieldOthers() (boundsCount() > 0)" 1 true)))
+          ;; A block more (the field's count), or a second ground (the program's
+          ;; objects): the same shader, where the compiled one changes. (A torus
+          ;; would be a marched member: a new kind, a new shader.)
+          (each [_ extra (ipairs ["{:kind :box :pos [0 0 1] :size [1 1 2]}"
+                                  "{:kind :plane :height -1}"])]
+            (let [text (.. "(let [scene (do " (with-open [f (io.open "scenes/city.fnl")] (f:read :*a))
+                           "\n)] (table.insert scene.objects " extra ") scene)")
+                  (s2) (load.load-string text "city.fnl")
+                  p2 (assert (plan-mod.scene->plan s2 {:interpret? true}))
+                  c2 (assert (plan-mod.scene->plan s2 {}))]
+              (assert.are.equal p.key p2.key extra)
+              (assert.are_not.equal c.key c2.key extra))))))
 
     (it "marches by the compiled form's bounds, from an image whose count is not in the text"
       (fn []

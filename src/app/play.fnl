@@ -169,8 +169,7 @@ inside the game folder (LÖVE run from elsewhere) have whole-second times."
   "The interpreter's plan of `scene`, when this player draws edits with it and the
 scene can run on it; else nil."
   ;; (A scene of more objects than it runs is not lowered again to hear so.)
-  (when (and state.interpret-edits?
-             (<= (length scene.objects) (. (require :src.sdf.interpret) :max-objects)))
+  (when (and state.interpret-edits? (plan-mod.interpreter-count-fits? scene))
     (pick-values 1 (plan-with scene reflections nil nil true))))
 
 (fn interpreter-ready [scene reflections]

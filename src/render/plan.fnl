@@ -106,11 +106,14 @@
                      :key true})
 
 ;; Of nested parts, what the code reads: the tape's key (its own structure, derived
-;; the same way in lower.fnl), a field's kinds, walk and object count.
+;; the same way in lower.fnl), a field's kinds, walk and object count (unless the
+;; code reads it from a uniform: the interpreter's, interpret.tape-of).
 (local parts {:tape (fn [tape] tape.key)
               ;; Which groups have grids (their sizes travel as uniforms).
               :grids (fn [gs] (icollect [_ e (ipairs gs.list)] (or e.id "blend")))
-              :field (fn [fd] {:kinds fd.kinds :walk? fd.walk? :count fd.count})})
+              :field (fn [fd plan]
+                       {:kinds fd.kinds :walk? fd.walk?
+                        :count (when (not (?. plan.tape.objects 1 :count-read?)) fd.count)})})
 
 (fn key-text [v]
   ;; A deterministic text of plain data: tables with their keys sorted.
@@ -126,7 +129,7 @@
     (table.sort ks)
     (table.concat (icollect [_ k (ipairs ks)]
                     (let [part (. parts k)]
-                      (.. k "=" (key-text (if part (part (. plan k)) (. plan k))))))
+                      (.. k "=" (key-text (if part (part (. plan k) plan) (. plan k))))))
                   " ")))
 
 (fn object-label [o]
@@ -286,6 +289,15 @@ shader of `plan` holds, and how its soft shadows march."
                  (when (>= fd.count collect-after) (collectgarbage))
                  fd)
           (nil err) (values nil err)))))
+
+(fn interpreter-count-fits? [scene]
+  "Whether `scene`'s objects are few enough for the tape interpreter (without lowering
+them): at most its max-objects, or more with those outside a field at most that many
+(the interpreter keeps a field of a scene of more objects: scene->plan)."
+  (or (<= (length scene.objects) interpret.max-objects)
+      (<= (accumulate [n 0 _ o (ipairs scene.objects)]
+            (if (field.member? o) n (+ n 1)))
+          interpret.max-objects)))
 
 (fn scene->plan [scene ?options]
   "Lower `scene` into a plan. Options:
@@ -467,4 +479,5 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
         plan)))
 
 {: scene->plan : views : view? : default-uniform-limit : fixed-uniform-vectors
- : software-renderer? : renderer-options : structure-key}
+ : software-renderer? : renderer-options : structure-key
+ : interpreter-count-fits?}

@@ -454,8 +454,11 @@ it has one) stays before it, as it is (program-object finds the interpreted one)
 nil and why when `tape` cannot run on the interpreter."
   (let [;; A field (the first object when the scene has one: lower.fnl) keeps its
         ;; own strategy: its members are data in its textures, walked through its
-        ;; grid (what the interpreter would visit one by one at every step).
-        field (let [o (. tape.objects 1)] (when (and o (= o.strategy :field)) o))
+        ;; grid (what the interpreter would visit one by one at every step). Its
+        ;; count is read from a uniform (:count-read?), so the text does not hold it.
+        field (let [o (. tape.objects 1)]
+                (when (and o (= o.strategy :field))
+                  (collect [k v (pairs o) &into {:count-read? true}] k v)))
         tape (if field
                  (collect [k v (pairs tape) &into {:objects (icollect [i o (ipairs tape.objects)]
                                                               (when (> i 1) o))}]
@@ -469,13 +472,15 @@ nil and why when `tape` cannot run on the interpreter."
           (if (not prog) (values nil err)
               {:objects (doto (if field [field] [])
                           (table.insert {:strategy :interpreted :tape tape
-                                         ;; Numbered after the field's members.
+                                         ;; Numbered after the field's members
+                                         ;; (a uniform's count in the text).
                                          :id (if field field.field.count 0)
+                                         :after-field? (not= nil field)
                                          :set iset :program prog
                                          :info {:kind :interpreted :path "interpreted"
                                                 :implicit? true :children []}}))
                ;; No object is written in the code (:count, codegen's comment): the text
-               ;; depends on the set alone (and a field's structure: the plan's key).
+               ;; depends on the set alone (and a field's kinds: the plan's key).
                :count 0 :rows [] :relative [] :inner [] :derived [] :blends []
                :instances {:rows [] :relative [] :inner [] :derived []}
                :mirrors? tape.mirrors? :estimates? tape.estimates?

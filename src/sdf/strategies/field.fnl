@@ -26,8 +26,12 @@
   ;; `action` (a GLSL expression's prefix) on member gObject (or `?var`) when it is
   ;; the field's.
   (let [id (+ first o.id)
-        v (or ?var "gObject")]
-    [(.. "if (" v " >= " id " && " v " < " (+ id o.field.count) ") " action "(p, "
+        v (or ?var "gObject")
+        ;; Its count written, or read (the interpreter's: interpret.tape-of).
+        past (if (not o.count-read?) (+ id o.field.count)
+                 (= id 0) "uFieldCount"
+                 (.. id " + uFieldCount"))]
+    [(.. "if (" v " >= " id " && " v " < " past ") " action "(p, "
          (field-index id v) ");")]))
 
 (local chunk "shaders/strategies/field.glsl")
@@ -109,6 +113,9 @@
     [;; Finite objects beside the field (mapFinite): counted in the code, or as many
      ;; as the bounds' image holds (the interpreter's: boundsCount, defined after
      ;; this, where the march reads it).
+     (if (?. plan.tape.objects 1 :count-read?)
+         "uniform int uFieldCount;  // its members (the interpreter's: not in the text)"
+         [])
      (.. "#define fieldOthers() "
          (if plan.bounds.texture? "(boundsCount() > 0)" (tostring (bounds.others? plan)))
          "  // finite objects beside the field (mapFinite)")
@@ -158,7 +165,7 @@
     (tset defined "gradBox" true)
     (glsl.text-lines (. (primitives.lookup :box) :gradient-glsl))))
 
-(fn field-uniforms [plan _ cam-pos]
+(fn field-uniforms [plan o cam-pos]
   ;; Its grid, the low corner camera-relative (in double), and its textures (:type
   ;; :texture, {:width :height :data}; the same tables every frame, so a backend
   ;; uploads them once). A field of spheres walks one more texture (:walk?).
@@ -179,6 +186,8 @@
                 {:name "uFieldCells" :type :texture :texture tex.cells}
                 {:name "uFieldRecords" :type :texture :texture tex.records}
                 {:name "uFieldObjects" :type :texture :texture tex.objects}])
+    (when o.count-read?
+      (table.insert out {:name "uFieldCount" :type :int :values [fd.count]}))
     (when fd.walk?
       (table.insert out {:name "uFieldTurns" :type :int :values [fd.turns]})
       (table.insert out {:name "uFieldWalk" :type :texture :texture tex.walk}))

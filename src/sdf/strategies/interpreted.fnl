@@ -20,8 +20,11 @@
   (.. "gObject >= " first " && gObject < " first " + int(tapeCode(0).x)"))
 
 (fn number [first o]
-  ;; The number in gObject of its first object: after those before it (a field's).
-  (+ first o.id))
+  ;; The number in gObject of its first object: after a field's members (their
+  ;; count a uniform: see interpret.tape-of), or `first`.
+  (if (not o.after-field?) (+ first o.id)
+      (= first 0) "uFieldCount"
+      (.. first " + uFieldCount")))
 
 (fn color-term [_ o ?first mirrors? modern?]
   (let [mt (if modern? "mat2x4" "vec4")
