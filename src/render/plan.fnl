@@ -348,8 +348,8 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                     ;; (their counts would be in the shader), no values folded into
                     ;; code; its bounds from an image (see below). A field only
                     ;; where the objects are more than it runs (interpret's
-                    ;; max-objects): its structure, its count too, is in the key,
-                    ;; so an object added to it needs a compile.
+                    ;; max-objects): its kinds are in the key (a new kind
+                    ;; compiles), its count a uniform (interpret.tape-of).
                     (doto (collect [k v (each-pair ?options)] k v)
                       (tset :grids? false) (tset :fold? false)
                       (tset :field? (and (not= false ?options.field?)
