@@ -81,14 +81,7 @@ scene_text \
   | sed 's/^(local hue (param :hue .*$/(local hue (fn [t] (let [p (% (\/ t 8) 1)] (+ 0.1 (* 0.8 (if (< p 0.5) (* 2 p) (- 2 (* 2 p))))))))/' \
   > "$WORK/hue-animated.fnl"
 grep -q '^(local hue (fn' "$WORK/hue-animated.fnl" || die "$HEAD_FILE has no (local hue (param :hue ...)) line"
-LOVE_PID=""
-GRAB_PID=""
-cleanup() {
-  [ -n "$GRAB_PID" ] && kill "$GRAB_PID" 2>/dev/null || true
-  [ -n "$LOVE_PID" ] && kill "$LOVE_PID" 2>/dev/null || true
-  wait 2>/dev/null || true
-}
-trap cleanup EXIT
+. "$REPO/tools/window-stop.sh"
 T0=$(date +%s.%N)
 say() { printf '[%5.1f s] %s\n' "$(echo "$(date +%s.%N) - $T0" | bc)" "$*"; }
 

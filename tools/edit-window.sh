@@ -49,14 +49,7 @@ fi
 
 mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
-LOVE_PID=""
-GRAB_PID=""
-cleanup() {
-  [ -n "$GRAB_PID" ] && kill "$GRAB_PID" 2>/dev/null || true
-  [ -n "$LOVE_PID" ] && kill "$LOVE_PID" 2>/dev/null || true
-  wait 2>/dev/null || true
-}
-trap cleanup EXIT
+. "$REPO/tools/window-stop.sh"
 
 # A file edit as an editor saves it: written beside it, then renamed over it.
 write_scene() { cat > "$1.tmp"; mv "$1.tmp" "$1"; }
