@@ -75,7 +75,8 @@ of their middle (from a quarter to three quarters of the width and the height)."
         own (when first
               (accumulate [found nil _ f (ipairs after)]
                 (or found (when (and (= f.serial first.serial) (= f.kind :shader)) f))))
-        stop (or (?. own :t) (. after (length after) :t))]
+        ;; (No frame after the save: a player stuck in one frame shows nothing new.)
+        stop (or (?. own :t) (?. after (length after) :t) save)]
     (var longest 0)
     (var prev (. before (length before) :t))
     (var back 0)
