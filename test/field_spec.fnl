@@ -344,7 +344,7 @@
           (assert.is_truthy (text:find "if (gObject == 100) {  // objects[1]: plane" 1 true))
           (assert.is_truthy (text:find "n = gradGround(p, " 1 true))
           (assert.is_nil (text:find "mapObject" 1 true))
-          (assert.is_truthy (text:find "const bool kFieldOthers = false;" 1 true))
+          (assert.is_truthy (text:find "#define fieldOthers() false" 1 true))
           (let [(out err) (export.shadertoy s p)]
             (assert.is_nil out)
             (assert.is_truthy (err:find "100 spheres and boxes in float textures" 1 true))))))

@@ -458,9 +458,9 @@ nil and why when `tape` cannot run on the interpreter."
         ;; count is read from a uniform (:count-read?), so the text does not hold it.
         field (let [o (. tape.objects 1)]
                 (when (and o (= o.strategy :field))
-                  (collect [k v (pairs o) &into {:count-read? true}] k v)))
+                  (collect [k v (each-pair o) &into {:count-read? true}] k v)))
         tape (if field
-                 (collect [k v (pairs tape) &into {:objects (icollect [i o (ipairs tape.objects)]
+                 (collect [k v (each-pair tape) &into {:objects (icollect [i o (ipairs tape.objects)]
                                                               (when (> i 1) o))}]
                    (when (not= k :objects) (values k v)))
                  tape)]
