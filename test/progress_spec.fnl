@@ -55,6 +55,33 @@
           (assert.is_true (progress.complete? p))
           (assert.is_true (<= (length over) 1) (.. (length over) " bands over the budget")))))
 
+    (it "weighs a later pass's share by an earlier pass's time a row"
+      (fn []
+        ;; The top 300 rows sky (0.1 ms a row), the rest a heavy surface (20 ms):
+        ;; half the rows are well under half the work. The earlier pass in even
+        ;; bands (32 of 23 rows, as --render draws its centre rays).
+        (let [cost #(if (< $1 300) 1e-4 0.02)
+              even (progress.new 720 8 0.25 true)
+              passed (refine even cost)
+              sum (fn [y] (accumulate [s 0 _ r (ipairs (fcollect [r 0 (- y 1)] r))] (+ s (cost r))))
+              total (sum 720)
+              above (fn [y] (/ (sum y) total))]
+          (assert.are.equal 0 (progress.share-above passed 0))
+          (assert.are.equal 1 (progress.share-above passed 720))
+          ;; Within a band, its time is spread evenly over its rows: the share is
+          ;; exact at band edges, and near where a band mixes sky and surface.
+          (each [_ [_ y1] (ipairs passed)]
+            (assert.is_true (< (math.abs (- (above y1) (progress.share-above passed y1))) 1e-9)
+                            (.. "row " y1)))
+          (assert.is_true (< (progress.share-above passed 360) 0.2))
+          (assert.is_true (< (math.abs (- (above 360) (progress.share-above passed 360))) 0.01))
+          ;; Even bands: all as tall as the first.
+          (assert.are.equal 32 (length passed))
+          (each [_ [y0 y1] (ipairs passed)]
+            (assert.is_true (<= (- y1 y0) 23)))
+          ;; A pass that took no time tells nothing.
+          (assert.is_nil (progress.share-above [[0 720 0]] 360)))))
+
     (it "never draws fewer than 1/256 of the picture a band, nor more than all of it"
       (fn []
         (let [p (progress.new 1024)]

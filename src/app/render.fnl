@@ -41,7 +41,8 @@ a message."
 (fn draw! [cache canvas scene plan cam ?on-band ?prior?]
   "Draw `scene` (lowered to `plan`, seen by `cam`) into `canvas` in bands from the
 top, each about band-seconds. `(?on-band covered seconds)` runs after each band:
-the share drawn (0 to 1) and the seconds since the first; when it returns :stop the
+the share done (0 to 1: of the rows; once the centre rays are drawn, of the time,
+by their times a row) and the seconds since the first; when it returns :stop the
 drawing stops there. With `?prior?` (an adaptive plan drawn as the player's still),
 the picture of the centre rays is drawn first, as the player has it, and the still
 reads it (uniforms.prior). The seconds it took, or nil and a message."
@@ -49,24 +50,45 @@ reads it (uniforms.prior). The seconds it took, or nil and a message."
         start (love.timer.getTime)
         prior (when ?prior? (love.graphics.newCanvas w h))]
     (var err nil)
-    (fn bands! [target extra share-from share]
-      (let [p (progress.new h (* first-bands band-seconds) band-seconds)]
+    (fn bands! [target extra share-from share ?even? ?passed]
+      ;; One pass over the picture (`?even?`: in first-bands bands of one height);
+      ;; its bands [y0 y1 seconds]. After `?passed` (an earlier pass's bands) its
+      ;; share done is weighed by their time a row, and the whole's share done is
+      ;; the share of the time: what has been spent over that plus what this pass
+      ;; still needs at its own rate.
+      (let [p (progress.new h (* first-bands band-seconds) band-seconds ?even?)
+            pass-start (love.timer.getTime)
+            drawn []
+            done (fn [y1]
+                   (case (and ?passed (progress.share-above ?passed y1))
+                     (where s (> s 0))
+                     (let [now (love.timer.getTime)
+                           left (* (- now pass-start) (/ (- 1 s) s))
+                           spent (- now start)]
+                       (/ spent (math.max 1e-9 (+ spent left))))
+                     _ (+ share-from (* share (progress.covered p)))))]
         (while (and (not err) (not (progress.complete? p)))
           (let [(y0 y1) (progress.rows p)
                 t0 (love.timer.getTime)]
             (case (frame.render-to-canvas! cache target scene plan cam [y0 y1] extra)
               (nil e) (set err e)
               _ (do (wait-for! target)
-                    (progress.drawn! p y0 y1 (- (love.timer.getTime) t0))
-                    (when (and ?on-band
-                               (= :stop (?on-band (+ share-from (* share (progress.covered p)))
-                                                  (- (love.timer.getTime) start))))
-                      (set err stop.message))))))))
+                    (let [seconds (- (love.timer.getTime) t0)]
+                      (table.insert drawn [y0 y1 seconds])
+                      (progress.drawn! p y0 y1 seconds)
+                      (when (and ?on-band
+                                 (= :stop (?on-band (done y1) (- (love.timer.getTime) start))))
+                        (set err stop.message)))))))
+        drawn))
     (if prior
         (do (prior:setFilter :nearest :nearest)
-            ;; The centre rays are one of the still's 2 to 17 a pixel: a tenth of the work.
-            (bands! prior (uniforms.prior 1) 0 0.1)
-            (bands! canvas (uniforms.prior 2 prior) 0.1 0.9)
+            ;; The centre rays are one of the still's 2 to 17 a pixel: a tenth of the
+            ;; work, drawn in even bands. The still's rays cost as its centre rays
+            ;; did, row by row (sky rows are cheap in both): its share done is
+            ;; weighed by their times, so that its time left is not read from the
+            ;; sky at the top.
+            (let [centre (bands! prior (uniforms.prior 1) 0 0.1 true)]
+              (bands! canvas (uniforms.prior 2 prior) 0.1 0.9 false centre))
             (prior:release))
         (bands! canvas nil 0 1))
     (if err (values nil err) (- (love.timer.getTime) start))))
