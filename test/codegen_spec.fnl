@@ -440,7 +440,9 @@
                          "^%s*for %(int k = uPriorPass > 1%.5 && priorEdge%(pixel%) %? 2 : 0; k < 2 %+ grid; k%+%+%) {$"
                          "^%s*if %(k == [01]%) {$" "^%s*} else if %(k >= 2%) {$" "^%s*} else if %(k == 1%) {$"
                          "^%s*int [ij] = %(k %- 2%) [%%/] kSamples;$" "^%s*gCentre = k == 0;$"
-                         "^%s*k = 1;"]]
+                         "^%s*k = 1;"
+                         ;; the centre ray's edge test on the view loop's first hit
+                         "^%s*if %(gCentre && bounce == 0%) {$"]]
           (each [_ text (ipairs (all-shaders))]
             (each [line (: (strip-comments text) :gmatch "[^\n]+")]
               (let [masked (-> line (: :gsub "%d+%.%d+" "F") (: :gsub "%[%d+%]" "[N]"))]

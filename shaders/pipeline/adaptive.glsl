@@ -19,13 +19,10 @@ uniform float uPriorPass;  // 0: no such picture; 1: draw it (centre rays only);
 bool gCentre = false;        // renderSample is tracing the centre ray
 bool gNeedsSamples = false;  // and found an edge
 
-bool needsSamples(vec3 rd, float t) {
-    if (t >= uDrawDist) {
-        return false;
-    }
+// rd, t: the centre ray and where it hit; n: the normal there (surfaceAt's, which the
+// view computed: a second call would be a second copy of it).
+bool needsSamples(vec3 rd, float t, vec3 n) {
     vec3 p = rd * t;
-    vec3 surface;
-    vec3 n = surfaceAt(p, surface);
     // The whole scene's normal a footprint further along the ray: across an edge or
     // onto another object it turns; past the limb of a curved surface seen edge-on it
     // turns a little, which matters only when the view grazes the surface.

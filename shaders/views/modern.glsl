@@ -19,6 +19,7 @@ vec3 dir = rd;
     albedo = pow(albedo, vec3(2.2));
     float mirror = gMirror;
     float roughness = gMaterial.x;
+    // @slot primary-hit
     float cosView = clamp(dot(n, -dir), 0.0, 1.0);
     float f0 = mix(0.04, 1.0, mirror);
     float smoothness = 1.0 - roughness;

@@ -264,8 +264,8 @@ only when the plan has it."
 call of raymarch, so one copy of the scene's march, where the primary march before
 the loop and the bounce's inside it were two (GLSL compilers inline every call: a
 copy costs its share of the compile, issue 42). The adaptive test reads the primary
-hit before the view, so that form keeps the march before the loop."
-  (and (= plan.view :shaded) (not= nil plan.lighting) (not plan.adaptive?)))
+hit there too, after its surfaceAt (view-lines' primary-hit)."
+  (and (= plan.view :shaded) (not= nil plan.lighting)))
 
 (fn view-lines [plan]
   (case plan.view
@@ -276,6 +276,13 @@ hit before the view, so that form keeps the march before the loop."
                        :march (if (primary-in-loop? plan)
                                   ["t = raymarch(origin, dir, steps);"]
                                   ["if (bounce > 0) {" "    t = raymarch(origin, dir, steps);" "}"])
+                       ;; The adaptive edge test of the centre ray, on its primary
+                       ;; hit's normal (adaptive.glsl's needsSamples).
+                       :primary-hit (if plan.adaptive?
+                                        ["if (gCentre && bounce == 0) {"
+                                         "    gNeedsSamples = needsSamples(dir, t, n);"
+                                         "}"]
+                                        [])
                        :occlusion (features.slot-lines plan.lighting.features :occlusion)
                        :surface (features.slot-lines plan.lighting.features :surface)
                        :segment (features.slot-lines plan.lighting.features :segment)})
@@ -419,11 +426,20 @@ hit before the view, so that form keeps the march before the loop."
                                                 "float t = 0.0;  // marched as turn 0 of the view's loop"
                                                 "float t = raymarch(ro, rd, steps);")]
                                   :view (view-lines plan)
-                                  :adaptive (if plan.adaptive?
+                                  ;; The centre ray's edge test: in the view's loop
+                                  ;; when the primary ray is marched there.
+                                  :adaptive (if (not plan.adaptive?) []
+                                                (primary-in-loop? plan)
                                                 ["if (gCentre) {"
-                                                 "    gNeedsSamples = needsSamples(rd, t);"
+                                                 "    gNeedsSamples = false;"
                                                  "}"]
-                                                [])}))
+                                                ["if (gCentre) {"
+                                                 "    gNeedsSamples = false;"
+                                                 "    if (t < uDrawDist) {"
+                                                 "        vec3 surface;"
+                                                 "        gNeedsSamples = needsSamples(rd, t, surfaceAt(rd * t, surface));"
+                                                 "    }"
+                                                 "}"])}))
     (when (> plan.samples 1)
       (let [grid (parts "shaders/pipeline/supersample.glsl")]
         (table.insert sections
