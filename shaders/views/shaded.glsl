@@ -7,6 +7,7 @@ if (t >= uDrawDist) {
 vec3 p = ro + rd * t;
 vec3 surface;
 vec3 n = surfaceAt(p, surface);
+// @slot primary-hit
 vec3 color = surface * lightness(p, n);
 // @slot reflections
 return color;

@@ -264,30 +264,35 @@ only when the plan has it."
 call of raymarch, so one copy of the scene's march, where the primary march before
 the loop and the bounce's inside it were two (GLSL compilers inline every call: a
 copy costs its share of the compile, issue 42). The adaptive test reads the primary
-hit there too, after its surfaceAt (view-lines' primary-hit)."
+hit there too, after its surfaceAt (view-lines' primary-hit). (The classic view's
+primary hit stays before its bounce loop: in the loop, gallery's frames took 1.48
+times as long on llvmpipe; see docs/benchmarks.md.)"
   (and (= plan.view :shaded) (not= nil plan.lighting)))
 
 (fn view-lines [plan]
+  ;; The adaptive edge test of the centre ray, on its primary hit's normal
+  ;; (adaptive.glsl's needsSamples): at turn 0 of the modern view's bounce loop, or
+  ;; before the classic view's.
+  (local primary-hit (if (not plan.adaptive?) []
+                         (primary-in-loop? plan) ["if (gCentre && bounce == 0) {"
+                                                  "    gNeedsSamples = needsSamples(dir, t, n);"
+                                                  "}"]
+                         ["if (gCentre) {"
+                          "    gNeedsSamples = needsSamples(rd, t, n);"
+                          "}"]))
   (case plan.view
     :shaded (if plan.lighting
                 (fill "shaders/views/modern.glsl"
                       {:bounce-loop [(.. "for (int bounce = 0; bounce <= "
                                          (if plan.reflections? "uReflections" "0") "; bounce++) {")]
-                       :march (if (primary-in-loop? plan)
-                                  ["t = raymarch(origin, dir, steps);"]
-                                  ["if (bounce > 0) {" "    t = raymarch(origin, dir, steps);" "}"])
-                       ;; The adaptive edge test of the centre ray, on its primary
-                       ;; hit's normal (adaptive.glsl's needsSamples).
-                       :primary-hit (if plan.adaptive?
-                                        ["if (gCentre && bounce == 0) {"
-                                         "    gNeedsSamples = needsSamples(dir, t, n);"
-                                         "}"]
-                                        [])
+                       :march ["t = raymarch(origin, dir, steps);"]
+                       :primary-hit primary-hit
                        :occlusion (features.slot-lines plan.lighting.features :occlusion)
                        :surface (features.slot-lines plan.lighting.features :surface)
                        :segment (features.slot-lines plan.lighting.features :segment)})
                 (fill "shaders/views/shaded.glsl"
                   {:glow (if plan.glow? (when-switched plan "uGlow" (fill "shaders/shading/glow.glsl" {})) [])
+                   : primary-hit
                    :reflections (if plan.reflections?
                                     (fill "shaders/shading/reflect.glsl" (mirror-slots plan))
                                     [])}))
@@ -426,20 +431,14 @@ hit there too, after its surfaceAt (view-lines' primary-hit)."
                                                 "float t = 0.0;  // marched as turn 0 of the view's loop"
                                                 "float t = raymarch(ro, rd, steps);")]
                                   :view (view-lines plan)
-                                  ;; The centre ray's edge test: in the view's loop
-                                  ;; when the primary ray is marched there.
-                                  :adaptive (if (not plan.adaptive?) []
-                                                (primary-in-loop? plan)
+                                  ;; The centre ray's edge test: after the view's
+                                  ;; primary surfaceAt (view-lines' primary-hit),
+                                  ;; false on a miss.
+                                  :adaptive (if plan.adaptive?
                                                 ["if (gCentre) {"
                                                  "    gNeedsSamples = false;"
                                                  "}"]
-                                                ["if (gCentre) {"
-                                                 "    gNeedsSamples = false;"
-                                                 "    if (t < uDrawDist) {"
-                                                 "        vec3 surface;"
-                                                 "        gNeedsSamples = needsSamples(rd, t, surfaceAt(rd * t, surface));"
-                                                 "    }"
-                                                 "}"])}))
+                                                [])}))
     (when (> plan.samples 1)
       (let [grid (parts "shaders/pipeline/supersample.glsl")]
         (table.insert sections
