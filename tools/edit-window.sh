@@ -104,7 +104,10 @@ for s in $SCENES; do
     sleep 0.2
   done
   [ -n "$WID" ] || die "no player window after 60 s"
-  # The HUD's figures change every frame: hidden, the picture settles.
+  # The HUD's figures change every frame: hidden, the picture settles. (A key sent
+  # as the window opens, before the player reads its events, is lost: sent once the
+  # first picture has settled.)
+  wait_still "$dir"
   xdotool key --window "$WID" h
   wait_still "$dir"
   for edit in added kind operation value; do
