@@ -406,6 +406,10 @@
                          "^%s*if %(bounce > 0%) {$"
                          ;; a secondary ray's first step (march.glsl's startHalf)
                          "^%s*startHalf = i == 0 && "
+                         ;; ambient occlusion's samples as a soft shadow's first turns
+                         "^%s*bool tap = i < 0;$" "^%s*if %(i == 0 && t >= reach%) {$"
+                         "^%s*float tapHeight = occlusionHeight%(i %+ taps %+ 1%);$"
+                         "i == 0 %? kOcclusionTaps : 0, p, n, occ%);$" "^%s*if %(taps > 0%) {$"
                          ;; load-once's integer that the compiler cannot fold
                          "texelFetch%(uTape, ivec2%(%d+, %d+%), 0%)"
                          "^%s*int opaque = 2147483647 %- int%(nothing%);$"

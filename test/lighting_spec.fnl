@@ -225,6 +225,66 @@
                     (assert.is_false (passes? st budget)
                                      (.. name " cut from the GLSL still passes: " (report-line name st))))))))))))
 
+(describe "lighting: ambient occlusion's samples in the soft shadow march (issue 42)"
+  (fn []
+    (it "are the first light's first turns when every light's shadow is soft"
+      (fn []
+        (let [soft (assert (plan.scene->plan (load (modern "{:lights [{:kind :sun :softness 0.1}]}"))))
+              text (codegen.shader soft :core)]
+          (assert.are.equal :occlusion soft.lighting.taps)
+          ;; One copy of the scene for both: the view no longer calls occlusion().
+          (assert.is_nil (text:find "occ *= occlusion(p, n);" 1 true))
+          (assert.is_truthy (text:find "float h = mapSome(q, tap);" 1 true))
+          (assert.is_truthy (text:find "for (int i = gZero - taps; i < kShadowSteps; i++) {" 1 true))
+          (assert.is_truthy (text:find "i == 0 ? kOcclusionTaps : 0, p, n, occ);" 1 true)))))
+
+    (it "are taken by occlusion() where a hard shadow, no shadow or no occlusion is"
+      (fn []
+        (each [_ source (ipairs [(modern "{:lights [{:kind :sun :softness 0.1} {:kind :point :softness 0}]}")
+                                 (modern "{:lights [{:kind :sun :softness 0.1}]}" "{:shadows false}")
+                                 (modern "{:lights [{:kind :sun :softness 0}]}")])]
+          (let [p (assert (plan.scene->plan (load source)))
+                text (codegen.shader p :core)]
+            (assert.is_nil p.lighting.taps source)
+            (assert.is_truthy (text:find "occ *= occlusion(p, n);" 1 true) source)
+            (assert.is_nil (text:find "mapSome" 1 true) source)))
+        (let [p (assert (plan.scene->plan (load (modern "{:ao 0 :lights [{:kind :sun :softness 0.1}]}"))))]
+          (assert.is_nil p.lighting.taps)
+          (assert.is_nil (: (codegen.shader p :core) :find "float occlusion(" 1 true)))))
+
+    (let [(ctx why) (headless.context)]
+      (if (not ctx)
+          (pending (.. "OSMesa is not available: " (tostring why)))
+          ;; The tower (soft shadows only, and occlusion; its budget in
+          ;; test/support/budgets.fnl), and a ball and a box on the ground whose
+          ;; occlusion comes from the ground (test/fixtures/occlusion-ground.fnl).
+          (let [tower (prepare "scenes/twisted-tower.fnl")
+                ground (prepare "test/fixtures/occlusion-ground.fnl")
+                budget {:over 2 :max 100}]
+            (each [_ [name prepared] (ipairs [["the tower" tower] ["the ground's" ground]])]
+              (it (.. "match the reference (" name ")")
+                (fn []
+                  (assert.are.equal :occlusion prepared.plan.lighting.taps)
+                  (let [st (compare-image prepared (gpu-render ctx prepared))]
+                    (print (report-line (.. name ", occlusion in the shadow march") st))
+                    (assert.is_true (passes? st budget) (describe-failures name st budget))))))
+            (each [_ [name from to] (ipairs [["the samples' share" "occ *= occlusionOf(taken);" ""]
+                                             ["the samples' half-spaces" "float h = mapSome(q, tap);"
+                                              "float h = mapSome(q, false);"]])]
+              (it (.. "fail the reference without " name)
+                (fn []
+                  (var replaced 0)
+                  (let [st (compare-image ground
+                                          (gpu-render ctx ground
+                                                      {:source (fn [text]
+                                                                 (let [(out n) (text:gsub (pick-values 1 (from:gsub "%p" "%%%0")) to)]
+                                                                   (set replaced n)
+                                                                   out))}))]
+                    (print (report-line (.. "without " name) st))
+                    (assert.is_true (> replaced 0) (.. "the mutation of " name " found nothing to change"))
+                    (assert.is_false (passes? st budget)
+                                     (.. name " cut from the GLSL still passes: " (report-line name st))))))))))))
+
 (describe "lighting: a feature declared once (src/render/features/)"
   (fn []
     (it "is found by listing the folder, and its settings are the :lighting section's"

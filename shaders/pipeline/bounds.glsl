@@ -16,6 +16,29 @@ float mapFinite(vec3 p) {
     return d;
 }
 
+// @part map-some
+// The finite objects, and the half-spaces too where `planes` holds: map and mapFinite
+// written once, for a soft shadow march that takes ambient occlusion's samples too
+// (occlusion-taps.glsl). Every other call passes a constant, which the compiler
+// folds.
+float mapSome(vec3 p, bool planes) {
+    float d = uDrawDist;
+    // @slot distance-terms
+    return d;
+}
+
+// @part map-finite-some
+// The finite objects only: the half-spaces are met in closed form by planesHit.
+float mapFinite(vec3 p) {
+    return mapSome(p, false);
+}
+
+// @part map-some-all
+// Distance to the nearest surface (see map.glsl).
+float map(vec3 p) {
+    return mapSome(p, true);
+}
+
 // @part planes-hit
 // The nearest half-space (a ground plane, solid below) along the ray: 0 from inside
 // it, the draw distance when the ray meets none.
@@ -100,6 +123,18 @@ reach = min(reach, span.y);
 if (t >= reach) {
     return 1.0;
 }
+
+// @part soft-span-taps
+// soft-span for a march that takes samples first (occlusion-taps.glsl), so nothing
+// returns before them: a plane before the light sets seen to 0 and reach to -1 (no
+// shadow turn runs), and a span that ends where it starts leaves seen at 1.
+if (planesHit(o, l) < reach) {
+    seen = 0.0;
+    reach = -1.0;
+}
+vec2 span = softness < 0.5 ? boundsSpanGrown(o, l, softness / (1.0 - softness)) : vec2(0.0, uDrawDist);
+t = max(span.x, 0.0);
+reach = min(reach, span.y);
 
 // @part along
 // What the march steps by: as map (mapFinite with bounds), each grid's unlisted

@@ -26,9 +26,9 @@ vec3 dir = rd;
     float reflected = (f0 + (1.0 - f0) * pow(1.0 - cosView, 5.0)) * smoothness * smoothness;
     float occ = 1.0;
     // @slot occlusion
+    vec3 direct = directLight(p, n, -dir, albedo, mirror, roughness@{light-args});
     vec3 skyLight = mix(uSkyHorizon, uSkyZenith, 0.5 + 0.5 * n.z);
-    vec3 surface = (1.0 - reflected) * (directLight(p, n, -dir, albedo, mirror, roughness)
-                                        + albedo * skyLight * (uAmbient * occ))
+    vec3 surface = (1.0 - reflected) * (direct + albedo * skyLight * (uAmbient * occ))
                    + albedo * gMaterial.y;
     // @slot surface
     float through = 1.0;

@@ -65,6 +65,17 @@
   ;; See plan.lighting.soft-bounded? in src/render/plan.fnl.
   (= true (?. plan :lighting :soft-bounded?)))
 
+(fn taps-of [plan]
+  ;; The :taps of the feature whose samples the soft shadow march takes
+  ;; (plan.lighting's :taps; see src/render/features.fnl), or nil.
+  (case (?. plan :lighting :taps)
+    name (. (features.lookup name) :taps)))
+
+(fn map-some? [plan]
+  ;; mapSome(p, planes): the bounded soft march that takes samples reads the
+  ;; half-spaces at them (shaders/pipeline/bounds.glsl); map and mapFinite call it.
+  (and (soft-bounded? plan) (not= nil (taps-of plan))))
+
 (fn span-lines [b grown?]
   ;; boundsSpan, and with `grown?` boundsSpanGrown (soft shadows): the same loop over
   ;; the bounding spheres, the second growing each (shaders/pipeline/bounds.glsl):
@@ -83,7 +94,9 @@
 src/render/bounds.fnl and shaders/pipeline/bounds.glsl)."
   (let [path "shaders/pipeline/bounds.glsl"
         planes (emit-glsl.plane-terms cx plan.tape)]
-    [(fill-part path :map-finite {:distance-terms (emit-glsl.distance-terms cx plan.tape true)})
+    [(if (map-some? plan)
+         (fill-part path :map-finite-some {})
+         (fill-part path :map-finite {:distance-terms (emit-glsl.distance-terms cx plan.tape true)}))
      ""
      (fill-part path :planes-hit {:plane-terms (if (> (length planes) 0) ["vec3 p = ro;" planes] [])})
      ""
@@ -228,11 +241,14 @@ span, planes in closed form); or a walk through a field's grid, the general one
 
 (fn modern-lines [plan]
   "The modern model's functions (sky, occlusion, fog, shadows, direct light), each
-only when the plan has it."
+only when the plan has it. A feature's distance samples may be the first turns of
+the soft shadow march (its :taps: one copy of the scene for both)."
   (let [l plan.lighting
         march (if plan.bounds
                   "float ts = raymarchTo(o, l, reach, shadowSteps);"
-                  "float ts = raymarch(o, l, shadowSteps);")]
+                  "float ts = raymarch(o, l, shadowSteps);")
+        taps (taps-of plan)
+        tap-part #(if taps (fill-part taps.chunk $1 {}) $2)]
     [(fill "shaders/shading/modern/sky.glsl" {})
      (icollect [_ name (ipairs l.features)] (fill (. (features.lookup name) :chunk) {}))
      (if (not plan.shadows?) []
@@ -244,9 +260,20 @@ only when the plan has it."
                                           "}"]
                                          [])
                         :soft-span (if (soft-bounded? plan)
-                                       (fill-part "shaders/pipeline/bounds.glsl" :soft-span {})
+                                       (fill-part "shaders/pipeline/bounds.glsl"
+                                                  (if taps :soft-span-taps :soft-span) {})
                                        [])
-                        :soft-map (let [read (if (soft-bounded? plan) "mapFinite(o + l * t);" "map(o + l * t);")]
+                        :params (table.concat (tap-part :params [""]) "")
+                        :first-turn (if taps "gZero - taps" "0")
+                        :taps-start (tap-part :start [])
+                        :turn (tap-part :turn ["vec3 q = o + l * t;"])
+                        :take (tap-part :take [])
+                        :taps-end (tap-part :end [])
+                        ;; Nothing returns before the samples are taken.
+                        :blocked (if taps ["seen = 0.0;" "break;"] ["return 0.0;"])
+                        :soft-map (let [read (if (map-some? plan) "mapSome(q, tap);"
+                                                 (soft-bounded? plan) "mapFinite(q);"
+                                                 "map(q);")]
                                     (if plan.tape.estimates?
                                         [(.. "float h = " read) "gEstimate = true;"
                                          (.. "float he = " read) "gEstimate = false;"]
@@ -256,7 +283,16 @@ only when the plan has it."
                                          "float y = he * he / (2.0 * hePrev);")]})
          (fill "shaders/shading/modern/shadow-hard.glsl" {:shadow-march [march]}))
      (fill "shaders/shading/modern/lights.glsl"
-           {:shadow (if plan.shadows? ["visible = visibility(origin, l, reach, uLightColors[i].w);"] [])
+           {:params (if taps ", inout float occ" "")
+            ;; The first light's march takes the samples whether the light reaches
+            ;; the point or not (reach -1: no shadow turn).
+            :shadow-taps (if taps
+                             [(.. "visible = visibility(origin, l, lambert > 0.0 ? reach : -1.0, "
+                                  "uLightColors[i].w, i == 0 ? " taps.count " : 0, p, n, occ);")]
+                             [])
+            :shadow (if (and plan.shadows? (not taps))
+                        ["visible = visibility(origin, l, reach, uLightColors[i].w);"]
+                        [])
             :light (features.slot-lines l.features :light)})]))
 
 (fn primary-in-loop? [plan]
@@ -287,7 +323,9 @@ times as long on llvmpipe; see docs/benchmarks.md.)"
                                          (if plan.reflections? "uReflections" "0") "; bounce++) {")]
                        :march ["t = raymarch(origin, dir, steps);"]
                        :primary-hit primary-hit
-                       :occlusion (features.slot-lines plan.lighting.features :occlusion)
+                       :light-args (if (taps-of plan) ", occ" "")
+                       :occlusion (features.slot-lines plan.lighting.features :occlusion
+                                                       plan.lighting.taps)
                        :surface (features.slot-lines plan.lighting.features :surface)
                        :segment (features.slot-lines plan.lighting.features :segment)})
                 (fill "shaders/views/shaded.glsl"
@@ -357,7 +395,13 @@ times as long on llvmpipe; see docs/benchmarks.md.)"
     (table.insert sections (fill (.. "shaders/pipeline/hit/" plan.hit-test ".glsl") {}))
     (each [_ f (ipairs (shader-hooks plan :sections))]
       (table.insert sections (f)))
-    (table.insert sections (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms cx plan)}))
+    (table.insert sections
+                  (if (map-some? plan)
+                      (let [path "shaders/pipeline/bounds.glsl"]
+                        [(fill-part path :map-some {:distance-terms (emit-glsl.some-terms cx plan.tape "planes")})
+                         ""
+                         (fill-part path :map-some-all {})])
+                      (fill "shaders/pipeline/map.glsl" {:distance-terms (distance-terms cx plan)})))
     ;; mapColor only where the view has a use for colours: with crease normals, through
     ;; mapObject, which writes the scene once for every query of a hit.
     (when (crease? plan)

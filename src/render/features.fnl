@@ -30,6 +30,11 @@
 ;;              segment, and r g b it adds (before the path's weight)
 ;;   :reach     optional (fn [lighting]) -> how far from a surface its distance
 ;;              queries look (a field lists objects at least that near each cell)
+;;   :taps      optional {:chunk :count}: its distance samples as the first turns of
+;;              the first light's soft shadow march, where the scene has one (see
+;;              plan.lighting's :taps; one copy of the scene for both): the chunk's
+;;              parts fill shaders/shading/modern/shadow-soft.glsl's slots, :count
+;;              names the constant of how many, and its :lines are then not used
 
 ;; `pairs` under another name: a loop over `pairs` by that name is LuaJIT's ITERN,
 ;; which Debian 12's LuaJIT ends early once despecialised (see src/util/wire.fnl).
@@ -82,12 +87,14 @@ name order."
   "The descriptor of feature `name`."
   (. by-name name))
 
-(fn slot-lines [names slot]
-  "The lines the features `names` put into the modern view's `slot`."
+(fn slot-lines [names slot ?taps]
+  "The lines the features `names` put into the modern view's `slot`; none of feature
+`?taps`, whose samples the soft shadow march takes (plan.lighting's :taps)."
   (let [out []]
     (each [_ name (ipairs names)]
       (let [d (. by-name name)]
-        (when (= d.slot slot) (each [_ l (ipairs d.lines)] (table.insert out l)))))
+        (when (and (= d.slot slot) (not= name ?taps))
+          (each [_ l (ipairs d.lines)] (table.insert out l)))))
     out))
 
 {: all : settings : active : lookup : slot-lines : slots}

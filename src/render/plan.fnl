@@ -238,25 +238,35 @@ shader of `plan` holds, and how its soft shadows march."
         ;; at another: its shader has both marches.
         animated? (accumulate [found? false _ a (ipairs (or scene.animated []))]
                     (or found? (and (= (. a.path 1) "lighting")
-                                    (= (. a.path (length a.path)) "softness"))))]
+                                    (= (. a.path (length a.path)) "softness"))))
+        soft? (and plan.shadows?
+                   (accumulate [soft? animated? _ light (ipairs l.lights)]
+                     (or soft? (> light.softness 0))))
+        ;; A light of softness 0 among soft ones: the soft shadow keeps the
+        ;; hard march for it. A softness that is a function of time may reach 0.
+        hard? (accumulate [hard? (or animated? options.hard-march?) _ light
+                           (ipairs l.lights)]
+                (or hard? (<= light.softness 0)))
+        active (features.active l)]
     {:lights (length l.lights)
-     :soft? (and plan.shadows?
-                 (accumulate [soft? animated? _ light (ipairs l.lights)]
-                   (or soft? (> light.softness 0))))
-     ;; A light of softness 0 among soft ones: the soft shadow keeps the
-     ;; hard march for it. A softness that is a function of time may reach 0.
-     :hard? (accumulate [hard? (or animated? options.hard-march?) _ light
-                         (ipairs l.lights)]
-              (or hard? (<= light.softness 0)))
+     : soft?
+     : hard?
      ;; Soft shadow rays may march only inside the bounding spheres grown by
      ;; the penumbra (see :soft-bounded? below), unless switched off.
      :shadow-bounds? (not= false options.shadow-bounds?)
      ;; The features it has on (src/render/features/), by name.
-     :features (features.active l)
+     :features active
      ;; Steps of a soft shadow ray at most: its penumbra estimate needs every
      ;; step, so it cannot skip empty space by bounds; a ray that has not
      ;; reached the light by then counts as lit.
-     :shadow-steps 128}))
+     :shadow-steps 128
+     ;; A feature whose distance samples the first light's soft shadow march
+     ;; takes as its first turns (its descriptor's :taps; ambient occlusion's):
+     ;; one copy of the scene's distance for both (issue 42). Only where every
+     ;; light's shadow is that march: a hard one returns before any turn.
+     :taps (when (and soft? (not hard?))
+             (accumulate [found nil _ name (ipairs active)]
+               (or found (when (. (features.lookup name) :taps) name))))}))
 
 ;; The fields built for a scene's objects (its list, which a load or a value edit
 ;; makes anew), by their options: the player's plans of one scene (the one on screen,

@@ -475,6 +475,18 @@ its ray's direction, and a grid's bound reaches along it (see gridCellAlong)."
     (icollect [_ o (ipairs (objects-of tape ?which))]
       ((. (glsl-of o) :distance) cx o))))
 
+(fn some-terms [cx tape flag]
+  "Lines for mapSome(p, flag): map()'s, the half-spaces' (the objects a bounded march
+does not step by) only where the GLSL boolean `flag` holds, so a call with a constant
+folds to map or mapFinite; cx.finite? is the expression `!flag` for an object that
+stands for several (the interpreter's)."
+  (let [cx (doto (derived cx :along? false) (tset :finite? (.. "!" flag)))]
+    (icollect [_ o (ipairs tape.objects)]
+      (let [lines ((. (glsl-of o) :distance) cx o)]
+        (if ((. (strategies.of o) :marched?) o)
+            lines
+            [(.. "if (" flag ") {") (indented lines) "}"])))))
+
 (fn color-terms [cx tape mirrors? ?first]
   "Lines for mapColor(): as map(), keeping the nearest object's colour in `color` (and
 its mirror amount in gMirror when `mirrors?`; with two-row materials, always, and
@@ -516,7 +528,7 @@ leaf whose primitive is solid below a plane, met in closed form; see plane-block
     ((. (glsl-of o) :planes) cx o)))
 
 {: functions : gradient-functions : declarations : declare : new-context : reads
- : distance-terms : color-terms : object-terms : gradient-terms : plane-terms
+ : distance-terms : some-terms : color-terms : object-terms : gradient-terms : plane-terms
  : exact? : text-lines : float-literal : tape-texture-width : tape-texel : gradient-name
  ;; For the strategies' terms (src/sdf/strategies/):
  : derived : emit-code : object-comment : indented : guarded-lines : object-body : open-block

@@ -3,8 +3,10 @@
 // light is visible in proportion to the narrowest closest approach over the penumbra
 // width there (softness times the distance). Free of the banding of the plain
 // estimate. A light of softness 0 casts a hard shadow: that march is compiled in only
-// when a light of the scene may have softness 0 (the slot is empty otherwise).
-float visibility(vec3 o, vec3 l, float reach, float softness) {
+// when a light of the scene may have softness 0 (the slot is empty otherwise). The
+// march may take another feature's distance samples first (plan.lighting's :taps,
+// ambient occlusion's: occlusion-taps.glsl), as turns before 0 of its loop.
+float visibility(vec3 o, vec3 l, float reach, float softness@{params}) {
     // @slot hard-shadow
     float t0 = length(o);
     float seen = 1.0;
@@ -15,11 +17,14 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
     // start's distance, so the ray's own start is never one.
     float startHalf = 10000000000.0;
     // @slot soft-span
-    for (int i = 0; i < kShadowSteps; i++) {
+    // @slot taps-start
+    for (int i = @{first-turn}; i < kShadowSteps; i++) {
+        // @slot turn
         // @slot soft-map
+        // @slot take
         startHalf = i == 0 && t == 0.0 ? startLimit(h) : startHalf;
         if (h < min(hitThreshold(t0 + t), startHalf)) {
-            return 0.0;
+            // @slot blocked
         }
         // The penumbra reads the field as an estimate (he: see gEstimate); where
         // that is not the step (hPrev), the two spheres' chord is taken at its own
@@ -40,6 +45,7 @@ float visibility(vec3 o, vec3 l, float reach, float softness) {
             break;
         }
     }
+    // @slot taps-end
     seen = clamp(seen, 0.0, 1.0);
     return seen * seen * (3.0 - 2.0 * seen);
 }

@@ -12,6 +12,9 @@
  :chunk "shaders/shading/modern/occlusion.glsl"
  :slot :occlusion
  :lines ["occ *= occlusion(p, n);"]
+ ;; Its samples as the first turns of the first light's soft shadow march, when the
+ ;; scene has one (plan.lighting's :taps): then the slot's lines are not used.
+ :taps {:chunk "shaders/shading/modern/occlusion-taps.glsl" :count "kOcclusionTaps"}
  :reach (fn [l] l.ao-radius)
  ;; occlusion() in the chunk: nearer samples weigh more.
  :cpu (fn [l T]

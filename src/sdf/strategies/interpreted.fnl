@@ -54,8 +54,9 @@
                   out))
  :describe (fn [o] (.. " (" (length o.set) " functions)"))
  :glsl {:distance (fn [cx _]
-                    ;; In mapFinite (cx.finite?), not the half-spaces: planesHit meets them.
-                    [(.. "d = tapeMin(p, d, -1, -1, " (if cx.finite? "true" "false")
+                    ;; In mapFinite (cx.finite?), not the half-spaces: planesHit meets them;
+                    ;; in mapSome, where its expression says (emit-glsl.some-terms).
+                    [(.. "d = tapeMin(p, d, -1, -1, " (case cx.finite? true "true" (where s (= (type s) :string)) s _ "false")
                          ");  // every object, by the interpreter")])
         :color color-term
         ;; With `materials`, mapColor's term.
