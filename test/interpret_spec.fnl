@@ -132,6 +132,44 @@
                          err)
           (assert.is_truthy (plan-of text {:interpret? true})))))
 
+    ;; llvmpipe ends all of a shader's loops after 65,535 turns in all (see
+    ;; interpret.software-fits?): on a software renderer a longer program, or one
+    ;; whose turns a still's rays multiply past the most, is refused, saying so.
+    (it "counts its loop turns, and refuses on a software renderer what they would cut short"
+      (fn []
+        (let [tape-of #(. (interpret.program-object (. (plan-of $ {:interpret? true}) :tape)) :tape)
+              spheres (fn [n] (.. "{:objects [" (table.concat (fcollect [i 1 n] (.. "{:kind :sphere :radius 0.1 :pos [" i " 0 0]}")) " ")
+                                  "]}"))
+              ;; A repetition: its cells and its body per cell visited.
+              repeated "{:objects [{:kind :repeat :period [3 3 0] :count [2 2 0] :children [{:kind :sphere :radius 0.2}]}]}"
+              one (interpret.loop-turns (tape-of (spheres 1)))
+              ten (interpret.loop-turns (tape-of (spheres 10)))]
+          (assert.is_true (> one 0))
+          (assert.are.equal (* 10 one) ten)
+          (assert.is_true (> (interpret.loop-turns (tape-of repeated)) one))
+          (assert.is_true (interpret.software-fits? (tape-of (spheres 10))))
+          (let [(fits? turns most) (interpret.software-fits? (tape-of (spheres 10)) 18)]
+            (assert.is_false fits?)
+            (assert.are.equal ten turns)
+            (assert.is_true (< most ten))))
+        (let [grid (assert (load.load-file "test/fixtures/grid-modern.fnl"))
+              organic (assert (load.load-file "scenes/organic.fnl"))]
+          ;; On a GPU (software? false), or not asked, the same scene is drawn.
+          (assert.is_truthy (plan-mod.scene->plan grid {:interpret? true}))
+          (assert.is_truthy (plan-mod.scene->plan grid {:interpret? true :software? false}))
+          (let [(p err) (plan-mod.scene->plan grid {:interpret? true :software? true})]
+            (assert.is_nil p)
+            (assert.truthy (err:find "test/fixtures/grid%-modern%.fnl: the interpreter cannot draw it: its program takes %d+ loop turns a distance, and llvmpipe stops a shader.s loops after 65,535 turns in all")
+                           err))
+          ;; Organic's one ray a pixel fits; its 4 x 4 still's 18 do not.
+          (assert.is_truthy (plan-mod.scene->plan organic {:interpret? true :software? true}))
+          (let [(p err) (plan-mod.scene->plan organic {:interpret? true :software? true :samples 4})]
+            (assert.is_nil p)
+            (assert.truthy (err:find "for each of 18 rays a pixel" 1 true) err)))
+        ;; renderer-options says which renderer is a software one.
+        (assert.is_true (. (plan-mod.renderer-options "llvmpipe (LLVM 15.0.6, 256 bits)") :software?))
+        (assert.is_false (. (plan-mod.renderer-options "NVIDIA H200/PCIe/SSE2") :software?))))
+
     (it "keeps a field (city's 10,000 blocks), numbering the program's objects after its members"
       (fn []
         (let [(s) (load.load-file "scenes/city.fnl")

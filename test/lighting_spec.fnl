@@ -197,6 +197,22 @@
    ["emission" "+ albedo * gMaterial.y;" ";"]
    ["point light falloff" "falloff = 1.0 / (1.0 + r * r);" ""]])
 
+(fn assert-mutant-fails [ctx prepared budget name from to]
+  ;; The GLSL of `prepared` with its text `from` replaced by `to` (each a plain
+  ;; string) must change and then break `budget` against the reference.
+  (var replaced 0)
+  (let [st (compare-image prepared
+                          (gpu-render ctx prepared
+                                      {:source (fn [text]
+                                                 (let [(out n) (text:gsub (pick-values 1 (from:gsub "%p" "%%%0"))
+                                                                          (pick-values 1 (to:gsub "%%" "%%%%")))]
+                                                   (set replaced n)
+                                                   out))}))]
+    (print (report-line (.. "without " name) st))
+    (assert.is_true (> replaced 0) (.. "the mutation of " name " found nothing to change"))
+    (assert.is_false (passes? st budget)
+                     (.. name " cut from the GLSL still passes: " (report-line name st)))))
+
 (describe "lighting: GPU against the reference"
   (fn []
     (let [(ctx why) (headless.context)]
@@ -212,18 +228,7 @@
                   (assert.is_true (passes? st budget) (describe-failures "lighting" st budget)))))
             (each [_ [name from to] (ipairs mutations)]
               (it (.. "fails when the GLSL loses its " name)
-                (fn []
-                  (var replaced 0)
-                  (let [st (compare-image prepared
-                                          (gpu-render ctx prepared
-                                                      {:source (fn [text]
-                                                                 (let [(out n) (text:gsub (pick-values 1 (from:gsub "%p" "%%%0"))
-                                                                                          (pick-values 1 (to:gsub "%%" "%%%%")))]
-                                                                   (set replaced n)
-                                                                   out))}))]
-                    (assert.is_true (> replaced 0) (.. "the mutation of " name " found nothing to change"))
-                    (assert.is_false (passes? st budget)
-                                     (.. name " cut from the GLSL still passes: " (report-line name st))))))))))))
+                (fn [] (assert-mutant-fails ctx prepared budget name from to))))))))
 
 (describe "lighting: ambient occlusion's samples in the soft shadow march (issue 42)"
   (fn []
@@ -272,18 +277,7 @@
                                              ["the samples' half-spaces" "float h = mapSome(q, tap);"
                                               "float h = mapSome(q, false);"]])]
               (it (.. "fail the reference without " name)
-                (fn []
-                  (var replaced 0)
-                  (let [st (compare-image ground
-                                          (gpu-render ctx ground
-                                                      {:source (fn [text]
-                                                                 (let [(out n) (text:gsub (pick-values 1 (from:gsub "%p" "%%%0")) to)]
-                                                                   (set replaced n)
-                                                                   out))}))]
-                    (print (report-line (.. "without " name) st))
-                    (assert.is_true (> replaced 0) (.. "the mutation of " name " found nothing to change"))
-                    (assert.is_false (passes? st budget)
-                                     (.. name " cut from the GLSL still passes: " (report-line name st))))))))))))
+                (fn [] (assert-mutant-fails ctx ground budget name from to))))))))))
 
 (describe "lighting: a feature declared once (src/render/features/)"
   (fn []

@@ -161,16 +161,39 @@ SwiftShader, Microsoft's GDI renderer."
     (accumulate [found? false _ s (ipairs software-renderers) &until found?]
       (not= nil (n:find s 1 true)))))
 
+(fn software-interpreted [interpreted options scene]
+  ;; The interpreter's tape `interpreted`, or nil and why on a software renderer
+  ;; (options.software?) where its loops would be cut short: its turns a distance
+  ;; times the rays a pixel takes (a still's N x N and two more at most) must fit
+  ;; (interpret.software-fits?).
+  (let [samples (or options.samples scene.render.samples 1)
+        rays (if (> samples 1) (+ (* samples samples) 2) 1)]
+    (case (if options.software?
+              (interpret.software-fits? (. (interpret.program-object interpreted) :tape) rays)
+              true)
+      true interpreted
+      (false turns most)
+      (values nil (string.format (.. "its program takes %d loop turns a distance%s, and llvmpipe stops "
+                                     "a shader's loops after 65,535 turns in all: a software renderer "
+                                     "draws at most %d turns a distance right (--samples 1 takes one ray "
+                                     "a pixel; a GPU has no such limit; without --interpret the scene's "
+                                     "own shader draws it)")
+                                 turns (if (> rays 1) (string.format " for each of %d rays a pixel" rays) "")
+                                 most)))))
+
 (fn renderer-options [name ?options]
   "`?options` for scene->plan with what suits the renderer called `name` filled in
 where they leave it open. On a software renderer each uniform is copied once per
 pixel (:load-once?): there a uniform read is an eight-lane gather, every time. A
 GPU reads uniforms from a constant cache, and there the shader reads them where it
 uses them (measured on an H100: colonnade at 1920x1080 in 451 ms against 655 with
-the copies, flower 193 against 221, gallery and the seed alike)."
+the copies, flower 193 against 221, gallery and the seed alike). And :software?, so
+the tape interpreter refuses a program too long for a software renderer's loops."
   (let [options (collect [k v (each-pair (or ?options {}))] k v)]
     (when (= nil options.load-once?)
       (set options.load-once? (software-renderer? name)))
+    (when (= nil options.software?)
+      (set options.software? (software-renderer? name)))
     options))
 
 (fn grids-of [tape]
@@ -352,6 +375,9 @@ and `make bench`'s before (test/bench/report.fnl).
                   tape cannot run on it
   :instructions   with :interpret?, an instruction set the shader holds besides the
                   scene's (interpret.instruction-set)
+  :software?      true: drawn by a software renderer (renderer-options sets it), where
+                  the interpreter refuses a program its loops would cut short
+                  (interpret.software-fits?)
 Returns the plan, or nil and a message when the scene does not fit the budget."
   (let [options (if (and ?options ?options.interpret?)
                     ;; The interpreter draws every object as it is: no grids
@@ -387,7 +413,9 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
                                          ;; One shader for every scene: general forms.
                                          :general-forms? options.interpret?})
         (interpreted interpret-error) (when (and tape options.interpret?)
-                                        (interpret.tape-of tape options.instructions))
+                                        (case (interpret.tape-of tape options.instructions)
+                                          (nil why) (values nil why)
+                                          t (software-interpreted t options scene)))
         shaded? (= view :shaded)
         plan {: view : uber?
               :load-once? (not= false options.load-once?)

@@ -493,10 +493,52 @@ nil and why when `tape` cannot run on the interpreter."
                :key (.. "interpreted " (set-key iset) " materials:" tape.material-size
                         (if tape.estimates? " estimates" ""))})))))
 
+;; Mesa's llvmpipe ends every loop of a shader invocation once 65,535 turns of all its
+;; loops together have run (LP_MAX_TGSI_LOOP_ITERATIONS in gallivm/lp_bld_limits.h: one
+;; counter for the whole shader, since every call is inlined). The interpreter's loop
+;; turns once per instruction, for every object at every distance a pixel asks for, so
+;; a program of many objects is cut short there: rays that take many steps (near
+;; silhouettes) end on a wrong distance (black specks), where a GPU draws it right.
+;; Measured on test/fixtures/grid-modern.fnl's kind of scene (rotated round boxes and
+;; tori, soft shadows, occlusion; the GPU against the CPU reference, 512 pixels): 41
+;; objects (282 turns a distance) drew clean, 101 (702) put 3 pixels over the budget,
+;; 201 (1,402) 150. So on a software renderer the interpreter takes a program of at
+;; most 300 turns a distance (65,535 turns cover 218 distances a pixel then), shared
+;; by a still's rays (one loop): organic (66 turns) drew its 4 x 4 adaptive still with
+;; 828 of 5,184 pixels wrong, its one-ray picture with none. Every scene of scenes/
+;; takes 111 or fewer.
+(local software-turns 300)
+
+(fn code-turns [code]
+  ;; The interpreter's loop turns for `code` once: an instruction each, a
+  ;; repetition's body once per cell (and its neighbours' copies), its end each time.
+  (accumulate [n 0 _ ins (ipairs code)]
+    (+ n (if (= ins.op :cells)
+             (let [cells (or ins.count 1)]
+               (+ 1 (* cells (+ 1 (code-turns ins.body)))
+                  (if ins.near? (* cells (+ 1 (code-turns ins.near?.code))) 0)))
+             1))))
+
+(fn loop-turns [tape]
+  "The tape interpreter's loop turns for one distance of `tape` (every object's
+instructions, a repetition's body once per cell): see software-fits?."
+  (accumulate [n 0 _ m (ipairs (members-of tape))]
+    (+ n (code-turns (or m.o.code [])))))
+
+(fn software-fits? [tape ?rays]
+  "Whether the interpreter draws `tape` right on a software renderer (llvmpipe),
+whose loops all stop after 65,535 turns in a shader, with `?rays` rays a pixel (1; a
+still's more, in one loop): true, or false, the turns one distance takes, and the
+most that fit (software-turns over the rays)."
+  (let [turns (loop-turns tape)
+        most (math.floor (/ software-turns (or ?rays 1)))]
+    (if (<= turns most) true (values false turns most))))
+
 (fn program-object [tape]
   "The object of `tape` (as tape-of gives it) that the interpreter runs: its last,
 after a field."
   (. tape.objects (length tape.objects)))
 
 {: refusal : instruction-set : catalogue : tape-of : program-object : set-key : program : shader-slots
- : members-of : max-objects : max-registers : width : ops : first-function}
+ : members-of : max-objects : max-registers : width : ops : first-function
+ : loop-turns : software-fits?}
