@@ -28,7 +28,8 @@
 ;;   :describe  (fn [o]) -> what --tree adds after its root's kind
 ;;   :glsl      the lines it gives each of the shader's queries (emit-glsl.fnl's
 ;;              context cx; `first`, the number of the tape's first object):
-;;              :distance (fn [cx o]) map's term (mapFinite's with cx.finite?);
+;;              :distance (fn [cx o]) map's term (mapFinite's with cx.finite? true;
+;;              mapSome's with cx.finite? a GLSL expression: emit-glsl.some-terms);
 ;;              :color (fn [cx o ?first mirrors? modern?]) mapColor's (with ?first it
 ;;              sets gObject); :object (fn [cx o first mirrors? modern?])
 ;;              mapObject(p, only, skip, materials, color)'s: object `only` alone,

@@ -56,7 +56,8 @@
  :glsl {:distance (fn [cx _]
                     ;; In mapFinite (cx.finite?), not the half-spaces: planesHit meets them;
                     ;; in mapSome, where its expression says (emit-glsl.some-terms).
-                    [(.. "d = tapeMin(p, d, -1, -1, " (case cx.finite? true "true" (where s (= (type s) :string)) s _ "false")
+                    [(.. "d = tapeMin(p, d, -1, -1, "
+                         (case cx.finite? true "true" (where expr (= (type expr) :string)) expr _ "false")
                          ");  // every object, by the interpreter")])
         :color color-term
         ;; With `materials`, mapColor's term.
