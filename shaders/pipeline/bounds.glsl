@@ -114,27 +114,17 @@ for (int i = 0; i < @{count}; i++) {
 }
 
 // @part soft-span
+// A plane before the light hides it (`blocked-by-plane`: return 0, or, for a march
+// that takes samples first, occlusion-taps.glsl, set seen to 0 and reach to -1 so
+// that no shadow turn runs); a span that ends where it starts leaves it lit
+// (`empty-span`: return 1; with samples first, the loop's turn 0 stops there).
 if (planesHit(o, l) < reach) {
-    return 0.0;
+    // @slot blocked-by-plane
 }
 vec2 span = softness < 0.5 ? boundsSpanGrown(o, l, softness / (1.0 - softness)) : vec2(0.0, uDrawDist);
 t = max(span.x, 0.0);
 reach = min(reach, span.y);
-if (t >= reach) {
-    return 1.0;
-}
-
-// @part soft-span-taps
-// soft-span for a march that takes samples first (occlusion-taps.glsl), so nothing
-// returns before them: a plane before the light sets seen to 0 and reach to -1 (no
-// shadow turn runs), and a span that ends where it starts leaves seen at 1.
-if (planesHit(o, l) < reach) {
-    seen = 0.0;
-    reach = -1.0;
-}
-vec2 span = softness < 0.5 ? boundsSpanGrown(o, l, softness / (1.0 - softness)) : vec2(0.0, uDrawDist);
-t = max(span.x, 0.0);
-reach = min(reach, span.y);
+// @slot empty-span
 
 // @part along
 // What the march steps by: as map (mapFinite with bounds), each grid's unlisted

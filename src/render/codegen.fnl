@@ -260,8 +260,12 @@ the soft shadow march (its :taps: one copy of the scene for both)."
                                           "}"]
                                          [])
                         :soft-span (if (soft-bounded? plan)
-                                       (fill-part "shaders/pipeline/bounds.glsl"
-                                                  (if taps :soft-span-taps :soft-span) {})
+                                       (fill-part "shaders/pipeline/bounds.glsl" :soft-span
+                                                  (if taps
+                                                      {:blocked-by-plane ["seen = 0.0;" "reach = -1.0;"]
+                                                       :empty-span []}
+                                                      {:blocked-by-plane ["return 0.0;"]
+                                                       :empty-span ["if (t >= reach) {" "    return 1.0;" "}"]}))
                                        [])
                         :params (table.concat (tap-part :params [""]) "")
                         :first-turn (if taps "gZero - taps" "0")
