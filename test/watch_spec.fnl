@@ -14,13 +14,13 @@
 
 (describe "the scene file watcher"
   (fn []
-    (it "loads an edit once the file has not been written for 0.03 s, once"
+    (it "loads an edit once the file has not been written for 0.01 s, once"
       (fn []
-        (assert.are.equal 0.03 watch.settle-seconds)
+        (assert.are.equal 0.01 watch.settle-seconds)
         (let [w (watch.new (info "a" 0))]
-          (assert.are.same [[10.04 :changed]]
-                           (run w [[10 (info "b" 10)] [10.02 (info "b" 10)] [10.04 (info "b" 10)]
-                                   [10.06 (info "b" 10)] [10.1 (info "b" 10)] [10.9 (info "b" 10)]])))))
+          (assert.are.same [[10.015 :changed]]
+                           (run w [[10 (info "b" 10)] [10.005 (info "b" 10)] [10.015 (info "b" 10)]
+                                   [10.025 (info "b" 10)] [10.1 (info "b" 10)] [10.9 (info "b" 10)]])))))
 
     (it "sees an edit of the same size within the same second (by content)"
       (fn []
@@ -30,27 +30,28 @@
 
     (it "never loads a file that is still being written, however rarely it looks"
       (fn []
-        ;; A writer rewrites the file every 20 ms (truncate, then write); the player
-        ;; looks once a second and each time sees the half-written text, the same
-        ;; every time. Nothing loads until the writing stops.
+        ;; A writer rewrites the file every 8 ms (truncate, then write: pauses
+        ;; shorter than the settle time); the player looks once a second and each
+        ;; time sees the half-written text, the same every time. Nothing loads until
+        ;; the writing stops.
         (let [w (watch.new (info "old" 0))]
           (assert.are.same [[14.25 :changed]]
-                           (run w [[10 (info "{:obj" 9.98)] [11 (info "{:obj" 10.99)]
-                                   [12 (info "{:obj" 11.99)] [13 (info "{:obj" 12.98)]
+                           (run w [[10 (info "{:obj" 9.994)] [11 (info "{:obj" 10.993)]
+                                   [12 (info "{:obj" 11.995)] [13 (info "{:obj" 12.992)]
                                    [14 (info "{:objects []}" 14)] [14.25 (info "{:objects []}" 14)]])))))
 
     (it "with whole-second times, waits until the second after the stamp is over"
       (fn []
         (let [w (watch.new (info "old" 0))]
-          (assert.are.same [[11.06 :changed]]
-                           (run w [[10.5 (info "new" 10 true)] [11.02 (info "new" 10 true)]
-                                   [11.06 (info "new" 10 true)]])))))
+          (assert.are.same [[11.015 :changed]]
+                           (run w [[10.5 (info "new" 10 true)] [11.005 (info "new" 10 true)]
+                                   [11.015 (info "new" 10 true)]])))))
 
     (it "does not report a file briefly missing while an editor renames over it"
       (fn []
         (let [w (watch.new (info "old" 0))]
-          (assert.are.same [[10.22 :changed]]
-                           (run w [[10 nil] [10.1 nil] [10.17 (info "new" 10.15)] [10.22 (info "new" 10.15)]])))))
+          (assert.are.same [[10.17 :changed]]
+                           (run w [[10 nil] [10.1 nil] [10.155 (info "new" 10.15)] [10.17 (info "new" 10.15)]])))))
 
     (it "reports a deleted file once, after a second, and a restored one as a change"
       (fn []
@@ -96,7 +97,7 @@
       (fn []
         ;; A scene written in two halves 50 ms apart; a load read the first half at
         ;; 10.02 (it failed, and did not stand): the file is loaded again at the first
-        ;; poll the settle time after the second half (10.09, a new version), never
+        ;; poll the settle time after the second half (10.065, a new version), never
         ;; before, and once.
         (let [first-half (info "{:objects [" 10)
               whole (info "{:objects []}" 10.05)
@@ -104,8 +105,8 @@
           (watch.loaded! w first-half)
           (assert.is_false (watch.failure-stands? first-half first-half 10.02))
           (watch.retry! w)
-          (assert.are.same [[10.09 :changed]]
-                           (run w [[10.03 first-half] [10.07 whole] [10.09 whole] [10.11 whole]
+          (assert.are.same [[10.065 :changed]]
+                           (run w [[10.03 first-half] [10.055 whole] [10.065 whole] [10.11 whole]
                                    [10.3 whole] [10.6 whole]]))
           ;; A retry of a file that did not change after the failed read: loaded
           ;; again all the same, once it is 0.15 s old.

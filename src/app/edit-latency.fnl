@@ -13,7 +13,7 @@
 ;;                  folded one)
 ;;   during bands   the still's bands are being drawn
 ;;
-;; The watcher's 0.03 s of settling is skipped, as in the soak test. Prints, for each
+;; The watcher's 0.01 s of settling is skipped, as in the soak test. Prints, for each
 ;; edit, the time from the write to the end of the first frame drawn with it, the
 ;; longest frame in between (the window's freeze), and the shaders the player compiled
 ;; itself meanwhile, with the time their newShader calls took (after the helper, a hit

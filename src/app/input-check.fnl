@@ -164,7 +164,7 @@ then reloaded as a value edit."
       (check (= saved expected)
              (.. "Save writes only the three literals into the file"
                  (if (= saved expected) "" (.. "; it reads:\n" (tostring saved))))))
-    ;; The watcher loads a file once it has settled (0.03 s); the wait ends as soon
+    ;; The watcher loads a file once it has settled (0.01 s); the wait ends as soon
     ;; as it has, and its cap is generous so that a loaded CI machine cannot fail it.
     (wait-while cx #(= state.reloads reloads) 20)
     (check (and (> state.reloads reloads) (not state.last-load.compiled?) (= state.error nil))

@@ -476,7 +476,7 @@ file watcher then reloads it as a value edit."
   (when (and state.panel.open? (?. state.scene :params))
     (panel.layout state.scene.params (love.graphics.getWidth))))
 
-(local poll-seconds 0.01)   ; with watch.settle-seconds, an edit is read 30-40 ms after its save
+(local poll-seconds 0.01)   ; with watch.settle-seconds, an edit is read 10-20 ms after its save
 
 (fn polled-info [path]
   "file-info for the watcher, which looks a hundred times a second: the file is read

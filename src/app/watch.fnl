@@ -13,10 +13,12 @@
 
 ;; Not written for this long: load it. An editor's save (one write, or a temporary
 ;; file renamed over) takes well under a millisecond for a scene file; a writer that
-;; pauses longer is caught by the retry below. With the player looking 100 times a
-;; second, an edit is read 30-40 ms after its save (it was 0.2 s: 200-300 ms of a
-;; structural edit's 0.3 s to its picture, and of a value edit's 0.1 s, went here).
-(local settle-seconds 0.03)
+;; pauses longer is caught by the retry below. The kernel stamps the time from a clock
+;; that ticks every 1-10 ms, at or before the write: 10 ms after the stamp the write
+;; is at least that tick's remainder past. With the player looking 100 times a
+;; second, an edit is read 10-20 ms after its save (it was 0.2 s, then 0.03 s: 20 ms
+;; of a value edit's 0.1 s to its picture went here).
+(local settle-seconds 0.01)
 (local missing-seconds 1.0)    ; gone or unreadable this long: say so (a rename is quicker)
 (local retry-seconds 0.15)     ; a failed read counts once the file stayed the same this long
 
