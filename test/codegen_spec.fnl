@@ -162,13 +162,16 @@
           (assert.are.same [0 0] [(emit-glsl.tape-texel 0)])
           (assert.are.same [(- width 1) 0] [(emit-glsl.tape-texel (- width 1))])
           (assert.are.same [2 1] [(emit-glsl.tape-texel (+ width 2))])
-          ;; The texture sent holds the rows in that order, padded to whole lines.
+          ;; The texture sent holds the rows in that order, then a texel for each
+          ;; element of the plan's :texels.
           (let [us (uniforms.pack s p (camera.from-scene s) 8 8)
-                tape (accumulate [found nil _ u (ipairs us)] (or found (and (= u.name "uTape") u)))]
+                tape (accumulate [found nil _ u (ipairs us)] (or found (and (= u.name "uTape") u)))
+                rows (uniforms.tape-values p.tape (. (camera.from-scene s) :pos))
+                texels (accumulate [n 0 _ t (ipairs p.texels)] (+ n (or t.count 1)))]
             (assert.are.equal :texture tape.type)
-            (assert.are.same [(length p.tape.rows) 1] [tape.texture.width tape.texture.height])
-            (assert.are.same (uniforms.tape-values p.tape (. (camera.from-scene s) :pos))
-                             tape.texture.data)))))
+            (assert.is_true (> texels 0))
+            (assert.are.same [(+ (length p.tape.rows) texels) 1] [tape.texture.width tape.texture.height])
+            (assert.are.same rows (fcollect [i 1 (length rows)] (. tape.texture.data i)))))))
 
     (it "reads each uniform once per pixel, into a global copy, but arrays indexed in a loop"
       (fn []
@@ -177,10 +180,16 @@
           (each [_ line (ipairs ["vec4 gTape[7];" "float gDrawDist;" "void loadUniforms() {"
                                  "    gTape[0] = (texelFetch(uTape, ivec2(0, 0), 0) + nothing);"
                                  "    gTape[6] = (texelFetch(uTape, ivec2(6, 0), 0) + nothing);"
-                                 "    gDrawDist = (uDrawDist + nothing);" "    gMaxSteps = min(uMaxSteps, opaque);"
                                  "    float nothing = 0.0 / gl_FragCoord.x;"
                                  "void main() {\n    loadUniforms();"])]
             (assert-has text line))
+          ;; The other values from their texels after the 7 rows (plan :texels), in
+          ;; pack's order (by name): the three bounding spheres (an array this short
+          ;; is copied too), the camera's basis, the draw distance, ...
+          (assert-has text "    gBounds[2] = (texelFetch(uTape, ivec2(9, 0), 0) + nothing);")
+          (assert-has text "    gCamRight = (texelFetch(uTape, ivec2(11, 0), 0).xyz + nothing);")
+          (assert-has text "    gDrawDist = (texelFetch(uTape, ivec2(13, 0), 0).x + nothing);")
+          (assert-has text "    gMaxSteps = min(int(texelFetch(uTape, ivec2(17, 0), 0).x), opaque);")
           ;; The code reads uName; `#define uName gName` makes it the copy's read:
           ;; once the preprocessor has run, outside the declarations and
           ;; loadUniforms no uniform is read but the resolution.
@@ -221,10 +230,11 @@
           (assert-has many-text "(texelFetch(uTape, ivec2(23, 0), 0) + nothing)")
           (assert-has many-text "vec4(texelFetch(uTape, ivec2(0, 0), 0))")
           (assert-lacks many-text "uniform vec4 uTape[")
-          ;; :love-uniforms reads the uniforms, with no vertex stage.
+          ;; :love-uniforms reads the texels after the rows (the same texture), with
+          ;; no vertex stage.
           (assert-lacks plain "vLoad")
           (assert-lacks plain "#ifdef VERTEX")
-          (assert-has plain "    gCamForward = (uCamForward + nothing);"))))
+          (assert-has plain "    gCamForward = (texelFetch(uTape, ivec2(16, 0), 0).xyz + nothing);"))))
 
     (it "gives every leaf its exact normal when no object needs differences"
       (fn []

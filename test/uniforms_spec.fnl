@@ -89,9 +89,10 @@
       (fn []
         (let [u (by-name (pack-scene seed))
               row (fn [i] (fcollect [k 1 4] (. u.uTape.texture.data (+ (* 4 i) k))))]
-          (assert.are.equal 16 u.uTape.count)
-          ;; A row a texel (emit-glsl.tape-texel): 16 rows fit one line.
-          (assert.are.same [16 1] [u.uTape.texture.width u.uTape.texture.height])
+          ;; A row a texel (emit-glsl.tape-texel): 16 rows and the 10 values of the
+          ;; plan's :texels fit one line.
+          (assert.are.equal 26 u.uTape.count)
+          (assert.are.same [26 1] [u.uTape.texture.width u.uTape.texture.height])
           ;; Camera at [20 50 20]. The first box: its place, half size, material
           ;; (colour, a full mirror).
           (assert.are.same [(- -2.7 20) -52 -17.5 0] (row 0))
@@ -106,7 +107,14 @@
           ;; unused place of zero before it).
           (assert.are.same [0 0 0 0] (row 13))
           (assert.are.same [0 0 1 -20] (row 14))
-          (assert.are.same [0.97 0.27 0.35 1] (row 15)))))
+          (assert.are.same [0.97 0.27 0.35 1] (row 15))
+          ;; Then the values a pixel copies once, a texel each in pack's order (the
+          ;; plan's :texels): the draw distance, the step budget.
+          (let [p (assert (plan.scene->plan seed))
+                at (fn [name] (accumulate [i nil k t (ipairs p.texels)] (or i (and (= t.name name) k))))]
+            (assert.are.same [1000 0 0 0] (row (+ 15 (at "uDrawDist"))))
+            (assert.are.same [500 0 0 0] (row (+ 15 (at "uMaxSteps"))))
+            (assert.are.same [-50 -30 0 0] (row (+ 15 (at "uLightPos"))))))))
 
     (it "makes positions camera-relative in double precision"
       (fn []

@@ -19,6 +19,11 @@
 (fn modern-materials? [plan]
   (or (not= nil plan.lighting) (and plan.tape (= plan.tape.material-size 8))))
 
+(fn long-array? [count]
+  ;; An array code indexes in a loop that load-once leaves a uniform (read where
+  ;; used): one longer than emit-glsl.max-copied-array.
+  (> count emit-glsl.max-copied-array))
+
 (fn uniform-declarations [plan]
   (let [lines []]
     (when (> plan.tape.count 0)
@@ -32,7 +37,7 @@
     (when (and plan.bounds (not plan.bounds.texture?) (> plan.bounds.count 0))
       (table.insert lines (emit-glsl.declare "vec4" "uBounds" plan.bounds.count
                                              "bounding spheres of the finite objects (camera-relative)"
-                                             true)))
+                                             (long-array? plan.bounds.count))))
     (when (object-normals? plan)
       (table.insert lines "int gObject = -1;  // the object mapColor found nearest last (-1: none)"))
     (let [modern? (modern-materials? plan)]
@@ -47,8 +52,10 @@
         (table.insert lines (.. "const int kLightCount = " l.lights ";"))
         (when l.soft? (table.insert lines (.. "const int kShadowSteps = " l.shadow-steps ";")))
         (each [_ [ty name count note loop?]
-               (ipairs [["vec4" "uLights" l.lights "point: position, range; sun: direction, 0" true]
-                        ["vec4" "uLightColors" l.lights "linear colour times intensity, softness" true]
+               (ipairs [["vec4" "uLights" l.lights "point: position, range; sun: direction, 0"
+                         (long-array? l.lights)]
+                        ["vec4" "uLightColors" l.lights "linear colour times intensity, softness"
+                         (long-array? l.lights)]
                         ["vec3" "uSkyZenith" nil "linear"]
                         ["vec3" "uSkyHorizon"]
                         ["vec2" "uSunEdge" nil "cosines of the sun disc's outer, inner radius"]
@@ -590,7 +597,14 @@ times as long on llvmpipe; see docs/benchmarks.md.)"
   (let [(x y) (emit-glsl.tape-texel row)]
     (string.format "texelFetch(%s, ivec2(%d, %d), 0)" name x y)))
 
-(fn load-once [declarations code rows-read declaration-text ?varyings? ?tape-texture?]
+(local texel-swizzles {:float ".x" :vec2 ".xy" :vec3 ".xyz" :vec4 "" :int ".x"})
+
+(fn texel-read [texture texel ty]
+  ;; A value of type `ty` read from texel `texel` of the rows' texture.
+  (let [fetch (.. (row-fetch texture texel) (. texel-swizzles ty))]
+    (if (= ty :int) (.. "int(" fetch ")") fetch)))
+
+(fn load-once [declarations code rows-read declaration-text ?varyings? ?tape-texture? ?texels]
   "The shader's body: `declarations` (items from emit-glsl.declare or a chunk's
 uniform lines, in order, each written by `declaration-text`) first, then the lines
 `code`, each uniform read through a
@@ -602,10 +616,18 @@ Not copied: samplers, the resolution, arrays that code indexes by a variable (th
 `?varyings?` (LÖVE's entry) as many copies as fit in flat varyings come from a
 vertex stage of their own: returns the lines and the vertex stage's. With
 `?tape-texture?` the tape's rows (a declaration marked :rows?, written as declared)
-are a texture of that name, each row read by one texelFetch (emit-glsl.tape-texel)."
+are a texture of that name, each row read by one texelFetch (emit-glsl.tape-texel),
+and `?texels` (name -> texel) places other uniforms' values in it after the rows
+(plan.texels, uniforms.texel-layout): a copy that no varying carries is read from
+its texel, not from the uniform (the vertex stage still reads the uniform)."
   (let [out []
         copied []
-        reads []]
+        reads []
+        texture (when ?tape-texture?
+                  (accumulate [name nil _ {:declare d} (ipairs declarations)]
+                    (or name (when (and d.rows? (= (declaration-text d) d.text)) d.name))))
+        texel-of (fn [d i] (case (and texture (?. ?texels d.name))
+                             base (texel-read texture (+ base i) d.type)))]
     (var opaque? false)
     (each [_ {:declare d} (ipairs declarations)]
       ;; Unless the caller writes the rows otherwise (the export: as constants).
@@ -626,9 +648,10 @@ are a texture of that name, each row read by one texelFetch (emit-glsl.tape-texe
                                        :uniform d.name
                                        :declaration (or texture d.text)
                                        :read (if texture (row-fetch d.name i)
-                                                 (string.format "%s[%d]" d.name i))})))
+                                                 (string.format "%s[%d]" d.name i))
+                                       :texel (texel-of d i)})))
               (table.insert reads {: copy :ty d.type :uniform d.name :declaration d.text
-                                   :read d.name})))))
+                                   :read d.name :texel (texel-of d 0)})))))
     (table.insert out "")
     (table.insert out "// Every read of a uniform below is of its copy (see load-once in src/render/codegen.fnl).")
     (each [_ [name copy] (ipairs copied)] (table.insert out (.. "#define " name " " copy)))
@@ -637,11 +660,11 @@ are a texture of that name, each row read by one texelFetch (emit-glsl.tape-texe
     (each [_ [name] (ipairs copied)] (table.insert out (.. "#undef " name)))
     (local (instead vertex-lines) (if ?varyings? (pack-varyings reads) {}))
     (local copies
-      (icollect [_ {: copy : ty : read} (ipairs reads)]
-        (let [wrap (. opaque-types ty)]
+      (icollect [_ {: copy : ty : read : texel} (ipairs reads)]
+        (let [wrap (. opaque-types ty)
+              source (or (. instead read) texel read)]
           (when (and wrap (wrap:find "opaque")) (set opaque? true))
-          (string.format "    %s = %s;" copy
-                         (if wrap (string.format wrap (or (. instead read) read)) read)))))
+          (string.format "    %s = %s;" copy (if wrap (string.format wrap source) source)))))
     (table.insert out "// Every uniform copied once per pixel (see load-once in src/render/codegen.fnl).")
     (table.insert out "void loadUniforms() {")
     (table.insert out "    // Through values the compiler cannot fold (see load-once in codegen.fnl).")
@@ -669,6 +692,16 @@ are a texture of that name, each row read by one texelFetch (emit-glsl.tape-texe
                 (table.insert vertex "}")
                 {:vertex vertex :count (length vertex-lines)})))))
 
+(fn texel-rows [plan]
+  ;; name -> the texel of its first element in the rows' texture: plan.texels in
+  ;; order after the tape's rows (uniforms.pack writes them so).
+  (let [rows {}]
+    (var next (length plan.tape.rows))
+    (each [_ {: name : count} (ipairs (or plan.texels []))]
+      (tset rows name next)
+      (set next (+ next (or count 1))))
+    rows))
+
 (fn generate [plan target declaration-text]
   (let [body []
         out []
@@ -689,7 +722,7 @@ are a texture of that name, each row read by one texelFetch (emit-glsl.tape-texe
           code (icollect [_ l (ipairs body)] (when (= (type l) :string) l))
           (lines vertex) (if plan.load-once? (load-once declarations code (emit-glsl.reads cx)
                                                         declaration-text target.varyings?
-                                                        plan.tape-texture?)
+                                                        plan.tape-texture? (texel-rows plan))
                              (doto (icollect [_ d (ipairs declarations)] (declaration-text d.declare))
                                (table.insert "")
                                (flatten-into "" code)

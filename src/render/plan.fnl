@@ -103,7 +103,7 @@
 ;; key without anyone listing it: at worst a value edit compiles again, never a
 ;; stale shader.
 (local value-fields {:objects true :reflections true :uniform-vectors true
-                     :key true})
+                     :texels true :key true})
 
 ;; Of nested parts, what the code reads: the tape's key (its own structure, derived
 ;; the same way in lower.fnl), a field's kinds, walk and object count (unless the
@@ -502,6 +502,10 @@ Returns the plan, or nil and a message when the scene does not fit the budget."
     (when (and options.fold? (not uber?))
       (set plan.baked (collect [_ u (ipairs (uniforms.fixed scene plan))]
                         u.name (uniforms.constant u))))
+    ;; Rows from a texture: the values a pixel copies once ride it too, after the
+    ;; rows, for when no flat varying is left for them (codegen's load-once).
+    (when (and plan.tape-texture? (> (length plan.tape.rows) 0))
+      (set plan.texels (uniforms.texel-layout scene plan)))
     (set plan.key (structure-key plan))
     (if field-error (values nil field-error)
         grid-error (values nil grid-error)

@@ -20,6 +20,20 @@ is a hit (see shaders/pipeline/hit/)."
                (fn [dist] (* k dist))))))
 
 (local components {:float 1 :int 1 :bool 1 :vec2 2 :vec3 3 :vec4 4})
+(local texel-types {:float true :int true :vec2 true :vec3 true :vec4 true})
+
+(fn texel-values [out texels]
+  ;; The values of `texels` (plan.texels) taken from pack's uniforms `out`: each
+  ;; element a texel, its components first, zeros after.
+  (let [by-name (collect [_ u (ipairs out)] u.name u)
+        vals []]
+    (each [_ {: name : type : count} (ipairs texels)]
+      (let [u (. by-name name)
+            n (. components type)]
+        (for [e 0 (- (or count 1) 1)]
+          (for [k 1 4]
+            (table.insert vals (or (and u (<= k n) (. u.values (+ (* e n) k))) 0))))))
+    vals))
 
 (fn relative [[x y z] [cx cy cz]]
   [(- x cx) (- y cy) (- z cz)])
@@ -156,18 +170,14 @@ marked :view? true; the others are the scene's settings (see fixed)."
             (table.insert out u))))
     (when plan.grids
       (append! out (grid-uniforms plan.grids cam.pos)))
+    (var tape-rows nil)
     (each [_ [name bank] (ipairs [["uTape" plan.tape] ["uInstances" plan.tape.instances]])]
       (when (and (> (length bank.rows) 0) (not bank.texture?))
         (let [vals (tape-values bank cam.pos)
               rows (length bank.rows)]
-          (table.insert out
-                        (if (and plan.tape-texture? (= bank plan.tape))
-                            ;; A row a texel (codegen's load-once, emit-glsl.tape-texel).
-                            {: name :type :texture :count rows :view? true
-                             :texture {:width (math.min rows emit-glsl.tape-texture-width)
-                                       :height (math.ceil (/ rows emit-glsl.tape-texture-width))
-                                       :data vals}}
-                            {: name :type :vec4 :values vals :count rows :view? true})))))
+          (if (and plan.tape-texture? (= bank plan.tape))
+              (set tape-rows vals)
+              (table.insert out {: name :type :vec4 :values vals :count rows :view? true})))))
     (when (bounds.others? plan)
       (let [flat (bounds.spheres plan cam.pos (hit-threshold scene plan cam height))]
         (table.insert out (if plan.bounds.texture?
@@ -176,8 +186,35 @@ marked :view? true; the others are the scene's settings (see fixed)."
                                :texture (bounds.texture flat)}
                               {:name "uBounds" :type :vec4 :count plan.bounds.count :view? true
                                :values flat}))))
+    (when tape-rows
+      ;; A row a texel (codegen's load-once, emit-glsl.tape-texel), then the texels of
+      ;; the plan's :texels.
+      (let [vals (append! tape-rows (texel-values out (or plan.texels [])))
+            texels (/ (length vals) 4)]
+        (table.insert out {:name "uTape" :type :texture :count texels :view? true
+                           :texture {:width (math.min texels emit-glsl.tape-texture-width)
+                                     :height (math.ceil (/ texels emit-glsl.tape-texture-width))
+                                     :data vals}})))
     (table.sort out (fn [a b] (< a.name b.name)))
     out))
+
+(fn texel-value? [u]
+  ;; Whether uniform `u` of pack's list may ride a texel: numbers of a float or int
+  ;; type, alone or in an array that load-once copies (emit-glsl.max-copied-array),
+  ;; not the target's size (read where used).
+  (and (not= nil u.values) (. texel-types u.type) (not= u.name "uResolution")
+       (or (= nil u.count) (<= u.count emit-glsl.max-copied-array))))
+
+(fn texel-layout [scene plan]
+  "The values that ride the tape's texture after its rows, on a plan whose rows do
+(:tape-texture?): [{:name :type :count}], pack's uniforms that may (not baked into
+the code), in pack's order, a texel for each element. Codegen's load-once reads a
+value there when no flat varying carries it (llvmpipe compiles a texel fetch
+quicker than a uniform read); pack writes them. Names and counts only, never
+values: a value edit keeps the layout, and the shader."
+  (icollect [_ u (ipairs (pack scene plan (camera.from-scene scene) 1 1))]
+    (when (and (texel-value? u) (= nil (?. plan :baked u.name)))
+      {:name u.name :type u.type :count u.count})))
 
 (fn prior [pass ?image]
   "The uniforms of an adaptive plan's picture of centre rays (shaders/pipeline/
@@ -217,4 +254,4 @@ values: `const vec3 uName = vec3(...);`, an array as an array constructor."
             ");")
         (.. "const " u.type " " u.name " = " (value-literal u.type u.values 1) ";"))))
 
-{: pack : fixed : constant : prior : components : linear : tape-values}
+{: pack : fixed : constant : prior : components : linear : tape-values : texel-layout}

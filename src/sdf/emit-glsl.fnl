@@ -298,6 +298,12 @@ variable (then it is read where used, never copied)."
 ;; 16384).
 (local tape-texture-width 1024)
 
+;; The longest uniform array that load-once (src/render/codegen.fnl) copies element by
+;; element although code indexes it in a loop (the lights, the bounding spheres): a
+;; loop this short over a constant count is unrolled, so each element is read at a
+;; constant index; a longer array stays a uniform, read where used.
+(local max-copied-array 8)
+
 (fn tape-texel [row]
   "The texel that holds the tape's row `row` (0-based) when the rows travel as a
 texture: x, y."
@@ -530,6 +536,7 @@ leaf whose primitive is solid below a plane, met in closed form; see plane-block
 {: functions : gradient-functions : declarations : declare : new-context : reads
  : distance-terms : some-terms : color-terms : object-terms : gradient-terms : plane-terms
  : exact? : text-lines : float-literal : tape-texture-width : tape-texel : gradient-name
+ : max-copied-array
  ;; For the strategies' terms (src/sdf/strategies/):
  : derived : emit-code : object-comment : indented : guarded-lines : object-body : open-block
  : minimum-tail : taken-open : color-tail : either-tail : either-terms : deferred-materials? : leaf-gradient : leaf-exact? : plane-block
