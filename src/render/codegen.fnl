@@ -519,7 +519,10 @@ times as long on llvmpipe; see docs/benchmarks.md.)"
 ;; top of the entry point, and the code reads the global. (A whole-array copy is folded
 ;; back into uniform reads.) Arrays indexed in a loop (a kind with many objects) stay
 ;; uniforms: a private array indexed by a variable is not kept in registers, and 300
-;; spheres took llvmpipe 25 s to compile that way, for no faster frame. The
+;; spheres took llvmpipe 25 s to compile that way, for no faster frame. Not the
+;; lights and the bounding spheres when there are few (emit-glsl.max-copied-array):
+;; their loops run a constant count and are unrolled, each element read at a constant
+;; index (the tower: 7% off the compile, frames 0.94-1.00 across the showcase). The
 ;; resolution is read once per pixel anyway.
 (local read-directly {:uResolution true})
 
@@ -582,7 +585,9 @@ times as long on llvmpipe; see docs/benchmarks.md.)"
 ;; How a declaration is written: as itself, unless the caller says otherwise (the
 (fn default-declaration [d] d.text)
 
-;; The tape's rows from a texture (the plan's :tape-texture?): llvmpipe compiles each
+;; The tape's rows from a texture (the plan's :tape-texture?), and after them a texel
+;; for each value a pixel copies once (plan :texels, uniforms.texel-layout), read
+;; there when no varying is left for it: llvmpipe compiles each
 ;; uniform element a shader reads into an eight-lane gather, and their compile time
 ;; grows faster than their number (a shader reading 70 vec4 uniforms: 145 ms, 140:
 ;; 329 ms, 280: 971 ms; as texel fetches of an rgba32f image 46, 70 and 137 ms; as
