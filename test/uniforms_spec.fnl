@@ -111,10 +111,34 @@
           ;; Then the values a pixel copies once, a texel each in pack's order (the
           ;; plan's :texels): the draw distance, the step budget.
           (let [p (assert (plan.scene->plan seed))
-                at (fn [name] (accumulate [i nil k t (ipairs p.texels)] (or i (and (= t.name name) k))))]
-            (assert.are.same [1000 0 0 0] (row (+ 15 (at "uDrawDist"))))
-            (assert.are.same [500 0 0 0] (row (+ 15 (at "uMaxSteps"))))
-            (assert.are.same [-50 -30 0 0] (row (+ 15 (at "uLightPos"))))))))
+                at (fn [name] (accumulate [n 16 _ t (ipairs p.texels) &until (= t.name name)]
+                                (+ n (or t.count 1))))]
+            (assert.are.same [1000 0 0 0] (row (at "uDrawDist")))
+            (assert.are.same [500 0 0 0] (row (at "uMaxSteps")))
+            (assert.are.same [-50 -30 0 0] (row (at "uLightPos")))))))
+
+    (it "lays the values out in texels by name and count only: a value edit keeps the shader"
+      (fn []
+        ;; The tower with a dimmer sun: the same plan (key, texels), and the image
+        ;; differs in the light's colour texel alone.
+        (let [bright (assert (scene.load-file "scenes/twisted-tower.fnl"))
+              dim (doto (assert (scene.load-file "scenes/twisted-tower.fnl"))
+                    (tset :lighting :lights 1 :intensity 0.6))
+              (ub pb) (pack-scene bright)
+              (ud pd) (pack-scene dim)
+              rows (length pb.tape.rows)
+              ;; Its texel: after the rows and each element of the values before it.
+              texel (accumulate [n rows _ t (ipairs pb.texels) &until (= t.name "uLightColors")]
+                      (+ n (or t.count 1)))
+              tb (. (by-name ub) :uTape :texture :data)
+              td (. (by-name ud) :uTape :texture :data)
+              differ (icollect [i x (ipairs tb)] (when (not= x (. td i)) (math.floor (/ (- i 1) 4))))]
+          (assert.are.equal pb.key pd.key)
+          (assert.are.same pb.texels pd.texels)
+          (assert.are.equal (length tb) (length td))
+          ;; Three colour components of one texel (its softness is the same).
+          (assert.are.same [texel texel texel] differ)
+          (near (* 0.2 (. tb (+ (* 4 texel) 1))) (. td (+ (* 4 texel) 1)) 1e-9))))
 
     (it "makes positions camera-relative in double precision"
       (fn []
