@@ -102,6 +102,17 @@ object (see shift-node!)."
 (fn uniform-values [u]
   (or u.values (?. u :texture :data) []))
 
+(fn texel-owners [plan]
+  ;; Texel (0-based) -> the uniform whose value it holds, for the values after the
+  ;; tape's rows in its texture (plan :texels, uniforms.texel-layout).
+  (let [owners {}]
+    (var next (length plan.tape.rows))
+    (each [_ {: name : count} (ipairs (or plan.texels []))]
+      (for [_ 1 (or count 1)]
+        (tset owners next name)
+        (set next (+ next 1))))
+    owners))
+
 (describe "a scene 1e6 units from the origin, on the CPU"
   (fn []
     (each [_ {: file} (ipairs fixtures)]
@@ -118,6 +129,7 @@ object (see shift-node!)."
                   far (prepare file fold? shift)
                   us-near (uniforms.pack near.scene near.plan near.cam width height)
                   us-far (uniforms.pack far.scene far.plan far.cam width height)
+                  owners (texel-owners near.plan)
                   where (.. file (if fold? " (folded)" ""))]
               (assert.are.equal (length us-near) (length us-far))
               (each [i u (ipairs us-near)]
@@ -135,10 +147,15 @@ object (see shift-node!)."
                                                                     (close? y2 y) (close? z2 z)))
                                                   (string.format "%s: bounding sphere %d moved out (%.9g %.9g %.9g r %.9g) is neither the origin's (%.9g %.9g %.9g r %.9g) nor smaller"
                                                                  where (/ (- k 1) 4) x2 y2 z2 r2 x y z r))))
+                    ;; The texels of those two are checked as their uniforms are.
                     _ (each [k x (ipairs a)]
-                        (assert.is_true (close? x (. b k))
-                                        (string.format "%s: %s[%d] is %.9g at the origin, %.9g moved out"
-                                                       where u.name (- k 1) x (. b k))))))))))))
+                        (when (not (and (= u.name "uTape")
+                                        (case (. owners (math.floor (/ (- k 1) 4)))
+                                          "uCamHeight" true
+                                          "uBounds" true)))
+                          (assert.is_true (close? x (. b k))
+                                          (string.format "%s: %s[%d] is %.9g at the origin, %.9g moved out"
+                                                         where u.name (- k 1) x (. b k)))))))))))))
 
     (it "bounds a tree object whose root is an explicit translation where it moves it"
       (fn []
